@@ -1,0 +1,19 @@
+#pragma once
+// A minimal fork-join loop over an index range, for whole-volume work
+// (encoding every brick, extracting a level). The calling thread takes part.
+
+#include <cstdint>
+#include <functional>
+
+namespace sculpt::core {
+
+/// Number of threads the machine offers (at least 1).
+int hardware_threads();
+
+/// Calls `body(i)` for every i in [0, count), spread over `threads` threads
+/// (0 = hardware_threads()). Work is handed out in order, one index at a time,
+/// so uneven items (uniform vs detailed bricks) balance themselves. `body` must
+/// be safe to call concurrently for different i.
+void parallel_for(int64_t count, const std::function<void(int64_t)>& body, int threads = 0);
+
+}  // namespace sculpt::core

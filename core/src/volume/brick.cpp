@@ -1,0 +1,41 @@
+#include "sculpt/core/volume/brick.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace sculpt::core {
+
+Brick::Brick(const Brick& other)
+    : value_(other.value_),
+      pyramid_(other.pyramid_ ? std::make_unique<WaveletPyramid>(*other.pyramid_) : nullptr) {}
+
+Brick& Brick::operator=(const Brick& other) {
+  if (this != &other) *this = Brick(other);
+  return *this;
+}
+
+void Brick::encode(std::span<const uint8_t> voxels, int edge, int levels) {
+  // A brick away from the surface is all 0 or all 255: the common case, and the
+  // reason memory grows with the sculpted surface rather than the bounding box.
+  const uint8_t first = voxels[0];
+  const bool uniform = std::all_of(voxels.begin(), voxels.end(), [first](uint8_t v) { return v == first; });
+  if (uniform) {
+    value_ = first;
+    pyramid_.reset();
+    return;
+  }
+  if (!pyramid_ || pyramid_->edge() != edge || pyramid_->levels() != levels) {
+    pyramid_ = std::make_unique<WaveletPyramid>(edge, levels);
+  }
+  pyramid_->encode(voxels);
+}
+
+void Brick::extract_level(int level, std::span<uint8_t> out) const {
+  if (pyramid_) {
+    pyramid_->extract_level(level, out);
+  } else {
+    std::fill(out.begin(), out.end(), value_);
+  }
+}
+
+}  // namespace sculpt::core

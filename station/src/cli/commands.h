@@ -1,0 +1,25 @@
+#pragma once
+// The `sculpt` subcommands (DESIGN.md §7). Each add_*_command registers its
+// options on `app` and, when the user picks it, sets `action` to the function
+// that runs it and returns the exit code: 0 success, 1 bad input (one line on
+// stderr naming the input), 2 usage error (CLI11 reports those).
+
+#include <functional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "sculpt/core/util/result.h"
+
+namespace sculpt::station::cli {
+
+using Action = std::function<int()>;
+
+void add_wavelet_command(CLI::App& app, Action& action);
+void add_run_command(CLI::App& app, Action& action);
+void add_bench_command(CLI::App& app, Action& action);
+
+/// Prints "sculpt: <message>" on stderr and returns exit code 1.
+int report(const core::Error& error);
+
+}  // namespace sculpt::station::cli

@@ -1,0 +1,31 @@
+// The `sculpt` executable: one command with subcommands (DESIGN.md §7).
+
+#include <exception>
+#include <iostream>
+
+#include "cli/commands.h"
+
+int main(int argc, char** argv) {
+  namespace cli = sculpt::station::cli;
+  CLI::App app{"sculpt: a virtual sculpting station for 6-DOF input devices", "sculpt"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "sculpt 0.1.0");
+  cli::Action action;
+  cli::add_run_command(app, action);
+  cli::add_wavelet_command(app, action);
+  cli::add_bench_command(app, action);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version exit 0; everything else is a usage error, exit 2.
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  try {
+    return action ? action() : 2;
+  } catch (const std::exception& e) {
+    // Out of memory and the like: still one line and a clean exit.
+    std::cerr << "sculpt: " << e.what() << "\n";
+    return 1;
+  }
+}
