@@ -42,7 +42,8 @@ using File = std::unique_ptr<std::FILE, FileCloser>;
 
 Result<NrrdType> parse_type(const std::string& value) {
   const std::string v = lower(value);
-  if (v == "uchar" || v == "unsigned char" || v == "uint8" || v == "uint8_t") return NrrdType::kUInt8;
+  if (v == "uchar" || v == "unsigned char" || v == "uint8" || v == "uint8_t")
+    return NrrdType::kUInt8;
   if (v == "float") return NrrdType::kFloat32;
   return Error("type '" + value + "' is not supported (uint8 or float)");
 }
@@ -50,11 +51,14 @@ Result<NrrdType> parse_type(const std::string& value) {
 Result<glm::ivec3> parse_sizes(const std::string& value, const NrrdLimits& limits) {
   std::istringstream in(value);
   std::vector<std::string> words;
-  for (std::string w; in >> w;) words.push_back(w);
-  if (words.size() != 3) return Error("sizes: expected 3 numbers, got " + std::to_string(words.size()));
+  for (std::string w; in >> w;)
+    words.push_back(w);
+  if (words.size() != 3)
+    return Error("sizes: expected 3 numbers, got " + std::to_string(words.size()));
   int64_t s[3];
   for (int i = 0; i < 3; ++i) {
-    const auto [end, ec] = std::from_chars(words[i].data(), words[i].data() + words[i].size(), s[i]);
+    const auto [end, ec] =
+        std::from_chars(words[i].data(), words[i].data() + words[i].size(), s[i]);
     if (ec != std::errc() || end != words[i].data() + words[i].size() || s[i] < 1) {
       return Error("sizes: '" + words[i] + "' is not a positive integer");
     }
@@ -62,21 +66,22 @@ Result<glm::ivec3> parse_sizes(const std::string& value, const NrrdLimits& limit
   }
   // Each factor is at most max_voxels (< 2^63), so check the product stepwise.
   if (s[0] * s[1] > limits.max_voxels || s[0] * s[1] > limits.max_voxels / s[2]) {
-    return Error("sizes " + value + " are too large (more than " + std::to_string(limits.max_voxels) +
-                 " voxels)");
+    return Error("sizes " + value + " are too large (more than " +
+                 std::to_string(limits.max_voxels) + " voxels)");
   }
   return glm::ivec3(static_cast<int>(s[0]), static_cast<int>(s[1]), static_cast<int>(s[2]));
 }
 
 // Parses the header text (the magic line excluded) into fields.
-Result<NrrdHeader> parse_header(const std::vector<std::string>& lines, const std::filesystem::path& path,
-                                const NrrdLimits& limits) {
+Result<NrrdHeader> parse_header(const std::vector<std::string>& lines,
+                                const std::filesystem::path& path, const NrrdLimits& limits) {
   std::map<std::string, std::string> fields;
   for (const std::string& line : lines) {
     if (line.empty() || line[0] == '#') continue;
     if (line.find(":=") != std::string::npos) continue;  // key/value pairs carry no layout
     const auto colon = line.find(": ");
-    if (colon == std::string::npos) return Error("header line '" + line + "' is not 'field: value'");
+    if (colon == std::string::npos)
+      return Error("header line '" + line + "' is not 'field: value'");
     const std::string field = lower(trim(line.substr(0, colon)));
     if (!fields.emplace(field, trim(line.substr(colon + 2))).second) {
       return Error("field '" + field + "' appears twice");
@@ -91,7 +96,8 @@ Result<NrrdHeader> parse_header(const std::vector<std::string>& lines, const std
   NrrdHeader h;
   auto dimension = need("dimension");
   if (!dimension) return dimension.error();
-  if (trim(*dimension) != "3") return Error("dimension " + *dimension + " is not supported (3D volumes only)");
+  if (trim(*dimension) != "3")
+    return Error("dimension " + *dimension + " is not supported (3D volumes only)");
   auto type = need("type");
   if (!type) return type.error();
   auto parsed_type = parse_type(*type);
@@ -114,7 +120,8 @@ Result<NrrdHeader> parse_header(const std::vector<std::string>& lines, const std
     auto endian = need("endian");
     if (!endian) return endian.error();
     const std::string e = lower(*endian);
-    if (e != "little" && e != "big") return Error("endian '" + *endian + "' is not 'little' or 'big'");
+    if (e != "little" && e != "big")
+      return Error("endian '" + *endian + "' is not 'little' or 'big'");
     h.big_endian = e == "big";
   }
   for (const char* skip : {"byte skip", "byteskip", "line skip", "lineskip"}) {
@@ -138,8 +145,12 @@ Result<NrrdHeader> parse_header(const std::vector<std::string>& lines, const std
 
 }  // namespace
 
-const char* nrrd_type_name(NrrdType type) { return type == NrrdType::kUInt8 ? "uint8" : "float"; }
-size_t nrrd_type_size(NrrdType type) { return type == NrrdType::kUInt8 ? 1 : 4; }
+const char* nrrd_type_name(NrrdType type) {
+  return type == NrrdType::kUInt8 ? "uint8" : "float";
+}
+size_t nrrd_type_size(NrrdType type) {
+  return type == NrrdType::kUInt8 ? 1 : 4;
+}
 
 struct NrrdReader::Impl {
   NrrdHeader header;
@@ -201,7 +212,9 @@ NrrdReader::NrrdReader(NrrdReader&&) noexcept = default;
 NrrdReader& NrrdReader::operator=(NrrdReader&&) noexcept = default;
 NrrdReader::~NrrdReader() = default;
 
-const NrrdHeader& NrrdReader::header() const { return impl_->header; }
+const NrrdHeader& NrrdReader::header() const {
+  return impl_->header;
+}
 
 Result<NrrdReader> NrrdReader::open(const std::filesystem::path& path, const NrrdLimits& limits) {
   const std::string name = path.string();
@@ -214,7 +227,8 @@ Result<NrrdReader> NrrdReader::open(const std::filesystem::path& path, const Nrr
   size_t header_bytes = 0;
   bool blank_seen = false;
   for (int c; (c = std::fgetc(file.get())) != EOF;) {
-    if (++header_bytes > kMaxHeaderBytes) return Error(name + ": header does not end (no blank line)");
+    if (++header_bytes > kMaxHeaderBytes)
+      return Error(name + ": header does not end (no blank line)");
     if (c != '\n') {
       line.push_back(static_cast<char>(c));
       continue;
@@ -228,8 +242,9 @@ Result<NrrdReader> NrrdReader::open(const std::filesystem::path& path, const Nrr
     lines.push_back(std::move(line));
     line.clear();
   }
-  if (lines.empty() || lines[0].size() != 8 || lines[0].rfind("NRRD000", 0) != 0 || lines[0][7] < '1' ||
-      lines[0][7] > '5') {
+  if (!blank_seen && !line.empty()) lines.push_back(std::move(line));  // last line without newline
+  if (lines.empty() || lines[0].size() != 8 || lines[0].rfind("NRRD000", 0) != 0 ||
+      lines[0][7] < '1' || lines[0][7] > '5') {
     return Error(name + ": not a NRRD file (it does not start with NRRD0001..NRRD0005)");
   }
   auto header = parse_header({lines.begin() + 1, lines.end()}, path, limits);
@@ -242,7 +257,8 @@ Result<NrrdReader> NrrdReader::open(const std::filesystem::path& path, const Nrr
   if (header->data_path != path) {
     impl->file.reset(std::fopen(header->data_path.string().c_str(), "rb"));
     if (!impl->file) {
-      return Error(name + ": cannot open data file " + header->data_path.string() + ": " + std::strerror(errno));
+      return Error(name + ": cannot open data file " + header->data_path.string() + ": " +
+                   std::strerror(errno));
     }
     impl->header.data_offset = 0;
   } else {
@@ -252,26 +268,30 @@ Result<NrrdReader> NrrdReader::open(const std::filesystem::path& path, const Nrr
   }
 
   if (header->gzip) {
-    if (inflateInit2(&impl->zs, 15 + 32) != Z_OK) return Error(name + ": cannot start gzip decoding");
+    if (inflateInit2(&impl->zs, 15 + 32) != Z_OK)
+      return Error(name + ": cannot start gzip decoding");
     impl->zs_open = true;
     impl->in_buffer.resize(1 << 16);
   } else {
     // Raw data must be exactly as long as the sizes say: checked before any
     // allocation, so a lying header cannot make us reserve gigabytes.
     std::error_code ec;
-    const auto file_size = static_cast<int64_t>(std::filesystem::file_size(impl->header.data_path, ec));
+    const auto file_size =
+        static_cast<int64_t>(std::filesystem::file_size(impl->header.data_path, ec));
     if (ec) return Error(name + ": cannot read the data's size: " + ec.message());
-    const int64_t expected = voxel_count(header->dims) * static_cast<int64_t>(nrrd_type_size(header->type));
+    const int64_t expected =
+        voxel_count(header->dims) * static_cast<int64_t>(nrrd_type_size(header->type));
     const int64_t available = file_size - impl->header.data_offset;
-    const std::string shape = std::to_string(header->dims.x) + "x" + std::to_string(header->dims.y) + "x" +
+    const std::string shape = std::to_string(header->dims.x) + "x" +
+                              std::to_string(header->dims.y) + "x" +
                               std::to_string(header->dims.z) + " " + nrrd_type_name(header->type);
     if (available < expected) {
       return Error(name + ": truncated data: " + shape + " needs " + std::to_string(expected) +
                    " bytes, the file holds " + std::to_string(std::max<int64_t>(available, 0)));
     }
     if (available > expected) {
-      return Error(name + ": " + std::to_string(available - expected) + " bytes more data than " + shape +
-                   " needs (wrong sizes or type?)");
+      return Error(name + ": " + std::to_string(available - expected) + " bytes more data than " +
+                   shape + " needs (wrong sizes or type?)");
     }
   }
   return NrrdReader(std::move(impl));
@@ -288,7 +308,8 @@ Status NrrdReader::read_slices(int slices, std::span<std::byte> out) {
   s.slices_left -= slices;
   const bool host_big_endian = std::endian::native == std::endian::big;
   if (elem > 1 && s.header.big_endian != host_big_endian) {
-    for (size_t i = 0; i < out.size(); i += elem) std::reverse(out.begin() + i, out.begin() + i + elem);
+    for (size_t i = 0; i < out.size(); i += elem)
+      std::reverse(out.begin() + i, out.begin() + i + elem);
   }
   if (s.slices_left == 0 && s.header.gzip && !s.zs_done) {
     // The stream must end exactly where the sizes say.
@@ -311,7 +332,8 @@ Status NrrdReader::read_slices(int slices, std::span<std::byte> out) {
 namespace {
 
 template <class T>
-Result<DenseGrid<T>> read_whole(const std::filesystem::path& path, const NrrdLimits& limits, NrrdType want) {
+Result<DenseGrid<T>> read_whole(const std::filesystem::path& path, const NrrdLimits& limits,
+                                NrrdType want) {
   auto reader = NrrdReader::open(path, limits);
   if (!reader) return reader.error();
   const NrrdHeader& h = reader->header();
@@ -348,10 +370,12 @@ Status write_whole(const std::filesystem::path& path, const DenseGrid<T>& grid, 
 
 }  // namespace
 
-Result<DenseGrid<uint8_t>> read_nrrd_u8(const std::filesystem::path& path, const NrrdLimits& limits) {
+Result<DenseGrid<uint8_t>> read_nrrd_u8(const std::filesystem::path& path,
+                                        const NrrdLimits& limits) {
   return read_whole<uint8_t>(path, limits, NrrdType::kUInt8);
 }
-Result<DenseGrid<float>> read_nrrd_f32(const std::filesystem::path& path, const NrrdLimits& limits) {
+Result<DenseGrid<float>> read_nrrd_f32(const std::filesystem::path& path,
+                                       const NrrdLimits& limits) {
   return read_whole<float>(path, limits, NrrdType::kFloat32);
 }
 
@@ -359,7 +383,8 @@ std::string nrrd_header_text(glm::ivec3 dims, NrrdType type) {
   std::string h = "NRRD0004\n# written by sculpt; voxel (x, y, z) at x, y, z\n";
   h += std::string("type: ") + nrrd_type_name(type) + "\n";
   h += "dimension: 3\n";
-  h += "sizes: " + std::to_string(dims.x) + " " + std::to_string(dims.y) + " " + std::to_string(dims.z) + "\n";
+  h += "sizes: " + std::to_string(dims.x) + " " + std::to_string(dims.y) + " " +
+       std::to_string(dims.z) + "\n";
   h += "spacings: 1 1 1\n";
   if (nrrd_type_size(type) > 1) h += "endian: little\n";
   h += "encoding: raw\n\n";

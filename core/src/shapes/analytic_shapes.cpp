@@ -31,7 +31,8 @@ void fill_sphere(const Box& box, glm::vec3 centre, float radius, std::span<uint8
 DenseGrid<uint8_t> sphere_density(int n, float r_frac) {
   DenseGrid<uint8_t> grid{glm::ivec3(n)};
   const float c = static_cast<float>(n - 1) / 2.0f;
-  fill_sphere(Box{glm::ivec3(0), glm::ivec3(n)}, glm::vec3(c), r_frac * static_cast<float>(n), grid.values());
+  fill_sphere(Box{glm::ivec3(0), glm::ivec3(n)}, glm::vec3(c), r_frac * static_cast<float>(n),
+              grid.values());
   return grid;
 }
 
@@ -57,7 +58,8 @@ DenseGrid<uint8_t> from_distance(glm::ivec3 dims, SignedDistance sd) {
 
 }  // namespace
 
-DenseGrid<uint8_t> torus_density(glm::ivec3 dims, glm::vec3 centre, float major_radius, float minor_radius) {
+DenseGrid<uint8_t> torus_density(glm::ivec3 dims, glm::vec3 centre, float major_radius,
+                                 float minor_radius) {
   return from_distance(dims, [=](glm::vec3 p) {
     const glm::vec3 q = p - centre;
     const float ring = std::sqrt(q.x * q.x + q.y * q.y) - major_radius;

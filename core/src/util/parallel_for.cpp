@@ -7,13 +7,16 @@
 
 namespace sculpt::core {
 
-int hardware_threads() { return std::max(1u, std::thread::hardware_concurrency()); }
+int hardware_threads() {
+  return std::max(1u, std::thread::hardware_concurrency());
+}
 
 void parallel_for(int64_t count, const std::function<void(int64_t)>& body, int threads) {
   if (threads <= 0) threads = hardware_threads();
   const int64_t workers = std::min<int64_t>(threads, count);
   if (workers <= 1) {
-    for (int64_t i = 0; i < count; ++i) body(i);
+    for (int64_t i = 0; i < count; ++i)
+      body(i);
     return;
   }
   std::atomic<int64_t> next{0};
@@ -25,7 +28,8 @@ void parallel_for(int64_t count, const std::function<void(int64_t)>& body, int t
   };
   std::vector<std::jthread> pool;
   pool.reserve(static_cast<size_t>(workers - 1));
-  for (int64_t t = 1; t < workers; ++t) pool.emplace_back(work);
+  for (int64_t t = 1; t < workers; ++t)
+    pool.emplace_back(work);
   work();
 }
 

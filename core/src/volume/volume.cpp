@@ -14,7 +14,9 @@ std::string dims_text(glm::ivec3 d) {
   return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
 }
 
-int ceil_div(int a, int b) { return (a + b - 1) / b; }
+int ceil_div(int a, int b) {
+  return (a + b - 1) / b;
+}
 
 // Per-thread brick buffer, so whole-volume loops allocate once per thread.
 std::span<uint8_t> brick_buffer(int edge) {
@@ -25,17 +27,19 @@ std::span<uint8_t> brick_buffer(int edge) {
 }
 
 // Copies the part of `src` (a cube of edge m at cube_origin, x fastest) that
-// lies in `dst_box` into `dst` (a dense grid covering dst_box).
+// lies in `clip` into `dst` (a dense grid whose first voxel is dst_origin).
+// `clip` keeps a border brick's padding out of the result.
 void copy_cube_into(std::span<const uint8_t> src, int m, glm::ivec3 cube_origin,
-                    DenseGrid<uint8_t>& dst, const Box& dst_box) {
-  const Box overlap = intersect(Box{cube_origin, cube_origin + glm::ivec3(m)}, dst_box);
+                    DenseGrid<uint8_t>& dst, glm::ivec3 dst_origin, const Box& clip) {
+  const Box overlap = intersect(Box{cube_origin, cube_origin + glm::ivec3(m)}, clip);
   if (overlap.empty()) return;
   const int run = overlap.hi.x - overlap.lo.x;
   for (int z = overlap.lo.z; z < overlap.hi.z; ++z) {
     for (int y = overlap.lo.y; y < overlap.hi.y; ++y) {
-      const uint8_t* from = &src[(static_cast<size_t>(z - cube_origin.z) * m + (y - cube_origin.y)) * m +
-                                 (overlap.lo.x - cube_origin.x)];
-      const glm::ivec3 d = glm::ivec3(overlap.lo.x, y, z) - dst_box.lo;
+      const uint8_t* from =
+          &src[(static_cast<size_t>(z - cube_origin.z) * m + (y - cube_origin.y)) * m +
+               (overlap.lo.x - cube_origin.x)];
+      const glm::ivec3 d = glm::ivec3(overlap.lo.x, y, z) - dst_origin;
       std::memcpy(&dst.at(d.x, d.y, d.z), from, static_cast<size_t>(run));
     }
   }
@@ -136,7 +140,8 @@ Volume Volume::from_bricks(glm::ivec3 dims, const VolumeOptions& options, const 
         for (int z = 0; z < s.z; ++z)
           for (int y = 0; y < s.y; ++y)
             std::memcpy(&voxels[(static_cast<size_t>(z) * e + y) * e],
-                        &region[(static_cast<size_t>(z) * s.y + y) * s.x], static_cast<size_t>(s.x));
+                        &region[(static_cast<size_t>(z) * s.y + y) * s.x],
+                        static_cast<size_t>(s.x));
         volume.pad_outside(b, voxels);
         volume.bricks_[static_cast<size_t>(i)].encode(voxels, e, options.levels);
       },
@@ -179,7 +184,7 @@ DenseGrid<uint8_t> Volume::read(const Box& region, int level) const {
       for (int x = bricks.lo.x; x < bricks.hi.x; ++x) {
         const glm::ivec3 b{x, y, z};
         decode_brick(b, cube, level);
-        copy_cube_into(cube, m, b * m, out, Box{region.lo, region.lo + region.size()});
+        copy_cube_into(cube, m, b * m, out, region.lo, inside);
       }
   return out;
 }
@@ -193,9 +198,10 @@ DenseGrid<uint8_t> Volume::to_dense(int level) const {
       brick_count(),
       [&](int64_t i) {
         const glm::ivec3 b = brick_coord(i);
-        std::span<uint8_t> cube = brick_buffer(options_.brick_edge).first(static_cast<size_t>(m) * m * m);
+        std::span<uint8_t> cube =
+            brick_buffer(options_.brick_edge).first(static_cast<size_t>(m) * m * m);
         decode_brick(b, cube, level);
-        copy_cube_into(cube, m, b * m, out, Box{glm::ivec3(0), d});
+        copy_cube_into(cube, m, b * m, out, glm::ivec3(0), Box{glm::ivec3(0), d});
       },
       options_.threads);
   return out;
@@ -212,12 +218,14 @@ void Volume::store_brick(glm::ivec3 b, std::span<uint8_t> voxels) {
   }
 }
 
-void Volume::edit(const Box& region,
-                  const std::function<void(glm::ivec3 brick_origin, std::span<uint8_t> voxels)>& edit) {
+void Volume::edit(
+    const Box& region,
+    const std::function<void(glm::ivec3 brick_origin, std::span<uint8_t> voxels)>& edit) {
   const Box bricks = bricks_overlapping(region);
   // Its own buffer: `edit` may read the volume (smoothing reads neighbours).
   thread_local std::vector<uint8_t> buffer;
-  buffer.resize(static_cast<size_t>(options_.brick_edge) * options_.brick_edge * options_.brick_edge);
+  buffer.resize(static_cast<size_t>(options_.brick_edge) * options_.brick_edge *
+                options_.brick_edge);
   std::span<uint8_t> voxels = buffer;
   for (int z = bricks.lo.z; z < bricks.hi.z; ++z)
     for (int y = bricks.lo.y; y < bricks.hi.y; ++y)
@@ -233,8 +241,9 @@ void Volume::write(glm::ivec3 origin, const DenseGrid<uint8_t>& values) {
   const Box target{origin, origin + values.dims()};
   const int e = options_.brick_edge;
   edit(target, [&](glm::ivec3 brick_origin, std::span<uint8_t> voxels) {
-    const Box overlap = intersect(intersect(target, Box{brick_origin, brick_origin + glm::ivec3(e)}),
-                                  Box{glm::ivec3(0), dims_});
+    const Box overlap =
+        intersect(intersect(target, Box{brick_origin, brick_origin + glm::ivec3(e)}),
+                  Box{glm::ivec3(0), dims_});
     const int run = overlap.hi.x - overlap.lo.x;
     for (int z = overlap.lo.z; z < overlap.hi.z; ++z)
       for (int y = overlap.lo.y; y < overlap.hi.y; ++y) {

@@ -26,7 +26,8 @@ Result<Volume> read_volume_nrrd(const std::filesystem::path& path, const VolumeO
   for (int z0 = 0; z0 < h.dims.z; z0 += e) {
     const int n = std::min(e, h.dims.z - z0);
     slab.resize(slice * n);
-    if (Status st = reader->read_slices(n, std::as_writable_bytes(std::span(slab))); !st) return st.error();
+    if (Status st = reader->read_slices(n, std::as_writable_bytes(std::span(slab))); !st)
+      return st.error();
     DenseGrid<uint8_t> grid(glm::ivec3(h.dims.x, h.dims.y, n));
     grid.values().swap(slab);
     volume.write(glm::ivec3(0, 0, z0), grid);

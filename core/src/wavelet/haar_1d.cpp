@@ -5,7 +5,9 @@
 namespace sculpt::core::haar {
 namespace {
 
-[[maybe_unused]] bool is_power_of_two(size_t n) { return n != 0 && (n & (n - 1)) == 0; }
+[[maybe_unused]] bool is_power_of_two(size_t n) {
+  return n != 0 && (n & (n - 1)) == 0;
+}
 
 // Both forms share the layout: each pass halves the low-pass prefix, writing
 // lows to its first half and details to its second half.
@@ -15,7 +17,8 @@ std::vector<T> decompose(std::span<const T> values, Step step) {
   std::vector<T> out(values.begin(), values.end());
   std::vector<T> scratch(out.size());
   for (size_t n = out.size(); n > 1; n /= 2) {
-    for (size_t i = 0; i < n / 2; ++i) step(out[2 * i], out[2 * i + 1], scratch[i], scratch[n / 2 + i]);
+    for (size_t i = 0; i < n / 2; ++i)
+      step(out[2 * i], out[2 * i + 1], scratch[i], scratch[n / 2 + i]);
     std::copy(scratch.begin(), scratch.begin() + static_cast<std::ptrdiff_t>(n), out.begin());
   }
   return out;
@@ -27,7 +30,8 @@ std::vector<T> reconstruct(std::span<const T> coefficients, Step step) {
   std::vector<T> out(coefficients.begin(), coefficients.end());
   std::vector<T> scratch(out.size());
   for (size_t n = 2; n <= out.size(); n *= 2) {
-    for (size_t i = 0; i < n / 2; ++i) step(out[i], out[n / 2 + i], scratch[2 * i], scratch[2 * i + 1]);
+    for (size_t i = 0; i < n / 2; ++i)
+      step(out[i], out[n / 2 + i], scratch[2 * i], scratch[2 * i + 1]);
     std::copy(scratch.begin(), scratch.begin() + static_cast<std::ptrdiff_t>(n), out.begin());
   }
   return out;

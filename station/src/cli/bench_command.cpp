@@ -33,11 +33,13 @@ int run_bench(const BenchOptions& o) {
   if (o.list) args.emplace_back("--benchmark_list_tests=true");
   args.emplace_back("--benchmark_counters_tabular=true");
   std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
+  for (std::string& a : args)
+    argv.push_back(a.data());
   int argc = static_cast<int>(argv.size());
   benchmark::Initialize(&argc, argv.data());
   if (benchmark::RunSpecifiedBenchmarks() == 0 && !o.list) {
-    return report(core::Error("--filter '" + o.filter + "' matches no benchmark (see sculpt bench --list)"));
+    return report(
+        core::Error("--filter '" + o.filter + "' matches no benchmark (see sculpt bench --list)"));
   }
   benchmark::Shutdown();
   return 0;
@@ -53,8 +55,10 @@ void add_bench_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "run the benchmarks (tests/bench) and print a table");
   cmd->add_flag("--json", o->json, "machine-readable results (Google Benchmark JSON)");
-  cmd->add_option("--filter", o->filter, "only benchmarks whose name matches this regular expression");
-  cmd->add_option("--min-time", o->min_time, "minimum seconds per benchmark")->check(CLI::PositiveNumber);
+  cmd->add_option("--filter", o->filter,
+                  "only benchmarks whose name matches this regular expression");
+  cmd->add_option("--min-time", o->min_time, "minimum seconds per benchmark")
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("--list", o->list, "list the benchmarks without running them");
   cmd->callback([o, &action] { action = [o] { return run_bench(*o); }; });
 }

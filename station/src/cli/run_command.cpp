@@ -32,7 +32,8 @@ int run_station(const RunOptions& o) {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(o.out_dir, ec);
-  if (ec) return report(core::Error(o.out_dir + ": cannot create the output folder: " + ec.message()));
+  if (ec)
+    return report(core::Error(o.out_dir + ": cannot create the output folder: " + ec.message()));
 
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
@@ -66,7 +67,8 @@ int run_station(const RunOptions& o) {
   const double carve_s = std::chrono::duration<double>(clock::now() - t1).count();
 
   const fs::path dir(o.out_dir);
-  if (core::Status st = core::write_volume_nrrd(dir / "volume.nrrd", volume); !st) return report(st.error());
+  if (core::Status st = core::write_volume_nrrd(dir / "volume.nrrd", volume); !st)
+    return report(st.error());
   for (int k = 1; k <= volume.levels(); ++k) {
     const fs::path p = dir / ("level" + std::to_string(k) + ".nrrd");
     if (core::Status st = core::write_volume_nrrd(p, volume, k); !st) return report(st.error());
@@ -78,9 +80,10 @@ int run_station(const RunOptions& o) {
       {"bricks", s.bricks},
       {"uniform_bricks", s.uniform_bricks},
       {"memory_bytes", s.memory_bytes},
-      {"zero_detail_share", s.detail_coefficients ? static_cast<double>(s.zero_detail_coefficients) /
-                                                         static_cast<double>(s.detail_coefficients)
-                                                   : 0.0},
+      {"zero_detail_share", s.detail_coefficients
+                                ? static_cast<double>(s.zero_detail_coefficients) /
+                                      static_cast<double>(s.detail_coefficients)
+                                : 0.0},
       {"carved_bricks", touched},
       {"build_seconds", build_s},
       {"carve_seconds", carve_s},
@@ -90,7 +93,8 @@ int run_station(const RunOptions& o) {
   out.write(stats.dump(2) + "\n");
   if (core::Status st = out.commit(); !st) return report(st.error());
   std::printf("%s\n", stats.dump(2).c_str());
-  std::printf("wrote %s/volume.nrrd, level1..%d.nrrd and stats.json\n", o.out_dir.c_str(), volume.levels());
+  std::printf("wrote %s/volume.nrrd, level1..%d.nrrd and stats.json\n", o.out_dir.c_str(),
+              volume.levels());
   return 0;
 }
 
@@ -101,7 +105,9 @@ void add_run_command(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand("run", "run the station's main job");
   cmd->add_flag("--headless", o->headless, "no window (the only mode until the renderer exists)");
   cmd->add_option("--out", o->out_dir, "folder for the results")->capture_default_str();
-  cmd->add_option("--size", o->size, "edge of the demo block in voxels")->check(CLI::Range(16, 1024))->capture_default_str();
+  cmd->add_option("--size", o->size, "edge of the demo block in voxels")
+      ->check(CLI::Range(16, 1024))
+      ->capture_default_str();
   cmd->callback([o, &action] { action = [o] { return run_station(*o); }; });
 }
 

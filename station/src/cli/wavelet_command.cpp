@@ -28,7 +28,8 @@ int run_wavelet(const WaveletOptions& o) {
   // A brick must hold every level: 32 holds 5, larger level counts need larger bricks.
   vo.brick_edge = std::max(32, 1 << o.levels);
   if (o.lod > o.levels) {
-    return report(core::Error("--lod " + std::to_string(o.lod) + " exceeds --levels " + std::to_string(o.levels)));
+    return report(core::Error("--lod " + std::to_string(o.lod) + " exceeds --levels " +
+                              std::to_string(o.levels)));
   }
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
@@ -38,7 +39,8 @@ int run_wavelet(const WaveletOptions& o) {
 
   if (o.lod >= 0) {
     if (o.output.empty()) return report(core::Error("--lod needs an output file (-o OUT.nrrd)"));
-    if (core::Status st = core::write_volume_nrrd(o.output, *volume, o.lod); !st) return report(st.error());
+    if (core::Status st = core::write_volume_nrrd(o.output, *volume, o.lod); !st)
+      return report(st.error());
     const glm::ivec3 d = volume->level_dims(o.lod);
     std::printf("wrote level %d (%dx%dx%d) to %s\n", o.lod, d.x, d.y, d.z, o.output.c_str());
     return 0;
@@ -57,15 +59,18 @@ int run_wavelet(const WaveletOptions& o) {
     if (core::Status st = reader->read_slices(1, std::as_writable_bytes(std::span(slice))); !st) {
       return report(st.error());
     }
-    for (size_t i = 0; i < slice.size(); ++i) mismatches += slice[i] != decoded[z * slice.size() + i];
+    for (size_t i = 0; i < slice.size(); ++i)
+      mismatches += slice[i] != decoded[z * slice.size() + i];
   }
   const core::VolumeStats s = volume->stats();
   std::printf("volume      %dx%dx%d uint8 (%lld bytes dense)\n", d.x, d.y, d.z,
               static_cast<long long>(core::voxel_count(d)));
-  std::printf("wavelets    %d levels, bricks of %d^3: %lld bricks, %lld uniform\n", o.levels, vo.brick_edge,
-              static_cast<long long>(s.bricks), static_cast<long long>(s.uniform_bricks));
-  std::printf("memory      %zu bytes (%.1f%% of dense)\n", s.memory_bytes,
-              100.0 * static_cast<double>(s.memory_bytes) / static_cast<double>(core::voxel_count(d)));
+  std::printf("wavelets    %d levels, bricks of %d^3: %lld bricks, %lld uniform\n", o.levels,
+              vo.brick_edge, static_cast<long long>(s.bricks),
+              static_cast<long long>(s.uniform_bricks));
+  std::printf(
+      "memory      %zu bytes (%.1f%% of dense)\n", s.memory_bytes,
+      100.0 * static_cast<double>(s.memory_bytes) / static_cast<double>(core::voxel_count(d)));
   std::printf("details     %lld coefficients in detailed bricks, %.1f%% zero\n",
               static_cast<long long>(s.detail_coefficients),
               s.detail_coefficients ? 100.0 * static_cast<double>(s.zero_detail_coefficients) /
@@ -83,7 +88,8 @@ int run_wavelet(const WaveletOptions& o) {
   }
   std::printf("round trip  bit-exact\n");
   if (!o.output.empty()) {
-    if (core::Status st = core::write_volume_nrrd(o.output, *volume, 0); !st) return report(st.error());
+    if (core::Status st = core::write_volume_nrrd(o.output, *volume, 0); !st)
+      return report(st.error());
   }
   return 0;
 }
@@ -92,7 +98,8 @@ int run_wavelet(const WaveletOptions& o) {
 
 void add_wavelet_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<WaveletOptions>();
-  CLI::App* cmd = app.add_subcommand("wavelet", "3D Haar wavelet volume: extract a level, or verify the round trip");
+  CLI::App* cmd = app.add_subcommand(
+      "wavelet", "3D Haar wavelet volume: extract a level, or verify the round trip");
   cmd->add_option("input", o->input, "uint8 NRRD volume")->required();
   cmd->add_option("--levels", o->levels, "wavelet levels (1..7)")->check(CLI::Range(0, 7));
   cmd->add_option("--lod", o->lod, "level to write (0 = the input)")->check(CLI::Range(0, 7));

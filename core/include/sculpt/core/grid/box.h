@@ -33,6 +33,8 @@ inline Box intersect(const Box& a, const Box& b) {
 }
 
 /// Number of voxels in a grid of `dims`.
-inline int64_t voxel_count(glm::ivec3 dims) { return int64_t{dims.x} * dims.y * dims.z; }
+inline int64_t voxel_count(glm::ivec3 dims) {
+  return int64_t{dims.x} * dims.y * dims.z;
+}
 
 }  // namespace sculpt::core

@@ -66,9 +66,11 @@ class NrrdReader {
 };
 
 /// Reads a whole uint8 volume. A float32 file is refused with a clear error.
-Result<DenseGrid<uint8_t>> read_nrrd_u8(const std::filesystem::path& path, const NrrdLimits& limits = {});
+Result<DenseGrid<uint8_t>> read_nrrd_u8(const std::filesystem::path& path,
+                                        const NrrdLimits& limits = {});
 /// Reads a whole float32 volume. A uint8 file is refused with a clear error.
-Result<DenseGrid<float>> read_nrrd_f32(const std::filesystem::path& path, const NrrdLimits& limits = {});
+Result<DenseGrid<float>> read_nrrd_f32(const std::filesystem::path& path,
+                                       const NrrdLimits& limits = {});
 
 /// Writes a NRRD file: all of it, or nothing.
 Status write_nrrd(const std::filesystem::path& path, const DenseGrid<uint8_t>& grid);

@@ -31,7 +31,8 @@ Volume sphere_volume(int n, float r_frac = 0.35f, const VolumeOptions& options =
 void fill_sphere(const Box& box, glm::vec3 centre, float radius, std::span<uint8_t> out);
 
 /// A torus around the z axis through `centre`: major radius R, minor radius r.
-DenseGrid<uint8_t> torus_density(glm::ivec3 dims, glm::vec3 centre, float major_radius, float minor_radius);
+DenseGrid<uint8_t> torus_density(glm::ivec3 dims, glm::vec3 centre, float major_radius,
+                                 float minor_radius);
 /// An axis-aligned box with corners lo and hi (voxel units).
 DenseGrid<uint8_t> box_density(glm::ivec3 dims, glm::vec3 lo, glm::vec3 hi);
 

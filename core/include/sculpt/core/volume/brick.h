@@ -32,9 +32,7 @@ class Brick {
   const WaveletPyramid* pyramid() const { return pyramid_.get(); }
   /// Voxel (x, y, z) of the brick, O(levels).
   uint8_t voxel(int x, int y, int z) const { return pyramid_ ? pyramid_->voxel(x, y, z) : value_; }
-  size_t memory_bytes() const {
-    return sizeof(*this) + (pyramid_ ? pyramid_->memory_bytes() : 0);
-  }
+  size_t memory_bytes() const { return sizeof(*this) + (pyramid_ ? pyramid_->memory_bytes() : 0); }
 
  private:
   uint8_t value_;

@@ -101,7 +101,8 @@ class Volume {
   /// with its decoded voxels (edge^3, x fastest; brick_origin is the voxel
   /// index of voxels[0]), then stores it back. The path every sculpting
   /// operation takes: only the touched bricks are decoded and re-encoded.
-  void edit(const Box& region, const std::function<void(glm::ivec3 brick_origin, std::span<uint8_t> voxels)>& edit);
+  void edit(const Box& region,
+            const std::function<void(glm::ivec3 brick_origin, std::span<uint8_t> voxels)>& edit);
 
   /// Incremented each time brick `b` is stored; mesh caches compare it.
   uint64_t brick_version(glm::ivec3 b) const { return versions_[brick_index(b)]; }

@@ -10,8 +10,8 @@
 namespace sculpt::core {
 
 /// Reads a uint8 NRRD into a volume.
-Result<Volume> read_volume_nrrd(const std::filesystem::path& path, const VolumeOptions& options = {},
-                                const NrrdLimits& limits = {});
+Result<Volume> read_volume_nrrd(const std::filesystem::path& path,
+                                const VolumeOptions& options = {}, const NrrdLimits& limits = {});
 /// Writes level `level` of the volume (ceil(dims / 2^level) voxels) as uint8 NRRD.
 Status write_volume_nrrd(const std::filesystem::path& path, const Volume& volume, int level = 0);
 

@@ -66,6 +66,8 @@ class WaveletPyramid {
 /// log2 of a power of two.
 int log2_exact(int power_of_two);
 /// Whether n is a power of two (n > 0).
-constexpr bool is_power_of_two(int n) { return n > 0 && (n & (n - 1)) == 0; }
+constexpr bool is_power_of_two(int n) {
+  return n > 0 && (n & (n - 1)) == 0;
+}
 
 }  // namespace sculpt::core

@@ -1,0 +1,81 @@
+#!/usr/bin/python3
+"""Runs the project's benchmarks and the peer libraries in one session and prints the ratios.
+
+Usage: tests/bench/compare_peers.py [--sculpt build/bin/sculpt] [--peers ../shared/bench/peers.py] [WORKLOAD ...]
+Workloads: haar (more are added as the issues that need them land).
+Needs Debian's python3 peer packages: scripts/install-deps.sh --peers
+"""
+import argparse, json, re, statistics, subprocess, sys, time
+
+
+def sculpt_bench(sculpt, regex):
+    out = subprocess.run([sculpt, "bench", "--json", "--filter", regex], check=True, capture_output=True, text=True).stdout
+    results = {}
+    for b in json.loads(out)["benchmarks"]:
+        unit = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
+        results[b["name"]] = b["real_time"] * unit
+    return results
+
+
+def peers(script, workload, sizes):
+    out = subprocess.run(["/usr/bin/python3", script, workload, "--sizes", sizes], check=True, capture_output=True, text=True).stdout
+    return out
+
+
+def med(fn, reps=3):
+    fn()
+    ts = []
+    for _ in range(reps):
+        t = time.perf_counter()
+        fn()
+        ts.append(time.perf_counter() - t)
+    return statistics.median(ts)
+
+
+def haar(args):
+    ours = sculpt_bench(args.sculpt, "BM_Wavelet(Decompose|Reconstruct)(Noise)?/")
+    text = peers(args.peers, "haar", "128,256")
+    print(text.rstrip())
+    # peers.py times only the decomposition; time pywt.waverecn here, same data, same session.
+    sys.path.insert(0, str(__import__("pathlib").Path(args.peers).parent))
+    import numpy as np, pywt
+    from peers import sphere_density
+    rows = []
+    for n in (128, 256):
+        m = re.search(rf"wavedecn 5 levels {n}\^3: ([0-9.]+) s", text)
+        dec = float(m.group(1))
+        f = sphere_density(n).astype(np.float32)
+        coeffs = pywt.wavedecn(f, "haar", level=5)
+        rec = med(lambda: pywt.waverecn(coeffs, "haar"))
+        print(f"haar  pywt.waverecn 5 levels {n}^3: {rec:.4f} s")
+        for threads, label in ((1, "1 thread"), (0, "all threads")):
+            d = ours[f"BM_WaveletDecompose/{n}/{threads}"]
+            r = ours[f"BM_WaveletReconstruct/{n}/{threads}"]
+            rows.append((f"decompose {n}^3 ({label})", d, dec))
+            rows.append((f"reconstruct {n}^3 ({label})", r, rec))
+            if n == 256:  # worst case: noise, every brick detailed
+                rows.append((f"decompose {n}^3 noise ({label})", ours[f"BM_WaveletDecomposeNoise/{n}/{threads}"], dec))
+                rows.append((f"reconstruct {n}^3 noise ({label})", ours[f"BM_WaveletReconstructNoise/{n}/{threads}"], rec))
+    print()
+    print("| workload | sculpt | pywt | ratio |")
+    print("|---|---:|---:|---:|")
+    for name, o, p in rows:
+        print(f"| {name} | {o * 1e3:.2f} ms | {p * 1e3:.1f} ms | {p / o:.0f}x |")
+
+
+WORKLOADS = {"haar": haar}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--sculpt", default="build/bin/sculpt")
+    ap.add_argument("--peers", default="../shared/bench/peers.py")
+    ap.add_argument("workloads", nargs="*", default=list(WORKLOADS))
+    args = ap.parse_args()
+    for w in args.workloads:
+        print(f"## {w}")
+        WORKLOADS[w](args)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,76 @@
+#include "sculpt/core/io/atomic_file.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace sculpt::core {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+size_t files_in(const fs::path& dir) {
+  return static_cast<size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
+}
+
+class AtomicFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("sculpt_atomic_test_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+TEST_F(AtomicFileTest, CommitReplacesTheTargetWhole) {
+  const fs::path target = dir_ / "out.txt";
+  std::ofstream(target) << "old";
+  {
+    AtomicFileWriter w(target);
+    ASSERT_TRUE(w.ok());
+    w.write("new ");
+    EXPECT_EQ(slurp(target), "old");  // nothing visible before commit
+    w.write("content");
+    ASSERT_TRUE(w.commit().ok());
+  }
+  EXPECT_EQ(slurp(target), "new content");
+  EXPECT_EQ(files_in(dir_), 1u);  // no temporary left behind
+}
+
+TEST_F(AtomicFileTest, AbandonedWriteLeavesNothing) {
+  const fs::path target = dir_ / "out.txt";
+  std::ofstream(target) << "old";
+  {
+    AtomicFileWriter w(target);
+    w.write("half");
+  }
+  EXPECT_EQ(slurp(target), "old");
+  EXPECT_EQ(files_in(dir_), 1u);
+  {
+    AtomicFileWriter w(dir_ / "fresh.txt");
+    w.write("half");
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "fresh.txt"));
+}
+
+TEST_F(AtomicFileTest, UnwritableFolderIsReportedWithTheName) {
+  AtomicFileWriter w(dir_ / "missing" / "out.txt");
+  EXPECT_FALSE(w.ok());
+  const Status st = w.commit();
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.error().message().find("missing/out.txt"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sculpt::core

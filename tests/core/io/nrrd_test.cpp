@@ -1,0 +1,220 @@
+#include "sculpt/core/io/nrrd.h"
+
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+namespace sculpt::core {
+namespace {
+
+namespace fs = std::filesystem;
+
+class NrrdTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("sculpt_nrrd_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path write_file(const std::string& name, const std::string& bytes) {
+    const fs::path p = dir_ / name;
+    std::ofstream(p, std::ios::binary) << bytes;
+    return p;
+  }
+  // Expects the read to fail with a message naming the file and containing `what`.
+  void expect_refused(const fs::path& p, const std::string& what) {
+    const auto r = read_nrrd_u8(p);
+    ASSERT_FALSE(r.ok()) << p;
+    EXPECT_NE(r.error().message().find(p.string()), std::string::npos) << r.error().message();
+    EXPECT_NE(r.error().message().find(what), std::string::npos)
+        << r.error().message() << " (wanted: " << what << ")";
+    EXPECT_EQ(r.error().message().find('\n'), std::string::npos) << "one line";
+  }
+  fs::path dir_;
+};
+
+std::string gzip(const std::string& data) {
+  z_stream zs{};
+  EXPECT_EQ(deflateInit2(&zs, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY), Z_OK);
+  std::string out(deflateBound(&zs, static_cast<uLong>(data.size())) + 32, '\0');
+  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  zs.avail_in = static_cast<uInt>(data.size());
+  zs.next_out = reinterpret_cast<Bytef*>(out.data());
+  zs.avail_out = static_cast<uInt>(out.size());
+  EXPECT_EQ(deflate(&zs, Z_FINISH), Z_STREAM_END);
+  out.resize(zs.total_out);
+  deflateEnd(&zs);
+  return out;
+}
+
+std::string bytes_of(const DenseGrid<uint8_t>& g) {
+  return {reinterpret_cast<const char*>(g.data()), g.size()};
+}
+
+DenseGrid<uint8_t> ramp(glm::ivec3 dims) {
+  DenseGrid<uint8_t> g(dims);
+  for (size_t i = 0; i < g.size(); ++i)
+    g[i] = static_cast<uint8_t>(i * 7 + 3);
+  return g;
+}
+
+TEST_F(NrrdTest, Uint8RoundTripIsExact) {
+  const DenseGrid<uint8_t> g = ramp({7, 5, 3});
+  ASSERT_TRUE(write_nrrd(dir_ / "a.nrrd", g).ok());
+  const auto r = read_nrrd_u8(dir_ / "a.nrrd");
+  ASSERT_TRUE(r.ok()) << r.error().message();
+  EXPECT_EQ(*r, g);
+}
+
+TEST_F(NrrdTest, Float32RoundTripIsExact) {
+  DenseGrid<float> g({4, 3, 2});
+  for (size_t i = 0; i < g.size(); ++i)
+    g[i] = -1.5f + 0.25f * static_cast<float>(i);
+  ASSERT_TRUE(write_nrrd(dir_ / "d.nrrd", g).ok());
+  const auto r = read_nrrd_f32(dir_ / "d.nrrd");
+  ASSERT_TRUE(r.ok()) << r.error().message();
+  EXPECT_EQ(*r, g);
+  // The wrong type is refused, naming what the file holds.
+  const auto wrong = read_nrrd_u8(dir_ / "d.nrrd");
+  ASSERT_FALSE(wrong.ok());
+  EXPECT_NE(wrong.error().message().find("holds float"), std::string::npos);
+}
+
+TEST_F(NrrdTest, ReadsGzipBigEndianCommentsAndKeyValues) {
+  DenseGrid<float> g({3, 2, 2});
+  std::string raw;
+  for (size_t i = 0; i < g.size(); ++i) {
+    g[i] = static_cast<float>(i) - 4.0f;
+    uint32_t bits;
+    std::memcpy(&bits, &g[i], 4);
+    for (int s = 24; s >= 0; s -= 8)
+      raw.push_back(static_cast<char>(bits >> s));  // big endian
+  }
+  const std::string header =
+      "NRRD0005\n# a comment\ntype: float\ndimension: 3\nspace: left-posterior-superior\n"
+      "sizes: 3 2 2\nspace directions: (1,0,0) (0,1,0) (0,0,1)\nendian: big\nencoding: gzip\n"
+      "sculpt_pivot:=1 2 3\n\n";
+  const auto r = read_nrrd_f32(write_file("g.nrrd", header + gzip(raw)));
+  ASSERT_TRUE(r.ok()) << r.error().message();
+  EXPECT_EQ(*r, g);
+}
+
+TEST_F(NrrdTest, ReadsDetachedData) {
+  const DenseGrid<uint8_t> g = ramp({4, 4, 4});
+  write_file("data.raw", bytes_of(g));
+  const auto r = read_nrrd_u8(write_file(
+      "h.nhdr",
+      "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\ndata file: data.raw\n"));
+  ASSERT_TRUE(r.ok()) << r.error().message();
+  EXPECT_EQ(*r, g);
+}
+
+TEST_F(NrrdTest, StreamsSlices) {
+  const DenseGrid<uint8_t> g = ramp({5, 4, 6});
+  ASSERT_TRUE(write_nrrd(dir_ / "s.nrrd", g).ok());
+  auto reader = NrrdReader::open(dir_ / "s.nrrd");
+  ASSERT_TRUE(reader.ok());
+  std::vector<std::byte> slab(5 * 4 * 2);
+  for (int z = 0; z < 6; z += 2) {
+    ASSERT_TRUE(reader->read_slices(2, slab).ok());
+    EXPECT_EQ(std::memcmp(slab.data(), &g.at(0, 0, z), slab.size()), 0);
+  }
+}
+
+TEST_F(NrrdTest, RefusesMalformedHeaders) {
+  const std::string data(8, 'x');
+  expect_refused(write_file("magic.nrrd", "P6\n2 2\n255\n" + data), "not a NRRD file");
+  expect_refused(write_file("empty.nrrd", ""), "not a NRRD file");
+  expect_refused(
+      write_file("notype.nrrd", "NRRD0004\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n" + data),
+      "missing required field 'type'");
+  expect_refused(
+      write_file("dim.nrrd",
+                 "NRRD0004\ntype: uint8\ndimension: 2\nsizes: 2 4\nencoding: raw\n\n" + data),
+      "dimension 2 is not supported");
+  expect_refused(
+      write_file("type.nrrd",
+                 "NRRD0004\ntype: short\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n" + data),
+      "type 'short' is not supported");
+  expect_refused(
+      write_file("sizes.nrrd",
+                 "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2\nencoding: raw\n\n" + data),
+      "expected 3 numbers, got 2");
+  expect_refused(
+      write_file("neg.nrrd",
+                 "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 -2 2\nencoding: raw\n\n" + data),
+      "'-2' is not a positive integer");
+  expect_refused(
+      write_file("enc.nrrd",
+                 "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: bzip2\n\n" + data),
+      "encoding 'bzip2' is not supported");
+  expect_refused(
+      write_file("endian.nrrd",
+                 "NRRD0004\ntype: float\ndimension: 3\nsizes: 1 1 2\nencoding: raw\n\n" + data),
+      "missing required field 'endian'");
+  expect_refused(
+      write_file(
+          "twice.nrrd",
+          "NRRD0004\ntype: uint8\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n" +
+              data),
+      "appears twice");
+  expect_refused(write_file("line.nrrd", "NRRD0004\ntype uint8\n\n" + data),
+                 "is not 'field: value'");
+  expect_refused(
+      write_file("noend.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw"),
+      "blank line");
+  expect_refused(dir_ / "missing.nrrd", "cannot open");
+}
+
+TEST_F(NrrdTest, RefusesAbsurdSizesBeforeAllocating) {
+  // 10^15 voxels with 8 bytes of data: refused from the header alone.
+  expect_refused(write_file("huge.nrrd",
+                            "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 100000 100000 100000\n"
+                            "encoding: gzip\n\n" +
+                                gzip("12345678")),
+                 "too large");
+  expect_refused(write_file("overflow.nrrd",
+                            "NRRD0004\ntype: uint8\ndimension: 3\n"
+                            "sizes: 99999999999999999999 1 1\nencoding: raw\n\n"),
+                 "is not a positive integer");
+}
+
+TEST_F(NrrdTest, RefusesTruncatedAndOverlongData) {
+  const std::string header = "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n";
+  expect_refused(write_file("short.nrrd", header + std::string(63, 'a')), "truncated data");
+  expect_refused(write_file("long.nrrd", header + std::string(65, 'a')), "1 bytes more data");
+  const std::string gz = "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 4\nencoding: gzip\n\n";
+  expect_refused(write_file("gzshort.nrrd", gz + gzip(std::string(60, 'a'))),
+                 "truncated gzip data");
+  expect_refused(write_file("gzlong.nrrd", gz + gzip(std::string(70, 'a'))),
+                 "longer than the sizes say");
+  std::string cut = gzip(std::string(64, 'a'));
+  cut.resize(cut.size() / 2);
+  expect_refused(write_file("gzcut.nrrd", gz + cut), "truncated gzip data");
+  expect_refused(write_file("gzjunk.nrrd", gz + std::string(40, '\x55')), "corrupt gzip data");
+  // A large claimed size with little gzip data fails on the data, not on memory.
+  expect_refused(write_file("gzlie.nrrd",
+                            "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 1000 1000 1000\n"
+                            "encoding: gzip\n\n" +
+                                gzip("abc")),
+                 "truncated gzip data");
+}
+
+TEST_F(NrrdTest, FailedWriteLeavesNoFile) {
+  const fs::path target = dir_ / "no_such_folder" / "out.nrrd";
+  const Status st = write_nrrd(target, ramp({2, 2, 2}));
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.error().message().find(target.string()), std::string::npos);
+  EXPECT_FALSE(fs::exists(target));
+}
+
+}  // namespace
+}  // namespace sculpt::core

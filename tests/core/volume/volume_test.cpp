@@ -1,0 +1,201 @@
+#include "sculpt/core/volume/volume.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <set>
+
+#include "sculpt/core/shapes/analytic_shapes.h"
+#include "sculpt/core/wavelet/haar_1d.h"
+
+namespace sculpt::core {
+namespace {
+
+DenseGrid<uint8_t> random_grid(glm::ivec3 dims, uint32_t seed) {
+  std::mt19937 rng(seed);
+  DenseGrid<uint8_t> g(dims);
+  for (uint8_t& v : g.values())
+    v = static_cast<uint8_t>(rng());
+  return g;
+}
+
+VolumeOptions small_bricks(int edge, int levels) {
+  VolumeOptions o;
+  o.brick_edge = edge;
+  o.levels = levels;
+  return o;
+}
+
+// Level k computed without the volume: pad level 0 by repeating the last
+// voxel to a multiple of 2^k (what the far bricks' padding amounts to), then
+// take nested S-transform floor averages of 2x2x2 blocks.
+DenseGrid<uint8_t> reference_level(const DenseGrid<uint8_t>& g, int level) {
+  const int s = 1 << level;
+  const glm::ivec3 d = g.dims();
+  DenseGrid<uint8_t> cur(((d + s - 1) / s) * s);
+  for (int z = 0; z < cur.dims().z; ++z)
+    for (int y = 0; y < cur.dims().y; ++y)
+      for (int x = 0; x < cur.dims().x; ++x)
+        cur.at(x, y, z) = g.at(std::min(x, d.x - 1), std::min(y, d.y - 1), std::min(z, d.z - 1));
+  auto lo = [](int a, int b) { return haar::lift_forward(a, b).low; };
+  for (int l = 0; l < level; ++l) {
+    DenseGrid<uint8_t> next(cur.dims() / 2);
+    auto v = [&](int x, int y, int z) { return int{cur.at(x, y, z)}; };
+    for (int z = 0; z < next.dims().z; ++z)
+      for (int y = 0; y < next.dims().y; ++y)
+        for (int x = 0; x < next.dims().x; ++x) {
+          const int X = 2 * x, Y = 2 * y, Z = 2 * z;
+          const int z0 = lo(lo(v(X, Y, Z), v(X + 1, Y, Z)), lo(v(X, Y + 1, Z), v(X + 1, Y + 1, Z)));
+          const int z1 = lo(lo(v(X, Y, Z + 1), v(X + 1, Y, Z + 1)),
+                            lo(v(X, Y + 1, Z + 1), v(X + 1, Y + 1, Z + 1)));
+          next.at(x, y, z) = static_cast<uint8_t>(lo(z0, z1));
+        }
+    cur = std::move(next);
+  }
+  return cur;
+}
+
+TEST(Volume, RoundTripIsBitExactForNonPowerOfTwoSizes) {
+  for (glm::ivec3 dims : {glm::ivec3(1, 1, 1), glm::ivec3(45, 70, 33), glm::ivec3(16, 17, 15),
+                          glm::ivec3(100, 3, 9)}) {
+    const DenseGrid<uint8_t> g = random_grid(dims, static_cast<uint32_t>(dims.x));
+    const Volume v = Volume::from_dense(g, small_bricks(16, 4));
+    EXPECT_EQ(v.to_dense(0), g) << dims.x << "x" << dims.y << "x" << dims.z;
+  }
+}
+
+TEST(Volume, LevelsOfTheBrickedVolumeEqualTheWholeVolumeTransform) {
+  // Haar supports do not overlap, so bricking must not change any level,
+  // including at the padded far faces.
+  const DenseGrid<uint8_t> g = random_grid({45, 70, 33}, 9);
+  const Volume v = Volume::from_dense(g, small_bricks(16, 4));
+  for (int level = 0; level <= 4; ++level) {
+    const DenseGrid<uint8_t> got = v.to_dense(level);
+    EXPECT_EQ(got.dims(), v.level_dims(level));
+    EXPECT_EQ(got, reference_level(g, level)) << "level " << level;
+  }
+}
+
+TEST(Volume, BrickEdgeDoesNotChangeContentOrHash) {
+  const DenseGrid<uint8_t> g = random_grid({40, 33, 20}, 4);
+  const Volume a = Volume::from_dense(g, small_bricks(8, 3));
+  const Volume b = Volume::from_dense(g, small_bricks(32, 3));
+  EXPECT_EQ(a.to_dense(2), b.to_dense(2));
+  EXPECT_EQ(a.content_hash(), b.content_hash());
+  DenseGrid<uint8_t> changed = g;
+  changed.at(39, 32, 19) ^= 1;
+  EXPECT_NE(Volume::from_dense(changed, small_bricks(8, 3)).content_hash(), a.content_hash());
+}
+
+TEST(Volume, VoxelAndRegionReadsMatchTheDenseGrid) {
+  const DenseGrid<uint8_t> g = random_grid({50, 41, 37}, 2);
+  const Volume v = Volume::from_dense(g, small_bricks(16, 4));
+  for (int z = 0; z < 37; z += 4)
+    for (int y = 0; y < 41; y += 3)
+      for (int x = 0; x < 50; ++x)
+        ASSERT_EQ(v.voxel({x, y, z}), g.at(x, y, z));
+  EXPECT_EQ(v.voxel({-1, 0, 0}), 0);
+  EXPECT_EQ(v.voxel({50, 0, 0}), 0);
+
+  // A region straddling brick edges and the volume's far faces.
+  const Box region{{14, 30, 10}, {55, 41, 40}};
+  const DenseGrid<uint8_t> r = v.read(region);
+  for (int z = region.lo.z; z < region.hi.z; ++z)
+    for (int y = region.lo.y; y < region.hi.y; ++y)
+      for (int x = region.lo.x; x < region.hi.x; ++x) {
+        const uint8_t expected = g.in_bounds(x, y, z) ? g.at(x, y, z) : 0;
+        ASSERT_EQ(r.at(x - region.lo.x, y - region.lo.y, z - region.lo.z), expected);
+      }
+  // The same region at level 2 is a window of the whole level.
+  const DenseGrid<uint8_t> whole = v.to_dense(2);
+  const Box coarse{{3, 5, 2}, {13, 11, 10}};
+  const DenseGrid<uint8_t> window = v.read(coarse, 2);
+  for (int z = coarse.lo.z; z < coarse.hi.z; ++z)
+    for (int y = coarse.lo.y; y < coarse.hi.y; ++y)
+      for (int x = coarse.lo.x; x < coarse.hi.x; ++x)
+        ASSERT_EQ(window.at(x - 3, y - 5, z - 2), whole.in_bounds(x, y, z) ? whole.at(x, y, z) : 0);
+}
+
+TEST(Volume, WriteReencodesOnlyTheTouchedBricks) {
+  Volume v({100, 100, 100}, 0, small_bricks(32, 5));
+  // 10^3 voxels at (28..38) straddle the brick edge at 32 on every axis: 8 bricks.
+  DenseGrid<uint8_t> patch({10, 10, 10}, 200);
+  v.write({28, 28, 28}, patch);
+  const std::vector<glm::ivec3> dirty = v.take_dirty_bricks();
+  std::set<std::tuple<int, int, int>> got;
+  for (glm::ivec3 b : dirty)
+    got.insert({b.x, b.y, b.z});
+  std::set<std::tuple<int, int, int>> expected;
+  for (int z = 0; z < 2; ++z)
+    for (int y = 0; y < 2; ++y)
+      for (int x = 0; x < 2; ++x)
+        expected.insert({x, y, z});
+  EXPECT_EQ(got, expected);
+  EXPECT_TRUE(v.take_dirty_bricks().empty());
+  EXPECT_EQ(v.brick_version({1, 1, 1}), 1u);
+  EXPECT_EQ(v.brick_version({2, 2, 2}), 0u);
+  EXPECT_EQ(v.voxel({28, 28, 28}), 200);
+  EXPECT_EQ(v.voxel({37, 37, 37}), 200);
+  EXPECT_EQ(v.voxel({38, 37, 37}), 0);
+  EXPECT_EQ(v.voxel({27, 30, 30}), 0);
+}
+
+TEST(Volume, WritePastTheFarFaceIsClippedAndPaddingStaysConsistent) {
+  const DenseGrid<uint8_t> g = random_grid({37, 37, 37}, 8);
+  Volume v = Volume::from_dense(g, small_bricks(16, 4));
+  DenseGrid<uint8_t> patch({10, 10, 10}, 9);
+  v.write({33, 33, 33}, patch);  // 4 voxels inside, 6 outside per axis
+  DenseGrid<uint8_t> expected = g;
+  for (int z = 33; z < 37; ++z)
+    for (int y = 33; y < 37; ++y)
+      for (int x = 33; x < 37; ++x)
+        expected.at(x, y, z) = 9;
+  EXPECT_EQ(v.to_dense(0), expected);
+  for (int level = 1; level <= 4; ++level)
+    EXPECT_EQ(v.to_dense(level), reference_level(expected, level));
+}
+
+TEST(Volume, UniformBricksCostConstantMemory) {
+  const Volume empty({1024, 1024, 1024}, 0);
+  const VolumeStats s = empty.stats();
+  EXPECT_EQ(s.bricks, 32 * 32 * 32);
+  EXPECT_EQ(s.uniform_bricks, s.bricks);
+  EXPECT_LT(s.memory_bytes, size_t{4} << 20);  // a few bytes per brick, not 1 GiB
+}
+
+TEST(Volume, MemoryGrowsWithTheSurfaceNotTheBox) {
+  const VolumeStats small = sphere_volume(128).stats();
+  const VolumeStats large = sphere_volume(256).stats();
+  // The sphere's surface grows 4x when its box grows 8x: so must the memory.
+  const double ratio =
+      static_cast<double>(large.memory_bytes) / static_cast<double>(small.memory_bytes);
+  EXPECT_GT(ratio, 2.5);
+  EXPECT_LT(ratio, 5.5);
+  EXPECT_GT(large.uniform_bricks, large.bricks / 2);
+}
+
+TEST(Volume, EditSeesAndKeepsNeighbouringContent) {
+  Volume v = Volume::from_dense(random_grid({64, 64, 64}, 1), small_bricks(32, 5));
+  const DenseGrid<uint8_t> before = v.to_dense();
+  v.edit(Box{{10, 10, 10}, {40, 12, 12}}, [](glm::ivec3, std::span<uint8_t>) {});
+  EXPECT_EQ(v.to_dense(), before);  // a no-op edit is bit-exact
+  EXPECT_EQ(v.take_dirty_bricks().size(), 2u);
+}
+
+TEST(Volume, ValidateNamesWhatIsOutOfRange) {
+  EXPECT_FALSE(Volume::validate({0, 10, 10}, {}).ok());
+  EXPECT_FALSE(Volume::validate({100000, 100000, 100000}, {}).ok());
+  VolumeOptions bad_edge;
+  bad_edge.brick_edge = 24;
+  EXPECT_NE(Volume::validate({10, 10, 10}, bad_edge).error().message().find("power of two"),
+            std::string::npos);
+  VolumeOptions too_many_levels;
+  too_many_levels.brick_edge = 16;
+  too_many_levels.levels = 5;
+  EXPECT_NE(Volume::validate({10, 10, 10}, too_many_levels).error().message().find("levels"),
+            std::string::npos);
+  EXPECT_TRUE(Volume::validate({10, 10, 10}, {}).ok());
+}
+
+}  // namespace
+}  // namespace sculpt::core
