@@ -1,0 +1,12 @@
+#pragma once
+// The one clock of the input pipeline (DESIGN.md §3): int64 nanoseconds on a
+// monotonic clock. A replay never calls it; it uses the recorded times.
+
+#include <cstdint>
+
+namespace sculpt::hal {
+
+/// Nanoseconds since an arbitrary fixed point (CLOCK_MONOTONIC). Thread-safe.
+int64_t monotonic_ns();
+
+}  // namespace sculpt::hal

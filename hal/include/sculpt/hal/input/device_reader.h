@@ -1,0 +1,94 @@
+#pragma once
+// One reader thread per open device: the only code that touches its handle.
+// It reads RawEvents, runs them through the MotionPipeline and pushes the
+// results into a lock-free SPSC ring; the main loop drains the ring with
+// poll(). The first event is kConnected, the last kDisconnected (also when
+// the device vanishes); both and all button events are delivered, motion is
+// state: poll() keeps only the newest sample.
+//
+// Counters: `dropped` motion samples that did not fit the ring (never a button
+// or connect event: the thread waits for room for those); `late` samples
+// older than `late_after_ns` when polled; `superseded` samples replaced by a
+// newer one before the main loop looked (normal when it runs slower than the
+// device).
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include "sculpt/hal/device/device.h"
+#include "sculpt/hal/input/input_event.h"
+#include "sculpt/hal/input/motion_pipeline.h"
+#include "sculpt/hal/input/spsc_ring.h"
+
+namespace sculpt::hal {
+
+struct ReaderOptions {
+  size_t ring_capacity = 4096;         ///< events; 4 s of a 1 kHz device
+  int read_timeout_ms = 20;            ///< how often the thread checks for stop()
+  int64_t late_after_ns = 20'000'000;  ///< a sample older than this when polled counts as late
+};
+
+struct ReaderCounters {
+  int64_t raw_events = 0;
+  int64_t motion_samples = 0;
+  int64_t dropped = 0;
+  int64_t late = 0;
+  int64_t superseded = 0;
+};
+
+/// What one poll() gathered.
+struct InputFrame {
+  std::vector<InputEvent> motion;  ///< newest kMotion per device, at most one each
+  std::vector<InputEvent> events;  ///< buttons, battery, connect, disconnect, in order
+  void clear() {
+    motion.clear();
+    events.clear();
+  }
+};
+
+class DeviceReader {
+ public:
+  DeviceReader(uint32_t device_id, std::unique_ptr<Device> device, MotionPipeline pipeline,
+               ReaderOptions options = {});
+  ~DeviceReader();  ///< stops and joins the thread
+  DeviceReader(const DeviceReader&) = delete;
+  DeviceReader& operator=(const DeviceReader&) = delete;
+
+  void start();
+  /// Asks the thread to finish and joins it (it pushes kDisconnected).
+  void stop();
+
+  /// Main thread: moves what arrived into `frame` (appending). `now_ns` is the
+  /// time used for the late count.
+  void poll(InputFrame& frame, int64_t now_ns);
+
+  /// True once the thread has pushed kDisconnected and poll() has taken it.
+  bool finished() const { return finished_; }
+  uint32_t device_id() const { return device_id_; }
+  const DeviceInfo& info() const { return info_; }
+  ReaderCounters counters() const;
+
+ private:
+  void run();
+  void push_blocking(const InputEvent& e);
+
+  uint32_t device_id_;
+  DeviceInfo info_;
+  std::unique_ptr<Device> device_;  // touched only by the thread once started
+  MotionPipeline pipeline_;
+  ReaderOptions options_;
+  SpscRing<InputEvent> ring_;
+  std::thread thread_;
+  std::atomic<bool> stop_{false};
+  std::atomic<int64_t> raw_events_{0};
+  std::atomic<int64_t> motion_samples_{0};
+  std::atomic<int64_t> dropped_{0};
+  int64_t late_ = 0;        // main thread only
+  int64_t superseded_ = 0;  // main thread only
+  bool finished_ = false;   // main thread only
+};
+
+}  // namespace sculpt::hal

@@ -1,0 +1,40 @@
+#pragma once
+// What the parsers produce and the main loop consumes: motion samples,
+// buttons, battery levels and connect/disconnect events, in the station's
+// device frame (DESIGN.md §3: right-handed, +X right, +Y up, +Z toward the
+// user; each axis in [-1, 1]).
+
+#include <array>
+#include <cstdint>
+
+namespace sculpt::hal {
+
+enum class InputKind : uint8_t {
+  kMotion,        ///< axes holds one full sample
+  kButton,        ///< button, pressed
+  kBattery,       ///< battery_percent, charging
+  kConnected,     ///< device_id appeared (first event of every reader)
+  kDisconnected,  ///< device_id is gone (last event of every reader)
+};
+
+/// Axis indices in InputEvent::axes.
+enum Axis : int { kTx = 0, kTy, kTz, kRx, kRy, kRz, kAxisCount };
+
+struct InputEvent {
+  InputKind kind = InputKind::kMotion;
+  uint32_t device_id = 0;
+  int64_t t_ns = 0;  ///< time of the report that completed this event, monotonic ns
+  /// kMotion: tx ty tz rx ry rz in [-1, 1]. Translation is a deflection (3D
+  /// mouse) or a position in the device's range (absolute devices); rotation
+  /// likewise, as a fraction of full twist.
+  std::array<float, kAxisCount> axes{};
+  bool absolute = false;  ///< kMotion: position-control device (tracker, absolute HID axes)
+  bool translation_stale = false;  ///< kMotion: translation half not refreshed by this sample
+  bool rotation_stale = false;     ///< kMotion: rotation half not refreshed by this sample
+  int button = 0;                  ///< kButton: logical button from 0
+  bool pressed = false;
+  int battery_percent = 0;  ///< kBattery: 0..100
+  bool charging = false;
+};
+
+}  // namespace sculpt::hal

@@ -1,0 +1,148 @@
+// hidapi backend (hidraw flavour).
+// Implements: enumeration of known 3Dconnexion devices and of any multi-axis
+// controller, permission check on the node, report descriptor and USB
+// location from sysfs, blocking reads with timeout, removal on read error.
+// Lacks: hotplug notification (hidapi has none; the registry polls), output
+// reports (LEDs).
+
+#include "sculpt/hal/backends/hidapi_backend.h"
+
+#if SCULPT_HAL_HAVE_HIDAPI
+#include <hidapi/hidapi.h>
+#include <unistd.h>
+
+#include <cwchar>
+
+#include "backends/sysfs_hidraw.h"
+#include "sculpt/hal/device/clock.h"
+#include "sculpt/hal/device/quirks.h"
+#endif
+
+namespace sculpt::hal {
+namespace {
+
+#if SCULPT_HAL_HAVE_HIDAPI
+
+std::string narrow(const wchar_t* w) {
+  if (w == nullptr) return {};
+  std::string out;
+  for (; *w; ++w)
+    out.push_back(*w < 128 ? static_cast<char>(*w) : '?');
+  return out;
+}
+
+class HidapiDevice final : public Device {
+ public:
+  HidapiDevice(hid_device* handle, DeviceInfo info) : handle_(handle), info_(std::move(info)) {}
+  ~HidapiDevice() override { hid_close(handle_); }
+  const DeviceInfo& info() const override { return info_; }
+
+  ReadResult read(RawEvent& out, int timeout_ms) override {
+    if (gone_) {
+      out = RawEvent::removed(monotonic_ns());
+      return ReadResult::kRemoved;
+    }
+    // One more byte than we keep, so that an over-long report is noticed.
+    uint8_t buf[RawEvent::kMaxReportBytes + 1];
+    const int n = hid_read_timeout(handle_, buf, sizeof buf, timeout_ms);
+    const int64_t t = monotonic_ns();
+    if (n < 0) {  // hidraw returns an error once the device is unplugged
+      gone_ = true;
+      out = RawEvent::removed(t);
+      return ReadResult::kRemoved;
+    }
+    if (n == 0) return ReadResult::kTimeout;
+    out = RawEvent::report(t, std::span<const uint8_t>(buf, static_cast<size_t>(n)));
+    return ReadResult::kEvent;
+  }
+
+ private:
+  hid_device* handle_;
+  DeviceInfo info_;
+  bool gone_ = false;
+};
+
+class HidapiBackend final : public Backend {
+ public:
+  HidapiBackend() { init_ok_ = hid_init() == 0; }
+  ~HidapiBackend() override {
+    if (init_ok_) hid_exit();
+  }
+  std::string_view name() const override { return "hidapi"; }
+  BackendStatus status() override {
+    if (!init_ok_) return {BackendState::kUnavailable, "hid_init failed"};
+    return {};
+  }
+
+  core::Result<std::vector<DeviceInfo>> enumerate() override {
+    if (!init_ok_) return core::Error("hidapi: hid_init failed");
+    std::vector<DeviceInfo> out;
+    hid_device_info* list = hid_enumerate(0, 0);
+    for (hid_device_info* d = list; d != nullptr; d = d->next) {
+      const DeviceQuirks* q = find_quirks(d->vendor_id, d->product_id);
+      const bool multi_axis = d->usage_page == 1 && d->usage == 8;
+      if (q == nullptr && !multi_axis) continue;  // keyboards, mice, ...
+      if (is_ignored(d->vendor_id, d->product_id, d->usage_page, d->usage)) continue;
+      DeviceInfo info;
+      info.backend = "hidapi";
+      info.path = d->path ? d->path : "";
+      info.vendor_id = d->vendor_id;
+      info.product_id = d->product_id;
+      info.name = narrow(d->product_string);
+      if (info.name.empty() && q) info.name = std::string(q->name);
+      info.manufacturer = narrow(d->manufacturer_string);
+      info.serial = narrow(d->serial_number);
+      info.interface_number = d->interface_number;
+      info.usage_page = d->usage_page;
+      info.usage = d->usage;
+      info.usb_location = detail::hidraw_usb_location(info.path);
+      info.report_descriptor = detail::hidraw_report_descriptor(info.path);
+      info.accessible = ::access(info.path.c_str(), R_OK | W_OK) == 0;
+      out.push_back(std::move(info));
+    }
+    hid_free_enumeration(list);
+    return out;
+  }
+
+  core::Result<std::unique_ptr<Device>> open(const DeviceInfo& info) override {
+    hid_device* h = hid_open_path(info.path.c_str());
+    if (h == nullptr) {
+      if (::access(info.path.c_str(), R_OK | W_OK) != 0) {
+        return core::Error(info.id() +
+                           ": no permission; install the udev rules (see README: Devices)");
+      }
+      return core::Error(info.id() + ": cannot open: " + narrow(hid_error(nullptr)));
+    }
+    return std::unique_ptr<Device>(std::make_unique<HidapiDevice>(h, info));
+  }
+
+ private:
+  bool init_ok_ = false;
+};
+
+#else
+
+class HidapiBackend final : public Backend {
+ public:
+  std::string_view name() const override { return "hidapi"; }
+  BackendStatus status() override {
+    return {BackendState::kNotBuilt,
+            "not built (configure with -DSCULPT_WITH_HIDAPI=ON and libhidapi-dev)"};
+  }
+  core::Result<std::vector<DeviceInfo>> enumerate() override {
+    return core::Error("hidapi: backend not built");
+  }
+  core::Result<std::unique_ptr<Device>> open(const DeviceInfo& info) override {
+    return core::Error(info.id() + ": hidapi backend not built");
+  }
+};
+
+#endif
+
+}  // namespace
+
+std::unique_ptr<Backend> make_hidapi_backend() {
+  return std::make_unique<HidapiBackend>();
+}
+
+}  // namespace sculpt::hal

@@ -1,0 +1,122 @@
+#include "sculpt/hal/input/device_reader.h"
+
+#include "sculpt/hal/device/clock.h"
+
+namespace sculpt::hal {
+
+DeviceReader::DeviceReader(uint32_t device_id, std::unique_ptr<Device> device,
+                           MotionPipeline pipeline, ReaderOptions options)
+    : device_id_(device_id),
+      info_(device->info()),
+      device_(std::move(device)),
+      pipeline_(std::move(pipeline)),
+      options_(options),
+      ring_(options.ring_capacity) {}
+
+DeviceReader::~DeviceReader() {
+  stop();
+}
+
+void DeviceReader::start() {
+  if (thread_.joinable()) return;
+  thread_ = std::thread([this] { run(); });
+}
+
+void DeviceReader::stop() {
+  stop_.store(true, std::memory_order_relaxed);
+  if (thread_.joinable()) {
+    thread_.join();
+    // Its kDisconnected may not have fitted the ring; the reader is done either way.
+    finished_ = true;
+  }
+}
+
+void DeviceReader::push_blocking(const InputEvent& e) {
+  // Events that must not be lost wait for room; the main loop drains every
+  // frame, so the wait is short. stop() ends it so shutdown never hangs.
+  while (!ring_.try_push(e)) {
+    if (stop_.load(std::memory_order_relaxed)) return;
+    std::this_thread::yield();
+  }
+}
+
+void DeviceReader::run() {
+  InputEvent connected;
+  connected.kind = InputKind::kConnected;
+  connected.device_id = device_id_;
+  connected.t_ns = monotonic_ns();
+  push_blocking(connected);
+
+  std::vector<InputEvent> out;
+  out.reserve(16);
+  RawEvent raw;
+  int64_t last_t_ns = connected.t_ns;
+  while (!stop_.load(std::memory_order_relaxed)) {
+    const ReadResult r = device_->read(raw, options_.read_timeout_ms);
+    if (r == ReadResult::kTimeout) continue;
+    if (r == ReadResult::kRemoved) {
+      last_t_ns = raw.t_ns;
+      break;
+    }
+    raw_events_.fetch_add(1, std::memory_order_relaxed);
+    last_t_ns = raw.t_ns;
+    out.clear();
+    pipeline_.feed(raw, device_id_, out);
+    for (const InputEvent& e : out) {
+      if (e.kind == InputKind::kMotion) {
+        motion_samples_.fetch_add(1, std::memory_order_relaxed);
+        // Motion is state: when the ring is full the newest sample still
+        // reaches the main loop later; this one is counted and let go.
+        if (!ring_.try_push(e)) dropped_.fetch_add(1, std::memory_order_relaxed);
+      } else {
+        push_blocking(e);
+      }
+    }
+  }
+  // Release the handle on this thread: it is the only one that touches it.
+  device_.reset();
+  InputEvent gone;
+  gone.kind = InputKind::kDisconnected;
+  gone.device_id = device_id_;
+  gone.t_ns = last_t_ns;
+  // When stopping, the main thread is joining us and not draining: one try.
+  if (stop_.load(std::memory_order_relaxed)) {
+    ring_.try_push(gone);
+  } else {
+    push_blocking(gone);
+  }
+}
+
+void DeviceReader::poll(InputFrame& frame, int64_t now_ns) {
+  InputEvent e;
+  bool have_motion = false;
+  size_t newest_at = 0;
+  while (ring_.try_pop(e)) {
+    if (e.kind == InputKind::kMotion) {
+      if (e.t_ns + options_.late_after_ns < now_ns) ++late_;
+      if (have_motion) {
+        frame.motion[newest_at] = e;
+        ++superseded_;
+      } else {
+        newest_at = frame.motion.size();
+        frame.motion.push_back(e);
+      }
+      have_motion = true;
+      continue;
+    }
+    if (e.kind == InputKind::kDisconnected) finished_ = true;
+    frame.events.push_back(e);
+  }
+}
+
+ReaderCounters DeviceReader::counters() const {
+  ReaderCounters c;
+  c.raw_events = raw_events_.load(std::memory_order_relaxed);
+  c.motion_samples = motion_samples_.load(std::memory_order_relaxed);
+  c.dropped = dropped_.load(std::memory_order_relaxed);
+  c.late = late_;
+  c.superseded = superseded_;
+  return c;
+}
+
+}  // namespace sculpt::hal
