@@ -1,0 +1,120 @@
+#pragma once
+// Sculpting a Volume with a discrete tool ("Discrete tools for virtual
+// sculpture" §3.3): each dab places the tool, finds the collision of its
+// rotated bounding box with the volume, and combines the tool's filling
+// percentage (its rotated density / 255, times the dab's strength) with the
+// material voxel by voxel.
+//
+// A dab visits only the bricks its box overlaps, skips those the tool cannot
+// reach or cannot change (a uniform empty brick under subtraction, a uniform
+// full one under addition), rotates tool voxels only where the material can
+// change (through the RotatedToolCache), and re-encodes and marks dirty only
+// the bricks whose voxels changed.
+//
+// Strokes group dabs for undo; a dab outside a stroke is a stroke of its own.
+// With a mirror plane set, every dab is also applied mirrored (tool mirrored,
+// orientation reflected), within the same stroke. Where the two overlap the
+// operation applies twice.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/vec3.hpp>
+
+#include "sculpt/core/sculpt/undo_history.h"
+#include "sculpt/core/tool/rotated_tool_cache.h"
+#include "sculpt/core/tool/tool.h"
+#include "sculpt/core/tool/tool_rotation.h"
+#include "sculpt/core/volume/volume.h"
+
+namespace sculpt::core {
+
+/// How a tool voxel's filling f (0..255, already scaled by strength)
+/// combines with a material voxel m.
+enum class SculptMode {
+  kAdd,         // min(255, m + f)                 (§3.3 "adding material")
+  kSubtract,    // max(0, m - f)                   (§3.3 "subtracting material")
+  kUnion,       // max(m, f)
+  kDifference,  // min(m, 255 - f)
+  kSmooth,      // m + f/255 * (mean of m's 3x3x3 neighbourhood - m)
+};
+
+/// "add", "subtract", "union", "difference", "smooth"; nullopt otherwise.
+std::optional<SculptMode> parse_sculpt_mode(const std::string& name);
+const char* sculpt_mode_name(SculptMode mode);
+
+struct Dab {
+  /// Where the tool's pivot goes, material voxel units (sub-voxel allowed).
+  glm::vec3 position_vox{0.0f};
+  /// Tool-to-material rotation (unit quaternion).
+  glm::quat orientation{1.0f, 0.0f, 0.0f, 0.0f};
+  SculptMode mode = SculptMode::kAdd;
+  /// Scales the filling percentage, in [0, 1].
+  float strength = 1.0f;
+};
+
+/// Mirror symmetry across the plane normal to `axis` (0 x, 1 y, 2 z) through
+/// `centre_vox` on that axis.
+struct MirrorPlane {
+  int axis = 0;
+  float centre_vox = 0.0f;
+};
+
+/// What one dab did, and where its time went (nanoseconds, steady clock,
+/// measured per brick: decode, apply = rotate on contact + combine, encode).
+struct DabStats {
+  int bricks_overlapped = 0;
+  int bricks_decoded = 0;
+  int bricks_changed = 0;
+  int64_t voxels_changed = 0;
+  int64_t decode_ns = 0;
+  int64_t apply_ns = 0;
+  int64_t encode_ns = 0;
+  DabStats& operator+=(const DabStats& o);
+};
+
+struct SculptorOptions {
+  Sampling sampling = Sampling::kTrilinear;
+  size_t cache_max_bytes = RotatedToolCache::kDefaultMaxBytes;
+  size_t undo_max_bytes = UndoHistory::kDefaultMaxBytes;
+};
+
+class Sculptor {
+ public:
+  /// Sculpts `volume`, which must outlive the sculptor.
+  explicit Sculptor(Volume& volume, const SculptorOptions& options = {});
+
+  /// Sets the tool (copied; prepared once, its rotation caches reset).
+  void set_tool(Tool tool);
+  void set_sampling(Sampling sampling);
+  void set_mirror(std::optional<MirrorPlane> mirror) { mirror_ = mirror; }
+
+  void begin_stroke() { history_.begin_stroke(); }
+  void end_stroke() { history_.end_stroke(); }
+  /// Applies one dab (and its mirror image). Asserts a tool is set.
+  DabStats dab(const Dab& dab);
+  bool undo() { return history_.undo(volume_); }
+  bool redo() { return history_.redo(volume_); }
+
+  const UndoHistory& history() const { return history_; }
+  /// The cache of the tool (mirrored = false) or of its mirror image.
+  const RotatedToolCache& cache(bool mirrored = false) const;
+  const Volume& volume() const { return volume_; }
+
+ private:
+  DabStats apply(RotatedToolCache& cache, const Dab& dab);
+  void rebuild_caches();
+
+  Volume& volume_;
+  SculptorOptions options_;
+  std::optional<Tool> tool_;
+  std::unique_ptr<RotatedToolCache> cache_;
+  std::unique_ptr<RotatedToolCache> mirror_caches_[3];
+  std::optional<MirrorPlane> mirror_;
+  UndoHistory history_;
+  std::vector<uint8_t> buffer_;
+};
+
+}  // namespace sculpt::core

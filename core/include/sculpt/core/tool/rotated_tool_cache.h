@@ -1,0 +1,118 @@
+#pragma once
+// Cache of rotated tool voxels ("Discrete tools for virtual sculpture" §3.1,
+// second and third improvements): voxels are rotated only where the tool
+// touches material that can change, and kept per placement, so a tool that
+// moves without turning, or turns back, is not rotated again; only voxels
+// newly entering the contact region are.
+//
+// A placement is keyed by its orientation quantised to 2^-20 per quaternion
+// component (about 2e-6 rad) and the sub-voxel part of the pivot position
+// quantised to 1/256 voxel; the rotation actually applied is the quantised
+// one, so a hit returns exactly what a miss computes. Integer moves of the
+// position reuse the entry (the rotated voxels are relative to the anchor).
+//
+// Memory is bounded: entries are evicted least recently used once their
+// bytes exceed the cap. Not thread-safe: one cache per sculpting thread.
+
+#include <cstddef>
+#include <cstdint>
+#include <list>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/vec3.hpp>
+
+#include "sculpt/core/tool/tool_rotation.h"
+
+namespace sculpt::core {
+
+struct RotatedToolCacheStats {
+  int64_t placements = 0;        // acquire() calls
+  int64_t placement_hits = 0;    // of which found an entry
+  int64_t voxels_requested = 0;  // rotated voxels asked for by row()
+  int64_t voxels_rotated = 0;    // of which had to be computed
+  int64_t evictions = 0;
+  size_t bytes = 0;  // held by the cached entries
+  size_t entries = 0;
+  /// Share of requested voxels served without rotating, in [0, 1].
+  double voxel_hit_rate() const {
+    return voxels_requested
+               ? 1.0 - static_cast<double>(voxels_rotated) / static_cast<double>(voxels_requested)
+               : 0.0;
+  }
+};
+
+/// The rotated voxels of one placement, filled lazily row stretch by row stretch.
+class RotatedToolEntry {
+ public:
+  RotatedToolEntry(const PreparedTool& tool, const glm::mat3& rotation, glm::vec3 offset,
+                   Sampling sampling, RotatedToolCacheStats* stats);
+  /// Voxels that can be non-zero, relative to the placement's anchor.
+  const Box& box() const { return frame_.box(); }
+  /// The rotation applied (the quantised orientation).
+  const glm::mat3& rotation() const { return rotation_; }
+  /// The pivot's offset from the anchor, in [0, 1) per axis.
+  glm::vec3 offset() const { return offset_; }
+  /// Rotated voxels [x0, x1) of row (y, z) (anchor-relative, inside box()),
+  /// rotating those not yet computed. Valid until the next call.
+  const uint8_t* row(int y, int z, int x0, int x1);
+  size_t memory_bytes() const;
+
+ private:
+  const PreparedTool* tool_;
+  glm::mat3 rotation_;
+  glm::vec3 offset_;
+  RotationFrame frame_;
+  RotatedToolCacheStats* stats_;
+  DenseGrid<uint8_t> values_;
+  // Per row (y, z) of the box, the computed stretch [lo, hi) of x offsets.
+  std::vector<int16_t> done_lo_, done_hi_;
+};
+
+class RotatedToolCache {
+ public:
+  static constexpr size_t kDefaultMaxBytes = size_t{64} << 20;
+
+  RotatedToolCache(std::shared_ptr<const PreparedTool> tool, Sampling sampling,
+                   size_t max_bytes = kDefaultMaxBytes);
+
+  struct Placement {
+    std::shared_ptr<RotatedToolEntry> entry;
+    /// Target voxel of the entry's local (0, 0, 0).
+    glm::ivec3 anchor{0};
+  };
+  /// The entry for the tool turned by `orientation` (unit quaternion, tool to
+  /// target) with its pivot at `position` (target voxel units).
+  Placement acquire(const glm::quat& orientation, glm::vec3 position);
+
+  const PreparedTool& tool() const { return *tool_; }
+  Sampling sampling() const { return sampling_; }
+  const RotatedToolCacheStats& stats() const { return stats_; }
+  void clear();
+
+ private:
+  struct Key {
+    int32_t q[4];
+    int16_t f[3];
+    friend bool operator==(const Key&, const Key&) = default;
+  };
+  struct KeyHash {
+    size_t operator()(const Key& k) const;
+  };
+  struct Slot {
+    std::shared_ptr<RotatedToolEntry> entry;
+    std::list<Key>::iterator lru;
+  };
+  void evict_to(size_t budget);
+
+  std::shared_ptr<const PreparedTool> tool_;
+  Sampling sampling_;
+  size_t max_bytes_;
+  std::list<Key> lru_;  // most recent first
+  std::unordered_map<Key, Slot, KeyHash> slots_;
+  RotatedToolCacheStats stats_;
+};
+
+}  // namespace sculpt::core

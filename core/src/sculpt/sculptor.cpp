@@ -1,0 +1,251 @@
+#include "sculpt/core/sculpt/sculptor.h"
+
+#include <algorithm>
+#include <cassert>
+#include <chrono>
+#include <cmath>
+
+namespace sculpt::core {
+namespace {
+
+int64_t now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+// Whether a uniform brick of value v can change under `mode`.
+bool can_change_uniform(SculptMode mode, uint8_t v) {
+  switch (mode) {
+    case SculptMode::kAdd:
+    case SculptMode::kUnion:
+      return v != 255;
+    case SculptMode::kSubtract:
+    case SculptMode::kDifference:
+      return v != 0;
+    case SculptMode::kSmooth:
+      return true;
+  }
+  return true;
+}
+
+// The material value a voxel must differ from to be in contact (a voxel at
+// that value cannot change), or -1 when every voxel is.
+int saturated_value(SculptMode mode) {
+  switch (mode) {
+    case SculptMode::kAdd:
+    case SculptMode::kUnion:
+      return 255;
+    case SculptMode::kSubtract:
+    case SculptMode::kDifference:
+      return 0;
+    case SculptMode::kSmooth:
+      return -1;
+  }
+  return -1;
+}
+
+}  // namespace
+
+std::optional<SculptMode> parse_sculpt_mode(const std::string& name) {
+  for (SculptMode m : {SculptMode::kAdd, SculptMode::kSubtract, SculptMode::kUnion,
+                       SculptMode::kDifference, SculptMode::kSmooth}) {
+    if (name == sculpt_mode_name(m)) return m;
+  }
+  return std::nullopt;
+}
+
+const char* sculpt_mode_name(SculptMode mode) {
+  switch (mode) {
+    case SculptMode::kAdd:
+      return "add";
+    case SculptMode::kSubtract:
+      return "subtract";
+    case SculptMode::kUnion:
+      return "union";
+    case SculptMode::kDifference:
+      return "difference";
+    case SculptMode::kSmooth:
+      return "smooth";
+  }
+  return "?";
+}
+
+DabStats& DabStats::operator+=(const DabStats& o) {
+  bricks_overlapped += o.bricks_overlapped;
+  bricks_decoded += o.bricks_decoded;
+  bricks_changed += o.bricks_changed;
+  voxels_changed += o.voxels_changed;
+  decode_ns += o.decode_ns;
+  apply_ns += o.apply_ns;
+  encode_ns += o.encode_ns;
+  return *this;
+}
+
+Sculptor::Sculptor(Volume& volume, const SculptorOptions& options)
+    : volume_(volume), options_(options), history_(options.undo_max_bytes) {
+  const size_t e = static_cast<size_t>(volume.brick_edge());
+  buffer_.resize(e * e * e);
+}
+
+void Sculptor::set_tool(Tool tool) {
+  tool_ = std::move(tool);
+  rebuild_caches();
+}
+
+void Sculptor::set_sampling(Sampling sampling) {
+  options_.sampling = sampling;
+  if (tool_) rebuild_caches();
+}
+
+void Sculptor::rebuild_caches() {
+  cache_ = std::make_unique<RotatedToolCache>(std::make_shared<const PreparedTool>(*tool_),
+                                              options_.sampling, options_.cache_max_bytes);
+  for (auto& c : mirror_caches_)
+    c.reset();
+}
+
+const RotatedToolCache& Sculptor::cache(bool mirrored) const {
+  assert(cache_);
+  if (mirrored && mirror_ && mirror_caches_[mirror_->axis]) return *mirror_caches_[mirror_->axis];
+  return *cache_;
+}
+
+DabStats Sculptor::dab(const Dab& dab) {
+  assert(tool_ && "Sculptor::dab(): set_tool() first");
+  const bool own_stroke = !history_.in_stroke();
+  if (own_stroke) history_.begin_stroke();
+  DabStats stats = apply(*cache_, dab);
+  if (mirror_) {
+    const int a = mirror_->axis;
+    auto& mc = mirror_caches_[a];
+    if (!mc) {
+      mc = std::make_unique<RotatedToolCache>(
+          std::make_shared<const PreparedTool>(mirror_tool(*tool_, a)), options_.sampling,
+          options_.cache_max_bytes);
+    }
+    Dab m = dab;
+    m.position_vox[a] = 2.0f * mirror_->centre_vox - dab.position_vox[a];
+    // Reflection M turns rotation R into M R M: the rotation about the
+    // reflected axis by the opposite angle, i.e. the quaternion's vector
+    // components off the mirror axis change sign.
+    glm::quat q = dab.orientation;
+    for (int i = 0; i < 3; ++i)
+      if (i != a) q[i] = -q[i];  // glm::quat indexes x, y, z, w
+    m.orientation = q;
+    stats += apply(*mc, m);
+  }
+  if (own_stroke) history_.end_stroke();
+  return stats;
+}
+
+DabStats Sculptor::apply(RotatedToolCache& cache, const Dab& dab) {
+  DabStats stats;
+  const RotatedToolCache::Placement placement = cache.acquire(dab.orientation, dab.position_vox);
+  RotatedToolEntry& entry = *placement.entry;
+  const glm::ivec3 anchor = placement.anchor;
+  // §3.3: collision of the rotated tool's box with the material's box.
+  const Box region = intersect(Box{entry.box().lo + anchor, entry.box().hi + anchor},
+                               Box{glm::ivec3(0), volume_.dims()});
+  if (region.empty()) return stats;
+
+  const uint32_t strength_q =
+      static_cast<uint32_t>(std::lround(std::clamp(dab.strength, 0.0f, 1.0f) * 256.0f));
+  const glm::vec3 pivot_pos = glm::vec3(anchor) + entry.offset();
+  const float reach2 = cache.tool().reach_vox() * cache.tool().reach_vox();
+  const int saturated = saturated_value(dab.mode);
+  // Smoothing reads neighbours as they were before this dab, across bricks.
+  DenseGrid<uint8_t> before;
+  const Box before_box{region.lo - 1, region.hi + 1};
+  if (dab.mode == SculptMode::kSmooth) before = volume_.read(before_box, 0);
+
+  const int edge = volume_.brick_edge();
+  const Box bricks = volume_.bricks_overlapping(region);
+  for (int bz = bricks.lo.z; bz < bricks.hi.z; ++bz)
+    for (int by = bricks.lo.y; by < bricks.hi.y; ++by)
+      for (int bx = bricks.lo.x; bx < bricks.hi.x; ++bx) {
+        const glm::ivec3 b(bx, by, bz);
+        ++stats.bricks_overlapped;
+        const Box bb = intersect(volume_.brick_box(b), region);
+        // Beyond the tool's reach nothing is non-zero.
+        const glm::vec3 nearest = glm::clamp(pivot_pos, glm::vec3(bb.lo), glm::vec3(bb.hi - 1));
+        const glm::vec3 gap = nearest - pivot_pos;
+        if (glm::dot(gap, gap) > reach2) continue;
+        const Brick& brick = volume_.brick(b);
+        if (brick.is_uniform() && !can_change_uniform(dab.mode, brick.uniform_value())) continue;
+
+        const int64_t t0 = now_ns();
+        volume_.decode_brick(b, buffer_);
+        const int64_t t1 = now_ns();
+        ++stats.bricks_decoded;
+        const glm::ivec3 origin = b * edge;
+        int64_t changed = 0;
+        for (int z = bb.lo.z; z < bb.hi.z; ++z)
+          for (int y = bb.lo.y; y < bb.hi.y; ++y) {
+            uint8_t* m =
+                &buffer_[(static_cast<size_t>(z - origin.z) * edge + (y - origin.y)) * edge +
+                         (bb.lo.x - origin.x)];
+            // Contact: rotate only where the material can change.
+            int c0 = 0, c1 = bb.hi.x - bb.lo.x;
+            if (saturated >= 0) {
+              while (c0 < c1 && m[c0] == saturated)
+                ++c0;
+              while (c1 > c0 && m[c1 - 1] == saturated)
+                --c1;
+            }
+            if (c0 >= c1) continue;
+            const uint8_t* f = entry.row(y - anchor.y, z - anchor.z, bb.lo.x + c0 - anchor.x,
+                                         bb.lo.x + c1 - anchor.x);
+            for (int i = c0; i < c1; ++i) {
+              const int a = static_cast<int>((f[i - c0] * strength_q + 128) >> 8);
+              if (a == 0) continue;
+              const int v = m[i];
+              int r = v;
+              switch (dab.mode) {
+                case SculptMode::kAdd:
+                  r = std::min(255, v + a);
+                  break;
+                case SculptMode::kSubtract:
+                  r = std::max(0, v - a);
+                  break;
+                case SculptMode::kUnion:
+                  r = std::max(v, a);
+                  break;
+                case SculptMode::kDifference:
+                  r = std::min(v, 255 - a);
+                  break;
+                case SculptMode::kSmooth: {
+                  const glm::ivec3 p = glm::ivec3(bb.lo.x + i, y, z) - before_box.lo;
+                  int sum = 0;
+                  for (int dz = -1; dz <= 1; ++dz)
+                    for (int dy = -1; dy <= 1; ++dy)
+                      for (int dx = -1; dx <= 1; ++dx)
+                        sum += before.at(p.x + dx, p.y + dy, p.z + dz);
+                  // Outside the volume reads 0: a smoothed border erodes, as a
+                  // blur of the object in empty space would.
+                  const int delta = (sum + 13) / 27 - v;
+                  const int step = (a * delta + (delta >= 0 ? 127 : -127)) / 255;
+                  r = std::clamp(v + step, 0, 255);
+                  break;
+                }
+              }
+              if (r != v) {
+                m[i] = static_cast<uint8_t>(r);
+                ++changed;
+              }
+            }
+          }
+        const int64_t t2 = now_ns();
+        stats.decode_ns += t1 - t0;
+        stats.apply_ns += t2 - t1;
+        if (changed == 0) continue;
+        history_.before_change(volume_, b);
+        volume_.store_brick(b, buffer_);
+        stats.encode_ns += now_ns() - t2;
+        ++stats.bricks_changed;
+        stats.voxels_changed += changed;
+      }
+  return stats;
+}
+
+}  // namespace sculpt::core

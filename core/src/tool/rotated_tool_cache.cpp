@@ -1,0 +1,153 @@
+#include "sculpt/core/tool/rotated_tool_cache.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstring>
+
+namespace sculpt::core {
+namespace {
+
+constexpr double kQuatSteps = 1 << 20;
+constexpr int kOffsetSteps = 256;
+
+}  // namespace
+
+RotatedToolEntry::RotatedToolEntry(const PreparedTool& tool, const glm::mat3& rotation,
+                                   glm::vec3 offset, Sampling sampling,
+                                   RotatedToolCacheStats* stats)
+    : tool_(&tool),
+      rotation_(rotation),
+      offset_(offset),
+      frame_(tool, rotation, offset, sampling),
+      stats_(stats),
+      values_(frame_.box().size()) {
+  const glm::ivec3 s = frame_.box().size();
+  const size_t rows = static_cast<size_t>(s.y) * s.z;
+  done_lo_.assign(rows, 0);
+  done_hi_.assign(rows, 0);
+}
+
+const uint8_t* RotatedToolEntry::row(int y, int z, int x0, int x1) {
+  const Box& b = frame_.box();
+  assert(x0 >= b.lo.x && x1 <= b.hi.x && x0 <= x1 && y >= b.lo.y && y < b.hi.y && z >= b.lo.z &&
+         z < b.hi.z);
+  const int ly = y - b.lo.y, lz = z - b.lo.z;
+  const size_t r = static_cast<size_t>(lz) * b.size().y + ly;
+  uint8_t* values = &values_.at(0, ly, lz);
+  const int a = x0 - b.lo.x, e = x1 - b.lo.x;
+  stats_->voxels_requested += e - a;
+  int lo = done_lo_[r], hi = done_hi_[r];
+  if (lo >= hi) {
+    frame_.sample_row(*tool_, y, z, x0, x1, values + a);
+    stats_->voxels_rotated += e - a;
+    lo = a;
+    hi = e;
+  } else {
+    // Keep one computed stretch per row: fill the gap on either side.
+    if (a < lo) {
+      frame_.sample_row(*tool_, y, z, x0, b.lo.x + lo, values + a);
+      stats_->voxels_rotated += lo - a;
+      lo = a;
+    }
+    if (e > hi) {
+      frame_.sample_row(*tool_, y, z, b.lo.x + hi, x1, values + hi);
+      stats_->voxels_rotated += e - hi;
+      hi = e;
+    }
+  }
+  done_lo_[r] = static_cast<int16_t>(lo);
+  done_hi_[r] = static_cast<int16_t>(hi);
+  return values + a;
+}
+
+size_t RotatedToolEntry::memory_bytes() const {
+  return sizeof(*this) + values_.size() + (done_lo_.size() + done_hi_.size()) * sizeof(int16_t);
+}
+
+RotatedToolCache::RotatedToolCache(std::shared_ptr<const PreparedTool> tool, Sampling sampling,
+                                   size_t max_bytes)
+    : tool_(std::move(tool)), sampling_(sampling), max_bytes_(max_bytes) {
+  // Row stretches are int16 offsets.
+  assert(glm::length(glm::vec3(tool_->dims())) < 16000.0f);
+}
+
+size_t RotatedToolCache::KeyHash::operator()(const Key& k) const {
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&](uint64_t v) { h = (h ^ v) * 1099511628211ull; };
+  for (int32_t q : k.q)
+    mix(static_cast<uint32_t>(q));
+  for (int16_t f : k.f)
+    mix(static_cast<uint16_t>(f));
+  return static_cast<size_t>(h ^ (h >> 29));
+}
+
+RotatedToolCache::Placement RotatedToolCache::acquire(const glm::quat& orientation,
+                                                      glm::vec3 position) {
+  ++stats_.placements;
+  // q and -q are the same rotation: canonical sign first.
+  glm::quat q = glm::normalize(orientation);
+  const float comps[4] = {q.w, q.x, q.y, q.z};
+  float sign = 1.0f;
+  for (float c : comps) {
+    if (c != 0.0f) {
+      sign = c < 0.0f ? -1.0f : 1.0f;
+      break;
+    }
+  }
+  Key key{};
+  for (int i = 0; i < 4; ++i)
+    key.q[i] = static_cast<int32_t>(std::lround(sign * comps[i] * kQuatSteps));
+  glm::ivec3 anchor(glm::floor(position));
+  const glm::vec3 frac = position - glm::vec3(anchor);
+  for (int i = 0; i < 3; ++i) {
+    int f = static_cast<int>(std::lround(frac[i] * kOffsetSteps));
+    if (f >= kOffsetSteps) {
+      f -= kOffsetSteps;
+      ++anchor[i];
+    }
+    key.f[i] = static_cast<int16_t>(f);
+  }
+
+  if (auto it = slots_.find(key); it != slots_.end()) {
+    ++stats_.placement_hits;
+    lru_.splice(lru_.begin(), lru_, it->second.lru);
+    return {it->second.entry, anchor};
+  }
+  const glm::quat qq = glm::normalize(glm::quat(
+      static_cast<float>(key.q[0] / kQuatSteps), static_cast<float>(key.q[1] / kQuatSteps),
+      static_cast<float>(key.q[2] / kQuatSteps), static_cast<float>(key.q[3] / kQuatSteps)));
+  const glm::vec3 offset(key.f[0] / float{kOffsetSteps}, key.f[1] / float{kOffsetSteps},
+                         key.f[2] / float{kOffsetSteps});
+  auto entry =
+      std::make_shared<RotatedToolEntry>(*tool_, glm::mat3_cast(qq), offset, sampling_, &stats_);
+  const size_t bytes = entry->memory_bytes();
+  if (bytes <= max_bytes_) {
+    evict_to(max_bytes_ - bytes);
+    lru_.push_front(key);
+    slots_.emplace(key, Slot{entry, lru_.begin()});
+    stats_.bytes += bytes;
+    stats_.entries = slots_.size();
+  }
+  return {entry, anchor};
+}
+
+void RotatedToolCache::evict_to(size_t budget) {
+  while (stats_.bytes > budget && !lru_.empty()) {
+    auto it = slots_.find(lru_.back());
+    stats_.bytes -= it->second.entry->memory_bytes();
+    slots_.erase(it);
+    lru_.pop_back();
+    ++stats_.evictions;
+  }
+  stats_.entries = slots_.size();
+}
+
+void RotatedToolCache::clear() {
+  slots_.clear();
+  lru_.clear();
+  stats_.bytes = 0;
+  stats_.entries = 0;
+}
+
+}  // namespace sculpt::core

@@ -1,0 +1,158 @@
+#include "sculpt/core/tool/tool.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
+#include "sculpt/core/io/atomic_file.h"
+#include "sculpt/core/shapes/analytic_shapes.h"
+
+namespace sculpt::core {
+namespace {
+
+// A grid holding a shape of half-extents `half` (voxel units) centred on the
+// grid centre, with one voxel of margin for the density ramp (d in [-1, 1]).
+glm::ivec3 dims_for(glm::vec3 half) {
+  return glm::ivec3(glm::ceil(2.0f * half + 2.0f)) + 1;
+}
+
+template <class SignedDistance>
+Tool shape_tool(glm::vec3 half, SignedDistance sd) {
+  const glm::ivec3 dims = dims_for(half);
+  Tool tool{DenseGrid<uint8_t>(dims), grid_centre(dims)};
+  for (int z = 0; z < dims.z; ++z)
+    for (int y = 0; y < dims.y; ++y)
+      for (int x = 0; x < dims.x; ++x) {
+        tool.density.at(x, y, z) = density_from_distance(sd(glm::vec3(x, y, z) - tool.pivot));
+      }
+  return tool;
+}
+
+float segment_distance(glm::vec2 p, glm::vec2 a, glm::vec2 b) {
+  const glm::vec2 ab = b - a;
+  const float t = std::clamp(glm::dot(p - a, ab) / glm::dot(ab, ab), 0.0f, 1.0f);
+  return glm::length(p - (a + t * ab));
+}
+
+}  // namespace
+
+glm::vec3 grid_centre(glm::ivec3 dims) {
+  return (glm::vec3(dims) - 1.0f) * 0.5f;
+}
+
+Tool make_sphere_tool(float radius_vox) {
+  assert(radius_vox > 0.0f);
+  return shape_tool(glm::vec3(radius_vox),
+                    [&](glm::vec3 p) { return glm::length(p) - radius_vox; });
+}
+
+Tool make_cube_tool(float edge_vox) {
+  assert(edge_vox > 0.0f);
+  const glm::vec3 half(edge_vox * 0.5f);
+  return shape_tool(half, [&](glm::vec3 p) {
+    const glm::vec3 q = glm::abs(p) - half;
+    return glm::length(glm::max(q, 0.0f)) + std::min(std::max(q.x, std::max(q.y, q.z)), 0.0f);
+  });
+}
+
+Tool make_cylinder_tool(float radius_vox, float height_vox) {
+  assert(radius_vox > 0.0f && height_vox > 0.0f);
+  return shape_tool(glm::vec3(radius_vox, radius_vox, height_vox * 0.5f), [&](glm::vec3 p) {
+    const glm::vec2 q(std::hypot(p.x, p.y) - radius_vox, std::abs(p.z) - height_vox * 0.5f);
+    return glm::length(glm::max(q, 0.0f)) + std::min(std::max(q.x, q.y), 0.0f);
+  });
+}
+
+Tool make_ring_tool(float major_radius_vox, float minor_radius_vox) {
+  assert(major_radius_vox > 0.0f && minor_radius_vox > 0.0f);
+  const float r = major_radius_vox + minor_radius_vox;
+  return shape_tool(glm::vec3(r, r, minor_radius_vox), [&](glm::vec3 p) {
+    return std::hypot(std::hypot(p.x, p.y) - major_radius_vox, p.z) - minor_radius_vox;
+  });
+}
+
+Tool make_cone_tool(float radius_vox, float height_vox) {
+  assert(radius_vox > 0.0f && height_vox > 0.0f);
+  const float h = height_vox * 0.5f;
+  // The solid of revolution of the triangle (rho, z): base (0,-h)-(R,-h),
+  // slant (R,-h)-(0,h); the axis is no boundary in 3D.
+  return shape_tool(glm::vec3(radius_vox, radius_vox, h), [&](glm::vec3 p) {
+    const glm::vec2 q(std::hypot(p.x, p.y), p.z);
+    const float d = std::min(segment_distance(q, {0.0f, -h}, {radius_vox, -h}),
+                             segment_distance(q, {radius_vox, -h}, {0.0f, h}));
+    const bool inside = q.y >= -h && q.y <= h && q.x <= radius_vox * (h - q.y) / (2.0f * h);
+    return inside ? -d : d;
+  });
+}
+
+Tool tool_from_grid(DenseGrid<uint8_t> grid) {
+  const glm::vec3 pivot = grid_centre(grid.dims());
+  return Tool{std::move(grid), pivot};
+}
+
+Tool tool_from_volume(const Volume& volume, const Box& region) {
+  return tool_from_grid(volume.read(region, 0));
+}
+
+Tool mirror_tool(const Tool& tool, int axis) {
+  assert(axis >= 0 && axis < 3);
+  const glm::ivec3 d = tool.density.dims();
+  Tool out{DenseGrid<uint8_t>(d), tool.pivot};
+  out.pivot[axis] = static_cast<float>(d[axis] - 1) - tool.pivot[axis];
+  for (int z = 0; z < d.z; ++z)
+    for (int y = 0; y < d.y; ++y)
+      for (int x = 0; x < d.x; ++x) {
+        glm::ivec3 s(x, y, z);
+        s[axis] = d[axis] - 1 - s[axis];
+        out.density.at(x, y, z) = tool.density.at(s.x, s.y, s.z);
+      }
+  return out;
+}
+
+Result<Tool> read_tool_nrrd(const std::filesystem::path& path, const NrrdLimits& limits) {
+  auto grid = read_nrrd_u8(path, limits);
+  if (!grid) return grid.error();
+  Tool tool = tool_from_grid(std::move(grid.value()));
+  // The header was valid for read_nrrd_u8, so it ends at the first empty line.
+  std::ifstream in(path, std::ios::binary);
+  const std::string key = "sculpt_pivot:=";
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) break;
+    if (line.rfind(key, 0) != 0) continue;
+    std::istringstream values(line.substr(key.size()));
+    std::vector<float> v;
+    for (float f; values >> f;)
+      v.push_back(f);
+    if (v.size() != 3 || !values.eof() || !std::isfinite(v[0]) || !std::isfinite(v[1]) ||
+        !std::isfinite(v[2])) {
+      return Error("sculpt_pivot: expected 3 finite numbers, got '" + line.substr(key.size()) + "'")
+          .in(path.string());
+    }
+    tool.pivot = {v[0], v[1], v[2]};
+  }
+  return tool;
+}
+
+Status write_tool_nrrd(const std::filesystem::path& path, const Tool& tool) {
+  std::string header = nrrd_header_text(tool.density.dims(), NrrdType::kUInt8);
+  // The header ends with its blank line; the key/value line goes before it.
+  std::ostringstream pivot;
+  pivot.precision(9);
+  pivot << "sculpt_pivot:=" << tool.pivot.x << " " << tool.pivot.y << " " << tool.pivot.z << "\n";
+  header.insert(header.size() - 1, pivot.str());
+  AtomicFileWriter out(path);
+  if (!out.ok()) return out.error();
+  out.write(header);
+  out.write(tool.density.data(), tool.density.size());
+  return out.commit();
+}
+
+}  // namespace sculpt::core

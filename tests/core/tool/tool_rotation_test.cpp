@@ -1,0 +1,186 @@
+#include "sculpt/core/tool/tool_rotation.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+
+#include <glm/geometric.hpp>
+
+#include "sculpt/core/shapes/analytic_shapes.h"
+
+namespace sculpt::core {
+namespace {
+
+// An asymmetric tool: a cone plus a noise pattern, so a wrong axis, sign or
+// off-by-one shows.
+Tool textured_tool(glm::ivec3 dims) {
+  Tool t = tool_from_grid(DenseGrid<uint8_t>(dims));
+  uint32_t s = 7;
+  for (uint8_t& v : t.density.values()) {
+    s = s * 1664525u + 1013904223u;
+    v = static_cast<uint8_t>(s >> 24);
+  }
+  return t;
+}
+
+const glm::vec3 kAngles[] = {{30, 45, 60}, {10, -70, 200}, {0, 0, 33}, {90, 0, 0}, {123, 11, -47}};
+
+TEST(ToolRotation, EulerXyzMatchesScipy) {
+  // scipy.spatial.transform.Rotation.from_euler("xyz", [30, 45, 60], degrees=True).as_matrix()
+  const double expected[3][3] = {{0.353553391, -0.573223305, 0.73919892},
+                                 {0.612372436, 0.73919892, 0.280330086},
+                                 {-0.707106781, 0.353553391, 0.612372436}};
+  const glm::mat3 m = euler_xyz_deg({30, 45, 60});
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(m[c][r], expected[r][c], 1e-6) << "row " << r << " col " << c;
+}
+
+TEST(ToolRotation, BruteAndIncrementalAgreeExactly) {
+  for (const Tool& t :
+       {make_sphere_tool(6.3f), make_cone_tool(5.0f, 9.0f), textured_tool({9, 12, 7})}) {
+    const PreparedTool tool(t);
+    for (glm::vec3 angles : kAngles)
+      for (glm::vec3 pos : {glm::vec3(0.0f), glm::vec3(3.25f, -1.7f, 0.5f)})
+        for (Sampling s : {Sampling::kNearest, Sampling::kTrilinear}) {
+          const glm::mat3 r = euler_xyz_deg(angles);
+          const RotatedTool a = rotate_tool(tool, r, pos, RotationMethod::kBrute, s);
+          const RotatedTool b = rotate_tool(tool, r, pos, RotationMethod::kIncremental, s);
+          ASSERT_EQ(a.origin, b.origin);
+          ASSERT_EQ(a.density.dims(), b.density.dims());
+          EXPECT_TRUE(a.density == b.density)
+              << "angles " << angles.x << "," << angles.y << "," << angles.z;
+        }
+  }
+}
+
+TEST(ToolRotation, QuarterTurnsAreExact) {
+  const Tool t = textured_tool({10, 10, 10});
+  const PreparedTool tool(t);
+  const int n = 10;
+  for (Sampling s : {Sampling::kNearest, Sampling::kTrilinear}) {
+    // 90 degrees about z sends (x, y) to (-y, x) about the centre.
+    const RotatedTool z90 =
+        rotate_tool_about_pivot(tool, euler_xyz_deg({0, 0, 90}), RotationMethod::kIncremental, s);
+    ASSERT_EQ(z90.origin, glm::ivec3(0));
+    ASSERT_EQ(z90.density.dims(), glm::ivec3(n));
+    for (int z = 0; z < n; ++z)
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+          ASSERT_EQ(z90.density.at(n - 1 - y, x, z), t.density.at(x, y, z));
+    // 180 about x: (y, z) -> (-y, -z).
+    const RotatedTool x180 =
+        rotate_tool_about_pivot(tool, euler_xyz_deg({180, 0, 0}), RotationMethod::kBrute, s);
+    ASSERT_EQ(x180.density.dims(), glm::ivec3(n));
+    for (int z = 0; z < n; ++z)
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+          ASSERT_EQ(x180.density.at(x, n - 1 - y, n - 1 - z), t.density.at(x, y, z));
+  }
+}
+
+TEST(ToolRotation, RotationThenInverseReturnsTheToolWithinTrilinearBlur) {
+  const Tool t = make_sphere_tool(8.0f);
+  // Make it asymmetric so the round trip is not trivially the identity.
+  Tool notched = t;
+  for (int z = 0; z < 8; ++z)
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x)
+        notched.density.at(x, y, z) = 0;
+  const glm::mat3 r = euler_xyz_deg({30, 45, 60});
+  const RotatedTool there = rotate_tool_about_pivot(
+      PreparedTool(notched), r, RotationMethod::kIncremental, Sampling::kTrilinear);
+  const Tool turned{there.density, notched.pivot - glm::vec3(there.origin)};
+  const RotatedTool back = rotate_tool(PreparedTool(turned), glm::transpose(r), notched.pivot,
+                                       RotationMethod::kIncremental, Sampling::kTrilinear);
+  const glm::ivec3 d = notched.density.dims();
+  double sum = 0.0;
+  int worst = 0;
+  for (int z = 0; z < d.z; ++z)
+    for (int y = 0; y < d.y; ++y)
+      for (int x = 0; x < d.x; ++x) {
+        const glm::ivec3 k = glm::ivec3(x, y, z) - back.origin;
+        const int got = back.density.in_bounds(k.x, k.y, k.z) ? back.density.at(k.x, k.y, k.z) : 0;
+        const int diff = std::abs(got - notched.density.at(x, y, z));
+        sum += diff;
+        worst = std::max(worst, diff);
+      }
+  const double mean = sum / static_cast<double>(voxel_count(d));
+  // Two trilinear resamplings blur a 2-voxel ramp (and the notch's sharp
+  // edges) by about half a voxel; a wrong inverse would move the notch.
+  EXPECT_LT(mean, 6.0);
+  EXPECT_LT(worst, 200);
+}
+
+TEST(ToolRotation, DirectMethodLeavesHolesInverseDoesNot) {
+  const PreparedTool tool(make_sphere_tool(12.0f));
+  const glm::mat3 r = euler_xyz_deg({30, 45, 60});
+  const glm::vec3 pos(0.0f);
+  const RotatedTool direct = rotate_tool_direct(tool, r, pos);
+  const RotatedTool inverse =
+      rotate_tool(tool, r, pos, RotationMethod::kIncremental, Sampling::kNearest);
+  ASSERT_EQ(direct.origin, inverse.origin);
+  auto holes = [&](const RotatedTool& rt) {
+    int count = 0;
+    const glm::ivec3 d = rt.density.dims();
+    for (int z = 0; z < d.z; ++z)
+      for (int y = 0; y < d.y; ++y)
+        for (int x = 0; x < d.x; ++x) {
+          const glm::vec3 k = glm::vec3(glm::ivec3(x, y, z) + rt.origin) - pos;
+          if (glm::length(k) < 10.0f && rt.density.at(x, y, z) == 0) ++count;
+        }
+    return count;
+  };
+  EXPECT_GT(holes(direct), 0);
+  EXPECT_EQ(holes(inverse), 0);
+}
+
+TEST(ToolRotation, BoxEnclosesTheRotatedToolAndIsTheToolAtIdentity) {
+  const PreparedTool tool(make_cone_tool(6.0f, 10.0f));
+  const RotatedTool id =
+      rotate_tool_about_pivot(tool, glm::mat3(1.0f), RotationMethod::kBrute, Sampling::kNearest);
+  EXPECT_EQ(id.origin, glm::ivec3(0));
+  EXPECT_TRUE(id.density == tool.tool().density);
+  // A box one voxel larger on every side holds nothing more.
+  const glm::mat3 r = euler_xyz_deg({17, 71, -33});
+  const RotationFrame frame(tool, r, {0.3f, 0.6f, 0.9f}, Sampling::kTrilinear);
+  const Box& b = frame.box();
+  int64_t inside = 0, outside = 0;
+  for (int z = b.lo.z - 1; z <= b.hi.z; ++z)
+    for (int y = b.lo.y - 1; y <= b.hi.y; ++y)
+      for (int x = b.lo.x - 1; x <= b.hi.x; ++x) {
+        const int v = frame.sample_voxel(tool, {x, y, z});
+        (b.contains({x, y, z}) ? inside : outside) += v;
+      }
+  EXPECT_GT(inside, 0);
+  EXPECT_EQ(outside, 0);
+}
+
+TEST(ToolRotation, SubVoxelPositionMovesTheRotatedMass) {
+  const PreparedTool tool(make_sphere_tool(5.0f));
+  const glm::mat3 r = euler_xyz_deg({30, 45, 60});
+  auto centroid = [&](glm::vec3 pos) {
+    const RotatedTool rt =
+        rotate_tool(tool, r, pos, RotationMethod::kIncremental, Sampling::kTrilinear);
+    glm::dvec3 c(0.0);
+    double m = 0.0;
+    const glm::ivec3 d = rt.density.dims();
+    for (int z = 0; z < d.z; ++z)
+      for (int y = 0; y < d.y; ++y)
+        for (int x = 0; x < d.x; ++x) {
+          const double v = rt.density.at(x, y, z);
+          c += v * glm::dvec3(glm::ivec3(x, y, z) + rt.origin);
+          m += v;
+        }
+    return c / m;
+  };
+  const glm::dvec3 a = centroid({10.0f, 10.0f, 10.0f});
+  const glm::dvec3 b = centroid({10.25f, 10.5f, 10.75f});
+  EXPECT_NEAR(b.x - a.x, 0.25, 0.03);
+  EXPECT_NEAR(b.y - a.y, 0.5, 0.03);
+  EXPECT_NEAR(b.z - a.z, 0.75, 0.03);
+}
+
+}  // namespace
+}  // namespace sculpt::core

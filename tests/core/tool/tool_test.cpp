@@ -1,0 +1,113 @@
+#include "sculpt/core/tool/tool.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "sculpt/core/shapes/analytic_shapes.h"
+
+namespace sculpt::core {
+namespace {
+
+std::filesystem::path temp_path(const std::string& name) {
+  return std::filesystem::temp_directory_path() / ("sculpt_tool_test_" + name);
+}
+
+// Value at the pivot's voxel, and at the grid's corner.
+void expect_full_centre_empty_corner(const Tool& t, const char* what) {
+  const glm::ivec3 c(glm::round(t.pivot));
+  EXPECT_EQ(t.density.at(c.x, c.y, c.z), 255) << what;
+  EXPECT_EQ(t.density.at(0, 0, 0), 0) << what;
+  const glm::ivec3 d = t.density.dims();
+  EXPECT_EQ(t.density.at(d.x - 1, d.y - 1, d.z - 1), 0) << what;
+}
+
+TEST(Tool, BuiltInShapesHaveTheirSizeAndCentre) {
+  const Tool sphere = make_sphere_tool(10.0f);
+  expect_full_centre_empty_corner(sphere, "sphere");
+  // Radius 10: the voxel 10 from the centre sits on the surface (127).
+  const glm::ivec3 c(glm::round(sphere.pivot));
+  EXPECT_NEAR(sphere.density.at(c.x + 10, c.y, c.z), 127, 1);
+  EXPECT_EQ(sphere.density.at(c.x + 12, c.y, c.z), 0);
+
+  const Tool cube = make_cube_tool(8.0f);
+  expect_full_centre_empty_corner(cube, "cube");
+  const Tool cylinder = make_cylinder_tool(4.0f, 16.0f);
+  expect_full_centre_empty_corner(cylinder, "cylinder");
+  EXPECT_GT(cylinder.density.dims().z, cylinder.density.dims().x);
+  const Tool cone = make_cone_tool(6.0f, 12.0f);
+  // Wide at the bottom, narrow at the top.
+  const glm::ivec3 k(glm::round(cone.pivot));
+  EXPECT_EQ(cone.density.at(k.x + 4, k.y, k.z - 5), 255);
+  EXPECT_EQ(cone.density.at(k.x + 4, k.y, k.z + 5), 0);
+  // The ring is hollow in the middle and full in its tube.
+  const Tool ring = make_ring_tool(8.0f, 3.0f);
+  const glm::ivec3 r(glm::round(ring.pivot));
+  EXPECT_EQ(ring.density.at(r.x, r.y, r.z), 0);
+  EXPECT_EQ(ring.density.at(r.x + 8, r.y, r.z), 255);
+}
+
+TEST(Tool, SavesAndLoadsWithItsPivot) {
+  Tool t = make_cone_tool(5.0f, 7.0f);
+  t.pivot = {1.25f, 2.5f, 3.75f};
+  const auto path = temp_path("pivot.nrrd");
+  ASSERT_TRUE(write_tool_nrrd(path, t).ok());
+  auto back = read_tool_nrrd(path);
+  ASSERT_TRUE(back.ok()) << back.error().message();
+  EXPECT_TRUE(back->density == t.density);
+  EXPECT_EQ(back->pivot, t.pivot);
+  // It stays an ordinary NRRD volume for every other reader.
+  auto plain = read_nrrd_u8(path);
+  ASSERT_TRUE(plain.ok());
+  EXPECT_TRUE(*plain == t.density);
+  std::filesystem::remove(path);
+}
+
+TEST(Tool, PlainNrrdGetsItsCentreAsPivot) {
+  const auto path = temp_path("plain.nrrd");
+  ASSERT_TRUE(write_nrrd(path, sphere_density(16, 0.4f)).ok());
+  auto t = read_tool_nrrd(path);
+  ASSERT_TRUE(t.ok());
+  EXPECT_EQ(t->pivot, glm::vec3(7.5f));
+  std::filesystem::remove(path);
+}
+
+TEST(Tool, BadPivotLineIsReportedWithTheFileName) {
+  const auto path = temp_path("bad.nrrd");
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 1 1 1\nencoding: raw\nsculpt_pivot:=1 "
+           "2\n\n";
+    out.put('\x7f');
+  }
+  auto t = read_tool_nrrd(path);
+  ASSERT_FALSE(t.ok());
+  EXPECT_NE(t.error().message().find(path.string()), std::string::npos) << t.error().message();
+  EXPECT_NE(t.error().message().find("sculpt_pivot"), std::string::npos) << t.error().message();
+  std::filesystem::remove(path);
+}
+
+TEST(Tool, MirrorTwiceIsIdentityAndMovesThePivot) {
+  Tool t = make_cone_tool(4.0f, 9.0f);
+  t.pivot = {1.0f, 2.0f, 3.0f};
+  const Tool m = mirror_tool(t, 2);
+  const glm::ivec3 d = t.density.dims();
+  EXPECT_EQ(m.pivot.z, static_cast<float>(d.z - 1) - 3.0f);
+  EXPECT_EQ(m.density.at(2, 3, 0), t.density.at(2, 3, d.z - 1));
+  const Tool back = mirror_tool(m, 2);
+  EXPECT_TRUE(back.density == t.density);
+  EXPECT_EQ(back.pivot, t.pivot);
+}
+
+TEST(Tool, ARegionOfASculptureBecomesATool) {
+  const Volume v = sphere_volume(64, 0.3f);
+  const Box region{glm::ivec3(10), glm::ivec3(40, 50, 60)};
+  const Tool t = tool_from_volume(v, region);
+  EXPECT_EQ(t.density.dims(), region.size());
+  EXPECT_EQ(t.density.at(5, 7, 9), v.voxel(glm::ivec3(15, 17, 19)));
+  EXPECT_EQ(t.pivot, grid_centre(region.size()));
+}
+
+}  // namespace
+}  // namespace sculpt::core
