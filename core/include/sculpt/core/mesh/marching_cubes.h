@@ -1,0 +1,78 @@
+#pragma once
+// Marching cubes over the bricked wavelet volume (DESIGN.md §4 "Meshing";
+// paper "Discrete tools for virtual sculpture" §2.3).
+//
+// The surface is the iso-level `iso` of the uint8 density (inside: density >
+// iso). Cells span the level's voxel centres and one layer of cells beyond
+// every face of the volume, where the outside reads 0, so the mesh of any
+// volume is closed. Each cell edge the surface crosses gets exactly one
+// vertex, shared by the cells around it; ambiguous faces are resolved by the
+// asymptotic decider (Nielson & Hamann 1991), which both cells sharing a face
+// evaluate identically, so the surface has no holes.
+//
+// Level k: the level-k voxel i averages level-0 voxels [i 2^k, (i+1) 2^k), so
+// its centre, where its vertices are placed, is i 2^k + (2^k - 1) / 2 in
+// level-0 voxel units.
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "sculpt/core/mesh/mesh.h"
+#include "sculpt/core/volume/volume.h"
+
+namespace sculpt::core {
+
+struct MarchingCubesOptions {
+  /// Iso-level in density units (0..255).
+  float iso = 127.5f;
+  /// Threads for whole-volume extraction (0 = all cores).
+  int threads = 0;
+};
+
+/// The mesh of one brick's cells, before welding with its neighbours.
+struct BrickMesh {
+  Mesh mesh;
+  /// Per vertex: the key of its cell edge in the whole level when the edge
+  /// is shared with another brick's cells, else kNotSeam. Welding uses it.
+  std::vector<uint64_t> seam_keys;
+  static constexpr uint64_t kNotSeam = ~uint64_t{0};
+
+  bool empty() const { return mesh.triangles.empty(); }
+  void clear() {
+    mesh.positions.clear();
+    mesh.normals.clear();
+    mesh.triangles.clear();
+    seam_keys.clear();
+  }
+  friend bool operator==(const BrickMesh&, const BrickMesh&) = default;
+};
+
+/// A block of cells to march, with its voxels.
+struct MarchBlock {
+  /// Voxels (cells + 3)^3 per axis, x fastest: the cells' corners plus one
+  /// voxel below and two above on each axis for central-difference normals.
+  const uint8_t* voxels = nullptr;
+  /// Cells per axis; cell (0,0,0) has its lower corner at `origin`.
+  glm::ivec3 cells{0};
+  /// Level coordinates of the first cell's lower corner (may be -1).
+  glm::ivec3 origin{0};
+  /// Size of the level, for the edge keys.
+  glm::ivec3 level_dims{0};
+  int level = 0;
+  float iso = 127.5f;
+};
+
+/// Marches the cells of `block` into `out` (cleared first). No heap
+/// allocation beyond the growth of `out` and of per-thread scratch.
+void march_block(const MarchBlock& block, BrickMesh& out);
+
+/// The whole surface of `volume` at `level`, welded across bricks.
+Mesh marching_cubes(const Volume& volume, int level = 0, const MarchingCubesOptions& options = {});
+
+/// Welds brick meshes (in the given order) into one mesh: vertices on shared
+/// cell edges become one vertex.
+Mesh weld_brick_meshes(const std::vector<const BrickMesh*>& bricks);
+
+}  // namespace sculpt::core

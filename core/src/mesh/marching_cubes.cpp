@@ -1,0 +1,462 @@
+#include "sculpt/core/mesh/marching_cubes.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cassert>
+#include <cmath>
+#include <unordered_map>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+
+#include "sculpt/core/mesh/mesh_cache.h"
+
+namespace sculpt::core {
+namespace {
+
+// Corner k of a cell sits at (k & 1, (k >> 1) & 1, k >> 2); bit k of a cell's
+// case is set when corner k is inside. Edges 0-3 run along x, 4-7 along y,
+// 8-11 along z.
+constexpr std::array<std::array<uint8_t, 2>, 12> kEdgeCorners = {{{0, 1},
+                                                                  {2, 3},
+                                                                  {4, 5},
+                                                                  {6, 7},
+                                                                  {0, 2},
+                                                                  {1, 3},
+                                                                  {4, 6},
+                                                                  {5, 7},
+                                                                  {0, 4},
+                                                                  {1, 5},
+                                                                  {2, 6},
+                                                                  {3, 7}}};
+
+glm::ivec3 corner_offset(int k) {
+  return {k & 1, (k >> 1) & 1, k >> 2};
+}
+int edge_axis(int e) {
+  return e / 4;
+}
+
+// The triangle table is generated rather than typed in: for every case and
+// every way of resolving its ambiguous faces, the surface's boundary on each
+// face is a set of segments fixed by that face alone, so neighbouring cells
+// agree on it; chaining the segments gives closed loops, fanned into
+// triangles. Resolving each face by its own data (the asymptotic decider) is
+// what makes the surface free of holes.
+struct Tables {
+  // Per face: corners in counter-clockwise order seen from outside the cell,
+  // and the edge from corner i to corner i+1.
+  std::array<std::array<uint8_t, 4>, 6> face_corners{};
+  std::array<std::array<uint8_t, 4>, 6> face_edges{};
+  // Per case: ambiguous faces (bit f) and where its entries start; entry
+  // first_entry[c] + d holds the triangles for decision bits d (bit j: the
+  // j-th ambiguous face connects its inside corners).
+  std::array<uint8_t, 256> ambiguous{};
+  std::array<uint32_t, 256> first_entry{};
+  std::vector<uint32_t> entry_begin;  // into tri_edges, one past the last entry too
+  std::vector<uint8_t> tri_edges;     // three cell edges per triangle; 12 + k: centre k
+  // Centre vertices of an entry: centre_masks[centre_begin[entry] + k] holds
+  // the edges whose vertices centre k averages.
+  std::vector<uint32_t> centre_begin;
+  std::vector<uint16_t> centre_masks;
+};
+
+bool edges_share_face(const Tables& t, int e1, int e2) {
+  for (const auto& fe : t.face_edges) {
+    const bool has1 = std::find(fe.begin(), fe.end(), e1) != fe.end();
+    const bool has2 = std::find(fe.begin(), fe.end(), e2) != fe.end();
+    if (has1 && has2) return true;
+  }
+  return false;
+}
+
+int edge_between(int a, int b) {
+  for (int e = 0; e < 12; ++e) {
+    if ((kEdgeCorners[e][0] == a && kEdgeCorners[e][1] == b) ||
+        (kEdgeCorners[e][0] == b && kEdgeCorners[e][1] == a))
+      return e;
+  }
+  assert(false);
+  return -1;
+}
+
+Tables build_tables() {
+  Tables t;
+  for (int f = 0; f < 6; ++f) {
+    const int axis = f / 2, side = f % 2;
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    // (u, v, +axis) is right-handed: counter-clockwise in (u, v) faces +axis.
+    std::array<glm::ivec2, 4> uv = {{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
+    if (side == 0) uv = {{{0, 0}, {0, 1}, {1, 1}, {1, 0}}};
+    for (int i = 0; i < 4; ++i) {
+      glm::ivec3 p(0);
+      p[axis] = side;
+      p[u] = uv[i].x;
+      p[v] = uv[i].y;
+      t.face_corners[f][i] = static_cast<uint8_t>(p.x + 2 * p.y + 4 * p.z);
+    }
+    for (int i = 0; i < 4; ++i) {
+      t.face_edges[f][i] =
+          static_cast<uint8_t>(edge_between(t.face_corners[f][i], t.face_corners[f][(i + 1) % 4]));
+    }
+  }
+  t.entry_begin.push_back(0);
+  t.centre_begin.push_back(0);
+  for (int c = 0; c < 256; ++c) {
+    auto inside = [c](int corner) { return ((c >> corner) & 1) != 0; };
+    std::vector<int> amb_faces;
+    for (int f = 0; f < 6; ++f) {
+      const auto& fc = t.face_corners[f];
+      if (inside(fc[0]) == inside(fc[2]) && inside(fc[1]) == inside(fc[3]) &&
+          inside(fc[0]) != inside(fc[1])) {
+        t.ambiguous[c] |= static_cast<uint8_t>(1 << f);
+        amb_faces.push_back(f);
+      }
+    }
+    t.first_entry[c] = static_cast<uint32_t>(t.entry_begin.size() - 1);
+    for (int d = 0; d < (1 << amb_faces.size()); ++d) {
+      // next[e]: the edge the surface's boundary reaches after edge e.
+      std::array<int, 12> next;
+      next.fill(-1);
+      for (int f = 0; f < 6; ++f) {
+        const auto& fc = t.face_corners[f];
+        bool connect = false;
+        for (size_t j = 0; j < amb_faces.size(); ++j)
+          if (amb_faces[j] == f) connect = ((d >> j) & 1) != 0;
+        for (int i = 0; i < 4; ++i) {
+          // Walking the face counter-clockwise, a segment runs from an
+          // outside-to-inside crossing to an inside-to-outside one, so the
+          // loops wind counter-clockwise seen from outside the material.
+          if (inside(fc[i]) || !inside(fc[(i + 1) % 4])) continue;
+          const int step = connect ? 3 : 1;  // previous or next crossing
+          for (int k = 1, j = (i + step) % 4; k < 4; ++k, j = (j + step) % 4) {
+            if (inside(fc[j]) && !inside(fc[(j + 1) % 4])) {
+              next[t.face_edges[f][i]] = t.face_edges[f][j];
+              break;
+            }
+          }
+        }
+      }
+      std::array<bool, 12> done{};
+      for (int e0 = 0; e0 < 12; ++e0) {
+        if (next[e0] < 0 || done[e0]) continue;
+        std::vector<int> loop;
+        for (int e = e0; !done[e]; e = next[e]) {
+          done[e] = true;
+          loop.push_back(e);
+          assert(next[e] >= 0);
+        }
+        // Fan from an apex none of whose diagonals lies on a cell face: such
+        // a diagonal could coincide with one in the cell across that face
+        // (only on faces crossed four times), giving an edge in four
+        // triangles. Loops with no such apex fan from a vertex at their centre.
+        const size_t len = loop.size();
+        int apex = -1;
+        for (size_t a = 0; a < len && apex < 0; ++a) {
+          bool ok = true;
+          for (size_t k = 2; k + 1 < len && ok; ++k) {
+            ok = !edges_share_face(t, loop[a], loop[(a + k) % len]);
+          }
+          if (ok) apex = static_cast<int>(a);
+        }
+        if (apex >= 0) {
+          for (size_t k = 1; k + 1 < len; ++k) {
+            t.tri_edges.push_back(static_cast<uint8_t>(loop[static_cast<size_t>(apex)]));
+            t.tri_edges.push_back(static_cast<uint8_t>(loop[(apex + k) % len]));
+            t.tri_edges.push_back(static_cast<uint8_t>(loop[(apex + k + 1) % len]));
+          }
+        } else {
+          const auto centre =
+              static_cast<uint8_t>(12 + t.centre_masks.size() - t.centre_begin.back());
+          assert(centre < 16);
+          uint16_t mask = 0;
+          for (int e : loop)
+            mask |= static_cast<uint16_t>(1u << e);
+          t.centre_masks.push_back(mask);
+          for (size_t k = 0; k < len; ++k) {
+            t.tri_edges.push_back(centre);
+            t.tri_edges.push_back(static_cast<uint8_t>(loop[k]));
+            t.tri_edges.push_back(static_cast<uint8_t>(loop[(k + 1) % len]));
+          }
+        }
+      }
+      t.entry_begin.push_back(static_cast<uint32_t>(t.tri_edges.size()));
+      t.centre_begin.push_back(static_cast<uint32_t>(t.centre_masks.size()));
+    }
+  }
+  return t;
+}
+
+const Tables& tables() {
+  static const Tables t = build_tables();
+  return t;
+}
+
+// A cache slot of one cell edge: valid while `stamp` matches the plane's.
+struct Slot {
+  uint32_t stamp = 0;
+  uint32_t vertex = 0;
+};
+
+struct Scratch {
+  std::vector<uint8_t> inside;
+  std::vector<uint8_t> row_any, row_all;
+  std::vector<Slot> xy[2][2];  // [plane parity][axis x or y]
+  std::vector<Slot> z;
+  uint32_t stamp = 0;
+};
+
+}  // namespace
+
+void march_block(const MarchBlock& block, BrickMesh& out) {
+  out.clear();
+  const Tables& tab = tables();
+  const glm::ivec3 n = block.cells;
+  if (n.x <= 0 || n.y <= 0 || n.z <= 0) return;
+  const glm::ivec3 dims = n + 3;
+  const int64_t sx = dims.x, sxy = int64_t{dims.x} * dims.y;
+  const uint8_t* g = block.voxels;
+  const float iso = block.iso;
+
+  thread_local Scratch s;
+  const size_t total = static_cast<size_t>(sxy) * dims.z;
+  if (s.inside.size() < total) s.inside.resize(total);
+  const size_t rows = static_cast<size_t>(n.y + 1) * (n.z + 1);
+  if (s.row_any.size() < rows) {
+    s.row_any.resize(rows);
+    s.row_all.resize(rows);
+  }
+  const size_t plane = static_cast<size_t>(n.x + 1) * (n.y + 1);
+  for (auto& p : s.xy)
+    for (auto& a : p)
+      if (a.size() < plane) a.assign(plane, Slot{});
+  if (s.z.size() < plane) s.z.assign(plane, Slot{});
+  if (s.stamp > 0xFFFF0000u) {  // wrap: forget every slot
+    for (auto& p : s.xy)
+      for (auto& a : p)
+        std::fill(a.begin(), a.end(), Slot{});
+    std::fill(s.z.begin(), s.z.end(), Slot{});
+    s.stamp = 0;
+  }
+  const uint32_t base = s.stamp + 1;
+  s.stamp += static_cast<uint32_t>(n.z + 2);
+
+  // Grid point (x, y, z) of the cells (0..n) is voxel (x+1, y+1, z+1).
+  auto at = [&](int x, int y, int z) { return ((z + 1) * sxy + (y + 1) * sx) + (x + 1); };
+  // Inside flags of the corner points, and per row whether any / all are
+  // inside, so rows of cells far from the surface are skipped whole.
+  int any_total = 0, all_total = 0;
+  for (int z = 0; z <= n.z; ++z)
+    for (int y = 0; y <= n.y; ++y) {
+      const int64_t i0 = at(0, y, z);
+      int count = 0;
+      for (int x = 0; x <= n.x; ++x) {
+        const uint8_t in = static_cast<float>(g[i0 + x]) > iso;
+        s.inside[static_cast<size_t>(i0 + x)] = in;
+        count += in;
+      }
+      const size_t r = static_cast<size_t>(z) * (n.y + 1) + y;
+      s.row_any[r] = count > 0;
+      s.row_all[r] = count == n.x + 1;
+      any_total += count > 0;
+      all_total += count == n.x + 1;
+    }
+  if (any_total == 0 || all_total == static_cast<int>(rows)) return;
+
+  const float scale = static_cast<float>(1 << block.level);
+  const float shift = (scale - 1.0f) * 0.5f;
+  const int64_t step[3] = {1, sx, sxy};
+  const glm::ivec3 ld = block.level_dims;
+  const uint64_t kx = static_cast<uint64_t>(ld.x) + 2, ky = static_cast<uint64_t>(ld.y) + 2;
+
+  auto gradient = [&](int64_t i) {
+    return glm::vec3(float(g[i + 1]) - float(g[i - 1]), float(g[i + sx]) - float(g[i - sx]),
+                     float(g[i + sxy]) - float(g[i - sxy]));
+  };
+  auto make_vertex = [&](glm::ivec3 p, int axis) -> uint32_t {
+    const int64_t i0 = at(p.x, p.y, p.z);
+    const int64_t i1 = i0 + step[axis];
+    const float v0 = g[i0], v1 = g[i1];
+    const float t = (iso - v0) / (v1 - v0);
+    glm::vec3 pos = glm::vec3(block.origin + p);
+    pos[axis] += t;
+    glm::vec3 grad = gradient(i0) * (1.0f - t) + gradient(i1) * t;
+    const float len = glm::length(grad);
+    glm::vec3 normal(0.0f);
+    if (len > 0.0f) {
+      normal = -grad / len;
+    } else {
+      normal[axis] = v1 > v0 ? -1.0f : 1.0f;  // flat gradient: face down the edge
+    }
+    const auto index = static_cast<uint32_t>(out.mesh.positions.size());
+    out.mesh.positions.push_back(pos * scale + shift);
+    out.mesh.normals.push_back(normal);
+    bool seam = false;
+    for (int b = 0; b < 3; ++b)
+      if (b != axis && (p[b] == 0 || p[b] == n[b])) seam = true;
+    if (seam) {
+      const glm::ivec3 q = block.origin + p + 1;
+      out.seam_keys.push_back(((static_cast<uint64_t>(q.z) * ky + static_cast<uint64_t>(q.y)) * kx +
+                               static_cast<uint64_t>(q.x)) *
+                                  3 +
+                              static_cast<uint64_t>(axis));
+    } else {
+      out.seam_keys.push_back(BrickMesh::kNotSeam);
+    }
+    return index;
+  };
+
+  // A vertex inside the cell, at the mean of a loop's vertices; no other
+  // cell uses it.
+  auto make_centre = [&](uint16_t mask, const uint32_t* vertices) -> uint32_t {
+    glm::vec3 pos(0.0f), normal(0.0f);
+    int count = 0;
+    for (int e = 0; e < 12; ++e) {
+      if (!((mask >> e) & 1)) continue;
+      pos += out.mesh.positions[vertices[e]];
+      normal += out.mesh.normals[vertices[e]];
+      ++count;
+    }
+    const float len = glm::length(normal);
+    const auto index = static_cast<uint32_t>(out.mesh.positions.size());
+    out.mesh.positions.push_back(pos / static_cast<float>(count));
+    out.mesh.normals.push_back(len > 0.0f ? normal / len
+                                          : out.mesh.normals[vertices[std::countr_zero(mask)]]);
+    out.seam_keys.push_back(BrickMesh::kNotSeam);
+    return index;
+  };
+  int64_t corner_delta[8];
+  for (int k = 0; k < 8; ++k) {
+    const glm::ivec3 o = corner_offset(k);
+    corner_delta[k] = o.x + o.y * sx + o.z * sxy;
+  }
+  uint32_t edge_vertex[16];
+  for (int z = 0; z < n.z; ++z) {
+    Slot* xy_lo[2] = {s.xy[z & 1][0].data(), s.xy[z & 1][1].data()};
+    Slot* xy_hi[2] = {s.xy[(z + 1) & 1][0].data(), s.xy[(z + 1) & 1][1].data()};
+    Slot* zs = s.z.data();
+    const uint32_t stamp_lo = base + static_cast<uint32_t>(z);
+    const uint32_t stamp_hi = stamp_lo + 1;
+    for (int y = 0; y < n.y; ++y) {
+      const size_t r = static_cast<size_t>(z) * (n.y + 1) + y;
+      const size_t rows4[4] = {r, r + 1, r + static_cast<size_t>(n.y + 1),
+                               r + static_cast<size_t>(n.y + 2)};
+      bool all_out = true, all_in = true;
+      for (size_t q : rows4) {
+        all_out = all_out && !s.row_any[q];
+        all_in = all_in && s.row_all[q];
+      }
+      if (all_out || all_in) continue;
+      const int64_t row0 = at(0, y, z);
+      const uint8_t* in = s.inside.data() + row0;
+      for (int x = 0; x < n.x; ++x) {
+        unsigned c = 0;
+        for (int k = 0; k < 8; ++k)
+          c |= static_cast<unsigned>(in[x + corner_delta[k]]) << k;
+        if (c == 0 || c == 255) continue;
+        unsigned decision = 0;
+        if (const uint8_t amb = tab.ambiguous[c]; amb != 0) {
+          int j = 0;
+          for (int f = 0; f < 6; ++f) {
+            if (!((amb >> f) & 1)) continue;
+            const auto& fc = tab.face_corners[f];
+            float val[4];
+            for (int i = 0; i < 4; ++i)
+              val[i] = float(g[row0 + x + corner_delta[fc[i]]]) - iso;
+            // Inside diagonal (p, q), outside (r, s): the bilinear saddle is
+            // inside when p q > r s. Products commute, so the cell on the
+            // other side of the face decides the same.
+            const bool d0_in = val[0] > 0.0f;
+            const float pq = d0_in ? val[0] * val[2] : val[1] * val[3];
+            const float rs = d0_in ? val[1] * val[3] : val[0] * val[2];
+            if (pq > rs) decision |= 1u << j;
+            ++j;
+          }
+        }
+        const uint32_t entry = tab.first_entry[c] + decision;
+        const uint32_t e_begin = tab.entry_begin[entry], e_end = tab.entry_begin[entry + 1];
+        uint32_t needed = 0;
+        for (uint32_t k = e_begin; k < e_end; ++k) {
+          if (tab.tri_edges[k] < 12) needed |= 1u << tab.tri_edges[k];
+        }
+        for (uint32_t k = tab.centre_begin[entry]; k < tab.centre_begin[entry + 1]; ++k) {
+          needed |= tab.centre_masks[k];
+        }
+        for (int e = 0; e < 12; ++e) {
+          if (!((needed >> e) & 1)) continue;
+          const glm::ivec3 p = glm::ivec3(x, y, z) + corner_offset(kEdgeCorners[e][0]);
+          const int axis = edge_axis(e);
+          const size_t slot = static_cast<size_t>(p.y) * (n.x + 1) + p.x;
+          Slot* sl;
+          uint32_t stamp;
+          if (axis == 2) {
+            sl = &zs[slot];
+            stamp = stamp_lo;
+          } else if (p.z == z) {
+            sl = &xy_lo[axis][slot];
+            stamp = stamp_lo;
+          } else {
+            sl = &xy_hi[axis][slot];
+            stamp = stamp_hi;
+          }
+          if (sl->stamp != stamp) {
+            sl->stamp = stamp;
+            sl->vertex = make_vertex(p, axis);
+          }
+          edge_vertex[e] = sl->vertex;
+        }
+        for (uint32_t k = tab.centre_begin[entry]; k < tab.centre_begin[entry + 1]; ++k) {
+          edge_vertex[12 + k - tab.centre_begin[entry]] =
+              make_centre(tab.centre_masks[k], edge_vertex);
+        }
+        for (uint32_t k = e_begin; k < e_end; k += 3) {
+          out.mesh.triangles.emplace_back(edge_vertex[tab.tri_edges[k]],
+                                          edge_vertex[tab.tri_edges[k + 1]],
+                                          edge_vertex[tab.tri_edges[k + 2]]);
+        }
+      }
+    }
+  }
+}
+
+Mesh weld_brick_meshes(const std::vector<const BrickMesh*>& bricks) {
+  Mesh out;
+  size_t vertices = 0, triangles = 0;
+  for (const BrickMesh* b : bricks) {
+    vertices += b->mesh.positions.size();
+    triangles += b->mesh.triangles.size();
+  }
+  out.positions.reserve(vertices);
+  out.normals.reserve(vertices);
+  out.triangles.reserve(triangles);
+  std::unordered_map<uint64_t, uint32_t> seam;
+  std::vector<uint32_t> remap;
+  for (const BrickMesh* b : bricks) {
+    const Mesh& m = b->mesh;
+    remap.resize(m.positions.size());
+    for (size_t v = 0; v < m.positions.size(); ++v) {
+      const auto next = static_cast<uint32_t>(out.positions.size());
+      if (b->seam_keys[v] != BrickMesh::kNotSeam) {
+        auto [it, inserted] = seam.try_emplace(b->seam_keys[v], next);
+        remap[v] = it->second;
+        if (!inserted) continue;
+      } else {
+        remap[v] = next;
+      }
+      out.positions.push_back(m.positions[v]);
+      out.normals.push_back(m.normals[v]);
+    }
+    for (const glm::uvec3& t : m.triangles)
+      out.triangles.emplace_back(remap[t.x], remap[t.y], remap[t.z]);
+  }
+  return out;
+}
+
+Mesh marching_cubes(const Volume& volume, int level, const MarchingCubesOptions& options) {
+  MeshCache cache(level, options);
+  cache.update(volume);
+  return cache.welded_mesh();
+}
+
+}  // namespace sculpt::core

@@ -1,0 +1,251 @@
+#include "sculpt/core/mesh/mesh_cache.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cassert>
+#include <cstring>
+
+#include "sculpt/core/util/parallel_for.h"
+
+namespace sculpt::core {
+
+MeshCache::MeshCache(int level, const MarchingCubesOptions& options)
+    : level_(level), options_(options) {
+  assert(level >= 0);
+}
+
+void MeshCache::reset(const Volume& volume) {
+  assert(level_ <= volume.levels());
+  volume_ = &volume;
+  dims_ = volume.dims();
+  level_dims_ = volume.level_dims(level_);
+  grid_ = volume.brick_grid();
+  m_ = volume.brick_edge() >> level_;
+  bricks_.clear();
+  bricks_.resize(static_cast<size_t>(volume.brick_count()));
+}
+
+uint32_t MeshCache::refresh(const Volume& volume, glm::ivec3 b, bool first) {
+  CachedBrick& cb = bricks_[index(b)];
+  cb.version = volume.brick_version(b);
+  const size_t n = static_cast<size_t>(m_) * m_ * m_;
+  thread_local std::vector<uint8_t> fresh;
+  uint8_t fresh_uniform = 0;
+  bool fresh_is_uniform = volume.brick(b).is_uniform();
+  if (fresh_is_uniform) {
+    fresh_uniform = volume.brick(b).uniform_value();
+    fresh.clear();
+  } else {
+    fresh.resize(n);
+    volume.decode_brick(b, fresh, level_);
+    // A detailed brick can still be uniform at a coarse level.
+    if (std::all_of(fresh.begin(), fresh.end(), [&](uint8_t v) { return v == fresh[0]; })) {
+      fresh_is_uniform = true;
+      fresh_uniform = fresh[0];
+      fresh.clear();
+    }
+  }
+  uint32_t mask = 0;
+  if (!first) {
+    // Bounding box of the voxels that changed, in brick-local coordinates.
+    glm::ivec3 lo(m_), hi(-1);
+    const bool old_is_uniform = cb.voxels.empty();
+    if (old_is_uniform && fresh_is_uniform) {
+      if (cb.uniform != fresh_uniform) lo = glm::ivec3(0), hi = glm::ivec3(m_ - 1);
+    } else {
+      size_t i = 0;
+      for (int z = 0; z < m_; ++z)
+        for (int y = 0; y < m_; ++y) {
+          const uint8_t* a = old_is_uniform ? nullptr : &cb.voxels[i];
+          const uint8_t* f = fresh_is_uniform ? nullptr : &fresh[i];
+          for (int x = 0; x < m_; ++x) {
+            const uint8_t va = a ? a[x] : cb.uniform;
+            const uint8_t vf = f ? f[x] : fresh_uniform;
+            if (va != vf) {
+              lo = glm::min(lo, glm::ivec3(x, y, z));
+              hi = glm::max(hi, glm::ivec3(x, y, z));
+            }
+          }
+          i += static_cast<size_t>(m_);
+        }
+    }
+    if (hi.x >= 0) {
+      // Brick b + d reads from b: all of it (d = 0), its first two layers
+      // (d = -1: the cells and normals of b - 1 reach two voxels past its far
+      // face) or its last layer (d = +1: normals reach one voxel back).
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const glm::ivec3 d(dx, dy, dz);
+            bool touches = true;
+            for (int a = 0; a < 3; ++a) {
+              const int from = d[a] == 1 ? m_ - 1 : 0;
+              const int to = d[a] == -1 ? std::min(2, m_) : m_;  // exclusive
+              touches = touches && hi[a] >= from && lo[a] < to;
+            }
+            if (touches) mask |= 1u << ((dz + 1) * 9 + (dy + 1) * 3 + (dx + 1));
+          }
+    }
+  }
+  cb.uniform = fresh_uniform;
+  if (fresh_is_uniform) {
+    cb.voxels.clear();
+    cb.voxels.shrink_to_fit();
+  } else {
+    cb.voxels.swap(fresh);
+  }
+  return mask;
+}
+
+bool MeshCache::remesh(glm::ivec3 b, std::vector<uint8_t>& scratch) {
+  CachedBrick& cb = bricks_[index(b)];
+  glm::ivec3 c0, c1;
+  for (int a = 0; a < 3; ++a) {
+    c0[a] = b[a] * m_ - (b[a] == 0 ? 1 : 0);
+    c1[a] = std::min((b[a] + 1) * m_, level_dims_[a]);
+  }
+  const Box region{c0 - 1, c1 + 2};
+  const Box level_box{glm::ivec3(0), level_dims_};
+  const Box inside = intersect(region, level_box);
+  const Box nbs{inside.lo / m_, (inside.hi - 1) / m_ + 1};
+
+  // A neighbourhood of uniform bricks all on one side of the iso-level (and
+  // on the outside's side where the region leaves the volume) has no surface.
+  bool uniform = true;
+  int side = -1;
+  for (int z = nbs.lo.z; z < nbs.hi.z && uniform; ++z)
+    for (int y = nbs.lo.y; y < nbs.hi.y && uniform; ++y)
+      for (int x = nbs.lo.x; x < nbs.hi.x && uniform; ++x) {
+        const CachedBrick& nb = bricks_[index({x, y, z})];
+        if (!nb.voxels.empty()) {
+          uniform = false;
+          break;
+        }
+        const int s = static_cast<float>(nb.uniform) > options_.iso;
+        if (side >= 0 && s != side) uniform = false;
+        side = s;
+      }
+  if (uniform && (inside == region || side == 0)) {
+    cb.mesh.clear();
+    return false;
+  }
+
+  const glm::ivec3 size = region.size();
+  scratch.resize(static_cast<size_t>(region.voxel_count()));
+  if (inside != region) std::fill(scratch.begin(), scratch.end(), uint8_t{0});
+  for (int bz = nbs.lo.z; bz < nbs.hi.z; ++bz)
+    for (int by = nbs.lo.y; by < nbs.hi.y; ++by)
+      for (int bx = nbs.lo.x; bx < nbs.hi.x; ++bx) {
+        const glm::ivec3 nb_coord{bx, by, bz};
+        const CachedBrick& nb = bricks_[index(nb_coord)];
+        const glm::ivec3 nb_lo = nb_coord * m_;
+        const Box part = intersect(inside, Box{nb_lo, nb_lo + m_});
+        const int run = part.hi.x - part.lo.x;
+        for (int z = part.lo.z; z < part.hi.z; ++z)
+          for (int y = part.lo.y; y < part.hi.y; ++y) {
+            uint8_t* dst =
+                &scratch[(static_cast<size_t>(z - region.lo.z) * size.y + (y - region.lo.y)) *
+                             size.x +
+                         (part.lo.x - region.lo.x)];
+            if (nb.voxels.empty()) {
+              std::memset(dst, nb.uniform, static_cast<size_t>(run));
+            } else {
+              const glm::ivec3 l = glm::ivec3(part.lo.x, y, z) - nb_lo;
+              std::memcpy(dst, &nb.voxels[(static_cast<size_t>(l.z) * m_ + l.y) * m_ + l.x],
+                          static_cast<size_t>(run));
+            }
+          }
+      }
+  MarchBlock block;
+  block.voxels = scratch.data();
+  block.cells = c1 - c0;
+  block.origin = c0;
+  block.level_dims = level_dims_;
+  block.level = level_;
+  block.iso = options_.iso;
+  march_block(block, cb.mesh);
+  return true;
+}
+
+MeshUpdate MeshCache::update(const Volume& volume) {
+  const bool first = volume_ != &volume || volume.dims() != dims_ || volume.brick_grid() != grid_ ||
+                     (volume.brick_edge() >> level_) != m_;
+  if (first) reset(volume);
+  const auto count = static_cast<int64_t>(bricks_.size());
+  auto coord = [&](int64_t i) {
+    return glm::ivec3(static_cast<int>(i % grid_.x), static_cast<int>((i / grid_.x) % grid_.y),
+                      static_cast<int>(i / (int64_t{grid_.x} * grid_.y)));
+  };
+  std::vector<int64_t> changed;
+  for (int64_t i = 0; i < count; ++i) {
+    if (first || volume.brick_version(coord(i)) != bricks_[static_cast<size_t>(i)].version) {
+      changed.push_back(i);
+    }
+  }
+  MeshUpdate stats;
+  stats.bricks_changed = static_cast<int64_t>(changed.size());
+  if (changed.empty()) return stats;
+
+  std::vector<uint32_t> masks(changed.size());
+  std::atomic<int64_t> decoded{0};
+  parallel_for(
+      static_cast<int64_t>(changed.size()),
+      [&](int64_t k) {
+        const glm::ivec3 b = coord(changed[static_cast<size_t>(k)]);
+        if (!volume.brick(b).is_uniform()) decoded.fetch_add(1, std::memory_order_relaxed);
+        masks[static_cast<size_t>(k)] = refresh(volume, b, first);
+      },
+      options_.threads);
+  stats.bricks_decoded = decoded.load();
+
+  std::vector<int64_t> dirty;
+  if (first) {
+    dirty.resize(static_cast<size_t>(count));
+    for (int64_t i = 0; i < count; ++i)
+      dirty[static_cast<size_t>(i)] = i;
+  } else {
+    std::vector<uint8_t> flag(static_cast<size_t>(count), 0);
+    for (size_t k = 0; k < changed.size(); ++k) {
+      const glm::ivec3 b = coord(changed[k]);
+      for (int bit = 0; bit < 27; ++bit) {
+        if (!((masks[k] >> bit) & 1)) continue;
+        const glm::ivec3 nb = b + glm::ivec3(bit % 3 - 1, (bit / 3) % 3 - 1, bit / 9 - 1);
+        if (glm::any(glm::lessThan(nb, glm::ivec3(0))) ||
+            glm::any(glm::greaterThanEqual(nb, grid_)))
+          continue;
+        flag[index(nb)] = 1;
+      }
+    }
+    for (int64_t i = 0; i < count; ++i)
+      if (flag[static_cast<size_t>(i)]) dirty.push_back(i);
+  }
+  std::atomic<int64_t> marched{0};
+  parallel_for(
+      static_cast<int64_t>(dirty.size()),
+      [&](int64_t k) {
+        thread_local std::vector<uint8_t> scratch;
+        if (remesh(coord(dirty[static_cast<size_t>(k)]), scratch)) {
+          marched.fetch_add(1, std::memory_order_relaxed);
+        }
+      },
+      options_.threads);
+  stats.bricks_meshed = marched.load();
+  return stats;
+}
+
+int64_t MeshCache::triangle_count() const {
+  int64_t n = 0;
+  for (const CachedBrick& cb : bricks_)
+    n += static_cast<int64_t>(cb.mesh.mesh.triangles.size());
+  return n;
+}
+
+Mesh MeshCache::welded_mesh() const {
+  std::vector<const BrickMesh*> meshes;
+  meshes.reserve(bricks_.size());
+  for (const CachedBrick& cb : bricks_)
+    if (!cb.mesh.empty()) meshes.push_back(&cb.mesh);
+  return weld_brick_meshes(meshes);
+}
+
+}  // namespace sculpt::core

@@ -1,0 +1,196 @@
+#include "sculpt/core/mesh/mesh_io.h"
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <charconv>
+#include <cstring>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "sculpt/core/io/atomic_file.h"
+
+namespace sculpt::core {
+namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              "binary PLY and STL are written little-endian");
+
+// Output goes through a buffer flushed in large pieces: a mesh of millions of
+// triangles would otherwise cost a call per number.
+class Buffered {
+ public:
+  explicit Buffered(AtomicFileWriter& file) : file_(file) { buffer_.reserve(kFlush + 256); }
+  ~Buffered() { flush(); }
+  void bytes(const void* data, size_t size) {
+    buffer_.append(static_cast<const char*>(data), size);
+    if (buffer_.size() >= kFlush) flush();
+  }
+  template <class T>
+  void value(T v) {
+    bytes(&v, sizeof(v));
+  }
+  void text(std::string_view s) { bytes(s.data(), s.size()); }
+  void number(float v) {
+    char tmp[32];
+    const auto r = std::to_chars(tmp, tmp + sizeof(tmp), v);
+    bytes(tmp, static_cast<size_t>(r.ptr - tmp));
+  }
+  void number(uint64_t v) {
+    char tmp[24];
+    const auto r = std::to_chars(tmp, tmp + sizeof(tmp), v);
+    bytes(tmp, static_cast<size_t>(r.ptr - tmp));
+  }
+  void flush() {
+    if (!buffer_.empty()) file_.write(buffer_.data(), buffer_.size());
+    buffer_.clear();
+  }
+
+ private:
+  static constexpr size_t kFlush = size_t{1} << 20;
+  AtomicFileWriter& file_;
+  std::string buffer_;
+};
+
+glm::vec3 normal_of(const Mesh& mesh, size_t v) {
+  return v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0.0f);
+}
+
+void write_ply(Buffered& out, const Mesh& mesh, bool ascii) {
+  const bool normals = mesh.normals.size() == mesh.positions.size();
+  out.text(std::string("ply\nformat ") + (ascii ? "ascii" : "binary_little_endian") +
+           " 1.0\ncomment sculpt: iso-surface, voxel units\nelement vertex " +
+           std::to_string(mesh.positions.size()) +
+           "\nproperty float x\nproperty float y\nproperty float z\n");
+  if (normals) out.text("property float nx\nproperty float ny\nproperty float nz\n");
+  out.text("element face " + std::to_string(mesh.triangles.size()) +
+           "\nproperty list uchar uint vertex_indices\nend_header\n");
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    const glm::vec3 p = mesh.positions[v];
+    const glm::vec3 n = normal_of(mesh, v);
+    if (ascii) {
+      for (int k = 0; k < 3; ++k) {
+        if (k) out.text(" ");
+        out.number(p[k]);
+      }
+      if (normals)
+        for (int k = 0; k < 3; ++k) {
+          out.text(" ");
+          out.number(n[k]);
+        }
+      out.text("\n");
+    } else {
+      out.bytes(&p, sizeof(p));
+      if (normals) out.bytes(&n, sizeof(n));
+    }
+  }
+  for (const glm::uvec3& t : mesh.triangles) {
+    if (ascii) {
+      out.text("3");
+      for (int k = 0; k < 3; ++k) {
+        out.text(" ");
+        out.number(uint64_t{t[k]});
+      }
+      out.text("\n");
+    } else {
+      out.value(uint8_t{3});
+      out.bytes(&t, sizeof(t));
+    }
+  }
+}
+
+void write_obj(Buffered& out, const Mesh& mesh) {
+  const bool normals = mesh.normals.size() == mesh.positions.size();
+  out.text("# sculpt: iso-surface, voxel units\n");
+  for (const glm::vec3& p : mesh.positions) {
+    out.text("v");
+    for (int k = 0; k < 3; ++k) {
+      out.text(" ");
+      out.number(p[k]);
+    }
+    out.text("\n");
+  }
+  if (normals)
+    for (const glm::vec3& n : mesh.normals) {
+      out.text("vn");
+      for (int k = 0; k < 3; ++k) {
+        out.text(" ");
+        out.number(n[k]);
+      }
+      out.text("\n");
+    }
+  for (const glm::uvec3& t : mesh.triangles) {
+    out.text("f");
+    for (int k = 0; k < 3; ++k) {
+      out.text(" ");
+      out.number(uint64_t{t[k]} + 1);  // OBJ counts from 1
+      if (normals) {
+        out.text("//");
+        out.number(uint64_t{t[k]} + 1);
+      }
+    }
+    out.text("\n");
+  }
+}
+
+void write_stl(Buffered& out, const Mesh& mesh) {
+  // The header must not start with "solid", or readers take the file for ASCII STL.
+  char header[80] = {};
+  const char* text = "sculpt binary STL: iso-surface, voxel units";
+  std::memcpy(header, text, std::strlen(text));
+  out.bytes(header, sizeof(header));
+  out.value(static_cast<uint32_t>(mesh.triangles.size()));
+  for (const glm::uvec3& t : mesh.triangles) {
+    const glm::vec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
+    const glm::vec3 cr = glm::cross(b - a, c - a);
+    const float len = glm::length(cr);
+    const glm::vec3 n = len > 0.0f ? cr / len : glm::vec3(0.0f);
+    out.bytes(&n, sizeof(n));
+    out.bytes(&a, sizeof(a));
+    out.bytes(&b, sizeof(b));
+    out.bytes(&c, sizeof(c));
+    out.value(uint16_t{0});
+  }
+}
+
+}  // namespace
+
+Result<MeshFormat> mesh_format_for(const std::filesystem::path& path, bool ascii_ply) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".ply") return ascii_ply ? MeshFormat::kPlyAscii : MeshFormat::kPlyBinary;
+  if (ext == ".obj") return MeshFormat::kObj;
+  if (ext == ".stl") return MeshFormat::kStl;
+  return Error(path.string() + ": unknown mesh format '" + ext + "' (expected .ply, .obj or .stl)");
+}
+
+Status write_mesh(const std::filesystem::path& path, const Mesh& mesh, MeshFormat format) {
+  if (format == MeshFormat::kStl && mesh.triangles.size() > UINT32_MAX) {
+    return Error(path.string() + ": " + std::to_string(mesh.triangles.size()) +
+                 " triangles do not fit a binary STL file");
+  }
+  AtomicFileWriter file(path);
+  if (!file.ok()) return file.error();
+  {
+    Buffered out(file);
+    switch (format) {
+      case MeshFormat::kPlyBinary:
+        write_ply(out, mesh, false);
+        break;
+      case MeshFormat::kPlyAscii:
+        write_ply(out, mesh, true);
+        break;
+      case MeshFormat::kObj:
+        write_obj(out, mesh);
+        break;
+      case MeshFormat::kStl:
+        write_stl(out, mesh);
+        break;
+    }
+  }
+  return file.commit();
+}
+
+}  // namespace sculpt::core
