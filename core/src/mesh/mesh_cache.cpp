@@ -25,6 +25,47 @@ void MeshCache::reset(const Volume& volume) {
   bricks_.resize(static_cast<size_t>(volume.brick_count()));
 }
 
+namespace {
+
+constexpr uint32_t kAllOffsets = (1u << 27) - 1;
+
+}  // namespace
+
+void MeshCache::classify(std::span<const uint8_t> voxels, CachedBrick& cb) const {
+  // Per row: inside counts over the first two voxels, the whole row and the
+  // last voxel; rows then add into the sub-boxes of the 27 offsets by their
+  // own y and z (the same sub-boxes refresh() compares).
+  const int m = m_;
+  const int lo_n = std::min(2, m);
+  uint32_t any_in = 0, any_out = 0;
+  size_t i = 0;
+  for (int z = 0; z < m; ++z)
+    for (int y = 0; y < m; ++y, i += static_cast<size_t>(m)) {
+      int in_lo = 0, in_all = 0;
+      for (int x = 0; x < m; ++x) {
+        const int in = static_cast<float>(voxels[i + static_cast<size_t>(x)]) > options_.iso;
+        in_all += in;
+        if (x < lo_n) in_lo += in;
+      }
+      const int in_hi = static_cast<float>(voxels[i + static_cast<size_t>(m - 1)]) > options_.iso;
+      const int ins[3] = {in_lo, in_all, in_hi};
+      const int counts[3] = {lo_n, m, 1};
+      for (int dz = -1; dz <= 1; ++dz) {
+        if ((dz == -1 && z >= 2) || (dz == 1 && z != m - 1)) continue;
+        for (int dy = -1; dy <= 1; ++dy) {
+          if ((dy == -1 && y >= 2) || (dy == 1 && y != m - 1)) continue;
+          for (int dx = 0; dx < 3; ++dx) {
+            const uint32_t bit = 1u << ((dz + 1) * 9 + (dy + 1) * 3 + dx);
+            if (ins[dx] > 0) any_in |= bit;
+            if (ins[dx] < counts[dx]) any_out |= bit;
+          }
+        }
+      }
+    }
+  cb.any_inside = any_in;
+  cb.any_outside = any_out;
+}
+
 uint32_t MeshCache::refresh(const Volume& volume, glm::ivec3 b, bool first) {
   CachedBrick& cb = bricks_[index(b)];
   cb.version = volume.brick_version(b);
@@ -89,6 +130,13 @@ uint32_t MeshCache::refresh(const Volume& volume, glm::ivec3 b, bool first) {
   }
   cb.uniform = fresh_uniform;
   if (fresh_is_uniform) {
+    const bool in = static_cast<float>(fresh_uniform) > options_.iso;
+    cb.any_inside = in ? kAllOffsets : 0;
+    cb.any_outside = in ? 0 : kAllOffsets;
+  } else {
+    classify(fresh, cb);
+  }
+  if (fresh_is_uniform) {
     cb.voxels.clear();
     cb.voxels.shrink_to_fit();
   } else {
@@ -109,23 +157,19 @@ bool MeshCache::remesh(glm::ivec3 b, std::vector<uint8_t>& scratch) {
   const Box inside = intersect(region, level_box);
   const Box nbs{inside.lo / m_, (inside.hi - 1) / m_ + 1};
 
-  // A neighbourhood of uniform bricks all on one side of the iso-level (and
-  // on the outside's side where the region leaves the volume) has no surface.
-  bool uniform = true;
-  int side = -1;
-  for (int z = nbs.lo.z; z < nbs.hi.z && uniform; ++z)
-    for (int y = nbs.lo.y; y < nbs.hi.y && uniform; ++y)
-      for (int x = nbs.lo.x; x < nbs.hi.x && uniform; ++x) {
+  // No surface unless the voxels this brick reads (the sub-boxes of its
+  // neighbours, and the empty outside) hold both sides of the iso-level.
+  bool any_in = false, any_out = inside != region;
+  for (int z = nbs.lo.z; z < nbs.hi.z; ++z)
+    for (int y = nbs.lo.y; y < nbs.hi.y; ++y)
+      for (int x = nbs.lo.x; x < nbs.hi.x; ++x) {
+        const glm::ivec3 d = b - glm::ivec3(x, y, z);  // b is neighbour (x, y, z) + d
+        const uint32_t bit = 1u << ((d.z + 1) * 9 + (d.y + 1) * 3 + (d.x + 1));
         const CachedBrick& nb = bricks_[index({x, y, z})];
-        if (!nb.voxels.empty()) {
-          uniform = false;
-          break;
-        }
-        const int s = static_cast<float>(nb.uniform) > options_.iso;
-        if (side >= 0 && s != side) uniform = false;
-        side = s;
+        any_in = any_in || (nb.any_inside & bit) != 0;
+        any_out = any_out || (nb.any_outside & bit) != 0;
       }
-  if (uniform && (inside == region || side == 0)) {
+  if (!any_in || !any_out) {
     cb.mesh.clear();
     return false;
   }

@@ -19,6 +19,7 @@
 // to the volume; const members may run concurrently.
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -60,12 +61,17 @@ class MeshCache {
     uint64_t version = 0;
     uint8_t uniform = 0;          // value when `voxels` is empty
     std::vector<uint8_t> voxels;  // (edge >> level)^3 when not uniform
+    // Bit (dz+1)*9 + (dy+1)*3 + (dx+1): whether the voxels brick b + d reads
+    // from this brick hold any voxel inside / outside the iso-level.
+    uint32_t any_inside = 0;
+    uint32_t any_outside = 0;
     BrickMesh mesh;
   };
   size_t index(glm::ivec3 b) const {
     return (static_cast<size_t>(b.z) * grid_.y + b.y) * grid_.x + b.x;
   }
   void reset(const Volume& volume);
+  void classify(std::span<const uint8_t> voxels, CachedBrick& cb) const;
   // Decodes brick b; returns the bit (dz+1)*9 + (dy+1)*3 + (dx+1) for each
   // brick b + d whose mesh reads voxels of b that changed.
   uint32_t refresh(const Volume& volume, glm::ivec3 b, bool first);
