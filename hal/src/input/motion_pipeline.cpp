@@ -11,6 +11,7 @@ void MotionPipeline::feed(const RawEvent& event, uint32_t device_id, std::vector
   for (size_t i = first; i < out.size(); ++i) {
     out[i].device_id = device_id;
     normalizer_.apply(out[i]);
+    integral_.accumulate(out[i]);
   }
 }
 

@@ -29,16 +29,30 @@ void HidDescriptorParser::parse(const RawEvent& event, std::vector<InputEvent>& 
     b = b.subspan(1);
   }
   if (event.truncated) ++counters_.overlong_reports;
-  bool any_axis = false, any_field = false, short_field = false, absolute = false;
+  // A report too short for any of its fields is malformed as a whole: using
+  // the fields that fit would mix new and old axes.
+  bool known_id = false;
+  auto fits = [&](const HidField& f) {
+    if (f.report_id != id) return true;
+    known_id = true;
+    return uint64_t{f.bit_offset} + f.bit_size <= uint64_t{b.size()} * 8;
+  };
+  bool all_fit = true;
+  for (const auto& f : layout_.axes)
+    all_fit &= !f || fits(*f);
+  for (const HidField& f : layout_.buttons)
+    all_fit &= fits(f);
+  if (known_id && !all_fit) {
+    ++counters_.short_reports;
+    return;
+  }
+  bool any_axis = false, any_field = false, absolute = false;
   for (int a = 0; a < 6; ++a) {
     const auto& f = layout_.axes[a];
     if (!f || f->report_id != id) continue;
     any_field = true;
     const auto v = extract_hid_field(b, *f);
-    if (!v) {
-      short_field = true;
-      continue;
-    }
+    if (!v) continue;
     float x = 0.0f;
     if (f->relative) {
       const float span =
@@ -59,10 +73,7 @@ void HidDescriptorParser::parse(const RawEvent& event, std::vector<InputEvent>& 
     if (f.report_id != id || f.usage > 128) continue;
     any_field = true;
     const auto v = extract_hid_field(b, f);
-    if (!v) {
-      short_field = true;
-      continue;
-    }
+    if (!v) continue;
     button_field = true;
     buttons[f.usage - 1] = *v != 0;
   }
@@ -70,7 +81,6 @@ void HidDescriptorParser::parse(const RawEvent& event, std::vector<InputEvent>& 
     ++counters_.unknown_reports;
     return;
   }
-  if (short_field) ++counters_.short_reports;
   if (any_axis) {
     InputEvent e;
     e.kind = InputKind::kMotion;

@@ -8,10 +8,11 @@
 namespace sculpt::hal {
 
 PoseIntegrator::PoseIntegrator(PoseIntegratorConfig config, ToolPose start)
-    : config_(config), pose_(start) {}
+    : config_(config), pose_(start), position_(start.position) {}
 
 void PoseIntegrator::reset(ToolPose start) {
   pose_ = start;
+  position_ = glm::dvec3(start.position);
   have_time_ = false;
 }
 
@@ -23,6 +24,7 @@ const ToolPose& PoseIntegrator::update(const InputEvent& m) {
   if (position) {
     pose_.position = config_.workspace_center + glm::vec3(m.axes[kTx], m.axes[kTy], m.axes[kTz]) *
                                                     config_.workspace_half_extent;
+    position_ = glm::dvec3(pose_.position);
     const glm::vec3 euler = glm::vec3(m.axes[kRx], m.axes[kRy], m.axes[kRz]) * config_.max_angle;
     pose_.orientation = glm::normalize(glm::quat(euler));
     pose_.t_ns = m.t_ns;
@@ -30,23 +32,25 @@ const ToolPose& PoseIntegrator::update(const InputEvent& m) {
     return pose_;
   }
   if (!have_time_) {
-    // The first sample has no interval to integrate over.
     pose_.t_ns = m.t_ns;
+    last_integral_ = m.integral;
     have_time_ = true;
     return pose_;
   }
-  const int64_t step_ns = std::min(m.t_ns - pose_.t_ns, config_.max_step_ns);
-  const float dt = static_cast<float>(step_ns) * 1e-9f;
-  pose_.position += glm::vec3(m.axes[kTx], m.axes[kTy], m.axes[kTz]) * (config_.max_speed * dt);
+  std::array<double, kAxisCount> d{};
+  for (int i = 0; i < kAxisCount; ++i)
+    d[i] = m.integral[i] - last_integral_[i];
+  last_integral_ = m.integral;
+  position_ += glm::dvec3(d[kTx], d[kTy], d[kTz]) * double{config_.max_speed};
+  pose_.position = glm::vec3(position_);
   // Angular velocity in world axes: twisting the cap about +Y turns the tool
   // about world +Y whatever the tool's current orientation, as users expect of
-  // a 3D mouse.
-  const glm::vec3 omega =
-      glm::vec3(m.axes[kRx], m.axes[kRy], m.axes[kRz]) * config_.max_angular_speed;
-  const float angle = glm::length(omega) * dt;
+  // a 3D mouse. Over one step the rotation vector is the integrated twist.
+  const glm::vec3 turn =
+      glm::vec3(glm::dvec3(d[kRx], d[kRy], d[kRz]) * double{config_.max_angular_speed});
+  const float angle = glm::length(turn);
   if (angle > 0.0f) {
-    pose_.orientation =
-        glm::normalize(glm::angleAxis(angle, glm::normalize(omega)) * pose_.orientation);
+    pose_.orientation = glm::normalize(glm::angleAxis(angle, turn / angle) * pose_.orientation);
   }
   pose_.t_ns = m.t_ns;
   return pose_;

@@ -31,7 +31,12 @@ struct InputEvent {
   bool absolute = false;  ///< kMotion: position-control device (tracker, absolute HID axes)
   bool translation_stale = false;  ///< kMotion: translation half not refreshed by this sample
   bool rotation_stale = false;     ///< kMotion: rotation half not refreshed by this sample
-  int button = 0;                  ///< kButton: logical button from 0
+  /// kMotion, relative: each axis integrated over time since the device
+  /// connected, in axis-seconds (DeflectionIntegral fills it). The pose
+  /// integrator uses differences of it, so skipping samples (newest wins)
+  /// loses no motion.
+  std::array<double, kAxisCount> integral{};
+  int button = 0;  ///< kButton: logical button from 0
   bool pressed = false;
   int battery_percent = 0;  ///< kBattery: 0..100
   bool charging = false;

@@ -1,5 +1,5 @@
 #pragma once
-// Parser + normaliser for one device, synchronous: RawEvent in, InputEvents
+// Parser + normaliser + deflection integral for one device, synchronous: RawEvent in, InputEvents
 // out. The reader thread runs it live; a replay runs it directly on recorded
 // events, so both produce the same samples for the same bytes.
 
@@ -8,6 +8,7 @@
 
 #include "sculpt/hal/normalizer/normalizer.h"
 #include "sculpt/hal/parsers/report_parser.h"
+#include "sculpt/hal/pose/deflection_integral.h"
 
 namespace sculpt::hal {
 
@@ -22,6 +23,7 @@ class MotionPipeline {
  private:
   std::unique_ptr<ReportParser> parser_;
   Normalizer normalizer_;
+  DeflectionIntegral integral_;
 };
 
 }  // namespace sculpt::hal

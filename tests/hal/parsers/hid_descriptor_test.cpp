@@ -1,0 +1,75 @@
+#include "sculpt/hal/parsers/hid_descriptor.h"
+
+#include <gtest/gtest.h>
+
+#include "multi_axis_descriptor.h"
+
+namespace sculpt::hal {
+namespace {
+
+TEST(HidDescriptor, FindsSixRelativeAxesAndButtons) {
+  const auto layout = parse_hid_descriptor(test::multi_axis_descriptor(/*relative=*/true));
+  ASSERT_TRUE(layout.ok()) << layout.error().message();
+  EXPECT_TRUE(layout->is_multi_axis_controller());
+  EXPECT_TRUE(layout->numbered_reports);
+  for (int a = 0; a < 6; ++a) {
+    ASSERT_TRUE(layout->axes[a].has_value()) << "axis " << a;
+    EXPECT_EQ(layout->axes[a]->bit_size, 16u);
+    EXPECT_EQ(layout->axes[a]->logical_min, -500);
+    EXPECT_EQ(layout->axes[a]->logical_max, 500);
+    EXPECT_TRUE(layout->axes[a]->relative);
+  }
+  EXPECT_EQ(layout->axes[0]->report_id, 1);
+  EXPECT_EQ(layout->axes[0]->bit_offset, 0u);
+  EXPECT_EQ(layout->axes[5]->bit_offset, 80u);
+  ASSERT_EQ(layout->buttons.size(), 4u);
+  EXPECT_EQ(layout->buttons[3].report_id, 3);
+  EXPECT_EQ(layout->buttons[3].bit_offset, 3u);
+}
+
+TEST(HidDescriptor, AbsoluteAxesAreFlagged) {
+  const auto layout = parse_hid_descriptor(test::multi_axis_descriptor(/*relative=*/false));
+  ASSERT_TRUE(layout.ok());
+  EXPECT_FALSE(layout->axes[2]->relative);
+}
+
+TEST(HidDescriptor, MouseIsNotAMultiAxisController) {
+  const std::vector<uint8_t> mouse = {0x05, 0x01, 0x09, 0x02, 0xA1, 0x01, 0x09,
+                                      0x30, 0x09, 0x31, 0x15, 0x81, 0x25, 0x7F,
+                                      0x75, 0x08, 0x95, 0x02, 0x81, 0x06, 0xC0};
+  const auto layout = parse_hid_descriptor(mouse);
+  ASSERT_TRUE(layout.ok());
+  EXPECT_FALSE(layout->is_multi_axis_controller());
+  EXPECT_EQ(layout->usage, 2);
+}
+
+TEST(HidDescriptor, MalformedDescriptorsNameTheByte) {
+  // Logical Maximum announcing 2 data bytes, none present.
+  const std::vector<uint8_t> cut = {0x05, 0x01, 0x09, 0x08, 0xA1, 0x01, 0x26};
+  const auto a = parse_hid_descriptor(cut);
+  ASSERT_FALSE(a.ok());
+  EXPECT_NE(a.error().message().find("runs past the end"), std::string::npos)
+      << a.error().message();
+  const std::vector<uint8_t> open = {0x05, 0x01, 0x09, 0x08, 0xA1, 0x01};
+  const auto b = parse_hid_descriptor(open);
+  ASSERT_FALSE(b.ok());
+  EXPECT_NE(b.error().message().find("not closed"), std::string::npos);
+}
+
+TEST(HidDescriptor, ExtractsSignedAndUnsignedBitFields) {
+  HidField f;
+  f.bit_offset = 4;
+  f.bit_size = 8;
+  f.logical_min = -128;
+  f.logical_max = 127;
+  const std::vector<uint8_t> data = {0xF0, 0x0F};  // bits 4..11 = 0xFF
+  EXPECT_EQ(extract_hid_field(data, f), -1);
+  f.logical_min = 0;
+  f.logical_max = 255;
+  EXPECT_EQ(extract_hid_field(data, f), 255);
+  f.bit_offset = 9;
+  EXPECT_FALSE(extract_hid_field(data, f).has_value()) << "past the end of the data";
+}
+
+}  // namespace
+}  // namespace sculpt::hal
