@@ -45,6 +45,66 @@ int saturated_value(SculptMode mode) {
   return -1;
 }
 
+// Filling a of tool value f at strength q/256 (q = 256 keeps f exactly).
+inline uint32_t filling(uint8_t f, uint32_t q) {
+  return (f * q + 128) >> 8;
+}
+
+// One kernel per mode so each loop is branch-free and vectorises.
+template <class Op>
+int64_t combine(uint8_t* m, const uint8_t* f, int n, uint32_t q, Op op) {
+  int64_t changed = 0;
+  for (int i = 0; i < n; ++i) {
+    const uint32_t v = m[i];
+    const uint32_t r = op(v, filling(f[i], q));
+    changed += r != v;
+    m[i] = static_cast<uint8_t>(r);
+  }
+  return changed;
+}
+
+int64_t combine_row(SculptMode mode, uint8_t* m, const uint8_t* f, int n, uint32_t q) {
+  switch (mode) {
+    case SculptMode::kAdd:
+      return combine(m, f, n, q, [](uint32_t v, uint32_t a) { return std::min(255u, v + a); });
+    case SculptMode::kSubtract:
+      return combine(m, f, n, q, [](uint32_t v, uint32_t a) { return v > a ? v - a : 0u; });
+    case SculptMode::kUnion:
+      return combine(m, f, n, q, [](uint32_t v, uint32_t a) { return std::max(v, a); });
+    case SculptMode::kDifference:
+      return combine(m, f, n, q, [](uint32_t v, uint32_t a) { return std::min(v, 255u - a); });
+    case SculptMode::kSmooth:
+      break;
+  }
+  assert(false && "combine_row(): smoothing has its own kernel");
+  return 0;
+}
+
+// Moves each voxel toward the mean of its 3x3x3 neighbourhood in `before`
+// (the material before the dab; p is the first voxel's index in it) by the
+// filling fraction.
+int64_t smooth_row(uint8_t* m, const uint8_t* f, int n, uint32_t q,
+                   const DenseGrid<uint8_t>& before, glm::ivec3 p) {
+  int64_t changed = 0;
+  for (int i = 0; i < n; ++i, ++p.x) {
+    const int a = static_cast<int>(filling(f[i], q));
+    if (a == 0) continue;
+    int sum = 0;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          sum += before.at(p.x + dx, p.y + dy, p.z + dz);
+    // Outside the volume reads 0: a smoothed border erodes, as a blur of the
+    // object in empty space would.
+    const int v = m[i];
+    const int delta = (sum + 13) / 27 - v;
+    const int r = std::clamp(v + (a * delta + (delta >= 0 ? 127 : -127)) / 255, 0, 255);
+    changed += r != v;
+    m[i] = static_cast<uint8_t>(r);
+  }
+  return changed;
+}
+
 }  // namespace
 
 std::optional<SculptMode> parse_sculpt_mode(const std::string& name) {
@@ -100,7 +160,8 @@ void Sculptor::set_sampling(Sampling sampling) {
 
 void Sculptor::rebuild_caches() {
   cache_ = std::make_unique<RotatedToolCache>(std::make_shared<const PreparedTool>(*tool_),
-                                              options_.sampling, options_.cache_max_bytes);
+                                              options_.sampling, options_.cache_max_bytes,
+                                              options_.subvoxel_steps);
   for (auto& c : mirror_caches_)
     c.reset();
 }
@@ -122,7 +183,7 @@ DabStats Sculptor::dab(const Dab& dab) {
     if (!mc) {
       mc = std::make_unique<RotatedToolCache>(
           std::make_shared<const PreparedTool>(mirror_tool(*tool_, a)), options_.sampling,
-          options_.cache_max_bytes);
+          options_.cache_max_bytes, options_.subvoxel_steps);
     }
     Dab m = dab;
     m.position_vox[a] = 2.0f * mirror_->centre_vox - dab.position_vox[a];
@@ -182,11 +243,20 @@ DabStats Sculptor::apply(RotatedToolCache& cache, const Dab& dab) {
         int64_t changed = 0;
         for (int z = bb.lo.z; z < bb.hi.z; ++z)
           for (int y = bb.lo.y; y < bb.hi.y; ++y) {
+            // The row's stretch within the tool's reach (a ball round the pivot).
+            const float dy = static_cast<float>(y) - pivot_pos.y,
+                        dz = static_cast<float>(z) - pivot_pos.z;
+            const float h2 = reach2 - dy * dy - dz * dz;
+            if (h2 < 0.0f) continue;
+            const float h = std::sqrt(h2);
+            const int xa = std::max(bb.lo.x, static_cast<int>(std::ceil(pivot_pos.x - h)));
+            const int xb = std::min(bb.hi.x, static_cast<int>(std::floor(pivot_pos.x + h)) + 1);
+            if (xa >= xb) continue;
             uint8_t* m =
                 &buffer_[(static_cast<size_t>(z - origin.z) * edge + (y - origin.y)) * edge +
-                         (bb.lo.x - origin.x)];
+                         (xa - origin.x)];
             // Contact: rotate only where the material can change.
-            int c0 = 0, c1 = bb.hi.x - bb.lo.x;
+            int c0 = 0, c1 = xb - xa;
             if (saturated >= 0) {
               while (c0 < c1 && m[c0] == saturated)
                 ++c0;
@@ -194,45 +264,13 @@ DabStats Sculptor::apply(RotatedToolCache& cache, const Dab& dab) {
                 --c1;
             }
             if (c0 >= c1) continue;
-            const uint8_t* f = entry.row(y - anchor.y, z - anchor.z, bb.lo.x + c0 - anchor.x,
-                                         bb.lo.x + c1 - anchor.x);
-            for (int i = c0; i < c1; ++i) {
-              const int a = static_cast<int>((f[i - c0] * strength_q + 128) >> 8);
-              if (a == 0) continue;
-              const int v = m[i];
-              int r = v;
-              switch (dab.mode) {
-                case SculptMode::kAdd:
-                  r = std::min(255, v + a);
-                  break;
-                case SculptMode::kSubtract:
-                  r = std::max(0, v - a);
-                  break;
-                case SculptMode::kUnion:
-                  r = std::max(v, a);
-                  break;
-                case SculptMode::kDifference:
-                  r = std::min(v, 255 - a);
-                  break;
-                case SculptMode::kSmooth: {
-                  const glm::ivec3 p = glm::ivec3(bb.lo.x + i, y, z) - before_box.lo;
-                  int sum = 0;
-                  for (int dz = -1; dz <= 1; ++dz)
-                    for (int dy = -1; dy <= 1; ++dy)
-                      for (int dx = -1; dx <= 1; ++dx)
-                        sum += before.at(p.x + dx, p.y + dy, p.z + dz);
-                  // Outside the volume reads 0: a smoothed border erodes, as a
-                  // blur of the object in empty space would.
-                  const int delta = (sum + 13) / 27 - v;
-                  const int step = (a * delta + (delta >= 0 ? 127 : -127)) / 255;
-                  r = std::clamp(v + step, 0, 255);
-                  break;
-                }
-              }
-              if (r != v) {
-                m[i] = static_cast<uint8_t>(r);
-                ++changed;
-              }
+            const uint8_t* f =
+                entry.row(y - anchor.y, z - anchor.z, xa + c0 - anchor.x, xa + c1 - anchor.x);
+            if (dab.mode == SculptMode::kSmooth) {
+              changed += smooth_row(m + c0, f, c1 - c0, strength_q, before,
+                                    glm::ivec3(xa + c0, y, z) - before_box.lo);
+            } else {
+              changed += combine_row(dab.mode, m + c0, f, c1 - c0, strength_q);
             }
           }
         const int64_t t2 = now_ns();

@@ -9,7 +9,6 @@ namespace sculpt::core {
 namespace {
 
 constexpr double kQuatSteps = 1 << 20;
-constexpr int kOffsetSteps = 256;
 
 }  // namespace
 
@@ -38,6 +37,7 @@ const uint8_t* RotatedToolEntry::row(int y, int z, int x0, int x1) {
   const int a = x0 - b.lo.x, e = x1 - b.lo.x;
   stats_->voxels_requested += e - a;
   int lo = done_lo_[r], hi = done_hi_[r];
+  stats_->voxels_reused += std::max(0, std::min(e, hi) - std::max(a, lo));
   if (lo >= hi) {
     frame_.sample_row(*tool_, y, z, x0, x1, values + a);
     stats_->voxels_rotated += e - a;
@@ -66,8 +66,12 @@ size_t RotatedToolEntry::memory_bytes() const {
 }
 
 RotatedToolCache::RotatedToolCache(std::shared_ptr<const PreparedTool> tool, Sampling sampling,
-                                   size_t max_bytes)
-    : tool_(std::move(tool)), sampling_(sampling), max_bytes_(max_bytes) {
+                                   size_t max_bytes, int subvoxel_steps)
+    : tool_(std::move(tool)),
+      sampling_(sampling),
+      max_bytes_(max_bytes),
+      subvoxel_steps_(subvoxel_steps) {
+  assert(subvoxel_steps >= 1 && subvoxel_steps <= 4096);
   // Row stretches are int16 offsets.
   assert(glm::length(glm::vec3(tool_->dims())) < 16000.0f);
 }
@@ -101,9 +105,9 @@ RotatedToolCache::Placement RotatedToolCache::acquire(const glm::quat& orientati
   glm::ivec3 anchor(glm::floor(position));
   const glm::vec3 frac = position - glm::vec3(anchor);
   for (int i = 0; i < 3; ++i) {
-    int f = static_cast<int>(std::lround(frac[i] * kOffsetSteps));
-    if (f >= kOffsetSteps) {
-      f -= kOffsetSteps;
+    int f = static_cast<int>(std::lround(frac[i] * static_cast<float>(subvoxel_steps_)));
+    if (f >= subvoxel_steps_) {
+      f -= subvoxel_steps_;
       ++anchor[i];
     }
     key.f[i] = static_cast<int16_t>(f);
@@ -117,8 +121,9 @@ RotatedToolCache::Placement RotatedToolCache::acquire(const glm::quat& orientati
   const glm::quat qq = glm::normalize(glm::quat(
       static_cast<float>(key.q[0] / kQuatSteps), static_cast<float>(key.q[1] / kQuatSteps),
       static_cast<float>(key.q[2] / kQuatSteps), static_cast<float>(key.q[3] / kQuatSteps)));
-  const glm::vec3 offset(key.f[0] / float{kOffsetSteps}, key.f[1] / float{kOffsetSteps},
-                         key.f[2] / float{kOffsetSteps});
+  const glm::vec3 offset(key.f[0] / static_cast<float>(subvoxel_steps_),
+                         key.f[1] / static_cast<float>(subvoxel_steps_),
+                         key.f[2] / static_cast<float>(subvoxel_steps_));
   auto entry =
       std::make_shared<RotatedToolEntry>(*tool_, glm::mat3_cast(qq), offset, sampling_, &stats_);
   const size_t bytes = entry->memory_bytes();

@@ -1,10 +1,11 @@
 // Discrete tool rotation, "Discrete tools for virtual sculpture" §3.1-3.2.
 //
-// Two departures from the paper's text, both for speed without changing what
-// is computed: the map runs in 16.16 fixed point (exact integer stepping, so
-// brute force and Algorithm 1 agree bit for bit), and each row is clipped to
-// the stretch whose samples fall inside the tool before sampling, so the cost
-// follows the tool's voxel count rather than its rotated box. Memory is x
+// Departures from the paper's text, all for speed without changing what is
+// computed: the map runs in 16.16 fixed point (exact integer stepping, so
+// brute force and Algorithm 1 agree bit for bit); each row is clipped to the
+// stretch whose samples can be non-zero; and along a row, runs of equal
+// tool cells are filled without sampling (PreparedTool's cell table), so the
+// cost follows the tool's surface rather than its rotated box. Memory is x
 // fastest, so the innermost step is along x (the paper steps along z).
 
 #include "sculpt/core/tool/tool_rotation.h"
@@ -22,15 +23,39 @@ namespace {
 
 constexpr int kFracBits = 16;
 constexpr double kOne = 1 << kFracBits;
+constexpr int kPad = PreparedTool::kPad;
 
 int32_t to_fixed(double v) {
   return static_cast<int32_t>(std::llround(v * kOne));
 }
 
-// Sample coordinates are padded tool voxels (+1); nearest rounds by flooring
+// Sample coordinates are padded tool voxels; nearest rounds by flooring
 // s + 0.5, folded into the coordinate so both samplers floor.
 double sample_shift(Sampling sampling) {
-  return sampling == Sampling::kNearest ? 1.5 : 1.0;
+  return kPad + (sampling == Sampling::kNearest ? 0.5 : 0.0);
+}
+
+size_t cell_index(const int32_t s[3], glm::ivec3 pd) {
+  return (static_cast<size_t>(s[2] >> kFracBits) * pd.y + static_cast<size_t>(s[1] >> kFracBits)) *
+             pd.x +
+         static_cast<size_t>(s[0] >> kFracBits);
+}
+
+// Trilinear sample of cell i with 8-bit weights: each axis' pair sums to 256,
+// so an equal-cornered cell returns its value exactly and the 32-bit sum
+// cannot overflow (255 * 2^24 + 2^23 < 2^32).
+uint8_t trilinear_at(const uint8_t* padded, size_t i, const int32_t s[3], size_t px, size_t pxy) {
+  const uint32_t fx = (static_cast<uint32_t>(s[0]) >> 8) & 255u;
+  const uint32_t fy = (static_cast<uint32_t>(s[1]) >> 8) & 255u;
+  const uint32_t fz = (static_cast<uint32_t>(s[2]) >> 8) & 255u;
+  const uint8_t* p = padded + i;
+  const uint32_t c00 = p[0] * (256 - fx) + p[1] * fx;
+  const uint32_t c10 = p[px] * (256 - fx) + p[px + 1] * fx;
+  const uint32_t c01 = p[pxy] * (256 - fx) + p[pxy + 1] * fx;
+  const uint32_t c11 = p[pxy + px] * (256 - fx) + p[pxy + px + 1] * fx;
+  const uint32_t c0 = c00 * (256 - fy) + c10 * fy;
+  const uint32_t c1 = c01 * (256 - fy) + c11 * fy;
+  return static_cast<uint8_t>((c0 * (256 - fz) + c1 * fz + (1u << 23)) >> 24);
 }
 
 }  // namespace
@@ -50,17 +75,17 @@ glm::mat3 euler_xyz_deg(glm::vec3 degrees) {
 
 PreparedTool::PreparedTool(Tool tool) : tool_(std::move(tool)) {
   const glm::ivec3 d = tool_.density.dims();
-  padded_dims_ = d + 2;
-  padded_.assign(static_cast<size_t>(voxel_count(padded_dims_)), 0);
-  uniform_cell_.assign(padded_.size(), -1);
-  const size_t px = padded_dims_.x;
-  const size_t pxy = px * padded_dims_.y;
+  const glm::ivec3 pd = d + 2 * kPad;
+  padded_dims_ = pd;
+  padded_.assign(static_cast<size_t>(voxel_count(pd)), 0);
+  const size_t px = pd.x;
+  const size_t pxy = px * pd.y;
   float reach2 = 0.0f;
   for (int z = 0; z < d.z; ++z)
     for (int y = 0; y < d.y; ++y)
       for (int x = 0; x < d.x; ++x) {
         const uint8_t v = tool_.density.at(x, y, z);
-        padded_[(z + 1) * pxy + (y + 1) * px + (x + 1)] = v;
+        padded_[(z + kPad) * pxy + (y + kPad) * px + (x + kPad)] = v;
         if (v != 0) {
           const glm::vec3 r = glm::vec3(x, y, z) - tool_.pivot;
           reach2 = std::max(reach2, glm::dot(r, r));
@@ -68,37 +93,69 @@ PreparedTool::PreparedTool(Tool tool) : tool_(std::move(tool)) {
       }
   // A trilinear sample is non-zero within one voxel (per axis) of a non-zero voxel.
   reach_vox_ = std::sqrt(reach2) + std::sqrt(3.0f);
-  for (int z = 0; z + 1 < padded_dims_.z; ++z)
-    for (int y = 0; y + 1 < padded_dims_.y; ++y)
-      for (int x = 0; x + 1 < padded_dims_.x; ++x) {
-        const uint8_t* p = &padded_[z * pxy + y * px + x];
+
+  // Cells: value when the 8 corners are equal, else -1. The last layer has no
+  // +1 neighbours and is never sampled (samples floor to at most dims + 2).
+  std::vector<int16_t> value(padded_.size(), -1);
+  for (int z = 0; z + 1 < pd.z; ++z)
+    for (int y = 0; y + 1 < pd.y; ++y)
+      for (int x = 0; x + 1 < pd.x; ++x) {
+        const size_t i = z * pxy + y * px + x;
+        const uint8_t* p = &padded_[i];
         const uint8_t v = p[0];
         if (p[1] == v && p[px] == v && p[px + 1] == v && p[pxy] == v && p[pxy + 1] == v &&
             p[pxy + px] == v && p[pxy + px + 1] == v) {
-          uniform_cell_[z * pxy + y * px + x] = v;
+          value[i] = v;
         }
       }
-}
-
-inline uint8_t PreparedTool::trilinear(const int32_t s[3]) const {
-  const size_t i = index(s);
-  const int16_t u = uniform_cell_[i];
-  if (u >= 0) return static_cast<uint8_t>(u);
-  // 8-bit weights: each axis' pair sums to 256, so a uniform cell returns its
-  // value exactly and the 32-bit sum cannot overflow (255 * 2^24 + 2^23 < 2^32).
-  const uint32_t fx = (static_cast<uint32_t>(s[0]) >> 8) & 255u;
-  const uint32_t fy = (static_cast<uint32_t>(s[1]) >> 8) & 255u;
-  const uint32_t fz = (static_cast<uint32_t>(s[2]) >> 8) & 255u;
-  const size_t px = padded_dims_.x;
-  const size_t pxy = px * padded_dims_.y;
-  const uint8_t* p = &padded_[i];
-  const uint32_t c00 = p[0] * (256 - fx) + p[1] * fx;
-  const uint32_t c10 = p[px] * (256 - fx) + p[px + 1] * fx;
-  const uint32_t c01 = p[pxy] * (256 - fx) + p[pxy + 1] * fx;
-  const uint32_t c11 = p[pxy + px] * (256 - fx) + p[pxy + px + 1] * fx;
-  const uint32_t c0 = c00 * (256 - fy) + c10 * fy;
-  const uint32_t c1 = c01 * (256 - fy) + c11 * fy;
-  return static_cast<uint8_t>((c0 * (256 - fz) + c1 * fz + (1u << 23)) >> 24);
+  // Chessboard distance to the nearest "border" cell: one that is not
+  // equal-cornered or that touches an equal-cornered cell of another value.
+  // Any 26-path out of a run crosses a border cell, so the cells within
+  // distance - 1 of a cell all share its value (two raster passes of the
+  // exact chessboard transform).
+  constexpr uint16_t kFar = 255;
+  std::vector<uint16_t> dist(padded_.size(), kFar);
+  for (int z = 0; z < pd.z; ++z)
+    for (int y = 0; y < pd.y; ++y)
+      for (int x = 0; x < pd.x; ++x) {
+        const size_t i = z * pxy + y * px + x;
+        bool border = value[i] < 0;
+        for (int dz = -1; dz <= 1 && !border; ++dz)
+          for (int dy = -1; dy <= 1 && !border; ++dy)
+            for (int dx = -1; dx <= 1 && !border; ++dx) {
+              const int nx = x + dx, ny = y + dy, nz = z + dz;
+              if (nx < 0 || ny < 0 || nz < 0 || nx >= pd.x || ny >= pd.y || nz >= pd.z) continue;
+              const int16_t w = value[nz * pxy + ny * px + nx];
+              border = w >= 0 && w != value[i];
+            }
+        if (border) dist[i] = 0;
+      }
+  auto relax = [&](int x, int y, int z, int sign) {
+    uint16_t& d0 = dist[z * pxy + y * px + x];
+    for (int dz = 0; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          // The 13 neighbours visited before this cell in the pass's order.
+          if (dz == 0 && (dy > 0 || (dy == 0 && dx >= 0))) continue;
+          const int nx = x - sign * dx, ny = y - sign * dy, nz = z - sign * dz;
+          if (nx < 0 || ny < 0 || nz < 0 || nx >= pd.x || ny >= pd.y || nz >= pd.z) continue;
+          d0 = std::min<uint16_t>(d0, static_cast<uint16_t>(dist[nz * pxy + ny * px + nx] + 1));
+        }
+  };
+  for (int z = 0; z < pd.z; ++z)
+    for (int y = 0; y < pd.y; ++y)
+      for (int x = 0; x < pd.x; ++x)
+        relax(x, y, z, 1);
+  for (int z = pd.z - 1; z >= 0; --z)
+    for (int y = pd.y - 1; y >= 0; --y)
+      for (int x = pd.x - 1; x >= 0; --x)
+        relax(x, y, z, -1);
+  cells_.assign(padded_.size(), 0);
+  for (size_t i = 0; i < cells_.size(); ++i) {
+    if (value[i] < 0) continue;
+    const uint16_t run = std::clamp<uint16_t>(dist[i], 1, 255);
+    cells_[i] = static_cast<uint16_t>(run << 8 | value[i]);
+  }
 }
 
 RotationFrame::RotationFrame(const PreparedTool& tool, const glm::mat3& rotation,
@@ -133,107 +190,89 @@ RotationFrame::RotationFrame(const PreparedTool& tool, const glm::mat3& rotation
   const glm::dvec3 s0 = inv * (glm::dvec3(box_.lo) - pos) + pivot + sample_shift(sampling);
   for (int i = 0; i < 3; ++i) {
     origin_[i] = to_fixed(s0[i]);
-    limit_[i] = static_cast<int64_t>(tool.dims()[i] + 1) << kFracBits;
+    // Voxels 0 .. d-1 sit at padded kPad .. d-1+kPad; a cell reaching any of
+    // them starts at kPad - 1 .. d - 1 + kPad.
+    support_hi_[i] = tool.dims()[i] + kPad;
   }
   for (int a = 0; a < 3; ++a)
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i < 3; ++i)
       step_[a][i] = to_fixed(inv[a][i]);  // component i of inv * e_a
-      inv_step_[a][i] = step_[a][i] != 0 ? 1.0 / step_[a][i] : 0.0;
-    }
-}
-
-void RotationFrame::coords(glm::ivec3 k, int32_t s[3]) const {
-  const glm::ivec3 n = k - box_.lo;
   for (int i = 0; i < 3; ++i)
-    s[i] = origin_[i] + n.x * step_[0][i] + n.y * step_[1][i] + n.z * step_[2][i];
-}
-
-bool RotationFrame::inside(const int32_t s[3]) const {
-  return s[0] >= 0 && s[1] >= 0 && s[2] >= 0 && s[0] < limit_[0] && s[1] < limit_[1] &&
-         s[2] < limit_[2];
+    inv_step_x_[i] = step_[0][i] != 0 ? 1.0 / step_[0][i] : 0.0;
 }
 
 uint8_t RotationFrame::sample_voxel(const PreparedTool& tool, glm::ivec3 k) const {
+  const glm::ivec3 n = k - box_.lo;
   int32_t s[3];
-  coords(k, s);
-  if (!inside(s)) return 0;
-  return sampling_ == Sampling::kNearest ? tool.nearest(s) : tool.trilinear(s);
+  for (int i = 0; i < 3; ++i)
+    s[i] = origin_[i] + n.x * step_[0][i] + n.y * step_[1][i] + n.z * step_[2][i];
+  for (int i = 0; i < 3; ++i) {
+    const int32_t c = s[i] >> kFracBits;
+    if (c < kPad - 1 || c >= support_hi_[i]) return 0;
+  }
+  const glm::ivec3 pd = tool.padded_dims();
+  const size_t i = cell_index(s, pd);
+  if (sampling_ == Sampling::kNearest) return tool.padded()[i];
+  return trilinear_at(tool.padded(), i, s, pd.x, static_cast<size_t>(pd.x) * pd.y);
 }
 
-namespace {
-
-// Samples n in [0, len) of the line s(n) = s0 + n * step into out; only the
-// stretch inside [0, limit) on every axis is sampled, the rest is zeroed.
-template <Sampling kSampling>
-void sample_line(const PreparedTool& tool, const int32_t s0[3], const int32_t step[3],
-                 const double inv_step[3], const int64_t limit[3], int len, uint8_t* out) {
-  int lo = 0, hi = len;
-  for (int i = 0; i < 3 && lo < hi; ++i) {
-    const int64_t o = s0[i];
-    if (step[i] == 0) {
-      if (o < 0 || o >= limit[i]) hi = lo;
+void RotationFrame::sample_line(const PreparedTool& tool, const int32_t s0[3], int len,
+                                uint8_t* out) const {
+  // The stretch of the line s0 + n * step within the support, widened by
+  // half a voxel so rounding of the (double) bounds can only add samples that
+  // read zero padding; the padding keeps every sample inside the grid.
+  double lo = 0.0, hi = len;
+  for (int i = 0; i < 3; ++i) {
+    const double a = ((kPad - 1 - 0.5) * kOne - s0[i]);
+    const double b = ((support_hi_[i] + 0.5) * kOne - s0[i]);
+    if (step_[0][i] == 0) {
+      if (a > 0.0 || b <= 0.0) return;
       continue;
     }
-    // Real interval of n, rounded; exact integer fix-ups follow.
-    const double e0 = static_cast<double>(-o) * inv_step[i];
-    const double e1 = static_cast<double>(limit[i] - o) * inv_step[i];
-    double a, b;
-    if (step[i] > 0) {
-      a = std::ceil(e0);
-      b = std::ceil(e1);
-    } else {
-      a = std::floor(e1) + 1;
-      b = std::floor(e0) + 1;
+    double e0 = a * inv_step_x_[i], e1 = b * inv_step_x_[i];
+    if (e0 > e1) std::swap(e0, e1);
+    lo = std::max(lo, std::ceil(e0));
+    hi = std::min(hi, std::floor(e1) + 1.0);
+  }
+  if (lo >= hi) return;
+  const int n0 = static_cast<int>(lo), n1 = static_cast<int>(hi);
+  const int32_t st[3] = {step_[0][0], step_[0][1], step_[0][2]};
+  int32_t s[3] = {s0[0] + n0 * st[0], s0[1] + n0 * st[1], s0[2] + n0 * st[2]};
+  const glm::ivec3 pd = tool.padded_dims();
+  const size_t px = pd.x, pxy = px * pd.y;
+  const uint8_t* padded = tool.padded();
+  const uint16_t* cells = tool.cells();
+  const bool nearest = sampling_ == Sampling::kNearest;
+  for (int n = n0; n < n1;) {
+    const size_t i = cell_index(s, pd);
+    const uint16_t c = cells[i];
+    if (c != 0) {
+      // A run of equal cells: the next (c >> 8) samples share its value.
+      const int k = std::min(n1 - n, c >> 8);
+      const uint8_t v = static_cast<uint8_t>(c);
+      if (v != 0) std::memset(out + n, v, static_cast<size_t>(k));
+      n += k;
+      s[0] += k * st[0];
+      s[1] += k * st[1];
+      s[2] += k * st[2];
+      continue;
     }
-    lo = std::max(lo, static_cast<int>(std::clamp(a, -1.0, static_cast<double>(len) + 1)));
-    hi = std::min(hi, static_cast<int>(std::clamp(b, -1.0, static_cast<double>(len) + 1)));
+    out[n] = nearest ? padded[i] : trilinear_at(padded, i, s, px, pxy);
+    ++n;
+    s[0] += st[0];
+    s[1] += st[1];
+    s[2] += st[2];
   }
-  auto valid = [&](int n) {
-    for (int i = 0; i < 3; ++i) {
-      const int64_t v = int64_t{s0[i]} + int64_t{n} * step[i];
-      if (v < 0 || v >= limit[i]) return false;
-    }
-    return true;
-  };
-  lo = std::max(lo, 0);
-  hi = std::min(hi, len);
-  if (lo < hi) {
-    // The valid set of a line in a box is one interval: widen or narrow the
-    // rounded bounds until they are exact.
-    while (lo > 0 && valid(lo - 1))
-      --lo;
-    while (lo < hi && !valid(lo))
-      ++lo;
-    while (hi > lo && !valid(hi - 1))
-      --hi;
-    while (hi < len && valid(hi))
-      ++hi;
-  } else {
-    lo = hi = 0;
-  }
-  std::memset(out, 0, static_cast<size_t>(lo));
-  int32_t s[3] = {s0[0] + lo * step[0], s0[1] + lo * step[1], s0[2] + lo * step[2]};
-  for (int n = lo; n < hi; ++n) {
-    out[n] = kSampling == Sampling::kNearest ? tool.nearest(s) : tool.trilinear(s);
-    s[0] += step[0];
-    s[1] += step[1];
-    s[2] += step[2];
-  }
-  std::memset(out + hi, 0, static_cast<size_t>(len - hi));
 }
-
-}  // namespace
 
 void RotationFrame::sample_row(const PreparedTool& tool, int y, int z, int x0, int x1,
                                uint8_t* out) const {
   assert(x0 <= x1);
+  const glm::ivec3 n(x0 - box_.lo.x, y - box_.lo.y, z - box_.lo.z);
   int32_t s[3];
-  coords(glm::ivec3(x0, y, z), s);
-  if (sampling_ == Sampling::kNearest) {
-    sample_line<Sampling::kNearest>(tool, s, step_[0], inv_step_[0], limit_, x1 - x0, out);
-  } else {
-    sample_line<Sampling::kTrilinear>(tool, s, step_[0], inv_step_[0], limit_, x1 - x0, out);
-  }
+  for (int i = 0; i < 3; ++i)
+    s[i] = origin_[i] + n.x * step_[0][i] + n.y * step_[1][i] + n.z * step_[2][i];
+  sample_line(tool, s, x1 - x0, out);
 }
 
 void RotationFrame::sample_box(const PreparedTool& tool, uint8_t* out) const {
@@ -242,11 +281,7 @@ void RotationFrame::sample_box(const PreparedTool& tool, uint8_t* out) const {
   for (int z = 0; z < size.z; ++z) {
     int32_t row[3] = {plane[0], plane[1], plane[2]};
     for (int y = 0; y < size.y; ++y) {
-      if (sampling_ == Sampling::kNearest) {
-        sample_line<Sampling::kNearest>(tool, row, step_[0], inv_step_[0], limit_, size.x, out);
-      } else {
-        sample_line<Sampling::kTrilinear>(tool, row, step_[0], inv_step_[0], limit_, size.x, out);
-      }
+      sample_line(tool, row, size.x, out);
       out += size.x;
       for (int i = 0; i < 3; ++i)
         row[i] += step_[1][i];
@@ -260,8 +295,7 @@ RotatedTool rotate_tool(const PreparedTool& tool, const glm::mat3& rotation, glm
                         RotationMethod method, Sampling sampling) {
   const RotationFrame frame(tool, rotation, position, sampling);
   const Box& box = frame.box();
-  const glm::ivec3 size = box.size();
-  RotatedTool out{DenseGrid<uint8_t>(size), box.lo};
+  RotatedTool out{DenseGrid<uint8_t>(box.size()), box.lo};
   uint8_t* dst = out.density.data();
   if (method == RotationMethod::kBrute) {
     // Every target voxel: a full matrix product and a bounds test.

@@ -66,7 +66,8 @@ TEST(Sculptor, UndoAndRedoAreBitExactPerStroke) {
   s.set_tool(make_cube_tool(10.0f));
   s.begin_stroke();
   for (int i = 0; i < 6; ++i) {
-    (void)s.dab({{30.0f + 3.1f * i, 40.0f, 48.5f}, kTurn, SculptMode::kSubtract, 1.0f});
+    (void)s.dab(
+        {{30.0f + 3.1f * static_cast<float>(i), 40.0f, 48.5f}, kTurn, SculptMode::kSubtract, 1.0f});
   }
   s.end_stroke();
   const uint64_t h1 = v.content_hash();
@@ -104,7 +105,8 @@ TEST(Sculptor, UndoMemoryCapForgetsOldestStrokes) {
   Sculptor s(v, o);
   s.set_tool(make_sphere_tool(6.0f));
   for (int i = 0; i < 8; ++i)
-    (void)s.dab({{20.0f + 8.0f * i, 48.0f, 19.0f}, kTurn, SculptMode::kSubtract, 1.0f});
+    (void)s.dab(
+        {{20.0f + 8.0f * static_cast<float>(i), 48.0f, 19.0f}, kTurn, SculptMode::kSubtract, 1.0f});
   EXPECT_LE(s.history().memory_bytes(), o.undo_max_bytes);
   EXPECT_GT(s.history().dropped_strokes(), 0);
   EXPECT_LT(s.history().undo_depth(), 8u);

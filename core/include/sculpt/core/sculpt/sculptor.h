@@ -78,6 +78,8 @@ struct DabStats {
 struct SculptorOptions {
   Sampling sampling = Sampling::kTrilinear;
   size_t cache_max_bytes = RotatedToolCache::kDefaultMaxBytes;
+  /// Dab positions snap to 1/subvoxel_steps voxel (see RotatedToolCache).
+  int subvoxel_steps = RotatedToolCache::kDefaultSubvoxelSteps;
   size_t undo_max_bytes = UndoHistory::kDefaultMaxBytes;
 };
 

@@ -7,8 +7,10 @@
 //
 // A placement is keyed by its orientation quantised to 2^-20 per quaternion
 // component (about 2e-6 rad) and the sub-voxel part of the pivot position
-// quantised to 1/256 voxel; the rotation actually applied is the quantised
-// one, so a hit returns exactly what a miss computes. Integer moves of the
+// quantised to 1/subvoxel_steps voxel (default 1/16: at most 1/32 voxel off,
+// far inside the material's 2-voxel density ramp, while a tool moving
+// without turning finds its offsets again); the placement actually applied
+// is the quantised one, so a hit returns exactly what a miss computes. Integer moves of the
 // position reuse the entry (the rotated voxels are relative to the anchor).
 //
 // Memory is bounded: entries are evicted least recently used once their
@@ -32,14 +34,15 @@ struct RotatedToolCacheStats {
   int64_t placements = 0;        // acquire() calls
   int64_t placement_hits = 0;    // of which found an entry
   int64_t voxels_requested = 0;  // rotated voxels asked for by row()
-  int64_t voxels_rotated = 0;    // of which had to be computed
+  int64_t voxels_reused = 0;     // of which were already rotated
+  int64_t voxels_rotated = 0;    // voxels rotated (gaps filled included)
   int64_t evictions = 0;
   size_t bytes = 0;  // held by the cached entries
   size_t entries = 0;
   /// Share of requested voxels served without rotating, in [0, 1].
   double voxel_hit_rate() const {
     return voxels_requested
-               ? 1.0 - static_cast<double>(voxels_rotated) / static_cast<double>(voxels_requested)
+               ? static_cast<double>(voxels_reused) / static_cast<double>(voxels_requested)
                : 0.0;
   }
 };
@@ -74,9 +77,11 @@ class RotatedToolEntry {
 class RotatedToolCache {
  public:
   static constexpr size_t kDefaultMaxBytes = size_t{64} << 20;
+  static constexpr int kDefaultSubvoxelSteps = 16;
 
+  /// `subvoxel_steps` in [1, 4096]: positions snap to 1/subvoxel_steps voxel.
   RotatedToolCache(std::shared_ptr<const PreparedTool> tool, Sampling sampling,
-                   size_t max_bytes = kDefaultMaxBytes);
+                   size_t max_bytes = kDefaultMaxBytes, int subvoxel_steps = kDefaultSubvoxelSteps);
 
   struct Placement {
     std::shared_ptr<RotatedToolEntry> entry;
@@ -110,6 +115,7 @@ class RotatedToolCache {
   std::shared_ptr<const PreparedTool> tool_;
   Sampling sampling_;
   size_t max_bytes_;
+  int subvoxel_steps_;
   std::list<Key> lru_;  // most recent first
   std::unordered_map<Key, Slot, KeyHash> slots_;
   RotatedToolCacheStats stats_;

@@ -38,13 +38,19 @@ enum class RotationMethod { kBrute, kIncremental };
 /// Rz * Ry * Rx, the matrix of scipy's Rotation.from_euler("xyz", deg, degrees=True).
 glm::mat3 euler_xyz_deg(glm::vec3 degrees);
 
-/// A reference tool made ready for fast sampling: a copy padded by one zero
-/// voxel on every side (no bounds tests in the inner loop) and, per trilinear
-/// cell, its value when all 8 corners are equal (a sculpting tool is mostly
-/// uniform inside and out, so most samples cost one load). Build once per
-/// tool; immutable and thread-safe afterwards.
+/// A reference tool made ready for fast sampling: a copy padded by two zero
+/// voxels on every side (no bounds tests in the inner loop), and a table
+/// over trilinear cells (a voxel and its +1 neighbours): for a cell whose 8
+/// corners are equal, its value and how many steps along any rotated axis
+/// (each step moves at most one voxel per axis) stay inside equal cells (its
+/// chessboard distance to the nearest other cell). A sculpting tool is
+/// uniform inside and out, so a row mostly jumps from run to run instead of
+/// sampling voxel by voxel. Build once per tool; immutable and thread-safe.
 class PreparedTool {
  public:
+  /// Padding of the sampling grid on every side, in voxels.
+  static constexpr int kPad = 2;
+
   explicit PreparedTool(Tool tool);
 
   const Tool& tool() const { return tool_; }
@@ -54,24 +60,17 @@ class PreparedTool {
   /// (voxel units, trilinear support included).
   float reach_vox() const { return reach_vox_; }
 
-  /// Sample at fixed-point padded coordinates s (16.16; integer part in
-  /// [0, dims]); see RotationFrame.
-  uint8_t nearest(const int32_t s[3]) const { return padded_[index(s)]; }
-  uint8_t trilinear(const int32_t s[3]) const;
+  // The kernels' view (RotationFrame): padded grid and cell table.
+  glm::ivec3 padded_dims() const { return padded_dims_; }
+  const uint8_t* padded() const { return padded_.data(); }
+  /// Per cell: 0 when its corners differ, else (run << 8) | value, run >= 1.
+  const uint16_t* cells() const { return cells_.data(); }
 
  private:
-  size_t index(const int32_t s[3]) const {
-    return (static_cast<size_t>(s[2] >> 16) * padded_dims_.y + static_cast<size_t>(s[1] >> 16)) *
-               padded_dims_.x +
-           static_cast<size_t>(s[0] >> 16);
-  }
-
   Tool tool_;
   glm::ivec3 padded_dims_;
   std::vector<uint8_t> padded_;
-  // Value of the cell whose lowest corner is this padded voxel when its 8
-  // corners are equal, else -1.
-  std::vector<int16_t> uniform_cell_;
+  std::vector<uint16_t> cells_;
   float reach_vox_ = 0.0f;
 };
 
@@ -88,29 +87,28 @@ class RotationFrame {
   Sampling sampling() const { return sampling_; }
 
   /// Writes target voxels [x0, x1) of row (y, z) (target coordinates, inside
-  /// box()) into out[0 .. x1 - x0), stepping incrementally along x; only the
-  /// stretch whose samples fall inside the tool is sampled, the rest is 0.
+  /// box()) into out[0 .. x1 - x0), which must hold zeros: only the stretch
+  /// whose samples can be non-zero is written, stepping incrementally along x.
   void sample_row(const PreparedTool& tool, int y, int z, int x0, int x1, uint8_t* out) const;
-  /// The whole box into out (box().size(), x fastest) by Algorithm 1: the
-  /// basis is inverse-rotated once; each voxel is one step along I from the
-  /// previous, each row one J step, each plane one K step.
+  /// The whole box into out (box().size(), x fastest, zeros on entry) by
+  /// Algorithm 1: the basis is inverse-rotated once; each voxel is one step
+  /// along I from the previous, each row one J step, each plane one K step.
   void sample_box(const PreparedTool& tool, uint8_t* out) const;
-  /// One target voxel by brute force (full matrix product).
+  /// One target voxel by brute force: a full matrix product, a bounds test
+  /// and a plain nearest or trilinear sample (no run skipping).
   uint8_t sample_voxel(const PreparedTool& tool, glm::ivec3 k) const;
 
  private:
-  // Fixed-point sample coordinates of target voxel k.
-  void coords(glm::ivec3 k, int32_t s[3]) const;
-  bool inside(const int32_t s[3]) const;
+  void sample_line(const PreparedTool& tool, const int32_t s0[3], int len, uint8_t* out) const;
 
   Box box_;
   Sampling sampling_;
   // s(k) = origin_ + M (k - box_.lo), columns of M are the inverse-rotated
   // target basis (the paper's I, J, K), all 16.16 in padded tool voxels.
   int32_t origin_[3];
-  int32_t step_[3][3];  // step_[a] = M e_a
-  int64_t limit_[3];    // samples are inside when 0 <= s < limit
-  double inv_step_[3][3];
+  int32_t step_[3][3];     // step_[a] = M e_a
+  int32_t support_hi_[3];  // samples can be non-zero when 1 <= s >> 16 < support_hi_
+  double inv_step_x_[3];
 };
 
 /// A rotated tool: density[0] sits at target voxel `origin`.

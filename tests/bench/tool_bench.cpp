@@ -1,0 +1,154 @@
+// Discrete tool benchmarks (issue 3, "Discrete tools for virtual sculpture"
+// §3). Rotation workload: the peers.py tool sphere (sphere_density(m, 0.4))
+// rotated by Euler xyz (30, 45, 60) degrees about its centre; compare with
+//   /usr/bin/python3 ../shared/bench/peers.py rot
+// run in the same session (scipy.ndimage.affine_transform, order 0 and 1).
+// Note that scipy fills an m^3 output, while the rotation here fills the
+// bounding box of the rotated tool (about 2.5x as many voxels at this angle).
+//
+// Table 2 of the paper: BM_ToolRotate/m/method/sampling/angles with angles=1
+// averaging over 16 fixed random orientations, as the paper averages "various
+// rotation angles" (method 0 brute, 1 incremental; sampling 0 nearest, 1
+// trilinear).
+//
+// Dab workload: the 32^3 tool sphere dabbed on the surface of the 256^3
+// peers.py sphere (radius 0.35 * 256), alternating add and subtract so the
+// material stays a surface; per-dab median and p99 come from manual timing.
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "sculpt/core/sculpt/sculptor.h"
+#include "sculpt/core/shapes/analytic_shapes.h"
+#include "sculpt/core/tool/tool_rotation.h"
+
+namespace sculpt::core {
+namespace {
+
+Tool peers_tool(int m) {
+  return tool_from_grid(sphere_density(m, 0.4f));
+}
+
+// Fixed pseudo-random unit quaternions (a deterministic sequence).
+std::vector<glm::quat> orientations(int count, uint32_t seed) {
+  std::vector<glm::quat> out;
+  uint32_t s = seed;
+  auto next = [&] {
+    s = s * 1664525u + 1013904223u;
+    return static_cast<float>(s >> 8) / static_cast<float>(1 << 24) * 2.0f - 1.0f;
+  };
+  while (static_cast<int>(out.size()) < count) {
+    const glm::quat q(next(), next(), next(), next());
+    const float n = glm::length(q);
+    if (n > 0.1f && n <= 1.0f) out.push_back(q / n);
+  }
+  return out;
+}
+
+void BM_ToolRotate(benchmark::State& state) {
+  const int m = static_cast<int>(state.range(0));
+  const auto method = state.range(1) == 0 ? RotationMethod::kBrute : RotationMethod::kIncremental;
+  const auto sampling = state.range(2) == 0 ? Sampling::kNearest : Sampling::kTrilinear;
+  const bool many_angles = state.range(3) != 0;
+  const PreparedTool tool(peers_tool(m));
+  std::vector<glm::mat3> rotations;
+  if (many_angles) {
+    for (const glm::quat& q : orientations(16, 12345))
+      rotations.push_back(glm::mat3_cast(q));
+  } else {
+    rotations.push_back(euler_xyz_deg({30, 45, 60}));
+  }
+  size_t i = 0;
+  int64_t voxels = 0;
+  for (auto _ : state) {
+    const RotatedTool r = rotate_tool_about_pivot(tool, rotations[i], method, sampling);
+    voxels += static_cast<int64_t>(r.density.size());
+    benchmark::DoNotOptimize(r.density.data());
+    i = (i + 1) % rotations.size();
+  }
+  state.counters["out_voxels"] =
+      static_cast<double>(voxels) / static_cast<double>(state.iterations());
+  state.SetItemsProcessed(voxels);
+}
+BENCHMARK(BM_ToolRotate)
+    ->ArgNames({"m", "method", "aa", "angles"})
+    ->ArgsProduct({{16, 32, 64}, {0, 1}, {0, 1}, {0}})
+    ->ArgsProduct({{8, 16, 32, 64}, {0, 1}, {0, 1}, {1}})
+    ->Unit(benchmark::kMicrosecond);
+
+// One-off preparation of a reference tool (padding and the uniform-cell table).
+void BM_ToolPrepare(benchmark::State& state) {
+  const Tool t = peers_tool(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    PreparedTool p(t);
+    benchmark::DoNotOptimize(&p);
+  }
+}
+BENCHMARK(BM_ToolPrepare)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMicrosecond);
+
+// Full dabs of the 32^3 tool into the 256^3 sphere. range(0): 0 = a new
+// orientation every dab (every contact voxel rotated), 1 = the same
+// orientation moved by whole voxels, 2 = the same orientation moved by
+// sub-voxel steps (snapped to 1/16 voxel by the cache).
+void BM_ToolDab(benchmark::State& state) {
+  const int kind = static_cast<int>(state.range(0));
+  static Volume* material = nullptr;
+  if (material == nullptr) material = new Volume(sphere_volume(256, 0.35f));
+  Volume v = *material;
+  Sculptor sculptor(v);
+  sculptor.set_tool(peers_tool(32));
+  const glm::vec3 centre(127.5f);
+  const float radius = 0.35f * 256.0f;
+  const std::vector<glm::quat> turns = orientations(4096, 777);
+  const glm::quat fixed = glm::quat_cast(euler_xyz_deg({30, 45, 60}));
+  std::vector<double> times_us;
+  DabStats total;
+  int64_t i = 0;
+  for (auto _ : state) {
+    // Walk a circle on the surface, a dab every ~3 voxels.
+    const float a = 0.035f * static_cast<float>(i % 180);
+    glm::vec3 p = centre + radius * glm::vec3(std::cos(a), std::sin(a), 0.0f);
+    if (kind == 1) p = glm::round(p);
+    Dab d{p, kind == 0 ? turns[i % turns.size()] : fixed,
+          i % 2 ? SculptMode::kSubtract : SculptMode::kAdd, 1.0f};
+    // Each dab is its own stroke: undo recording is part of the cost.
+    const auto t0 = std::chrono::steady_clock::now();
+    total += sculptor.dab(d);
+    const double us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    state.SetIterationTime(us * 1e-6);
+    times_us.push_back(us);
+    ++i;
+  }
+  std::sort(times_us.begin(), times_us.end());
+  const auto pct = [&](double q) {
+    return times_us[std::min(times_us.size() - 1,
+                             static_cast<size_t>(q * static_cast<double>(times_us.size())))];
+  };
+  const double n = static_cast<double>(state.iterations());
+  state.counters["median_us"] = pct(0.5);
+  state.counters["p99_us"] = pct(0.99);
+  state.counters["bricks_changed"] = total.bricks_changed / n;
+  state.counters["decode_us"] = static_cast<double>(total.decode_ns) * 1e-3 / n;
+  state.counters["rotate_apply_us"] = static_cast<double>(total.apply_ns) * 1e-3 / n;
+  state.counters["encode_us"] = static_cast<double>(total.encode_ns) * 1e-3 / n;
+  state.counters["voxel_hit_rate"] = sculptor.cache().stats().voxel_hit_rate();
+  state.counters["rotated_per_dab"] =
+      static_cast<double>(sculptor.cache().stats().voxels_rotated) / n;
+}
+BENCHMARK(BM_ToolDab)
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(2)
+    ->Iterations(2000)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace sculpt::core
