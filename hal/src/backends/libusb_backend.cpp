@@ -167,13 +167,14 @@ class LibusbBackend final : public Backend {
       // Reading strings (serial) needs an open handle: done only when the
       // node is accessible, and cheap.
       libusb_device_handle* h = nullptr;
-      if (libusb_open(dev, &h) == 0) {
+      const int opened = libusb_open(dev, &h);
+      if (opened == 0) {
         info.serial = string_descriptor(h, desc.iSerialNumber);
         const std::string product = string_descriptor(h, desc.iProduct);
         if (!product.empty()) info.name = product;
         info.manufacturer = string_descriptor(h, desc.iManufacturer);
         libusb_close(h);
-      } else {
+      } else if (opened == LIBUSB_ERROR_ACCESS) {
         info.accessible = false;
       }
       out.push_back(std::move(info));

@@ -23,7 +23,7 @@ namespace {
 
 #if SCULPT_HAL_HAVE_SPNAV
 
-constexpr const char* kNoDaemon = "spacenavd is not running (no connection to its socket)";
+constexpr const char* kNoDaemon = "spacenavd is not running: no connection to its socket";
 
 // libspnav keeps one process-wide connection: while a device reads through
 // it, nothing else may call into the library.

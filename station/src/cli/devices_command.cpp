@@ -1,0 +1,137 @@
+// sculpt devices [--json]
+//
+// Lists what each HAL backend sees (name, vendor:product, backend, path,
+// serial) without opening anything; when nothing is found, says why:
+// nothing attached, no permission (with the udev hint), backend not built or
+// unavailable. Exit 0 when at least one backend could enumerate, even if it
+// found nothing; 1 when none could.
+
+#include <cstdio>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "sculpt/hal/device/device_registry.h"
+#include "sculpt/hal/device/quirks.h"
+
+namespace sculpt::station::cli {
+namespace {
+
+constexpr const char* kUdevHint =
+    "install the udev rules: sudo cmake --install build --component udev && "
+    "sudo udevadm control --reload && sudo udevadm trigger, then re-plug the device";
+
+struct DevicesOptions {
+  bool json = false;
+};
+
+const char* state_name(hal::BackendState s) {
+  switch (s) {
+    case hal::BackendState::kReady:
+      return "ready";
+    case hal::BackendState::kNotBuilt:
+      return "not built";
+    case hal::BackendState::kUnavailable:
+      return "unavailable";
+  }
+  return "?";
+}
+
+std::string hex4(uint16_t v) {
+  char b[8];
+  std::snprintf(b, sizeof b, "%04x", v);
+  return b;
+}
+
+int run_devices(const DevicesOptions& o) {
+  hal::DeviceRegistry registry(hal::DeviceRegistry::default_backends());
+  const std::vector<hal::BackendListing> listing = registry.list();
+  int working = 0;
+  size_t found = 0;
+  size_t no_permission = 0;
+  for (const hal::BackendListing& l : listing) {
+    if (l.status.state == hal::BackendState::kReady && l.error.empty()) ++working;
+    found += l.devices.size();
+    for (const hal::DeviceInfo& d : l.devices)
+      no_permission += !d.accessible;
+  }
+  std::string summary;
+  if (working == 0) {
+    summary = "no backend could enumerate devices";
+  } else if (found == 0) {
+    summary = "no 6-DOF device attached (enumeration works)";
+  } else if (no_permission > 0) {
+    summary = std::to_string(no_permission) + " device(s) without permission: " + kUdevHint;
+  } else {
+    summary = std::to_string(found) + " device(s) found";
+  }
+
+  if (o.json) {
+    nlohmann::json j;
+    j["backends"] = nlohmann::json::array();
+    for (const hal::BackendListing& l : listing) {
+      nlohmann::json b;
+      b["name"] = l.backend;
+      b["state"] = state_name(l.status.state);
+      b["note"] = l.error.empty() ? l.status.note : l.error;
+      b["devices"] = nlohmann::json::array();
+      for (const hal::DeviceInfo& d : l.devices) {
+        b["devices"].push_back({{"name", d.name},
+                                {"vendor_id", hex4(d.vendor_id)},
+                                {"product_id", hex4(d.product_id)},
+                                {"vendor_product", d.vendor_product()},
+                                {"backend", d.backend},
+                                {"path", d.path},
+                                {"id", d.id()},
+                                {"serial", d.serial},
+                                {"manufacturer", d.manufacturer},
+                                {"usb_location", d.usb_location},
+                                {"known", hal::find_quirks(d.vendor_id, d.product_id) != nullptr},
+                                {"accessible", d.accessible}});
+      }
+      j["backends"].push_back(std::move(b));
+    }
+    j["devices_found"] = found;
+    j["summary"] = summary;
+    std::printf("%s\n", j.dump(2).c_str());
+  } else {
+    for (const hal::BackendListing& l : listing) {
+      std::string line = l.backend + ": " + state_name(l.status.state);
+      if (!l.error.empty()) {
+        line += ", enumeration failed: " + l.error;
+      } else if (!l.status.note.empty()) {
+        line += " (" + l.status.note + ")";
+      } else {
+        line += l.devices.empty() ? ", nothing attached"
+                                  : ", " + std::to_string(l.devices.size()) + " device(s)";
+      }
+      std::printf("%s\n", line.c_str());
+      for (const hal::DeviceInfo& d : l.devices) {
+        std::printf("  %-34s %s  %-7s %-24s serial %s%s\n", d.name.c_str(),
+                    d.vendor_product().c_str(), d.backend.c_str(), d.path.c_str(),
+                    d.serial.empty() ? "-" : d.serial.c_str(),
+                    d.accessible ? "" : "  [no permission]");
+      }
+    }
+    std::printf("%s\n", summary.c_str());
+  }
+  if (working == 0) {
+    std::fprintf(stderr,
+                 "sculpt: devices: no backend could enumerate devices (see the lines above)\n");
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_devices_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<DevicesOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "devices", "List the 6-DOF devices each backend (spnav, hidapi, libusb) sees");
+  cmd->add_flag("--json", o->json, "machine-readable output");
+  cmd->callback([o, &action] { action = [o] { return run_devices(*o); }; });
+}
+
+}  // namespace sculpt::station::cli
