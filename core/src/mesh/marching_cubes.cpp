@@ -31,12 +31,14 @@ constexpr std::array<std::array<uint8_t, 2>, 12> kEdgeCorners = {{{0, 1},
                                                                   {2, 6},
                                                                   {3, 7}}};
 
-glm::ivec3 corner_offset(int k) {
+constexpr glm::ivec3 corner_offset(int k) {
   return {k & 1, (k >> 1) & 1, k >> 2};
 }
-int edge_axis(int e) {
-  return e / 4;
-}
+// Lower corner of each edge.
+constexpr std::array<glm::ivec3, 12> kEdgeOrigin = {
+    corner_offset(0), corner_offset(2), corner_offset(4), corner_offset(6),
+    corner_offset(0), corner_offset(1), corner_offset(4), corner_offset(5),
+    corner_offset(0), corner_offset(1), corner_offset(2), corner_offset(3)};
 
 // The triangle table is generated rather than typed in: for every case and
 // every way of resolving its ambiguous faces, the surface's boundary on each
@@ -59,6 +61,8 @@ struct Tables {
   // Centre vertices of an entry: centre_masks[centre_begin[entry] + k] holds
   // the edges whose vertices centre k averages.
   std::vector<uint32_t> centre_begin;
+  // Per entry: the cell edges whose vertices it uses.
+  std::vector<uint16_t> entry_edges;
   std::vector<uint16_t> centre_masks;
 };
 
@@ -181,6 +185,13 @@ Tables build_tables() {
           }
         }
       }
+      uint16_t edges = 0;
+      for (size_t k = t.entry_begin.back(); k < t.tri_edges.size(); ++k) {
+        if (t.tri_edges[k] < 12) edges |= static_cast<uint16_t>(1u << t.tri_edges[k]);
+      }
+      for (size_t k = t.centre_begin.back(); k < t.centre_masks.size(); ++k)
+        edges |= t.centre_masks[k];
+      t.entry_edges.push_back(edges);
       t.entry_begin.push_back(static_cast<uint32_t>(t.tri_edges.size()));
       t.centre_begin.push_back(static_cast<uint32_t>(t.centre_masks.size()));
     }
@@ -199,7 +210,13 @@ struct Slot {
   uint32_t vertex = 0;
 };
 
+// Bit i of a column (corner rows (y,z), (y+1,z), (y,z+1), (y+1,z+1)) moved
+// to bit 2i, the corner it is at the cell's lower x.
+constexpr std::array<uint8_t, 16> kSpread = {0,  1,  4,  5,  16, 17, 20, 21,
+                                             64, 65, 68, 69, 80, 81, 84, 85};
+
 struct Scratch {
+  std::vector<uint8_t> columns;
   std::vector<uint8_t> inside;
   std::vector<uint8_t> row_any, row_all;
   std::vector<Slot> xy[2][2];  // [plane parity][axis x or y]
@@ -222,6 +239,7 @@ void march_block(const MarchBlock& block, BrickMesh& out) {
   thread_local Scratch s;
   const size_t total = static_cast<size_t>(sxy) * dims.z;
   if (s.inside.size() < total) s.inside.resize(total);
+  if (s.columns.size() < static_cast<size_t>(dims.x)) s.columns.resize(static_cast<size_t>(dims.x));
   const size_t rows = static_cast<size_t>(n.y + 1) * (n.z + 1);
   if (s.row_any.size() < rows) {
     s.row_any.resize(rows);
@@ -246,15 +264,17 @@ void march_block(const MarchBlock& block, BrickMesh& out) {
   auto at = [&](int x, int y, int z) { return ((z + 1) * sxy + (y + 1) * sx) + (x + 1); };
   // Inside flags of the corner points, and per row whether any / all are
   // inside, so rows of cells far from the surface are skipped whole.
+  // Densities are integers: v > iso is v >= floor(iso) + 1, a byte compare.
+  const int threshold = static_cast<int>(std::floor(iso)) + 1;
   int any_total = 0, all_total = 0;
   for (int z = 0; z <= n.z; ++z)
     for (int y = 0; y <= n.y; ++y) {
       const int64_t i0 = at(0, y, z);
       int count = 0;
+      uint8_t* in = s.inside.data() + i0;
       for (int x = 0; x <= n.x; ++x) {
-        const uint8_t in = static_cast<float>(g[i0 + x]) > iso;
-        s.inside[static_cast<size_t>(i0 + x)] = in;
-        count += in;
+        in[x] = g[i0 + x] >= threshold;
+        count += in[x];
       }
       const size_t r = static_cast<size_t>(z) * (n.y + 1) + y;
       s.row_any[r] = count > 0;
@@ -350,11 +370,16 @@ void march_block(const MarchBlock& block, BrickMesh& out) {
       if (all_out || all_in) continue;
       const int64_t row0 = at(0, y, z);
       const uint8_t* in = s.inside.data() + row0;
+      // Column bits of the four rows around this row of cells: a cell's case
+      // interleaves the columns at its x and x + 1.
+      uint8_t* col = s.columns.data();
+      for (int x = 0; x <= n.x; ++x) {
+        col[x] = static_cast<uint8_t>(in[x] | (in[x + sx] << 1) | (in[x + sxy] << 2) |
+                                      (in[x + sx + sxy] << 3));
+      }
       for (int x = 0; x < n.x; ++x) {
-        unsigned c = 0;
-        for (int k = 0; k < 8; ++k)
-          c |= static_cast<unsigned>(in[x + corner_delta[k]]) << k;
-        if (c == 0 || c == 255) continue;
+        if (col[x] == col[x + 1] && (col[x] == 0 || col[x] == 15)) continue;
+        const unsigned c = kSpread[col[x]] | (kSpread[col[x + 1]] << 1);
         unsigned decision = 0;
         if (const uint8_t amb = tab.ambiguous[c]; amb != 0) {
           int j = 0;
@@ -376,17 +401,10 @@ void march_block(const MarchBlock& block, BrickMesh& out) {
         }
         const uint32_t entry = tab.first_entry[c] + decision;
         const uint32_t e_begin = tab.entry_begin[entry], e_end = tab.entry_begin[entry + 1];
-        uint32_t needed = 0;
-        for (uint32_t k = e_begin; k < e_end; ++k) {
-          if (tab.tri_edges[k] < 12) needed |= 1u << tab.tri_edges[k];
-        }
-        for (uint32_t k = tab.centre_begin[entry]; k < tab.centre_begin[entry + 1]; ++k) {
-          needed |= tab.centre_masks[k];
-        }
-        for (int e = 0; e < 12; ++e) {
-          if (!((needed >> e) & 1)) continue;
-          const glm::ivec3 p = glm::ivec3(x, y, z) + corner_offset(kEdgeCorners[e][0]);
-          const int axis = edge_axis(e);
+        for (uint32_t needed = tab.entry_edges[entry]; needed != 0; needed &= needed - 1) {
+          const int e = std::countr_zero(needed);
+          const glm::ivec3 p = glm::ivec3(x, y, z) + kEdgeOrigin[e];
+          const int axis = e >> 2;
           const size_t slot = static_cast<size_t>(p.y) * (n.x + 1) + p.x;
           Slot* sl;
           uint32_t stamp;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cassert>
+#include <cmath>
 #include <cstring>
 
 #include "sculpt/core/util/parallel_for.h"
@@ -37,17 +38,18 @@ void MeshCache::classify(std::span<const uint8_t> voxels, CachedBrick& cb) const
   // own y and z (the same sub-boxes refresh() compares).
   const int m = m_;
   const int lo_n = std::min(2, m);
+  const int threshold = static_cast<int>(std::floor(options_.iso)) + 1;  // v > iso
   uint32_t any_in = 0, any_out = 0;
   size_t i = 0;
   for (int z = 0; z < m; ++z)
     for (int y = 0; y < m; ++y, i += static_cast<size_t>(m)) {
       int in_lo = 0, in_all = 0;
       for (int x = 0; x < m; ++x) {
-        const int in = static_cast<float>(voxels[i + static_cast<size_t>(x)]) > options_.iso;
+        const int in = voxels[i + static_cast<size_t>(x)] >= threshold;
         in_all += in;
         if (x < lo_n) in_lo += in;
       }
-      const int in_hi = static_cast<float>(voxels[i + static_cast<size_t>(m - 1)]) > options_.iso;
+      const int in_hi = voxels[i + static_cast<size_t>(m - 1)] >= threshold;
       const int ins[3] = {in_lo, in_all, in_hi};
       const int counts[3] = {lo_n, m, 1};
       for (int dz = -1; dz <= 1; ++dz) {
@@ -99,6 +101,10 @@ uint32_t MeshCache::refresh(const Volume& volume, glm::ivec3 b, bool first) {
         for (int y = 0; y < m_; ++y) {
           const uint8_t* a = old_is_uniform ? nullptr : &cb.voxels[i];
           const uint8_t* f = fresh_is_uniform ? nullptr : &fresh[i];
+          if (a && f && std::memcmp(a, f, static_cast<size_t>(m_)) == 0) {
+            i += static_cast<size_t>(m_);
+            continue;
+          }
           for (int x = 0; x < m_; ++x) {
             const uint8_t va = a ? a[x] : cb.uniform;
             const uint8_t vf = f ? f[x] : fresh_uniform;

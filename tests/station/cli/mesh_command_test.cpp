@@ -1,0 +1,61 @@
+// The `sculpt mesh` command-line contract (DESIGN.md §7).
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "run_sculpt.h"
+#include "sculpt/core/io/nrrd.h"
+#include "sculpt/core/shapes/analytic_shapes.h"
+
+namespace sculpt::station::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class MeshCommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("sculpt_mesh_cli_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    ASSERT_TRUE(sculpt::core::write_nrrd(dir_ / "in.nrrd", sculpt::core::sphere_density(70)).ok());
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+TEST_F(MeshCommandTest, WritesEachFormatClosed) {
+  for (const char* out : {"m.ply", "m.obj", "m.stl"}) {
+    const CommandResult r = run_sculpt("mesh " + path("in.nrrd") + " -o " + path(out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("closed manifold, Euler characteristic 2"), std::string::npos) << r.out;
+    EXPECT_GT(fs::file_size(path(out)), 1000u) << out;
+  }
+  const CommandResult ascii =
+      run_sculpt("mesh " + path("in.nrrd") + " --ascii --lod 1 -o " + path("a.ply"));
+  ASSERT_EQ(ascii.exit_code, 0) << ascii.err;
+  EXPECT_EQ(read_text(path("a.ply")).rfind("ply\nformat ascii 1.0\n", 0), 0u);
+}
+
+TEST_F(MeshCommandTest, BadInputIsOneLineNamingItAndNoOutput) {
+  const CommandResult ext = run_sculpt("mesh " + path("in.nrrd") + " -o " + path("m.xyz"));
+  EXPECT_EQ(ext.exit_code, 1);
+  EXPECT_EQ(line_count(ext.err), 1) << ext.err;
+  EXPECT_NE(ext.err.find("m.xyz"), std::string::npos);
+  EXPECT_FALSE(fs::exists(path("m.xyz")));
+
+  const CommandResult missing = run_sculpt("mesh " + path("none.nrrd") + " -o " + path("m.ply"));
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_EQ(line_count(missing.err), 1) << missing.err;
+  EXPECT_NE(missing.err.find("none.nrrd"), std::string::npos);
+  EXPECT_FALSE(fs::exists(path("m.ply")));
+
+  const CommandResult lod = run_sculpt("mesh " + path("in.nrrd") + " --lod 9 -o " + path("m.ply"));
+  EXPECT_EQ(lod.exit_code, 2);
+  EXPECT_FALSE(fs::exists(path("m.ply")));
+}
+
+}  // namespace
+}  // namespace sculpt::station::test
