@@ -35,6 +35,18 @@ double sample_shift(Sampling sampling) {
   return kPad + (sampling == Sampling::kNearest ? 0.5 : 0.0);
 }
 
+// floor and ceil of doubles well inside the int range, inline: the baseline
+// x86-64 target has no rounding instruction, and the libm calls cost more
+// than a row's samples.
+inline double fast_floor(double x) {
+  const double t = static_cast<double>(static_cast<int64_t>(x));
+  return t > x ? t - 1.0 : t;
+}
+inline double fast_ceil(double x) {
+  const double t = static_cast<double>(static_cast<int64_t>(x));
+  return t < x ? t + 1.0 : t;
+}
+
 size_t cell_index(const int32_t s[3], glm::ivec3 pd) {
   return (static_cast<size_t>(s[2] >> kFracBits) * pd.y + static_cast<size_t>(s[1] >> kFracBits)) *
              pd.x +
@@ -44,7 +56,8 @@ size_t cell_index(const int32_t s[3], glm::ivec3 pd) {
 // Trilinear sample of cell i with 8-bit weights: each axis' pair sums to 256,
 // so an equal-cornered cell returns its value exactly and the 32-bit sum
 // cannot overflow (255 * 2^24 + 2^23 < 2^32).
-uint8_t trilinear_at(const uint8_t* padded, size_t i, const int32_t s[3], size_t px, size_t pxy) {
+[[gnu::always_inline]] inline uint8_t trilinear_at(const uint8_t* padded, size_t i,
+                                                   const int32_t s[3], size_t px, size_t pxy) {
   const uint32_t fx = (static_cast<uint32_t>(s[0]) >> 8) & 255u;
   const uint32_t fy = (static_cast<uint32_t>(s[1]) >> 8) & 255u;
   const uint32_t fz = (static_cast<uint32_t>(s[2]) >> 8) & 255u;
@@ -199,6 +212,9 @@ RotationFrame::RotationFrame(const PreparedTool& tool, const glm::mat3& rotation
       step_[a][i] = to_fixed(inv[a][i]);  // component i of inv * e_a
   for (int i = 0; i < 3; ++i)
     inv_step_x_[i] = step_[0][i] != 0 ? 1.0 / step_[0][i] : 0.0;
+  for (int i = 0; i < 3; ++i)
+    centre_[i] = pos[i] - box_.lo[i];
+  reach2_ = static_cast<double>(tool.reach_vox()) * tool.reach_vox();
 }
 
 uint8_t RotationFrame::sample_voxel(const PreparedTool& tool, glm::ivec3 k) const {
@@ -231,8 +247,8 @@ void RotationFrame::sample_line(const PreparedTool& tool, const int32_t s0[3], i
     }
     double e0 = a * inv_step_x_[i], e1 = b * inv_step_x_[i];
     if (e0 > e1) std::swap(e0, e1);
-    lo = std::max(lo, std::ceil(e0));
-    hi = std::min(hi, std::floor(e1) + 1.0);
+    lo = std::max(lo, fast_ceil(e0));
+    hi = std::min(hi, fast_floor(e1) + 1.0);
   }
   if (lo >= hi) return;
   const int n0 = static_cast<int>(lo), n1 = static_cast<int>(hi);
@@ -243,36 +259,47 @@ void RotationFrame::sample_line(const PreparedTool& tool, const int32_t s0[3], i
   const uint8_t* padded = tool.padded();
   const uint16_t* cells = tool.cells();
   const bool nearest = sampling_ == Sampling::kNearest;
-  for (int n = n0; n < n1;) {
+  if (nearest) {
+    for (int n = n0; n < n1; ++n) {
+      out[n] = padded[cell_index(s, pd)];
+      s[0] += st[0];
+      s[1] += st[1];
+      s[2] += st[2];
+    }
+    return;
+  }
+  for (int n = n0; n < n1; ++n) {
     const size_t i = cell_index(s, pd);
     const uint16_t c = cells[i];
-    if (c != 0) {
-      // A run of equal cells: the next (c >> 8) samples share its value.
-      const int k = std::min(n1 - n, c >> 8);
-      const uint8_t v = static_cast<uint8_t>(c);
-      if (v != 0) std::memset(out + n, v, static_cast<size_t>(k));
-      n += k;
-      s[0] += k * st[0];
-      s[1] += k * st[1];
-      s[2] += k * st[2];
-      continue;
-    }
-    out[n] = nearest ? padded[i] : trilinear_at(padded, i, s, px, pxy);
-    ++n;
+    out[n] = c != 0 ? static_cast<uint8_t>(c) : trilinear_at(padded, i, s, px, pxy);
     s[0] += st[0];
     s[1] += st[1];
     s[2] += st[2];
   }
 }
 
+bool RotationFrame::reach_span(int y, int z, int& x0, int& x1) const {
+  const double dy = y - centre_[1], dz = z - centre_[2];
+  const double h2 = reach2_ - dy * dy - dz * dz;
+  if (h2 < 0.0) return false;
+  const double h = std::sqrt(h2);
+  x0 = std::max(x0, static_cast<int>(fast_ceil(centre_[0] - h)));
+  x1 = std::min(x1, static_cast<int>(fast_floor(centre_[0] + h)) + 1);
+  return x0 < x1;
+}
+
 void RotationFrame::sample_row(const PreparedTool& tool, int y, int z, int x0, int x1,
                                uint8_t* out) const {
   assert(x0 <= x1);
-  const glm::ivec3 n(x0 - box_.lo.x, y - box_.lo.y, z - box_.lo.z);
+  const int first = x0;
+  const glm::ivec3 n(0, y - box_.lo.y, z - box_.lo.z);
+  x0 -= box_.lo.x;
+  x1 -= box_.lo.x;
+  if (!reach_span(n.y, n.z, x0, x1)) return;
   int32_t s[3];
   for (int i = 0; i < 3; ++i)
-    s[i] = origin_[i] + n.x * step_[0][i] + n.y * step_[1][i] + n.z * step_[2][i];
-  sample_line(tool, s, x1 - x0, out);
+    s[i] = origin_[i] + x0 * step_[0][i] + n.y * step_[1][i] + n.z * step_[2][i];
+  sample_line(tool, s, x1 - x0, out + (x0 + box_.lo.x - first));
 }
 
 void RotationFrame::sample_box(const PreparedTool& tool, uint8_t* out) const {
@@ -281,7 +308,12 @@ void RotationFrame::sample_box(const PreparedTool& tool, uint8_t* out) const {
   for (int z = 0; z < size.z; ++z) {
     int32_t row[3] = {plane[0], plane[1], plane[2]};
     for (int y = 0; y < size.y; ++y) {
-      sample_line(tool, row, size.x, out);
+      int x0 = 0, x1 = size.x;
+      if (reach_span(y, z, x0, x1)) {
+        const int32_t s[3] = {row[0] + x0 * step_[0][0], row[1] + x0 * step_[0][1],
+                              row[2] + x0 * step_[0][2]};
+        sample_line(tool, s, x1 - x0, out + x0);
+      }
       out += size.x;
       for (int i = 0; i < 3; ++i)
         row[i] += step_[1][i];

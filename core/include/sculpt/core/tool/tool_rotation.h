@@ -100,6 +100,9 @@ class RotationFrame {
 
  private:
   void sample_line(const PreparedTool& tool, const int32_t s0[3], int len, uint8_t* out) const;
+  // Narrows [x0, x1) (box-relative) to row (y, z)'s stretch within reach;
+  // false when empty.
+  bool reach_span(int y, int z, int& x0, int& x1) const;
 
   Box box_;
   Sampling sampling_;
@@ -109,6 +112,10 @@ class RotationFrame {
   int32_t step_[3][3];     // step_[a] = M e_a
   int32_t support_hi_[3];  // samples can be non-zero when 1 <= s >> 16 < support_hi_
   double inv_step_x_[3];
+  // The ball outside which every sample is 0: the pivot's position
+  // relative to box_.lo (voxel units) and PreparedTool::reach_vox() squared.
+  double centre_[3];
+  double reach2_;
 };
 
 /// A rotated tool: density[0] sits at target voxel `origin`.
