@@ -2,6 +2,8 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -189,6 +191,21 @@ core::Result<NormalizerConfig> load_normalizer_config(const std::string& path) {
   ss << in.rdbuf();
   if (in.bad()) return core::Error(path + ": read failed");
   return parse_normalizer_config(ss.str(), path);
+}
+
+std::string default_normalizer_config_path() {
+  if (const char* p = std::getenv("SCULPT_INPUT_CONFIG"); p && *p) return p;
+  if (const char* x = std::getenv("XDG_CONFIG_HOME"); x && *x)
+    return std::string(x) + "/sculpt/input.conf";
+  if (const char* h = std::getenv("HOME"); h && *h)
+    return std::string(h) + "/.config/sculpt/input.conf";
+  return "input.conf";
+}
+
+core::Result<NormalizerConfig> load_normalizer_config_or_defaults(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return NormalizerConfig{};
+  return load_normalizer_config(path);
 }
 
 std::string to_text(const NormalizerConfig& c) {

@@ -109,6 +109,20 @@ TEST(DeviceRegistry, IgnoredIdsAreNeverOpened) {
   EXPECT_TRUE(rig.registry->scan().opened.empty());
 }
 
+TEST(DeviceRegistry, SpacenavdOwnsItsDeviceOverRawTransports) {
+  auto spnav = std::make_unique<FeedBackend>("spnav");
+  auto hid = std::make_unique<FeedBackend>("fake-hid");
+  spnav->attach(navigator("spnav", ""));  // the daemon names no USB location
+  hid->attach(navigator("hidraw0", "1-2"));
+  std::vector<std::unique_ptr<Backend>> backends;
+  backends.push_back(std::move(spnav));
+  backends.push_back(std::move(hid));
+  DeviceRegistry registry(std::move(backends), direct());
+  const ScanReport s = registry.scan();
+  ASSERT_EQ(s.opened.size(), 1u);
+  EXPECT_EQ(registry.reader(s.opened[0])->info().backend, "spnav");
+}
+
 TEST(DeviceRegistry, StrokeSurvivesUnplugAndReplug) {
   Rig rig = make_rig();
   auto feed = rig.hid->attach(navigator("hidraw0", "1-2"));

@@ -79,3 +79,29 @@ TEST(NormalizerConfig, MissingFileIsNamed) {
 
 }  // namespace
 }  // namespace sculpt::hal
+
+namespace sculpt::hal {
+namespace {
+
+TEST(NormalizerConfig, ShippedExampleFileParsesToTheDefaults) {
+  const auto c =
+      load_normalizer_config(std::string(SCULPT_TEST_DATA_DIR) + "/../../hal/config/input.conf");
+  ASSERT_TRUE(c.ok()) << c.error().message();
+  const NormalizerConfig d;
+  EXPECT_EQ(c->deadzone, d.deadzone);
+  EXPECT_EQ(c->sensitivity, d.sensitivity);
+  EXPECT_EQ(c->curve, d.curve);
+  EXPECT_FLOAT_EQ(c->curve_param, d.curve_param);
+  EXPECT_EQ(c->map_source, d.map_source);
+  EXPECT_EQ(c->filter, d.filter);
+  EXPECT_FLOAT_EQ(c->filter_params.beta, d.filter_params.beta);
+}
+
+TEST(NormalizerConfig, MissingUserFileMeansDefaults) {
+  const auto c = load_normalizer_config_or_defaults("/nonexistent/sculpt/input.conf");
+  ASSERT_TRUE(c.ok());
+  EXPECT_EQ(c->deadzone, NormalizerConfig{}.deadzone);
+}
+
+}  // namespace
+}  // namespace sculpt::hal

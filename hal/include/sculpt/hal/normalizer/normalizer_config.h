@@ -50,6 +50,14 @@ core::Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
 /// Reads and parses a config file.
 core::Result<NormalizerConfig> load_normalizer_config(const std::string& path);
 
+/// Where the station looks for the user's file: $SCULPT_INPUT_CONFIG if set,
+/// else $XDG_CONFIG_HOME/sculpt/input.conf, else ~/.config/sculpt/input.conf.
+std::string default_normalizer_config_path();
+
+/// Loads `path` when it exists; a missing file gives the defaults (nothing to
+/// tune yet), a broken one an Error naming file and line.
+core::Result<NormalizerConfig> load_normalizer_config_or_defaults(const std::string& path);
+
 /// The text form of a config (parse_normalizer_config reads it back equal).
 std::string to_text(const NormalizerConfig& config);
 
