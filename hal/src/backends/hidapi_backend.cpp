@@ -7,6 +7,8 @@
 
 #include "sculpt/hal/backends/hidapi_backend.h"
 
+#include "backends/not_built_backend.h"
+
 #if SCULPT_HAL_HAVE_HIDAPI
 #include <hidapi/hidapi.h>
 #include <unistd.h>
@@ -120,29 +122,16 @@ class HidapiBackend final : public Backend {
   bool init_ok_ = false;
 };
 
-#else
-
-class HidapiBackend final : public Backend {
- public:
-  std::string_view name() const override { return "hidapi"; }
-  BackendStatus status() override {
-    return {BackendState::kNotBuilt,
-            "not built (configure with -DSCULPT_WITH_HIDAPI=ON and libhidapi-dev)"};
-  }
-  core::Result<std::vector<DeviceInfo>> enumerate() override {
-    return core::Error("hidapi: backend not built");
-  }
-  core::Result<std::unique_ptr<Device>> open(const DeviceInfo& info) override {
-    return core::Error(info.id() + ": hidapi backend not built");
-  }
-};
-
 #endif
 
 }  // namespace
 
 std::unique_ptr<Backend> make_hidapi_backend() {
+#if SCULPT_HAL_HAVE_HIDAPI
   return std::make_unique<HidapiBackend>();
+#else
+  return detail::make_not_built_backend("hidapi", "SCULPT_WITH_HIDAPI", "libhidapi-dev");
+#endif
 }
 
 }  // namespace sculpt::hal

@@ -9,6 +9,8 @@
 
 #include "sculpt/hal/backends/libusb_backend.h"
 
+#include "backends/not_built_backend.h"
+
 #if SCULPT_HAL_HAVE_LIBUSB
 #include <libusb.h>
 
@@ -277,29 +279,16 @@ class LibusbBackend final : public Backend {
   std::atomic<bool> changed_{true};
 };
 
-#else
-
-class LibusbBackend final : public Backend {
- public:
-  std::string_view name() const override { return "libusb"; }
-  BackendStatus status() override {
-    return {BackendState::kNotBuilt,
-            "not built (configure with -DSCULPT_WITH_LIBUSB=ON and libusb-1.0-0-dev)"};
-  }
-  core::Result<std::vector<DeviceInfo>> enumerate() override {
-    return core::Error("libusb: backend not built");
-  }
-  core::Result<std::unique_ptr<Device>> open(const DeviceInfo& info) override {
-    return core::Error(info.id() + ": libusb backend not built");
-  }
-};
-
 #endif
 
 }  // namespace
 
 std::unique_ptr<Backend> make_libusb_backend() {
+#if SCULPT_HAL_HAVE_LIBUSB
   return std::make_unique<LibusbBackend>();
+#else
+  return detail::make_not_built_backend("libusb", "SCULPT_WITH_LIBUSB", "libusb-1.0-0-dev");
+#endif
 }
 
 }  // namespace sculpt::hal

@@ -7,6 +7,8 @@
 
 #include "sculpt/hal/backends/spnav_backend.h"
 
+#include "backends/not_built_backend.h"
+
 #if SCULPT_HAL_HAVE_SPNAV
 #include <poll.h>
 #include <spnav.h>
@@ -161,29 +163,16 @@ class SpnavBackend final : public Backend {
   DeviceInfo cached_;
 };
 
-#else
-
-class SpnavBackend final : public Backend {
- public:
-  std::string_view name() const override { return "spnav"; }
-  BackendStatus status() override {
-    return {BackendState::kNotBuilt,
-            "not built (configure with -DSCULPT_WITH_SPNAV=ON and libspnav-dev)"};
-  }
-  core::Result<std::vector<DeviceInfo>> enumerate() override {
-    return core::Error("spnav: backend not built");
-  }
-  core::Result<std::unique_ptr<Device>> open(const DeviceInfo& info) override {
-    return core::Error(info.id() + ": spnav backend not built");
-  }
-};
-
 #endif
 
 }  // namespace
 
 std::unique_ptr<Backend> make_spnav_backend() {
+#if SCULPT_HAL_HAVE_SPNAV
   return std::make_unique<SpnavBackend>();
+#else
+  return detail::make_not_built_backend("spnav", "SCULPT_WITH_SPNAV", "libspnav-dev");
+#endif
 }
 
 }  // namespace sculpt::hal
