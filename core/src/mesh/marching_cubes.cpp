@@ -5,6 +5,7 @@
 #include <bit>
 #include <cassert>
 #include <cmath>
+#include <type_traits>
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
@@ -226,15 +227,18 @@ struct Scratch {
 
 }  // namespace
 
-void march_block(const MarchBlock& block, BrickMesh& out) {
+// Marches n cells per axis whose samples g ((n + 3)^3, one below and two
+// above the cells' corners) are uint8 densities or float values; cell (0,0,0)
+// has its lower corner at level point `origin`. seam_key(p, axis) gives the
+// welding key of the edge from local point p, or kNotSeam.
+template <class T, class SeamKey>
+void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float iso,
+                 const SeamKey& seam_key, BrickMesh& out) {
   out.clear();
   const Tables& tab = tables();
-  const glm::ivec3 n = block.cells;
   if (n.x <= 0 || n.y <= 0 || n.z <= 0) return;
   const glm::ivec3 dims = n + 3;
   const int64_t sx = dims.x, sxy = int64_t{dims.x} * dims.y;
-  const uint8_t* g = block.voxels;
-  const float iso = block.iso;
 
   thread_local Scratch s;
   const size_t total = static_cast<size_t>(sxy) * dims.z;
@@ -266,6 +270,13 @@ void march_block(const MarchBlock& block, BrickMesh& out) {
   // inside, so rows of cells far from the surface are skipped whole.
   // Densities are integers: v > iso is v >= floor(iso) + 1, a byte compare.
   const int threshold = static_cast<int>(std::floor(iso)) + 1;
+  auto inside_of = [&](T v) -> uint8_t {
+    if constexpr (std::is_same_v<T, uint8_t>) {
+      return v >= threshold;
+    } else {
+      return v > iso;
+    }
+  };
   int any_total = 0, all_total = 0;
   for (int z = 0; z <= n.z; ++z)
     for (int y = 0; y <= n.y; ++y) {
@@ -273,7 +284,7 @@ void march_block(const MarchBlock& block, BrickMesh& out) {
       int count = 0;
       uint8_t* in = s.inside.data() + i0;
       for (int x = 0; x <= n.x; ++x) {
-        in[x] = g[i0 + x] >= threshold;
+        in[x] = inside_of(g[i0 + x]);
         count += in[x];
       }
       const size_t r = static_cast<size_t>(z) * (n.y + 1) + y;
@@ -284,11 +295,8 @@ void march_block(const MarchBlock& block, BrickMesh& out) {
     }
   if (any_total == 0 || all_total == static_cast<int>(rows)) return;
 
-  const float scale = static_cast<float>(1 << block.level);
-  const float shift = (scale - 1.0f) * 0.5f;
+  const float scale = static_cast<float>(1 << level);
   const int64_t step[3] = {1, sx, sxy};
-  const glm::ivec3 ld = block.level_dims;
-  const uint64_t kx = static_cast<uint64_t>(ld.x) + 2, ky = static_cast<uint64_t>(ld.y) + 2;
 
   auto gradient = [&](int64_t i) {
     return glm::vec3(float(g[i + 1]) - float(g[i - 1]), float(g[i + sx]) - float(g[i - sx]),
@@ -299,7 +307,7 @@ void march_block(const MarchBlock& block, BrickMesh& out) {
     const int64_t i1 = i0 + step[axis];
     const float v0 = g[i0], v1 = g[i1];
     const float t = (iso - v0) / (v1 - v0);
-    glm::vec3 pos = glm::vec3(block.origin + p);
+    glm::vec3 pos = glm::vec3(origin + p);
     pos[axis] += t;
     glm::vec3 grad = gradient(i0) * (1.0f - t) + gradient(i1) * t;
     const float len = glm::length(grad);
@@ -310,20 +318,9 @@ void march_block(const MarchBlock& block, BrickMesh& out) {
       normal[axis] = v1 > v0 ? -1.0f : 1.0f;  // flat gradient: face down the edge
     }
     const auto index = static_cast<uint32_t>(out.mesh.positions.size());
-    out.mesh.positions.push_back(pos * scale + shift);
+    out.mesh.positions.push_back(pos * scale);
     out.mesh.normals.push_back(normal);
-    bool seam = false;
-    for (int b = 0; b < 3; ++b)
-      if (b != axis && (p[b] == 0 || p[b] == n[b])) seam = true;
-    if (seam) {
-      const glm::ivec3 q = block.origin + p + 1;
-      out.seam_keys.push_back(((static_cast<uint64_t>(q.z) * ky + static_cast<uint64_t>(q.y)) * kx +
-                               static_cast<uint64_t>(q.x)) *
-                                  3 +
-                              static_cast<uint64_t>(axis));
-    } else {
-      out.seam_keys.push_back(BrickMesh::kNotSeam);
-    }
+    out.seam_keys.push_back(seam_key(p, axis));
     return index;
   };
 
@@ -436,6 +433,26 @@ void march_block(const MarchBlock& block, BrickMesh& out) {
       }
     }
   }
+}
+
+void march_block(const MarchBlock& block, BrickMesh& out) {
+  const glm::ivec3 n = block.cells;
+  const glm::ivec3 ld = block.level_dims;
+  const uint64_t kx = static_cast<uint64_t>(ld.x) + 2, ky = static_cast<uint64_t>(ld.y) + 2;
+  // An edge on the block's boundary is shared with another brick's cells;
+  // its key names it in the whole level.
+  auto key = [&](glm::ivec3 p, int axis) -> uint64_t {
+    bool seam = false;
+    for (int b = 0; b < 3; ++b)
+      if (b != axis && (p[b] == 0 || p[b] == n[b])) seam = true;
+    if (!seam) return BrickMesh::kNotSeam;
+    const glm::ivec3 q = block.origin + p + 1;
+    return ((static_cast<uint64_t>(q.z) * ky + static_cast<uint64_t>(q.y)) * kx +
+            static_cast<uint64_t>(q.x)) *
+               3 +
+           static_cast<uint64_t>(axis);
+  };
+  march_cells(block.voxels, n, block.origin, block.level, block.iso, key, out);
 }
 
 Mesh weld_brick_meshes(const std::vector<const BrickMesh*>& bricks) {

@@ -169,13 +169,15 @@ TEST(MarchingCubes, CoarseLevelMatchesTheShapeInVoxelUnits) {
     // 0.3% at level 1 (measured 0.24%), four times more per level.
     const double tolerance = 0.003 * std::pow(4.0, level - 1);
     EXPECT_NEAR(enclosed_volume(mesh), exact, tolerance * exact) << "level " << level;
-    // Level-k vertices are placed at their voxels' centres: the mesh stays
-    // centred on the sphere (a plain 2^k scale would shift it by (2^k-1)/2).
+    // Level-k voxel i is placed at i 2^k: the mesh is the sphere shifted by
+    // (2^k - 1) / 2 voxels toward the origin on each axis.
     glm::dvec3 mean(0.0);
     for (const glm::vec3& p : mesh.positions)
       mean += glm::dvec3(p);
     mean /= static_cast<double>(mesh.positions.size());
-    EXPECT_NEAR(glm::length(mean - glm::dvec3((n - 1) / 2.0)), 0.0, 0.05) << "level " << level;
+    const double shift = ((1 << level) - 1) / 2.0;
+    EXPECT_NEAR(glm::length(mean - glm::dvec3((n - 1) / 2.0 - shift)), 0.0, 0.05)
+        << "level " << level;
     EXPECT_LT(mesh.triangles.size(), marching_cubes(v, level - 1).triangles.size() / 3);
   }
 }

@@ -10,9 +10,11 @@
 // asymptotic decider (Nielson & Hamann 1991), which both cells sharing a face
 // evaluate identically, so the surface has no holes.
 //
-// Level k: the level-k voxel i averages level-0 voxels [i 2^k, (i+1) 2^k), so
-// its centre, where its vertices are placed, is i 2^k + (2^k - 1) / 2 in
-// level-0 voxel units.
+// Level k: level-k voxel i (the mean of level-0 voxels [i 2^k, (i+1) 2^k))
+// is placed at i 2^k in level-0 voxel units, so the grid planes of every
+// level meet at the brick faces (what joins bricks of different levels, see
+// mixed_level_mesh.h). The price: a level-k surface sits (2^k - 1) / 2 voxels
+// toward -x, -y, -z from the level-0 one.
 
 #include <cstdint>
 #include <vector>
