@@ -104,7 +104,8 @@ TEST_F(WaveletCommandTest, RunWritesTheMainJobsResults) {
   ASSERT_TRUE(volume.ok());
   // The carving removed material from the sphere.
   int64_t before = 0, after = 0;
-  for (uint8_t v : sculpt::core::sphere_density(64).values())
+  const sculpt::core::DenseGrid<uint8_t> sphere = sculpt::core::sphere_density(64);
+  for (uint8_t v : sphere.values())
     before += v;
   for (uint8_t v : volume->values())
     after += v;
