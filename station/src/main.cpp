@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
   cli::add_bench_command(app, action);
   cli::add_devices_command(app, action);
   cli::add_mesh_command(app, action);
+  cli::add_rotate_command(app, action);
+  cli::add_stamp_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
