@@ -1,5 +1,7 @@
 #include "sculpt/hal/device/device_registry.h"
 
+#include <cctype>
+
 #include "sculpt/hal/backends/hidapi_backend.h"
 #include "sculpt/hal/backends/libusb_backend.h"
 #include "sculpt/hal/backends/spnav_backend.h"
@@ -76,28 +78,87 @@ ScanReport DeviceRegistry::scan() {
                                 "): no permission; install the udev rules (see README: Devices)");
         continue;
       }
-      auto device = backend->open(info);
-      if (!device) {
-        report.errors.push_back(device.error().message());
+      auto id = start_reader(*backend, info);
+      if (!id) {
+        report.errors.push_back(id.error().message());
         continue;
       }
-      auto parser = make_parser((*device)->info());
-      if (!parser) {
-        report.errors.push_back(parser.error().message());
-        continue;
-      }
-      const uint32_t id = next_id_++;
-      auto reader = std::make_unique<DeviceReader>(
-          id, std::move(device).value(), MotionPipeline(std::move(parser).value(), config_),
-          options_);
-      reader->start();
-      open_keys_[key] = id;
-      if (name == "spnav") open_keys_[spnav_claim(info)] = id;
-      readers_[id] = std::move(reader);
-      report.opened.push_back(id);
+      report.opened.push_back(*id);
     }
   }
   return report;
+}
+
+core::Result<uint32_t> DeviceRegistry::start_reader(Backend& backend, const DeviceInfo& info) {
+  auto device = backend.open(info);
+  if (!device) return device.error();
+  auto parser = make_parser((*device)->info());
+  if (!parser) return parser.error();
+  const uint32_t id = next_id_++;
+  auto reader = std::make_unique<DeviceReader>(
+      id, std::move(device).value(), MotionPipeline(std::move(parser).value(), config_), options_);
+  reader->start();
+  open_keys_[info.physical_key()] = id;
+  if (backend.name() == "spnav") open_keys_[spnav_claim(info)] = id;
+  readers_[id] = std::move(reader);
+  return id;
+}
+
+void DeviceRegistry::add_backend(std::unique_ptr<Backend> backend, bool first) {
+  backends_.insert(first ? backends_.begin() : backends_.end(), std::move(backend));
+}
+
+core::Result<uint32_t> DeviceRegistry::open_device(const std::string& id) {
+  const size_t colon = id.find(':');
+  const std::string head = id.substr(0, colon);
+  const bool vendor_product = id.size() == 9 && colon == 4 &&
+                              id.find_first_not_of("0123456789abcdefABCDEF:") == std::string::npos;
+  std::string lower = id;
+  for (char& ch : lower)
+    ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  bool backend_named = false;
+  std::vector<std::string> why;
+  for (auto& backend : backends_) {
+    const std::string name(backend->name());
+    if (!vendor_product && name != head) continue;
+    backend_named = true;
+    const BackendStatus st = backend->status();
+    if (st.state != BackendState::kReady) {
+      why.push_back(name + ": " + st.note);
+      continue;
+    }
+    auto devices = backend->enumerate();
+    if (!devices) {
+      why.push_back(devices.error().message());
+      continue;
+    }
+    for (const DeviceInfo& info : *devices) {
+      const bool match = vendor_product ? info.vendor_product() == lower
+                                        : colon == std::string::npos || info.id() == id;
+      if (!match) continue;
+      const auto open = open_keys_.find(info.physical_key());
+      if (open != open_keys_.end()) return open->second;
+      if (!info.accessible) {
+        return core::Error("--device " + id +
+                           ": no permission; install the udev rules (see README: Devices)");
+      }
+      auto started = start_reader(*backend, info);
+      if (!started) return started.error().in("--device " + id);
+      return started;
+    }
+    why.push_back(name + " sees no such device");
+  }
+  if (!backend_named) {
+    std::string known;
+    for (auto& backend : backends_)
+      known += (known.empty() ? "" : ", ") + std::string(backend->name());
+    return core::Error("--device " + id + ": unknown backend '" + head + "' (have " + known +
+                       ", or give vvvv:pppp)");
+  }
+  std::string joined;
+  for (const std::string& w : why)
+    joined += (joined.empty() ? "" : "; ") + w;
+  return core::Error("--device " + id + ": not found (" + joined + ")");
 }
 
 void DeviceRegistry::poll(InputFrame& frame, int64_t now_ns) {

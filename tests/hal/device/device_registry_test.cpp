@@ -228,3 +228,37 @@ TEST(DeviceReader, CountsDroppedMotionButNeverDropsButtonsOrDisconnect) {
 
 }  // namespace
 }  // namespace sculpt::hal
+
+namespace sculpt::hal {
+namespace {
+
+TEST(DeviceRegistry, OpenDeviceByIdBackendOrVendorProduct) {
+  Rig rig = make_rig();
+  rig.hid->attach(navigator("hidraw0", "1-2"));
+  DeviceInfo compact = navigator("1-3:0", "1-3");
+  compact.product_id = 0xc635;
+  compact.vendor_id = 0x256f;
+  rig.usb->attach(compact);
+
+  auto by_vp = rig.registry->open_device("256F:C635");
+  ASSERT_TRUE(by_vp.ok()) << by_vp.error().message();
+  EXPECT_EQ(rig.registry->reader(*by_vp)->info().path, "1-3:0");
+  auto by_id = rig.registry->open_device("fake-usb:1-3:0");
+  ASSERT_TRUE(by_id.ok());
+  EXPECT_EQ(*by_id, *by_vp) << "an open device is not opened twice";
+  auto by_backend = rig.registry->open_device("fake-hid");
+  ASSERT_TRUE(by_backend.ok());
+  EXPECT_EQ(rig.registry->open_count(), 2u);
+
+  const auto unknown = rig.registry->open_device("bluetooth:1");
+  ASSERT_FALSE(unknown.ok());
+  EXPECT_EQ(unknown.error().message(),
+            "--device bluetooth:1: unknown backend 'bluetooth' (have fake-hid, fake-usb, or give "
+            "vvvv:pppp)");
+  const auto missing = rig.registry->open_device("fake-hid:hidraw9");
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.error().message().find("not found"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sculpt::hal

@@ -42,6 +42,17 @@ class DeviceRegistry {
   /// The hardware backends in their default priority: spnav, hidapi, libusb.
   static std::vector<std::unique_ptr<Backend>> default_backends();
 
+  /// Adds a backend (the sim replay backend, say) at the end of the priority
+  /// order, or at the front.
+  void add_backend(std::unique_ptr<Backend> backend, bool first = false);
+
+  /// Opens one device chosen by the user (`--device ID`): "backend:path" as
+  /// `sculpt devices` prints it, "backend" for that backend's first device,
+  /// or "vvvv:pppp" for the first device with that vendor:product. Errors
+  /// name the id and what was looked for. A device already open is not
+  /// opened twice: its id is returned.
+  core::Result<uint32_t> open_device(const std::string& id);
+
   /// Lists every backend's view (no device is opened).
   std::vector<BackendListing> list();
 
@@ -56,6 +67,8 @@ class DeviceRegistry {
   const DeviceReader* reader(uint32_t device_id) const;
 
  private:
+  core::Result<uint32_t> start_reader(Backend& backend, const DeviceInfo& info);
+
   std::vector<std::unique_ptr<Backend>> backends_;
   NormalizerConfig config_;
   ReaderOptions options_;
