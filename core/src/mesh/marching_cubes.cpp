@@ -5,6 +5,8 @@
 #include <bit>
 #include <cassert>
 #include <cmath>
+#include <map>
+#include <numbers>
 #include <type_traits>
 #include <unordered_map>
 
@@ -12,6 +14,7 @@
 #include <glm/vec2.hpp>
 
 #include "sculpt/core/mesh/mesh_cache.h"
+#include "sculpt/core/mesh/mixed_level_mesh.h"
 
 namespace sculpt::core {
 namespace {
@@ -492,6 +495,279 @@ Mesh marching_cubes(const Volume& volume, int level, const MarchingCubesOptions&
   MeshCache cache(level, options);
   cache.update(volume);
   return cache.welded_mesh();
+}
+
+namespace {
+
+// Samples of every level, decoded brick by brick on first use.
+class LevelSamples {
+ public:
+  LevelSamples(const Volume& volume, std::span<const int> levels) : v_(volume), levels_(levels) {}
+
+  int brick_level(glm::ivec3 b) const {
+    const glm::ivec3 g = v_.brick_grid();
+    return levels_[(static_cast<size_t>(b.z) * g.y + b.y) * g.x + b.x];
+  }
+
+  // Level-k voxel P (level coordinates); 0 outside the volume.
+  float raw(int k, glm::ivec3 p) {
+    const glm::ivec3 d = v_.level_dims(k);
+    if (glm::any(glm::lessThan(p, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(p, d)))
+      return 0.0f;
+    const int m = v_.brick_edge() >> k;
+    const glm::ivec3 b = p / m;
+    const glm::ivec3 g = v_.brick_grid();
+    const uint64_t key = ((static_cast<uint64_t>(b.z) * g.y + b.y) * g.x + b.x) * 8 + k;
+    auto it = cache_.find(key);
+    if (it == cache_.end()) {
+      std::vector<uint8_t> voxels(static_cast<size_t>(m) * m * m);
+      v_.decode_brick(b, voxels, k);
+      it = cache_.emplace(key, std::move(voxels)).first;
+    }
+    const glm::ivec3 l = p - b * m;
+    return it->second[(static_cast<size_t>(l.z) * m + l.y) * m + l.x];
+  }
+
+  // The sample every brick sharing level-k point P agrees on: from the
+  // coarsest level among them, interpolated where P is not on its grid.
+  float shared(int k, glm::ivec3 p) {
+    const glm::ivec3 d = v_.level_dims(k);
+    if (glm::any(glm::lessThan(p, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(p, d)))
+      return 0.0f;
+    const int s = 1 << k;
+    const glm::ivec3 x = p * s;  // level-0 position
+    const int lambda = coarsest_level_at(x * 2);
+    if (lambda <= k) return raw(k, p);
+    const int big = 1 << lambda;
+    glm::ivec3 i0;
+    glm::vec3 w;
+    for (int a = 0; a < 3; ++a) {
+      i0[a] = x[a] / big;
+      w[a] = static_cast<float>(x[a] - i0[a] * big) / static_cast<float>(big);
+    }
+    float value = 0.0f;
+    for (int c = 0; c < 8; ++c) {
+      const glm::ivec3 o = corner_offset(c);
+      float weight = 1.0f;
+      for (int a = 0; a < 3; ++a)
+        weight *= o[a] ? w[a] : 1.0f - w[a];
+      if (weight == 0.0f) continue;
+      value += weight * shared(lambda, i0 + o);
+    }
+    return value;
+  }
+
+  // Coarsest level among the bricks whose closed box holds the level-0
+  // point x2 / 2 (doubled so edge midpoints are integers).
+  int coarsest_level_at(glm::ivec3 x2) const {
+    const int e2 = 2 * v_.brick_edge();
+    const glm::ivec3 g = v_.brick_grid();
+    glm::ivec3 lo, hi;
+    for (int a = 0; a < 3; ++a) {
+      const int b = x2[a] / e2;
+      lo[a] = (x2[a] % e2 == 0) ? b - 1 : b;
+      hi[a] = b;
+      lo[a] = std::clamp(lo[a], 0, g[a] - 1);
+      hi[a] = std::clamp(hi[a], 0, g[a] - 1);
+    }
+    int lambda = 0;
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x)
+          lambda = std::max(lambda, brick_level({x, y, z}));
+    return lambda;
+  }
+
+  const Volume& volume() const { return v_; }
+
+ private:
+  const Volume& v_;
+  std::span<const int> levels_;
+  std::unordered_map<uint64_t, std::vector<uint8_t>> cache_;
+};
+
+uint64_t pack_edge(int level, glm::ivec3 lower, int axis) {
+  // 19 bits per coordinate (level-0 coordinates up to 2^16, plus margin).
+  return (static_cast<uint64_t>(level) << 59) | (static_cast<uint64_t>(axis) << 57) |
+         (static_cast<uint64_t>(lower.z + 1) << 38) | (static_cast<uint64_t>(lower.y + 1) << 19) |
+         static_cast<uint64_t>(lower.x + 1);
+}
+
+}  // namespace
+
+Mesh mixed_level_mesh(const Volume& volume, std::span<const int> brick_levels,
+                      const MarchingCubesOptions& options, MixedLevelStats* stats) {
+  assert(static_cast<int64_t>(brick_levels.size()) == volume.brick_count());
+  LevelSamples samples(volume, brick_levels);
+  const glm::ivec3 grid = volume.brick_grid();
+  const int e = volume.brick_edge();
+  std::vector<BrickMesh> meshes(brick_levels.size());
+  std::vector<float> block;
+  for (int bz = 0; bz < grid.z; ++bz)
+    for (int by = 0; by < grid.y; ++by)
+      for (int bx = 0; bx < grid.x; ++bx) {
+        const glm::ivec3 b(bx, by, bz);
+        const int k = samples.brick_level(b);
+        assert(k >= 0 && k <= volume.levels());
+        const int m = e >> k, s = 1 << k;
+        const glm::ivec3 origin = b * m;
+        const int side = m + 3;
+        block.assign(static_cast<size_t>(side) * side * side, 0.0f);
+        bool any_in = false, any_out = false;
+        size_t i = 0;
+        for (int z = -1; z <= m + 1; ++z)
+          for (int y = -1; y <= m + 1; ++y)
+            for (int x = -1; x <= m + 1; ++x, ++i) {
+              const glm::ivec3 p(x, y, z);
+              const bool on_grid = glm::all(glm::greaterThanEqual(p, glm::ivec3(0))) &&
+                                   glm::all(glm::lessThanEqual(p, glm::ivec3(m)));
+              const bool boundary =
+                  on_grid && (x == 0 || y == 0 || z == 0 || x == m || y == m || z == m);
+              const float v = boundary ? samples.shared(k, origin + p) : samples.raw(k, origin + p);
+              block[i] = v;
+              if (on_grid) {
+                any_in = any_in || v > options.iso;
+                any_out = any_out || !(v > options.iso);
+              }
+            }
+        if (!any_in || !any_out) continue;
+        const size_t index = (static_cast<size_t>(bz) * grid.y + by) * grid.x + bx;
+        auto key = [&](glm::ivec3 p, int axis) -> uint64_t {
+          bool seam = false;
+          for (int a = 0; a < 3; ++a)
+            if (a != axis && (p[a] == 0 || p[a] == m)) seam = true;
+          if (!seam) return BrickMesh::kNotSeam;
+          const glm::ivec3 x = (origin + p) * s;
+          glm::ivec3 mid2 = x * 2;
+          mid2[axis] += s;
+          const int lambda = samples.coarsest_level_at(mid2);
+          const int big = 1 << lambda;
+          bool on_line = true;
+          for (int a = 0; a < 3; ++a)
+            if (a != axis && x[a] % big != 0) on_line = false;
+          if (lambda > k && on_line) {
+            glm::ivec3 lower = x / big;
+            return pack_edge(lambda, lower, axis);
+          }
+          return pack_edge(k, x / s, axis);
+        };
+        march_cells(block.data(), glm::ivec3(m), origin, k, options.iso, key, meshes[index]);
+      }
+  std::vector<const BrickMesh*> parts;
+  for (const BrickMesh& bm : meshes)
+    if (!bm.empty()) parts.push_back(&bm);
+  Mesh mesh = weld_brick_meshes(parts);
+
+  // Stitch: chain the edges used by one triangle into loops and fan each
+  // loop, reversed, so every edge ends in exactly two triangles.
+  std::map<std::pair<uint32_t, uint32_t>, int> uses;
+  for (const glm::uvec3& t : mesh.triangles)
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t a = t[c], b = t[(c + 1) % 3];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  // Which brick each triangle came from: a gap is bounded alternately by the
+  // finer and the coarser brick's edges.
+  std::vector<uint32_t> source;
+  source.reserve(mesh.triangles.size());
+  for (size_t i = 0; i < parts.size(); ++i)
+    source.insert(source.end(), parts[i]->mesh.triangles.size(), static_cast<uint32_t>(i));
+  struct Next {
+    uint32_t to, brick;
+  };
+  std::multimap<uint32_t, Next> next;
+  for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const glm::uvec3 t = mesh.triangles[i];
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t a = t[c], b = t[(c + 1) % 3];
+      if (uses[{std::min(a, b), std::max(a, b)}] == 1) next.emplace(a, Next{b, source[i]});
+    }
+  }
+  MixedLevelStats st;
+  auto on_face = [&](uint32_t v) {
+    const glm::vec3 p = mesh.positions[v];
+    for (int a = 0; a < 3; ++a) {
+      const float r = std::fmod(p[a], static_cast<float>(e));
+      if (r == 0.0f) return true;
+    }
+    return false;
+  };
+  // A walk along the boundary edges can pass a shared vertex (on a coarse
+  // grid line) more than once; every return to a vertex already on the walk
+  // closes one simple loop, which is cut off and filled.
+  // Each loop is fanned from a new vertex at its centroid: a fan from one
+  // of its own vertices could repeat a diagonal of another loop through the
+  // same vertices (loops bend round brick edges where levels alternate).
+  auto fill = [&](std::span<const uint32_t> loop) {
+    if (loop.size() < 3) return;
+    ++st.stitch_loops;
+    glm::vec3 centre(0.0f), normal(0.0f);
+    for (uint32_t v : loop) {
+      st.stitch_off_face += !on_face(v);
+      centre += mesh.positions[v];
+      normal += mesh.normals[v];
+    }
+    const auto c = static_cast<uint32_t>(mesh.positions.size());
+    mesh.positions.push_back(centre / static_cast<float>(loop.size()));
+    const float len = glm::length(normal);
+    mesh.normals.push_back(len > 0.0f ? normal / len : mesh.normals[loop[0]]);
+    for (size_t k = 0; k < loop.size(); ++k) {
+      mesh.triangles.emplace_back(c, loop[(k + 1) % loop.size()], loop[k]);
+      ++st.stitch_triangles;
+    }
+  };
+  std::vector<uint32_t> path;
+  std::unordered_map<uint32_t, size_t> on_path;
+  while (!next.empty()) {
+    path.clear();
+    on_path.clear();
+    uint32_t at = next.begin()->first;
+    uint32_t prev = at, from_brick = ~0u;
+    while (true) {
+      if (auto seen = on_path.find(at); seen != on_path.end()) {
+        const size_t from = seen->second;
+        fill(std::span<const uint32_t>(path).subspan(from));
+        for (size_t k = from; k < path.size(); ++k)
+          on_path.erase(path[k]);
+        path.resize(from);
+      }
+      auto found = next.find(at);
+      if (found == next.end()) break;  // an open chain: left open, the checks report it
+      if (prev != at && next.count(at) > 1) {
+        // Prefer the other brick's edges; among several, hug the gap.
+        int others = 0;
+        for (auto [it, end] = next.equal_range(at); it != end; ++it)
+          others += it->second.brick != from_brick;
+        // Several gaps meet here: hug the gap we came along. It lies right of
+        // the incoming edge (seen from outside), so its next edge is the
+        // first one counter-clockwise from the way back.
+        const glm::vec3 p = mesh.positions[at];
+        const glm::vec3 n = mesh.normals[at];
+        auto flat = [&](glm::vec3 d) { return d - n * glm::dot(d, n); };
+        const glm::vec3 r = flat(mesh.positions[prev] - p);
+        const glm::vec3 q = glm::cross(n, r);
+        float best = 10.0f;
+        for (auto [it, end] = next.equal_range(at); it != end; ++it) {
+          if (others > 0 && it->second.brick == from_brick) continue;
+          const glm::vec3 d = flat(mesh.positions[it->second.to] - p);
+          float angle = std::atan2(glm::dot(d, q), glm::dot(d, r));
+          if (angle <= 0.0f) angle += 2.0f * std::numbers::pi_v<float>;
+          if (angle < best) {
+            best = angle;
+            found = it;
+          }
+        }
+      }
+      prev = at;
+      from_brick = found->second.brick;
+      on_path.emplace(at, path.size());
+      path.push_back(at);
+      at = found->second.to;
+      next.erase(found);
+    }
+  }
+  if (stats) *stats = st;
+  return mesh;
 }
 
 }  // namespace sculpt::core
