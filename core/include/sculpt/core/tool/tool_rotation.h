@@ -40,12 +40,10 @@ glm::mat3 euler_xyz_deg(glm::vec3 degrees);
 
 /// A reference tool made ready for fast sampling: a copy padded by two zero
 /// voxels on every side (no bounds tests in the inner loop), and a table
-/// over trilinear cells (a voxel and its +1 neighbours): for a cell whose 8
-/// corners are equal, its value and how many steps along any rotated axis
-/// (each step moves at most one voxel per axis) stay inside equal cells (its
-/// chessboard distance to the nearest other cell). A sculpting tool is
-/// uniform inside and out, so a row mostly jumps from run to run instead of
-/// sampling voxel by voxel. Build once per tool; immutable and thread-safe.
+/// marking the trilinear cells (a voxel and its +1 neighbours) whose 8
+/// corners are equal: a sculpting tool is uniform inside and out, so most
+/// trilinear samples cost one load. Build once per tool; immutable and
+/// thread-safe afterwards.
 class PreparedTool {
  public:
   /// Padding of the sampling grid on every side, in voxels.
@@ -63,7 +61,7 @@ class PreparedTool {
   // The kernels' view (RotationFrame): padded grid and cell table.
   glm::ivec3 padded_dims() const { return padded_dims_; }
   const uint8_t* padded() const { return padded_.data(); }
-  /// Per cell: 0 when its corners differ, else (run << 8) | value, run >= 1.
+  /// Per cell: 0 when its corners differ, else 0x100 | their value.
   const uint16_t* cells() const { return cells_.data(); }
 
  private:
