@@ -30,6 +30,14 @@ namespace {
 
 constexpr uint32_t kAllOffsets = (1u << 27) - 1;
 
+// Starting threads costs tens of microseconds, and far more when the cores
+// are busy: the few bricks of one dab are done faster on the calling thread.
+constexpr int64_t kParallelMinBricks = 16;
+
+int threads_for(int64_t items, int threads) {
+  return items < kParallelMinBricks ? 1 : threads;
+}
+
 }  // namespace
 
 void MeshCache::classify(std::span<const uint8_t> voxels, CachedBrick& cb) const {
@@ -245,7 +253,7 @@ MeshUpdate MeshCache::update(const Volume& volume) {
         if (!volume.brick(b).is_uniform()) decoded.fetch_add(1, std::memory_order_relaxed);
         masks[static_cast<size_t>(k)] = refresh(volume, b, first);
       },
-      options_.threads);
+      threads_for(static_cast<int64_t>(changed.size()), options_.threads));
   stats.bricks_decoded = decoded.load();
 
   std::vector<int64_t> dirty;
@@ -278,7 +286,7 @@ MeshUpdate MeshCache::update(const Volume& volume) {
           marched.fetch_add(1, std::memory_order_relaxed);
         }
       },
-      options_.threads);
+      threads_for(static_cast<int64_t>(dirty.size()), options_.threads));
   stats.bricks_meshed = marched.load();
   return stats;
 }
