@@ -361,22 +361,29 @@ void RotationFrame::sample_row(const PreparedTool& tool, int y, int z, int x0, i
 
 void RotationFrame::sample_box(const PreparedTool& tool, uint8_t* out) const {
   const glm::ivec3 size = box_.size();
-  int32_t plane[3] = {origin_[0], origin_[1], origin_[2]};
   for (int z = 0; z < size.z; ++z) {
-    int32_t row[3] = {plane[0], plane[1], plane[2]};
-    for (int y = 0; y < size.y; ++y) {
+    // Only the rows of this plane that cross the reach ball.
+    const double dz = z - centre_[2];
+    const double h2 = reach2_ - dz * dz;
+    if (h2 < 0.0) continue;
+    const double h = std::sqrt(h2);
+    const int y0 = std::max(0, static_cast<int>(fast_ceil(centre_[1] - h)));
+    const int y1 = std::min(size.y, static_cast<int>(fast_floor(centre_[1] + h)) + 1);
+    int32_t row[3];
+    for (int i = 0; i < 3; ++i)
+      row[i] = origin_[i] + y0 * step_[1][i] + z * step_[2][i];
+    uint8_t* dst = out + (static_cast<size_t>(z) * size.y + y0) * size.x;
+    for (int y = y0; y < y1; ++y) {
       int x0 = 0, x1 = size.x;
       if (reach_span(y, z, x0, x1)) {
         const int32_t s[3] = {row[0] + x0 * step_[0][0], row[1] + x0 * step_[0][1],
                               row[2] + x0 * step_[0][2]};
-        sample_line(tool, s, x1 - x0, out + x0);
+        sample_line(tool, s, x1 - x0, dst + x0);
       }
-      out += size.x;
+      dst += size.x;
       for (int i = 0; i < 3; ++i)
         row[i] += step_[1][i];
     }
-    for (int i = 0; i < 3; ++i)
-      plane[i] += step_[2][i];
   }
 }
 
