@@ -455,7 +455,14 @@ void march_block(const MarchBlock& block, BrickMesh& out) {
                3 +
            static_cast<uint64_t>(axis);
   };
-  march_cells(block.voxels, n, block.origin, block.level, block.iso, key, out);
+  // March into warm per-thread buffers, then copy once: growing fresh
+  // vectors vertex by vertex costs a dozen reallocations and page faults.
+  thread_local BrickMesh scratch;
+  march_cells(block.voxels, n, block.origin, block.level, block.iso, key, scratch);
+  out.mesh.positions.assign(scratch.mesh.positions.begin(), scratch.mesh.positions.end());
+  out.mesh.normals.assign(scratch.mesh.normals.begin(), scratch.mesh.normals.end());
+  out.mesh.triangles.assign(scratch.mesh.triangles.begin(), scratch.mesh.triangles.end());
+  out.seam_keys.assign(scratch.seam_keys.begin(), scratch.seam_keys.end());
 }
 
 Mesh weld_brick_meshes(const std::vector<const BrickMesh*>& bricks) {
