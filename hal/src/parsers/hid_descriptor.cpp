@@ -26,6 +26,8 @@ constexpr uint16_t kGenericDesktop = 0x01;
 constexpr uint16_t kButtonPage = 0x09;
 constexpr uint16_t kUsageX = 0x30;
 constexpr uint16_t kUsageRz = 0x35;
+// 4 KiB: a high-speed HID interrupt packet is at most 1 KiB.
+constexpr uint64_t kMaxReportBits = 4096 * 8;
 
 core::Error at(size_t offset, const std::string& what) {
   return core::Error("report descriptor: byte " + std::to_string(offset) + ": " + what);
@@ -156,35 +158,46 @@ core::Result<HidLayout> parse_hid_descriptor(std::span<const uint8_t> d) {
         const bool constant = (u & 1) != 0;
         const bool variable = (u & 2) != 0;
         const bool relative = (u & 4) != 0;
+        // A report longer than any transport carries is a broken (or hostile)
+        // descriptor; checking here also bounds the loop below.
+        const uint64_t total = uint64_t{bits} + uint64_t{g.report_size} * g.report_count;
+        if (total > kMaxReportBits) {
+          return at(item_at, "report " + std::to_string(g.report_id) + " grows to " +
+                                 std::to_string(total) + " bits, more than " +
+                                 std::to_string(kMaxReportBits));
+        }
+        if (constant || !variable) {
+          // Padding, or an array input (key codes): no axis or button of ours.
+          bits = static_cast<uint32_t>(total);
+          break;
+        }
         for (uint32_t k = 0; k < g.report_count; ++k) {
-          if (!constant && variable) {
-            uint32_t use = 0;
-            if (!usages.empty()) {
-              use = usages[std::min<size_t>(k, usages.size() - 1)];
-            } else if (have_range && usage_min + k <= usage_max) {
-              use = usage_min + k;
-            }
-            HidField f;
-            f.report_id = g.report_id;
-            f.bit_offset = bits;
-            f.bit_size = g.report_size;
-            f.logical_min = g.logical_min;
-            f.logical_max = g.logical_max;
-            // A one-byte 0xFF maximum with a non-negative minimum means 255
-            // (descriptors in the wild rely on it).
-            if (g.logical_min >= 0 && g.logical_max < 0) {
-              f.logical_max =
-                  g.report_size < 32 ? static_cast<int32_t>((1u << g.report_size) - 1) : INT32_MAX;
-            }
-            f.relative = relative;
-            f.usage_page = static_cast<uint16_t>(use >> 16);
-            f.usage = static_cast<uint16_t>(use & 0xFFFF);
-            if (f.usage_page == kGenericDesktop && f.usage >= kUsageX && f.usage <= kUsageRz) {
-              auto& slot = layout.axes[f.usage - kUsageX];
-              if (!slot) slot = f;  // the first field of an axis wins
-            } else if (f.usage_page == kButtonPage && f.usage >= 1) {
-              layout.buttons.push_back(f);
-            }
+          uint32_t use = 0;
+          if (!usages.empty()) {
+            use = usages[std::min<size_t>(k, usages.size() - 1)];
+          } else if (have_range && usage_min + k <= usage_max) {
+            use = usage_min + k;
+          }
+          HidField f;
+          f.report_id = g.report_id;
+          f.bit_offset = bits;
+          f.bit_size = g.report_size;
+          f.logical_min = g.logical_min;
+          f.logical_max = g.logical_max;
+          // A one-byte 0xFF maximum with a non-negative minimum means 255
+          // (descriptors in the wild rely on it).
+          if (g.logical_min >= 0 && g.logical_max < 0) {
+            f.logical_max =
+                g.report_size < 32 ? static_cast<int32_t>((1u << g.report_size) - 1) : INT32_MAX;
+          }
+          f.relative = relative;
+          f.usage_page = static_cast<uint16_t>(use >> 16);
+          f.usage = static_cast<uint16_t>(use & 0xFFFF);
+          if (f.usage_page == kGenericDesktop && f.usage >= kUsageX && f.usage <= kUsageRz) {
+            auto& slot = layout.axes[f.usage - kUsageX];
+            if (!slot) slot = f;  // the first field of an axis wins
+          } else if (f.usage_page == kButtonPage && f.usage >= 1) {
+            layout.buttons.push_back(f);
           }
           bits += g.report_size;
         }

@@ -73,3 +73,19 @@ TEST(HidDescriptor, ExtractsSignedAndUnsignedBitFields) {
 
 }  // namespace
 }  // namespace sculpt::hal
+
+namespace sculpt::hal {
+namespace {
+
+TEST(HidDescriptor, HugeReportCountIsRefusedNotLoopedOver) {
+  // Report Count 0xFFFFFFFF of 8-bit fields: billions of fields if believed.
+  const std::vector<uint8_t> d = {0x05, 0x01, 0x09, 0x08, 0xA1, 0x01, 0x75, 0x08,
+                                  0x97, 0xFF, 0xFF, 0xFF, 0xFF, 0x81, 0x02, 0xC0};
+  const auto layout = parse_hid_descriptor(d);
+  ASSERT_FALSE(layout.ok());
+  EXPECT_NE(layout.error().message().find("bits, more than"), std::string::npos)
+      << layout.error().message();
+}
+
+}  // namespace
+}  // namespace sculpt::hal
