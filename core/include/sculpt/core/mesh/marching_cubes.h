@@ -27,7 +27,7 @@
 namespace sculpt::core {
 
 struct MarchingCubesOptions {
-  /// Iso-level in density units (0..255).
+  /// Iso-level in density units, 0 <= iso < 255; inside is density > iso.
   float iso = 127.5f;
   /// Threads for whole-volume extraction (0 = all cores).
   int threads = 0;
