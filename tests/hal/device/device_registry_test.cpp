@@ -262,3 +262,25 @@ TEST(DeviceRegistry, OpenDeviceByIdBackendOrVendorProduct) {
 
 }  // namespace
 }  // namespace sculpt::hal
+
+namespace sculpt::hal {
+namespace {
+
+TEST(DeviceRegistry, NodeWithoutPermissionGivesTheUdevHint) {
+  Rig rig = make_rig();
+  DeviceInfo locked = navigator("hidraw0", "1-2");
+  locked.accessible = false;
+  rig.hid->attach(locked);
+  const ScanReport s = rig.registry->scan();
+  EXPECT_TRUE(s.opened.empty());
+  ASSERT_EQ(s.errors.size(), 1u);
+  EXPECT_EQ(
+      s.errors[0],
+      "fake-hid:hidraw0 (046d:c626): no permission; install the udev rules (see README: Devices)");
+  const auto direct_open = rig.registry->open_device("fake-hid:hidraw0");
+  ASSERT_FALSE(direct_open.ok());
+  EXPECT_NE(direct_open.error().message().find("udev rules"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sculpt::hal
