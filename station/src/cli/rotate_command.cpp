@@ -12,6 +12,8 @@
 #include <memory>
 #include <vector>
 
+#include <glm/vector_relational.hpp>
+
 #include "cli/commands.h"
 #include "sculpt/core/tool/tool.h"
 #include "sculpt/core/tool/tool_rotation.h"
@@ -34,6 +36,13 @@ int run_rotate(const RotateOptions& o) {
   }
   auto tool = core::read_tool_nrrd(o.input);
   if (!tool) return report(tool.error());
+  // The rotated box can be sqrt(3) times the tool's edge: keep it a tool.
+  constexpr int kMaxToolEdge = 1024;
+  if (glm::any(glm::greaterThan(tool->density.dims(), glm::ivec3(kMaxToolEdge)))) {
+    return report(
+        core::Error("tool is larger than " + std::to_string(kMaxToolEdge) + " voxels on an edge")
+            .in(o.input));
+  }
   if (o.about == "centre") tool->pivot = core::grid_centre(tool->density.dims());
   const glm::ivec3 in_dims = tool->density.dims();
   const glm::vec3 pivot = tool->pivot;

@@ -30,6 +30,7 @@
 #include <variant>
 #include <vector>
 
+#include <glm/vector_relational.hpp>
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
@@ -45,6 +46,11 @@ using json = nlohmann::json;
 
 /// Largest built-in tool size accepted, in voxels (a 1024^3 tool grid).
 constexpr double kMaxToolSize = 500.0;
+
+/// Largest tool grid edge accepted from a file or a region, in voxels: the
+/// rotation cache indexes rows with 16-bit offsets, and a tool that large
+/// would be a volume, not a tool.
+constexpr int kMaxToolEdge = 1024;
 
 struct StampOptions {
   std::string input;
@@ -152,6 +158,10 @@ core::Result<Op> parse_op(const json& j, glm::ivec3 dims) {
       const core::Box clipped = core::intersect(t.box, core::Box{glm::ivec3(0), dims});
       if (clipped.empty() || clipped != t.box) {
         return core::Error("tool region: 'box' must be a non-empty box inside the volume");
+      }
+      if (glm::any(glm::greaterThan(t.box.size(), glm::ivec3(kMaxToolEdge)))) {
+        return core::Error("tool region: 'box' is larger than " + std::to_string(kMaxToolEdge) +
+                           " voxels on an edge");
       }
       for (double x : v) {
         if (x != std::floor(x))
@@ -276,6 +286,11 @@ int run_stamp(const StampOptions& o) {
         const std::filesystem::path p(t->path);
         auto loaded = core::read_tool_nrrd(p.is_absolute() ? p : script_dir / p);
         if (!loaded) return report(loaded.error().in(where));
+        if (glm::any(glm::greaterThan(loaded->density.dims(), glm::ivec3(kMaxToolEdge)))) {
+          return report(core::Error("tool is larger than " + std::to_string(kMaxToolEdge) +
+                                    " voxels on an edge")
+                            .in(where));
+        }
         tool = std::move(loaded.value());
       }
       sculptor.set_tool(*tool);

@@ -29,7 +29,8 @@ TEST(Tool, BuiltInShapesHaveTheirSizeAndCentre) {
   // Radius 10: the voxel 10 from the centre sits on the surface (127).
   const glm::ivec3 c(glm::round(sphere.pivot));
   EXPECT_NEAR(sphere.density.at(c.x + 10, c.y, c.z), 127, 1);
-  EXPECT_EQ(sphere.density.at(c.x + 12, c.y, c.z), 0);
+  EXPECT_EQ(sphere.density.at(c.x + 11, c.y, c.z), 0);
+  EXPECT_EQ(sphere.density.dims(), glm::ivec3(23));
 
   const Tool cube = make_cube_tool(8.0f);
   expect_full_centre_empty_corner(cube, "cube");
