@@ -12,8 +12,6 @@
 
 #include "../parsers/report_bytes.h"
 #include "sculpt/hal/backends/feed_backend.h"
-#include "sculpt/hal/device/quirks.h"
-#include "sculpt/hal/parsers/spacemouse_parser.h"
 #include "sculpt/hal/pose/pose_integrator.h"
 #include "sculpt/hal/stroke/stroke_sampler.h"
 
@@ -191,39 +189,6 @@ TEST(DeviceRegistry, StrokeSurvivesUnplugAndReplug) {
   EXPECT_TRUE(has(back, InputKind::kConnected));
   ASSERT_EQ(back.motion.size(), 1u);
   EXPECT_FLOAT_EQ(back.motion[0].axes[kTz], 0.5f);
-}
-
-TEST(DeviceReader, CountsDroppedMotionButNeverDropsButtonsOrDisconnect) {
-  auto backend = std::make_unique<FeedBackend>();
-  auto feed = backend->attach(navigator("hidraw0", ""));
-  auto device = backend->open(feed->info());
-  ASSERT_TRUE(device.ok());
-  auto parser = std::make_unique<SpaceMouseParser>(*find_quirks(0x046d, 0xc626));
-  ReaderOptions o;
-  o.ring_capacity = 8;
-  DeviceReader reader(7, std::move(device).value(), MotionPipeline(std::move(parser), direct()), o);
-  // Queue everything before the thread starts so the ring overflows for sure.
-  for (int64_t i = 0; i < 100; ++i) {
-    feed->push(test::report_at(i, axes_report(1, {static_cast<int16_t>(i), 0, 0, 0, 0, 0})));
-  }
-  feed->push(test::report_at(100, {3, 0x01}));
-  feed->remove(101);
-  reader.start();
-  InputFrame all;
-  for (int i = 0; i < 5000 && !reader.finished(); ++i) {
-    reader.poll(all, 0);
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  ASSERT_TRUE(reader.finished());
-  const ReaderCounters c = reader.counters();
-  EXPECT_EQ(c.motion_samples, 100);
-  EXPECT_EQ(c.raw_events, 101);
-  EXPECT_GT(c.dropped, 0) << "an 8-slot ring cannot hold 100 samples";
-  ASSERT_EQ(all.events.size(), 3u);
-  EXPECT_EQ(all.events[0].kind, InputKind::kConnected);
-  EXPECT_EQ(all.events[1].kind, InputKind::kButton);
-  EXPECT_EQ(all.events[2].kind, InputKind::kDisconnected);
-  EXPECT_EQ(all.events[2].device_id, 7u);
 }
 
 }  // namespace
