@@ -134,6 +134,7 @@ const char* sculpt_mode_name(SculptMode mode) {
 DabStats& DabStats::operator+=(const DabStats& o) {
   bricks_overlapped += o.bricks_overlapped;
   bricks_decoded += o.bricks_decoded;
+  bricks_reused += o.bricks_reused;
   bricks_changed += o.bricks_changed;
   voxels_changed += o.voxels_changed;
   decode_ns += o.decode_ns;
@@ -143,9 +144,35 @@ DabStats& DabStats::operator+=(const DabStats& o) {
 }
 
 Sculptor::Sculptor(Volume& volume, const SculptorOptions& options)
-    : volume_(volume), options_(options), history_(options.undo_max_bytes) {
-  const size_t e = static_cast<size_t>(volume.brick_edge());
-  buffer_.resize(e * e * e);
+    : volume_(volume), options_(options), history_(options.undo_max_bytes) {}
+
+Sculptor::DecodedBrick& Sculptor::decoded_brick(glm::ivec3 b, DabStats& stats) {
+  const glm::ivec3 g = volume_.brick_grid();
+  const int64_t index = (int64_t{b.z} * g.y + b.y) * g.x + b.x;
+  auto it = decoded_.find(index);
+  if (it == decoded_.end()) {
+    if (decoded_.size() >= options_.decoded_bricks) {
+      auto oldest = decoded_.begin();
+      for (auto i = decoded_.begin(); i != decoded_.end(); ++i)
+        if (i->second.last_use < oldest->second.last_use) oldest = i;
+      decoded_.erase(oldest);
+    }
+    const size_t e = static_cast<size_t>(volume_.brick_edge());
+    it = decoded_.emplace(index, DecodedBrick{}).first;
+    it->second.voxels.resize(e * e * e);
+    it->second.version = ~uint64_t{0};
+  }
+  DecodedBrick& d = it->second;
+  d.last_use = ++use_clock_;
+  // Any store since (an undo, another writer) bumps the version.
+  if (d.version != volume_.brick_version(b)) {
+    volume_.decode_brick(b, d.voxels);
+    d.version = volume_.brick_version(b);
+    ++stats.bricks_decoded;
+  } else {
+    ++stats.bricks_reused;
+  }
+  return d;
 }
 
 void Sculptor::set_tool(Tool tool) {
@@ -236,9 +263,9 @@ DabStats Sculptor::apply(RotatedToolCache& cache, const Dab& dab) {
         if (brick.is_uniform() && !can_change_uniform(dab.mode, brick.uniform_value())) continue;
 
         const int64_t t0 = now_ns();
-        volume_.decode_brick(b, buffer_);
+        DecodedBrick& decoded = decoded_brick(b, stats);
+        std::span<uint8_t> voxels = decoded.voxels;
         const int64_t t1 = now_ns();
-        ++stats.bricks_decoded;
         const glm::ivec3 origin = b * edge;
         int64_t changed = 0;
         for (int z = bb.lo.z; z < bb.hi.z; ++z)
@@ -253,8 +280,8 @@ DabStats Sculptor::apply(RotatedToolCache& cache, const Dab& dab) {
             const int xb = std::min(bb.hi.x, static_cast<int>(std::floor(pivot_pos.x + h)) + 1);
             if (xa >= xb) continue;
             uint8_t* m =
-                &buffer_[(static_cast<size_t>(z - origin.z) * edge + (y - origin.y)) * edge +
-                         (xa - origin.x)];
+                &voxels[(static_cast<size_t>(z - origin.z) * edge + (y - origin.y)) * edge +
+                        (xa - origin.x)];
             // Contact: rotate only where the material can change.
             int c0 = 0, c1 = xb - xa;
             if (saturated >= 0) {
@@ -278,7 +305,8 @@ DabStats Sculptor::apply(RotatedToolCache& cache, const Dab& dab) {
         stats.apply_ns += t2 - t1;
         if (changed == 0) continue;
         history_.before_change(volume_, b);
-        volume_.store_brick(b, buffer_);
+        volume_.store_brick(b, voxels);  // re-pads `voxels` as stored
+        decoded.version = volume_.brick_version(b);
         stats.encode_ns += now_ns() - t2;
         ++stats.bricks_changed;
         stats.voxels_changed += changed;

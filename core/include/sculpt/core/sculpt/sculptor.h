@@ -9,7 +9,9 @@
 // reach or cannot change (a uniform empty brick under subtraction, a uniform
 // full one under addition), rotates tool voxels only where the material can
 // change (through the RotatedToolCache), and re-encodes and marks dirty only
-// the bricks whose voxels changed.
+// the bricks whose voxels changed. It keeps the decoded voxels of recently
+// edited bricks, checked against Volume::brick_version, so a stroke's
+// overlapping dabs decode each brick once.
 //
 // Strokes group dabs for undo; a dab outside a stroke is a stroke of its own.
 // With a mirror plane set, every dab is also applied mirrored (tool mirrored,
@@ -19,6 +21,8 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <unordered_map>
+#include <vector>
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
@@ -67,6 +71,7 @@ struct MirrorPlane {
 struct DabStats {
   int bricks_overlapped = 0;
   int bricks_decoded = 0;
+  int bricks_reused = 0;  // decoded voxels still valid from an earlier dab
   int bricks_changed = 0;
   int64_t voxels_changed = 0;
   int64_t decode_ns = 0;
@@ -77,6 +82,10 @@ struct DabStats {
 
 struct SculptorOptions {
   Sampling sampling = Sampling::kTrilinear;
+  /// Decoded bricks kept between dabs (edge^3 bytes each): consecutive dabs
+  /// overlap, and a brick whose version has not changed since this sculptor
+  /// stored it needs no decoding.
+  size_t decoded_bricks = 64;
   size_t cache_max_bytes = RotatedToolCache::kDefaultMaxBytes;
   /// Dab positions snap to 1/subvoxel_steps voxel (see RotatedToolCache).
   int subvoxel_steps = RotatedToolCache::kDefaultSubvoxelSteps;
@@ -116,7 +125,15 @@ class Sculptor {
   std::unique_ptr<RotatedToolCache> mirror_caches_[3];
   std::optional<MirrorPlane> mirror_;
   UndoHistory history_;
-  std::vector<uint8_t> buffer_;
+  struct DecodedBrick {
+    uint64_t version = 0;
+    uint64_t last_use = 0;
+    std::vector<uint8_t> voxels;
+  };
+  // The brick's current voxels, decoded unless still valid from earlier.
+  DecodedBrick& decoded_brick(glm::ivec3 b, DabStats& stats);
+  std::unordered_map<int64_t, DecodedBrick> decoded_;
+  uint64_t use_clock_ = 0;
 };
 
 }  // namespace sculpt::core
