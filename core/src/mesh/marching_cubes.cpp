@@ -5,6 +5,7 @@
 #include <bit>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <numbers>
 #include <type_traits>
@@ -273,28 +274,34 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
   // inside, so rows of cells far from the surface are skipped whole.
   // Densities are integers: v > iso is v >= floor(iso) + 1, a byte compare.
   const int threshold = static_cast<int>(std::floor(iso)) + 1;
-  auto inside_of = [&](T v) -> uint8_t {
-    if constexpr (std::is_same_v<T, uint8_t>) {
-      return v >= threshold;
-    } else {
-      return v > iso;
-    }
-  };
   int any_total = 0, all_total = 0;
   for (int z = 0; z <= n.z; ++z)
     for (int y = 0; y <= n.y; ++y) {
       const int64_t i0 = at(0, y, z);
-      int count = 0;
       uint8_t* in = s.inside.data() + i0;
-      for (int x = 0; x <= n.x; ++x) {
-        in[x] = inside_of(g[i0 + x]);
-        count += in[x];
+      const T* row = g + i0;
+      // Plain loops over locals whose address never escapes (a byte store
+      // may alias anything else), so they vectorise.
+      const int points = n.x + 1;
+      if constexpr (std::is_same_v<T, uint8_t>) {
+        const auto t = static_cast<uint8_t>(std::clamp(threshold, 0, 255));  // byte compares
+        for (int x = 0; x < points; ++x)
+          in[x] = row[x] >= t;
+      } else {
+        const float t = iso;
+        for (int x = 0; x < points; ++x)
+          in[x] = row[x] > t;
+      }
+      uint8_t any = 0, all = 1;
+      for (int x = 0; x < points; ++x) {
+        any |= in[x];
+        all &= in[x];
       }
       const size_t r = static_cast<size_t>(z) * (n.y + 1) + y;
-      s.row_any[r] = count > 0;
-      s.row_all[r] = count == n.x + 1;
-      any_total += count > 0;
-      all_total += count == n.x + 1;
+      s.row_any[r] = any;
+      s.row_all[r] = all;
+      any_total += any;
+      all_total += all;
     }
   if (any_total == 0 || all_total == static_cast<int>(rows)) return;
 
@@ -378,6 +385,16 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
                                       (in[x + sx + sxy] << 3));
       }
       for (int x = 0; x < n.x; ++x) {
+        if (x + 9 <= n.x + 1) {
+          // Eight cells at once: nine equal columns all out or all in.
+          uint64_t a, b;
+          std::memcpy(&a, col + x, 8);
+          std::memcpy(&b, col + x + 1, 8);
+          if (a == b && (a == 0 || a == 0x0F0F0F0F0F0F0F0Full)) {
+            x += 7;
+            continue;
+          }
+        }
         if (col[x] == col[x + 1] && (col[x] == 0 || col[x] == 15)) continue;
         const unsigned c = kSpread[col[x]] | (kSpread[col[x + 1]] << 1);
         unsigned decision = 0;

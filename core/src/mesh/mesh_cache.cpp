@@ -51,12 +51,19 @@ void MeshCache::classify(std::span<const uint8_t> voxels, CachedBrick& cb) const
   size_t i = 0;
   for (int z = 0; z < m; ++z)
     for (int y = 0; y < m; ++y, i += static_cast<size_t>(m)) {
-      int in_lo = 0, in_all = 0;
+      const uint8_t* row = &voxels[i];
+      // Byte-wide any/all reductions vectorise; counts are only needed at
+      // the ends of the row.
+      const auto t8 = static_cast<uint8_t>(std::clamp(threshold, 0, 255));
+      uint8_t any = 0, every = 1;
       for (int x = 0; x < m; ++x) {
-        const int in = voxels[i + static_cast<size_t>(x)] >= threshold;
-        in_all += in;
-        if (x < lo_n) in_lo += in;
+        any |= static_cast<uint8_t>(row[x] >= t8);
+        every &= static_cast<uint8_t>(row[x] >= t8);
       }
+      const int in_all = every ? m : (any ? 1 : 0);
+      int in_lo = 0;
+      for (int x = 0; x < lo_n; ++x)
+        in_lo += row[x] >= threshold;
       const int in_hi = voxels[i + static_cast<size_t>(m - 1)] >= threshold;
       const int ins[3] = {in_lo, in_all, in_hi};
       const int counts[3] = {lo_n, m, 1};
