@@ -1,5 +1,6 @@
 #include "sculpt/core/io/atomic_file.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -21,6 +22,11 @@ AtomicFileWriter::AtomicFileWriter(std::filesystem::path target) : target_(std::
     return;
   }
   temp_ = name.data();
+  // mkstemp creates 0600; the renamed file must get the mode any new file
+  // gets (0666 less the umask), or other programs and users cannot read it.
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  ::fchmod(fd, 0666 & ~mask);
   file_ = ::fdopen(fd, "wb");
   if (file_ == nullptr) {
     error_ = std::string("cannot open file: ") + std::strerror(errno);

@@ -22,6 +22,8 @@ void add_devices_command(CLI::App& app, Action& action);
 void add_mesh_command(CLI::App& app, Action& action);
 void add_rotate_command(CLI::App& app, Action& action);
 void add_stamp_command(CLI::App& app, Action& action);
+void add_replay_command(CLI::App& app, Action& action);
+void add_session_command(CLI::App& app, Action& action);
 
 /// Prints "sculpt: <message>" on stderr and returns exit code 1.
 int report(const core::Error& error);

@@ -1,6 +1,7 @@
 #include "sculpt/core/io/atomic_file.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -46,6 +47,16 @@ TEST_F(AtomicFileTest, CommitReplacesTheTargetWhole) {
   }
   EXPECT_EQ(slurp(target), "new content");
   EXPECT_EQ(files_in(dir_), 1u);  // no temporary left behind
+  // Readable like any new file (mkstemp alone would leave it 0600).
+  const mode_t mask = ::umask(022);
+  {
+    AtomicFileWriter w(dir_ / "mode.txt");
+    ASSERT_TRUE(w.commit().ok());
+  }
+  ::umask(mask);
+  EXPECT_EQ(fs::status(dir_ / "mode.txt").permissions(),
+            fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read |
+                fs::perms::others_read);
 }
 
 TEST_F(AtomicFileTest, AbandonedWriteLeavesNothing) {

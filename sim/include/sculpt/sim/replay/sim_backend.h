@@ -1,0 +1,44 @@
+#pragma once
+// The "sim" backend: a recorded session played as a live device. It lists one
+// device (the session's, backend "sim", path = the session file) whose reads
+// return the recorded raw events at their recorded spacing (scaled by the
+// speed), so `sculpt run --device sim:FILE` drives the same reader thread,
+// ring, parsers and normaliser as a real device. The session's station
+// commands are handed to the station through take_commands().
+//
+// Deterministic replay does not go through this backend's thread: `sculpt
+// replay` steps the records synchronously (SessionPlayer), which is what makes
+// it bit-exact at any speed.
+
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "sculpt/hal/device/device.h"
+#include "sculpt/sim/session/session.h"
+
+namespace sculpt::sim {
+
+class SimBackend final : public hal::Backend {
+ public:
+  /// Plays `session` (read from `path`) at `speed`.
+  SimBackend(Session session, std::string path, double speed = 1.0);
+  std::string_view name() const override { return "sim"; }
+  hal::BackendStatus status() override { return {}; }
+  core::Result<std::vector<hal::DeviceInfo>> enumerate() override;
+  core::Result<std::unique_ptr<hal::Device>> open(const hal::DeviceInfo& info) override;
+  bool changed() override;
+
+  /// Station commands whose time has come (thread-safe), in order.
+  std::vector<std::pair<int64_t, Command>> take_commands();
+
+  struct Shared;
+
+ private:
+  std::shared_ptr<Shared> shared_;
+  hal::DeviceInfo info_;
+  bool changed_ = true;
+};
+
+}  // namespace sculpt::sim

@@ -1,0 +1,94 @@
+#pragma once
+// A recorded session in memory (DESIGN.md §6): the device it came from, the
+// normaliser settings in force, and every raw device event and station command
+// with its time, in time order. The binary file (session_file.h) and the text
+// form (session_text.h) both hold exactly this.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "sculpt/hal/device/device_info.h"
+#include "sculpt/hal/device/raw_event.h"
+
+namespace sculpt::sim {
+
+/// Station commands a session records next to the device's reports. The sim
+/// module knows them by name only; the station gives them meaning.
+enum class CommandKind : uint8_t {
+  kPress = 1,  ///< the tool goes down: a stroke starts
+  kRelease,    ///< the tool comes up: the stroke ends
+  kTool,       ///< shape + size: choice = ToolShape, values[0..1] = sizes in voxels
+  kMode,       ///< choice = SculptModeId
+  kStrength,   ///< values[0] in [0, 1]
+  kSpacing,    ///< values[0]: dab spacing as a fraction of the tool's size, > 0
+  kMirror,     ///< choice = axis 0..2, or kMirrorOff; values[0] = plane position, voxels
+  kUndo,
+  kRedo,
+  kVolume,    ///< a new block: values[0..2] = size in voxels, values[3] = fill density
+  kToolPose,  ///< places the tool: values[0..2] position (voxels), values[3..6] w x y z
+};
+inline constexpr uint8_t kCommandKindCount = 11;
+
+enum class ToolShape : uint8_t { kSphere, kCube, kCylinder, kRing, kCone };
+inline constexpr uint8_t kToolShapeCount = 5;
+/// The order of sculpt::core::SculptMode.
+enum class SculptModeId : uint8_t { kAdd, kSubtract, kUnion, kDifference, kSmooth };
+inline constexpr uint8_t kSculptModeCount = 5;
+inline constexpr uint8_t kMirrorOff = 255;
+
+struct Command {
+  CommandKind kind = CommandKind::kPress;
+  uint8_t choice = 0;
+  float values[7] = {};
+
+  /// Number of values[] the kind uses.
+  static int value_count(CommandKind kind);
+  friend bool operator==(const Command& a, const Command& b);
+};
+
+/// Names used by the text form and messages: "press", "tool", ...
+std::string_view command_name(CommandKind kind);
+std::optional<CommandKind> parse_command_name(std::string_view name);
+std::string_view tool_shape_name(ToolShape shape);
+std::optional<ToolShape> parse_tool_shape(std::string_view name);
+std::string_view sculpt_mode_name(SculptModeId mode);
+std::optional<SculptModeId> parse_sculpt_mode_id(std::string_view name);
+
+struct SessionRecord {
+  enum class Kind : uint8_t { kEvent, kCommand };
+  Kind kind = Kind::kEvent;
+  hal::RawEvent event;  ///< kEvent (its t_ns is the record's time)
+  Command command;      ///< kCommand
+  int64_t command_t_ns = 0;
+
+  int64_t t_ns() const { return kind == Kind::kEvent ? event.t_ns : command_t_ns; }
+  static SessionRecord of(const hal::RawEvent& e);
+  static SessionRecord of(int64_t t_ns, const Command& c);
+  friend bool operator==(const SessionRecord& a, const SessionRecord& b);
+};
+
+struct SessionHeader {
+  /// The device (backend, path, name, vendor:product, serial, report descriptor).
+  hal::DeviceInfo device;
+  /// The normaliser settings in force, in hal::to_text(NormalizerConfig) form.
+  std::string normalizer_config;
+  /// Wall-clock time the recording started, ns since the Unix epoch (0 = unknown).
+  int64_t created_unix_ns = 0;
+};
+
+struct Session {
+  SessionHeader header;
+  std::vector<SessionRecord> records;
+
+  /// Time of the first and last record (0 when empty).
+  int64_t start_t_ns() const { return records.empty() ? 0 : records.front().t_ns(); }
+  int64_t end_t_ns() const { return records.empty() ? 0 : records.back().t_ns(); }
+};
+
+bool operator==(const SessionHeader& a, const SessionHeader& b);
+bool operator==(const Session& a, const Session& b);
+
+}  // namespace sculpt::sim

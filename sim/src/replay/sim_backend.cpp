@@ -1,0 +1,98 @@
+#include "sculpt/sim/replay/sim_backend.h"
+
+#include "sculpt/sim/replay/session_player.h"
+
+namespace sculpt::sim {
+
+struct SimBackend::Shared {
+  Session session;
+  double speed;
+  std::mutex mutex;
+  std::vector<std::pair<int64_t, Command>> commands;
+  bool opened = false;
+};
+
+namespace {
+
+class SimDevice final : public hal::Device {
+ public:
+  SimDevice(std::shared_ptr<SimBackend::Shared> shared, hal::DeviceInfo info)
+      : shared_(std::move(shared)),
+        info_(std::move(info)),
+        player_(shared_->session, shared_->speed) {}
+  const hal::DeviceInfo& info() const override { return info_; }
+
+  hal::ReadResult read(hal::RawEvent& out, int timeout_ms) override {
+    if (removed_) {
+      out = hal::RawEvent::removed(last_t_ns_);
+      return hal::ReadResult::kRemoved;
+    }
+    // Never wait past the timeout: a pause in the recording must not keep the
+    // reader thread from noticing that it should stop.
+    const int64_t deadline = player_.clock().now_ns() + int64_t{timeout_ms} * 1'000'000;
+    while (!player_.at_end()) {
+      if (player_.due_ns() > deadline) {
+        player_.clock().sleep_until_ns(deadline);
+        return hal::ReadResult::kTimeout;
+      }
+      const SessionRecord* r = player_.next();
+      if (r == nullptr) break;
+      last_t_ns_ = r->t_ns();
+      if (r->kind == SessionRecord::Kind::kCommand) {
+        std::lock_guard lock(shared_->mutex);
+        shared_->commands.emplace_back(r->t_ns(), r->command);
+        continue;
+      }
+      out = r->event;
+      if (out.kind == hal::RawEventKind::kRemoved) {
+        removed_ = true;
+        return hal::ReadResult::kRemoved;
+      }
+      return hal::ReadResult::kEvent;
+    }
+    // The recording is over: the device stays connected and quiet.
+    player_.clock().sleep_until_ns(deadline);
+    return hal::ReadResult::kTimeout;
+  }
+
+ private:
+  std::shared_ptr<SimBackend::Shared> shared_;
+  hal::DeviceInfo info_;
+  SessionPlayer player_;
+  bool removed_ = false;
+  int64_t last_t_ns_ = 0;
+};
+
+}  // namespace
+
+SimBackend::SimBackend(Session session, std::string path, double speed)
+    : shared_(std::make_shared<Shared>()) {
+  info_ = session.header.device;
+  info_.backend = "sim";
+  info_.path = std::move(path);
+  shared_->session = std::move(session);
+  shared_->speed = speed;
+}
+
+core::Result<std::vector<hal::DeviceInfo>> SimBackend::enumerate() {
+  return std::vector<hal::DeviceInfo>{info_};
+}
+
+core::Result<std::unique_ptr<hal::Device>> SimBackend::open(const hal::DeviceInfo& info) {
+  if (info.path != info_.path) return core::Error("sim:" + info.path + ": no such session device");
+  std::lock_guard lock(shared_->mutex);
+  if (shared_->opened) return core::Error("sim:" + info.path + ": already open");
+  shared_->opened = true;
+  return std::unique_ptr<hal::Device>(std::make_unique<SimDevice>(shared_, info_));
+}
+
+bool SimBackend::changed() {
+  return std::exchange(changed_, false);
+}
+
+std::vector<std::pair<int64_t, Command>> SimBackend::take_commands() {
+  std::lock_guard lock(shared_->mutex);
+  return std::exchange(shared_->commands, {});
+}
+
+}  // namespace sculpt::sim

@@ -1,0 +1,104 @@
+#include "sculpt/sim/session/session.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+
+namespace sculpt::sim {
+namespace {
+
+constexpr std::array<std::string_view, kCommandKindCount> kCommandNames = {
+    "press",  "release", "tool", "mode",   "strength", "spacing",
+    "mirror", "undo",    "redo", "volume", "tool_pose"};
+constexpr std::array<int, kCommandKindCount> kValueCounts = {0, 0, 2, 0, 1, 1, 1, 0, 0, 4, 7};
+constexpr std::array<std::string_view, kToolShapeCount> kShapeNames = {"sphere", "cube", "cylinder",
+                                                                       "ring", "cone"};
+constexpr std::array<std::string_view, kSculptModeCount> kModeNames = {"add", "subtract", "union",
+                                                                       "difference", "smooth"};
+
+template <size_t N>
+std::optional<uint8_t> find_name(const std::array<std::string_view, N>& names,
+                                 std::string_view name) {
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end()) return std::nullopt;
+  return static_cast<uint8_t>(it - names.begin());
+}
+
+bool same_event(const hal::RawEvent& a, const hal::RawEvent& b) {
+  return a.kind == b.kind && a.t_ns == b.t_ns && a.size == b.size && a.truncated == b.truncated &&
+         a.index == b.index && a.value == b.value &&
+         std::equal(a.data.begin(), a.data.begin() + a.size, b.data.begin());
+}
+
+}  // namespace
+
+int Command::value_count(CommandKind kind) {
+  return kValueCounts[static_cast<size_t>(kind) - 1];
+}
+
+bool operator==(const Command& a, const Command& b) {
+  // Bitwise on the used values: a replayed command must be the recorded one.
+  const int n = Command::value_count(a.kind);
+  return a.kind == b.kind && a.choice == b.choice &&
+         std::memcmp(a.values, b.values, sizeof(float) * static_cast<size_t>(n)) == 0;
+}
+
+std::string_view command_name(CommandKind kind) {
+  return kCommandNames[static_cast<size_t>(kind) - 1];
+}
+std::optional<CommandKind> parse_command_name(std::string_view name) {
+  const auto i = find_name(kCommandNames, name);
+  return i ? std::optional(static_cast<CommandKind>(*i + 1)) : std::nullopt;
+}
+std::string_view tool_shape_name(ToolShape shape) {
+  return kShapeNames[static_cast<size_t>(shape)];
+}
+std::optional<ToolShape> parse_tool_shape(std::string_view name) {
+  const auto i = find_name(kShapeNames, name);
+  return i ? std::optional(static_cast<ToolShape>(*i)) : std::nullopt;
+}
+std::string_view sculpt_mode_name(SculptModeId mode) {
+  return kModeNames[static_cast<size_t>(mode)];
+}
+std::optional<SculptModeId> parse_sculpt_mode_id(std::string_view name) {
+  const auto i = find_name(kModeNames, name);
+  return i ? std::optional(static_cast<SculptModeId>(*i)) : std::nullopt;
+}
+
+SessionRecord SessionRecord::of(const hal::RawEvent& e) {
+  SessionRecord r;
+  r.kind = Kind::kEvent;
+  r.event = e;
+  return r;
+}
+
+SessionRecord SessionRecord::of(int64_t t_ns, const Command& c) {
+  SessionRecord r;
+  r.kind = Kind::kCommand;
+  r.command = c;
+  r.command_t_ns = t_ns;
+  return r;
+}
+
+bool operator==(const SessionRecord& a, const SessionRecord& b) {
+  if (a.kind != b.kind) return false;
+  return a.kind == SessionRecord::Kind::kEvent
+             ? same_event(a.event, b.event)
+             : a.command_t_ns == b.command_t_ns && a.command == b.command;
+}
+
+bool operator==(const SessionHeader& a, const SessionHeader& b) {
+  const hal::DeviceInfo& x = a.device;
+  const hal::DeviceInfo& y = b.device;
+  return x.backend == y.backend && x.path == y.path && x.name == y.name &&
+         x.manufacturer == y.manufacturer && x.serial == y.serial && x.vendor_id == y.vendor_id &&
+         x.product_id == y.product_id && x.usage_page == y.usage_page && x.usage == y.usage &&
+         x.report_descriptor == y.report_descriptor && a.normalizer_config == b.normalizer_config &&
+         a.created_unix_ns == b.created_unix_ns;
+}
+
+bool operator==(const Session& a, const Session& b) {
+  return a.header == b.header && a.records == b.records;
+}
+
+}  // namespace sculpt::sim

@@ -1,0 +1,400 @@
+#include "sculpt/sim/session/session_file.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "sculpt/core/io/atomic_file.h"
+
+namespace sculpt::sim {
+namespace {
+
+constexpr uint32_t kMaxHeaderBytes = 1u << 20;
+constexpr uint32_t kMaxDescriptorBytes = 4096;
+constexpr size_t kRecordHeadBytes = 12;
+
+enum RecordKindByte : uint8_t {
+  kReportRecord = 1,
+  kAxisRecord = 2,
+  kButtonRecord = 3,
+  kSyncRecord = 4,
+  kRemovedRecord = 5,
+  kCommandRecord = 16,
+};
+
+uint32_t crc(std::span<const uint8_t> bytes) {
+  return static_cast<uint32_t>(crc32(0, bytes.data(), static_cast<uInt>(bytes.size())));
+}
+
+// Little-endian encoding into a byte vector.
+class Writer {
+ public:
+  explicit Writer(std::vector<uint8_t>& out) : out_(out) {}
+  template <class T>
+  void num(T v) {
+    uint8_t b[sizeof(T)];
+    std::memcpy(b, &v, sizeof(T));  // the project only targets little-endian hosts
+    out_.insert(out_.end(), b, b + sizeof(T));
+  }
+  void bytes(std::span<const uint8_t> b) { out_.insert(out_.end(), b.begin(), b.end()); }
+  void blob(std::span<const uint8_t> b) {
+    num(static_cast<uint32_t>(b.size()));
+    bytes(b);
+  }
+  void str(const std::string& s) { blob({reinterpret_cast<const uint8_t*>(s.data()), s.size()}); }
+
+ private:
+  std::vector<uint8_t>& out_;
+};
+
+// Bounds-checked little-endian decoding: every read says whether it fitted.
+class Reader {
+ public:
+  explicit Reader(std::span<const uint8_t> in) : in_(in) {}
+  template <class T>
+  bool num(T& v) {
+    if (left() < sizeof(T)) return false;
+    std::memcpy(&v, in_.data() + at_, sizeof(T));
+    at_ += sizeof(T);
+    return true;
+  }
+  bool bytes(size_t n, std::span<const uint8_t>& out) {
+    if (left() < n) return false;
+    out = in_.subspan(at_, n);
+    at_ += n;
+    return true;
+  }
+  bool blob(std::vector<uint8_t>& out, uint32_t max) {
+    uint32_t n;
+    std::span<const uint8_t> b;
+    if (!num(n) || n > max || !bytes(n, b)) return false;
+    out.assign(b.begin(), b.end());
+    return true;
+  }
+  bool str(std::string& out, uint32_t max) {
+    std::vector<uint8_t> b;
+    if (!blob(b, max)) return false;
+    out.assign(b.begin(), b.end());
+    return true;
+  }
+  size_t left() const { return in_.size() - at_; }
+  size_t at() const { return at_; }
+
+ private:
+  std::span<const uint8_t> in_;
+  size_t at_ = 0;
+};
+
+std::vector<uint8_t> header_bytes(const SessionHeader& h) {
+  std::vector<uint8_t> fields;
+  Writer f(fields);
+  const hal::DeviceInfo& d = h.device;
+  f.str(d.backend);
+  f.str(d.path);
+  f.str(d.name);
+  f.str(d.manufacturer);
+  f.str(d.serial);
+  f.num(d.vendor_id);
+  f.num(d.product_id);
+  f.num(d.usage_page);
+  f.num(d.usage);
+  f.blob(d.report_descriptor);
+  f.str(h.normalizer_config);
+  f.num(h.created_unix_ns);
+
+  std::vector<uint8_t> out(std::begin(kSessionMagic), std::end(kSessionMagic));
+  Writer w(out);
+  w.num(kSessionVersion);
+  w.num(uint16_t{0});
+  w.num(static_cast<uint32_t>(fields.size()));
+  w.bytes(fields);
+  w.num(crc(fields));
+  return out;
+}
+
+void append_record(const SessionRecord& r, std::vector<uint8_t>& out) {
+  std::vector<uint8_t> payload;
+  Writer p(payload);
+  uint8_t kind = 0;
+  uint8_t flags = 0;
+  if (r.kind == SessionRecord::Kind::kCommand) {
+    kind = kCommandRecord;
+    p.num(static_cast<uint8_t>(r.command.kind));
+    p.num(r.command.choice);
+    for (int i = 0; i < Command::value_count(r.command.kind); ++i)
+      p.num(r.command.values[i]);
+  } else {
+    const hal::RawEvent& e = r.event;
+    switch (e.kind) {
+      case hal::RawEventKind::kReport:
+        kind = kReportRecord;
+        flags = e.truncated ? 1 : 0;
+        p.bytes(e.bytes());
+        break;
+      case hal::RawEventKind::kAxis:
+      case hal::RawEventKind::kButton:
+        kind = e.kind == hal::RawEventKind::kAxis ? kAxisRecord : kButtonRecord;
+        p.num(e.index);
+        p.num(e.value);
+        break;
+      case hal::RawEventKind::kSync:
+        kind = kSyncRecord;
+        break;
+      case hal::RawEventKind::kRemoved:
+        kind = kRemovedRecord;
+        break;
+    }
+  }
+  const size_t start = out.size();
+  Writer w(out);
+  w.num(kind);
+  w.num(flags);
+  w.num(static_cast<uint16_t>(payload.size()));
+  w.num(r.t_ns());
+  w.bytes(payload);
+  w.num(crc({out.data() + start, out.size() - start}));
+}
+
+// Decodes one record's payload; an empty string on success, else why not.
+std::string decode_record(uint8_t kind, uint8_t flags, int64_t t, std::span<const uint8_t> payload,
+                          SessionRecord& out) {
+  Reader p(payload);
+  switch (kind) {
+    case kReportRecord:
+      if (payload.size() > hal::RawEvent::kMaxReportBytes) return "report longer than 64 bytes";
+      out = SessionRecord::of(hal::RawEvent::report(t, payload));
+      out.event.truncated = (flags & 1) != 0;
+      return {};
+    case kAxisRecord:
+    case kButtonRecord: {
+      int32_t index, value;
+      if (payload.size() != 8 || !p.num(index) || !p.num(value))
+        return "axis/button record of wrong size";
+      if (index < 0 || index > 63) return "axis/button index out of range";
+      out = SessionRecord::of(kind == kAxisRecord ? hal::RawEvent::axis(t, index, value)
+                                                  : hal::RawEvent::button(t, index, value != 0));
+      return {};
+    }
+    case kSyncRecord:
+    case kRemovedRecord:
+      if (!payload.empty()) return "sync/removed record with a payload";
+      out = SessionRecord::of(kind == kSyncRecord ? hal::RawEvent::sync(t)
+                                                  : hal::RawEvent::removed(t));
+      return {};
+    case kCommandRecord: {
+      uint8_t command_kind;
+      Command c;
+      if (!p.num(command_kind) || !p.num(c.choice)) return "command record too short";
+      if (command_kind < 1 || command_kind > kCommandKindCount) {
+        return "unknown command " + std::to_string(command_kind);
+      }
+      c.kind = static_cast<CommandKind>(command_kind);
+      const int n = Command::value_count(c.kind);
+      if (p.left() != sizeof(float) * static_cast<size_t>(n)) return "command record of wrong size";
+      for (int i = 0; i < n; ++i)
+        p.num(c.values[i]);
+      out = SessionRecord::of(t, c);
+      return {};
+    }
+    default:
+      return "unknown record kind " + std::to_string(kind);
+  }
+}
+
+}  // namespace
+
+core::Result<Session> parse_session_bytes(std::span<const uint8_t> bytes, const std::string& name,
+                                          SessionReadInfo* info) {
+  if (bytes.size() < sizeof(kSessionMagic) ||
+      std::memcmp(bytes.data(), kSessionMagic, sizeof(kSessionMagic)) != 0) {
+    return core::Error(name + ": not a sculpt session file (bad magic)");
+  }
+  Reader r(bytes.subspan(sizeof(kSessionMagic)));
+  uint16_t version, flags;
+  uint32_t n;
+  if (!r.num(version) || !r.num(flags) || !r.num(n))
+    return core::Error(name + ": truncated header");
+  if (version != kSessionVersion) {
+    return core::Error(name + ": session version " + std::to_string(version) +
+                       " is not supported (this build reads " + std::to_string(kSessionVersion) +
+                       ")");
+  }
+  if (n > kMaxHeaderBytes)
+    return core::Error(name + ": header length " + std::to_string(n) + " is absurd");
+  std::span<const uint8_t> fields;
+  uint32_t header_crc;
+  if (!r.bytes(n, fields) || !r.num(header_crc)) return core::Error(name + ": truncated header");
+  if (crc(fields) != header_crc)
+    return core::Error(name + ": header checksum mismatch (damaged file)");
+
+  Session s;
+  Reader f(fields);
+  hal::DeviceInfo& d = s.header.device;
+  const bool fields_ok = f.str(d.backend, 256) && f.str(d.path, 4096) && f.str(d.name, 4096) &&
+                         f.str(d.manufacturer, 4096) && f.str(d.serial, 4096) &&
+                         f.num(d.vendor_id) && f.num(d.product_id) && f.num(d.usage_page) &&
+                         f.num(d.usage) && f.blob(d.report_descriptor, kMaxDescriptorBytes) &&
+                         f.str(s.header.normalizer_config, kMaxHeaderBytes) &&
+                         f.num(s.header.created_unix_ns) && f.left() == 0;
+  if (!fields_ok) return core::Error(name + ": malformed header fields");
+
+  const size_t records_start = sizeof(kSessionMagic) + r.at();
+  size_t at = records_start;
+  std::string problem;
+  int64_t last_t = INT64_MIN;
+  while (at < bytes.size()) {
+    Reader rec(bytes.subspan(at));
+    uint8_t kind, rflags;
+    uint16_t len;
+    int64_t t;
+    std::span<const uint8_t> payload;
+    uint32_t record_crc;
+    if (!rec.num(kind) || !rec.num(rflags) || !rec.num(len) || !rec.num(t) ||
+        !rec.bytes(len, payload) || !rec.num(record_crc)) {
+      problem = "cut off in the middle of record " + std::to_string(s.records.size() + 1);
+      break;
+    }
+    if (crc(bytes.subspan(at, kRecordHeadBytes + len)) != record_crc) {
+      problem = "checksum mismatch in record " + std::to_string(s.records.size() + 1);
+      break;
+    }
+    if (t < last_t) {
+      problem = "record " + std::to_string(s.records.size() + 1) + " goes back in time";
+      break;
+    }
+    SessionRecord record;
+    if (std::string why = decode_record(kind, rflags, t, payload, record); !why.empty()) {
+      problem = "record " + std::to_string(s.records.size() + 1) + ": " + why;
+      break;
+    }
+    s.records.push_back(record);
+    last_t = t;
+    at += rec.at();
+  }
+  if (info != nullptr) {
+    info->records = static_cast<int64_t>(s.records.size());
+    info->bytes_lost = static_cast<int64_t>(bytes.size() - at);
+    info->warning = problem.empty()
+                        ? std::string()
+                        : name + ": " + problem + "; replaying the " +
+                              std::to_string(s.records.size()) + " records before it, " +
+                              std::to_string(info->bytes_lost) + " bytes lost";
+  }
+  return s;
+}
+
+core::Result<Session> read_session_file(const std::filesystem::path& path, SessionReadInfo* info) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) return core::Error(path.string() + ": cannot open: " + ec.message());
+  // Sessions are read whole; the limit keeps a wrong path (a disk image, say)
+  // from exhausting memory. An hour at 1 kHz is about 100 MB.
+  constexpr uintmax_t kMaxSessionBytes = uintmax_t{4} << 30;
+  if (size > kMaxSessionBytes)
+    return core::Error(path.string() + ": too large for a session (" + std::to_string(size) +
+                       " bytes)");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return core::Error(path.string() + ": cannot open: " + std::strerror(errno));
+  std::vector<uint8_t> bytes(static_cast<size_t>(size));
+  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  if (!in) return core::Error(path.string() + ": read failed");
+  return parse_session_bytes(bytes, path.string(), info);
+}
+
+std::vector<uint8_t> serialize_session(const Session& session) {
+  std::vector<uint8_t> out = header_bytes(session.header);
+  for (const SessionRecord& r : session.records)
+    append_record(r, out);
+  return out;
+}
+
+core::Status write_session_file(const std::filesystem::path& path, const Session& session) {
+  core::AtomicFileWriter out(path);
+  const std::vector<uint8_t> bytes = serialize_session(session);
+  out.write(bytes.data(), bytes.size());
+  return out.commit();
+}
+
+core::Result<SessionWriter> SessionWriter::create(const std::filesystem::path& path,
+                                                  const SessionHeader& header) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) return core::Error(path.string() + ": cannot create: " + std::strerror(errno));
+  SessionWriter w(fd, path.string());
+  if (core::Status st = w.write_all(header_bytes(header)); !st) return st.error();
+  if (core::Status st = w.sync(); !st) return st.error();
+  return w;
+}
+
+SessionWriter::SessionWriter(int fd, std::string name)
+    : fd_(fd), name_(std::move(name)), last_sync_(std::chrono::steady_clock::now()) {}
+
+SessionWriter::SessionWriter(SessionWriter&& o) noexcept
+    : fd_(std::exchange(o.fd_, -1)),
+      name_(std::move(o.name_)),
+      records_(o.records_),
+      last_t_ns_(o.last_t_ns_),
+      last_sync_(o.last_sync_) {}
+
+SessionWriter& SessionWriter::operator=(SessionWriter&& o) noexcept {
+  if (this != &o) {
+    (void)close();
+    fd_ = std::exchange(o.fd_, -1);
+    name_ = std::move(o.name_);
+    records_ = o.records_;
+    last_t_ns_ = o.last_t_ns_;
+    last_sync_ = o.last_sync_;
+  }
+  return *this;
+}
+
+SessionWriter::~SessionWriter() {
+  (void)close();
+}
+
+core::Status SessionWriter::write_all(std::span<const uint8_t> bytes) {
+  while (!bytes.empty()) {
+    const ssize_t n = ::write(fd_, bytes.data(), bytes.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return core::Error(name_ + ": write failed: " + std::strerror(errno));
+    bytes = bytes.subspan(static_cast<size_t>(n));
+  }
+  return {};
+}
+
+core::Status SessionWriter::sync() {
+  if (::fdatasync(fd_) != 0) return core::Error(name_ + ": sync failed: " + std::strerror(errno));
+  last_sync_ = std::chrono::steady_clock::now();
+  return {};
+}
+
+core::Status SessionWriter::append(const SessionRecord& record) {
+  if (fd_ < 0) return core::Error(name_ + ": recording is closed");
+  if (record.t_ns() < last_t_ns_) return core::Error(name_ + ": record goes back in time");
+  std::vector<uint8_t> bytes;
+  append_record(record, bytes);
+  if (core::Status st = write_all(bytes); !st) return st;
+  ++records_;
+  last_t_ns_ = record.t_ns();
+  return sync_if_due();
+}
+
+core::Status SessionWriter::sync_if_due() {
+  if (fd_ < 0) return {};
+  if (std::chrono::steady_clock::now() - last_sync_ < kSyncInterval) return {};
+  return sync();
+}
+
+core::Status SessionWriter::close() {
+  if (fd_ < 0) return {};
+  core::Status st = sync();
+  ::close(fd_);
+  fd_ = -1;
+  return st;
+}
+
+}  // namespace sculpt::sim

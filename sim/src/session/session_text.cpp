@@ -1,0 +1,297 @@
+#include "sculpt/sim/session/session_text.h"
+
+#include <charconv>
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "sculpt/sim/session/session_file.h"
+
+namespace sculpt::sim {
+namespace {
+
+using nlohmann::json;
+
+std::string to_hex(std::span<const uint8_t> bytes) {
+  std::string s;
+  char b[4];
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    std::snprintf(b, sizeof b, i ? " %02x" : "%02x", bytes[i]);
+    s += b;
+  }
+  return s;
+}
+
+// Hex digits with optional spaces, tabs, colons or commas between bytes.
+std::optional<std::vector<uint8_t>> from_hex(std::string_view s) {
+  std::vector<uint8_t> out;
+  int pending = -1;
+  for (char c : s) {
+    int v;
+    if (c >= '0' && c <= '9')
+      v = c - '0';
+    else if (c >= 'a' && c <= 'f')
+      v = c - 'a' + 10;
+    else if (c >= 'A' && c <= 'F')
+      v = c - 'A' + 10;
+    else if (c == ' ' || c == '\t' || c == ':' || c == ',') {
+      if (pending >= 0) return std::nullopt;  // a lone digit
+      continue;
+    } else {
+      return std::nullopt;
+    }
+    if (pending < 0) {
+      pending = v;
+    } else {
+      out.push_back(static_cast<uint8_t>(pending * 16 + v));
+      pending = -1;
+    }
+  }
+  if (pending >= 0) return std::nullopt;
+  return out;
+}
+
+json floats(const float* v, int n) {
+  json a = json::array();
+  for (int i = 0; i < n; ++i)
+    a.push_back(v[i]);
+  return a;
+}
+
+json record_json(const SessionRecord& r) {
+  json j;
+  j["t"] = r.t_ns();
+  if (r.kind == SessionRecord::Kind::kEvent) {
+    const hal::RawEvent& e = r.event;
+    switch (e.kind) {
+      case hal::RawEventKind::kReport:
+        j["report"] = to_hex(e.bytes());
+        if (e.truncated) j["truncated"] = true;
+        break;
+      case hal::RawEventKind::kAxis:
+        j["axis"] = {e.index, e.value};
+        break;
+      case hal::RawEventKind::kButton:
+        j["button"] = {e.index, e.value};
+        break;
+      case hal::RawEventKind::kSync:
+        j["sync"] = true;
+        break;
+      case hal::RawEventKind::kRemoved:
+        j["removed"] = true;
+        break;
+    }
+    return j;
+  }
+  const Command& c = r.command;
+  j["cmd"] = command_name(c.kind);
+  switch (c.kind) {
+    case CommandKind::kTool:
+      j["shape"] = tool_shape_name(static_cast<ToolShape>(c.choice));
+      j["size"] = floats(c.values, 2);
+      break;
+    case CommandKind::kMode:
+      j["mode"] = sculpt_mode_name(static_cast<SculptModeId>(c.choice));
+      break;
+    case CommandKind::kStrength:
+    case CommandKind::kSpacing:
+      j["value"] = c.values[0];
+      break;
+    case CommandKind::kMirror:
+      j["axis"] =
+          c.choice == kMirrorOff ? "off" : std::string(1, static_cast<char>('x' + c.choice));
+      j["at"] = c.values[0];
+      break;
+    case CommandKind::kVolume:
+      j["size"] = floats(c.values, 3);
+      j["fill"] = c.values[3];
+      break;
+    case CommandKind::kToolPose:
+      j["position"] = floats(c.values, 3);
+      j["orientation"] = floats(c.values + 3, 4);
+      break;
+    default:
+      break;
+  }
+  return j;
+}
+
+// Reads one record line; throws std::string describing the problem.
+SessionRecord parse_record(const json& j) {
+  auto need = [&](const char* key) -> const json& {
+    if (!j.contains(key)) throw std::string("missing \"") + key + "\"";
+    return j.at(key);
+  };
+  auto number_array = [&](const char* key, float* out, int n) {
+    const json& a = need(key);
+    if (!a.is_array() || static_cast<int>(a.size()) != n) {
+      throw std::string(key) + ": expected " + std::to_string(n) + " numbers";
+    }
+    for (int i = 0; i < n; ++i) {
+      if (!a[static_cast<size_t>(i)].is_number()) throw std::string(key) + ": expected numbers";
+      out[i] = a[static_cast<size_t>(i)].get<float>();
+    }
+  };
+  const json& tj = need("t");
+  if (!tj.is_number_integer()) throw std::string("t: expected integer nanoseconds");
+  const int64_t t = tj.get<int64_t>();
+
+  if (j.contains("report")) {
+    if (!j["report"].is_string()) throw std::string("report: expected a hex string");
+    const auto bytes = from_hex(j["report"].get<std::string>());
+    if (!bytes) throw "report: '" + j["report"].get<std::string>() + "' is not hex";
+    if (bytes->empty() || bytes->size() > hal::RawEvent::kMaxReportBytes) {
+      throw std::string("report: expected 1 to 64 bytes");
+    }
+    SessionRecord r = SessionRecord::of(hal::RawEvent::report(t, *bytes));
+    r.event.truncated = j.value("truncated", false);
+    return r;
+  }
+  for (const char* key : {"axis", "button"}) {
+    if (!j.contains(key)) continue;
+    const json& a = j[key];
+    if (!a.is_array() || a.size() != 2 || !a[0].is_number_integer() || !a[1].is_number_integer()) {
+      throw std::string(key) + ": expected [index, value]";
+    }
+    const int index = a[0].get<int>();
+    if (index < 0 || index > 63) throw std::string(key) + ": index out of range 0..63";
+    return SessionRecord::of(key[0] == 'a' ? hal::RawEvent::axis(t, index, a[1].get<int>())
+                                           : hal::RawEvent::button(t, index, a[1].get<int>() != 0));
+  }
+  if (j.contains("sync")) return SessionRecord::of(hal::RawEvent::sync(t));
+  if (j.contains("removed")) return SessionRecord::of(hal::RawEvent::removed(t));
+  if (!j.contains("cmd"))
+    throw std::string("expected one of report, axis, button, sync, removed, cmd");
+
+  const json& name = j["cmd"];
+  const auto kind = name.is_string() ? parse_command_name(name.get<std::string>()) : std::nullopt;
+  if (!kind) throw std::string("cmd: unknown command ") + name.dump();
+  Command c;
+  c.kind = *kind;
+  auto choice = [&](const char* key, auto parse) {
+    const json& v = need(key);
+    const auto parsed = v.is_string() ? parse(v.get<std::string>()) : std::nullopt;
+    if (!parsed) throw std::string(key) + ": unknown value " + v.dump();
+    c.choice = static_cast<uint8_t>(*parsed);
+  };
+  switch (c.kind) {
+    case CommandKind::kTool:
+      choice("shape", parse_tool_shape);
+      number_array("size", c.values, 2);
+      break;
+    case CommandKind::kMode:
+      choice("mode", parse_sculpt_mode_id);
+      break;
+    case CommandKind::kStrength:
+    case CommandKind::kSpacing:
+      number_array("value", c.values, 1);
+      break;
+    case CommandKind::kMirror: {
+      choice("axis", [](const std::string& s) -> std::optional<uint8_t> {
+        if (s == "off") return kMirrorOff;
+        if (s.size() == 1 && s[0] >= 'x' && s[0] <= 'z') return static_cast<uint8_t>(s[0] - 'x');
+        return std::nullopt;
+      });
+      number_array("at", c.values, 1);
+      break;
+    }
+    case CommandKind::kVolume:
+      number_array("size", c.values, 3);
+      number_array("fill", c.values + 3, 1);
+      break;
+    case CommandKind::kToolPose:
+      number_array("position", c.values, 3);
+      number_array("orientation", c.values + 3, 4);
+      break;
+    default:
+      break;
+  }
+  return SessionRecord::of(t, c);
+}
+
+}  // namespace
+
+std::string session_to_text(const Session& session) {
+  const hal::DeviceInfo& d = session.header.device;
+  json header = {
+      {"sculpt_session", kSessionVersion},
+      {"device",
+       {{"backend", d.backend},
+        {"path", d.path},
+        {"name", d.name},
+        {"manufacturer", d.manufacturer},
+        {"serial", d.serial},
+        {"vendor_product", d.vendor_product()},
+        {"usage_page", d.usage_page},
+        {"usage", d.usage},
+        {"report_descriptor", to_hex(d.report_descriptor)}}},
+      {"normalizer", session.header.normalizer_config},
+      {"created_unix_ns", session.header.created_unix_ns},
+  };
+  std::string out = header.dump() + "\n";
+  for (const SessionRecord& r : session.records)
+    out += record_json(r).dump() + "\n";
+  return out;
+}
+
+core::Result<Session> session_from_text(std::string_view text, const std::string& name) {
+  Session s;
+  bool have_header = false;
+  int64_t last_t = INT64_MIN;
+  size_t line_no = 0;
+  while (!text.empty()) {
+    const size_t nl = text.find('\n');
+    std::string_view line = text.substr(0, nl);
+    text = nl == std::string_view::npos ? std::string_view() : text.substr(nl + 1);
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (line.find_first_not_of(" \t") == std::string_view::npos || line[0] == '#') continue;
+    const std::string where = name + ":" + std::to_string(line_no) + ": ";
+    const json j = json::parse(line, nullptr, /*allow_exceptions=*/false);
+    if (j.is_discarded() || !j.is_object()) return core::Error(where + "not a JSON object");
+    try {
+      if (!have_header) {
+        if (!j.contains("sculpt_session"))
+          throw std::string("the first line must be the header (\"sculpt_session\")");
+        if (j["sculpt_session"] != kSessionVersion)
+          throw std::string("unsupported session version ") + j["sculpt_session"].dump();
+        const json& d = j.at("device");
+        hal::DeviceInfo& info = s.header.device;
+        info.backend = d.value("backend", "");
+        info.path = d.value("path", "");
+        info.name = d.value("name", "");
+        info.manufacturer = d.value("manufacturer", "");
+        info.serial = d.value("serial", "");
+        const std::string vp = d.value("vendor_product", "");
+        unsigned vid = 0, pid = 0;
+        char tail = 0;
+        if (std::sscanf(vp.c_str(), "%4x:%4x%c", &vid, &pid, &tail) != 2) {
+          throw "device.vendor_product: '" + vp + "' is not VVVV:PPPP hex";
+        }
+        info.vendor_id = static_cast<uint16_t>(vid);
+        info.product_id = static_cast<uint16_t>(pid);
+        info.usage_page = d.value("usage_page", uint16_t{0});
+        info.usage = d.value("usage", uint16_t{0});
+        const auto descriptor = from_hex(d.value("report_descriptor", ""));
+        if (!descriptor) throw std::string("device.report_descriptor: not hex");
+        info.report_descriptor = *descriptor;
+        s.header.normalizer_config = j.value("normalizer", "");
+        s.header.created_unix_ns = j.value("created_unix_ns", int64_t{0});
+        have_header = true;
+        continue;
+      }
+      SessionRecord r = parse_record(j);
+      if (r.t_ns() < last_t) throw std::string("t goes back in time");
+      last_t = r.t_ns();
+      s.records.push_back(r);
+    } catch (const std::string& why) {
+      return core::Error(where + why);
+    } catch (const nlohmann::json::exception& e) {
+      return core::Error(where + "malformed field (" + e.what() + ")");
+    }
+  }
+  if (!have_header) return core::Error(name + ": empty session (no header line)");
+  return s;
+}
+
+}  // namespace sculpt::sim

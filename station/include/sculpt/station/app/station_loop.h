@@ -1,0 +1,99 @@
+#pragma once
+// The station without a window (DESIGN.md §1): device input and station
+// commands in, sculpture and surface out. The live loop, `sculpt replay` and
+// the tests all drive this one class, so a replay runs exactly the code a live
+// session ran.
+//
+// Device buttons: button 0 presses the tool into the material while held;
+// button 1 switches between add and subtract. A device that vanishes while
+// pressed ends the stroke cleanly.
+//
+// Thread safety: one thread (the main loop) calls everything.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "sculpt/core/mesh/mesh_cache.h"
+#include "sculpt/core/sculpt/sculptor.h"
+#include "sculpt/core/volume/volume.h"
+#include "sculpt/hal/input/input_event.h"
+#include "sculpt/hal/pose/pose_integrator.h"
+#include "sculpt/hal/stroke/stroke_sampler.h"
+#include "sculpt/sim/session/session.h"
+
+namespace sculpt::station {
+
+/// What the user has chosen (the UI panel's state).
+struct StationSettings {
+  sim::ToolShape shape = sim::ToolShape::kSphere;
+  float size_a_vox = 8.0f;  ///< sphere radius, cube edge, cylinder/cone radius, ring major radius
+  float size_b_vox = 0.0f;  ///< cylinder/cone height, ring minor radius
+  core::SculptMode mode = core::SculptMode::kAdd;
+  float strength = 1.0f;
+  float spacing = 0.25f;  ///< dab spacing, fraction of the tool's size
+  std::optional<core::MirrorPlane> mirror;
+};
+
+/// The tool a shape and sizes describe (sizes are clamped to at least 0.5 voxel).
+core::Tool make_tool(sim::ToolShape shape, float size_a_vox, float size_b_vox);
+/// The diameter of that tool, voxels: what dab spacing is relative to.
+float tool_size_vox(sim::ToolShape shape, float size_a_vox, float size_b_vox);
+
+struct StationCounters {
+  int64_t dabs = 0;
+  int64_t strokes = 0;
+  int64_t motion_samples = 0;
+  int64_t undos = 0;
+  int64_t redos = 0;
+  int64_t disconnects = 0;
+};
+
+class StationLoop {
+ public:
+  struct Options {
+    glm::ivec3 volume_dims{256};
+    uint8_t volume_fill = 0;
+    /// Keep a level-0 mesh up to date after every input (for drawing and for
+    /// the latency figure); off for the fastest possible replay.
+    bool mesh = true;
+    hal::PoseIntegratorConfig pose{};
+  };
+  explicit StationLoop(const Options& options);
+
+  /// A station command (recorded in sessions, issued by the UI).
+  void handle(const sim::Command& command);
+  /// One normalised device event.
+  void handle(const hal::InputEvent& event);
+  /// Re-meshes what changed since the last call; returns bricks meshed.
+  int64_t update_mesh();
+
+  const core::Volume& volume() const { return *volume_; }
+  const core::MeshCache& mesh() const { return mesh_; }
+  const hal::ToolPose& pose() const { return integrator_.pose(); }
+  const StationSettings& settings() const { return settings_; }
+  const StationCounters& counters() const { return counters_; }
+  bool pressed() const { return pressed_; }
+  const core::Sculptor& sculptor() const { return *sculptor_; }
+
+ private:
+  void new_volume(glm::ivec3 dims, uint8_t fill);
+  void apply_tool();
+  void press();
+  void release();
+  void sculpt(const std::vector<hal::Dab>& dabs);
+
+  Options options_;
+  std::unique_ptr<core::Volume> volume_;
+  std::unique_ptr<core::Sculptor> sculptor_;
+  core::MeshCache mesh_;
+  hal::PoseIntegrator integrator_;
+  hal::StrokeSampler sampler_;
+  StationSettings settings_;
+  StationCounters counters_;
+  bool pressed_ = false;
+  std::vector<hal::Dab> dabs_;
+};
+
+}  // namespace sculpt::station

@@ -1,0 +1,27 @@
+#include "sculpt/station/app/session_loading.h"
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "sculpt/sim/session/session_text.h"
+
+namespace sculpt::station {
+
+core::Result<sim::Session> load_session(const std::filesystem::path& path,
+                                        sim::SessionReadInfo* info) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return core::Error(path.string() + ": cannot open: " + std::strerror(errno));
+  char magic[sizeof(sim::kSessionMagic)] = {};
+  in.read(magic, sizeof magic);
+  if (in.gcount() == sizeof magic && std::memcmp(magic, sim::kSessionMagic, sizeof magic) == 0) {
+    return sim::read_session_file(path, info);
+  }
+  in.clear();
+  in.seekg(0);
+  std::stringstream text;
+  text << in.rdbuf();
+  return sim::session_from_text(text.str(), path.string());
+}
+
+}  // namespace sculpt::station
