@@ -268,8 +268,15 @@ DabStats Sculptor::apply(RotatedToolCache& cache, const Dab& dab) {
         const int64_t t1 = now_ns();
         const glm::ivec3 origin = b * edge;
         int64_t changed = 0;
-        for (int z = bb.lo.z; z < bb.hi.z; ++z)
-          for (int y = bb.lo.y; y < bb.hi.y; ++y) {
+        for (int z = bb.lo.z; z < bb.hi.z; ++z) {
+          // Only the rows of this plane that cross the reach ball.
+          const float pz = static_cast<float>(z) - pivot_pos.z;
+          const float hz2 = reach2 - pz * pz;
+          if (hz2 < 0.0f) continue;
+          const float hz = std::sqrt(hz2);
+          const int y_lo = std::max(bb.lo.y, static_cast<int>(std::ceil(pivot_pos.y - hz)));
+          const int y_hi = std::min(bb.hi.y, static_cast<int>(std::floor(pivot_pos.y + hz)) + 1);
+          for (int y = y_lo; y < y_hi; ++y) {
             // The row's stretch within the tool's reach (a ball round the pivot).
             const float dy = static_cast<float>(y) - pivot_pos.y,
                         dz = static_cast<float>(z) - pivot_pos.z;
@@ -300,6 +307,7 @@ DabStats Sculptor::apply(RotatedToolCache& cache, const Dab& dab) {
               changed += combine_row(dab.mode, m + c0, f, c1 - c0, strength_q);
             }
           }
+        }
         const int64_t t2 = now_ns();
         stats.decode_ns += t1 - t0;
         stats.apply_ns += t2 - t1;
