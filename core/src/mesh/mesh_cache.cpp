@@ -185,6 +185,12 @@ bool MeshCache::remesh(glm::ivec3 b, std::vector<uint8_t>& scratch) {
     for (int y = nbs.lo.y; y < nbs.hi.y; ++y)
       for (int x = nbs.lo.x; x < nbs.hi.x; ++x) {
         const glm::ivec3 d = b - glm::ivec3(x, y, z);  // b is neighbour (x, y, z) + d
+        if (glm::any(glm::greaterThan(glm::abs(d), glm::ivec3(1)))) {
+          // Bricks of one voxel (the coarsest level): the halo reaches two
+          // bricks away, beyond the summaries; assume both sides.
+          any_in = any_out = true;
+          continue;
+        }
         const uint32_t bit = 1u << ((d.z + 1) * 9 + (d.y + 1) * 3 + (d.x + 1));
         const CachedBrick& nb = bricks_[index({x, y, z})];
         any_in = any_in || (nb.any_inside & bit) != 0;
@@ -272,6 +278,18 @@ MeshUpdate MeshCache::update(const Volume& volume) {
     std::vector<uint8_t> flag(static_cast<size_t>(count), 0);
     for (size_t k = 0; k < changed.size(); ++k) {
       const glm::ivec3 b = coord(changed[k]);
+      if (m_ < 2 && masks[k] != 0) {
+        // One-voxel bricks: normals read two bricks away on the low side.
+        for (int dz = -2; dz <= 1; ++dz)
+          for (int dy = -2; dy <= 1; ++dy)
+            for (int dx = -2; dx <= 1; ++dx) {
+              const glm::ivec3 nb = b + glm::ivec3(dx, dy, dz);
+              if (glm::all(glm::greaterThanEqual(nb, glm::ivec3(0))) &&
+                  glm::all(glm::lessThan(nb, grid_)))
+                flag[index(nb)] = 1;
+            }
+        continue;
+      }
       for (int bit = 0; bit < 27; ++bit) {
         if (!((masks[k] >> bit) & 1)) continue;
         const glm::ivec3 nb = b + glm::ivec3(bit % 3 - 1, (bit / 3) % 3 - 1, bit / 9 - 1);

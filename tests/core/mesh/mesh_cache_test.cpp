@@ -50,9 +50,10 @@ TEST(MeshCache, IncrementalEqualsFullAfterEdits) {
   Volume volume = sphere_volume(128);
   // Two consumers of one volume at different levels; neither drains the
   // volume's dirty list, and something else may drain it at any time.
-  MeshCache fine(0), coarse(2);
+  MeshCache fine(0), coarse(2), coarsest(5);  // level 5: bricks of one voxel
   fine.update(volume);
   coarse.update(volume);
+  coarsest.update(volume);
   const glm::vec3 c(63.5f);
   const float r = 0.35f * 128;
   struct Dab {
@@ -72,8 +73,10 @@ TEST(MeshCache, IncrementalEqualsFullAfterEdits) {
     if (&d == &dabs[2]) (void)volume.take_dirty_bricks();
     fine.update(volume);
     coarse.update(volume);
+    coarsest.update(volume);
     expect_same_as_full(fine, volume);
     expect_same_as_full(coarse, volume);
+    expect_same_as_full(coarsest, volume);
   }
 }
 
