@@ -11,6 +11,7 @@
 #include "sculpt/core/tool/tool_rotation.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cmath>
 #include <cstring>
@@ -24,6 +25,8 @@
 
 namespace sculpt::core {
 namespace {
+
+std::atomic<bool> g_vector_kernel{true};
 
 constexpr int kFracBits = 16;
 constexpr double kOne = 1 << kFracBits;
@@ -184,6 +187,15 @@ glm::mat3 euler_xyz_deg(glm::vec3 degrees) {
   return m;
 }
 
+bool use_vector_kernel(bool enabled) {
+  g_vector_kernel.store(enabled, std::memory_order_relaxed);
+#ifdef SCULPT_TOOL_AVX2
+  return enabled && cpu_has_avx2();
+#else
+  return false;
+#endif
+}
+
 PreparedTool::PreparedTool(Tool tool) : tool_(std::move(tool)) {
   const glm::ivec3 d = tool_.density.dims();
   const glm::ivec3 pd = d + 2 * kPad;
@@ -314,7 +326,8 @@ void RotationFrame::sample_line(const PreparedTool& tool, const int32_t s0[3], i
   const bool nearest = sampling_ == Sampling::kNearest;
   int n0v = n0;
 #ifdef SCULPT_TOOL_AVX2
-  if (cpu_has_avx2()) n0v += sample_span_avx2(padded, cells, pd, s, st, n1 - n0, out + n0, nearest);
+  if (g_vector_kernel.load(std::memory_order_relaxed) && cpu_has_avx2())
+    n0v += sample_span_avx2(padded, cells, pd, s, st, n1 - n0, out + n0, nearest);
 #endif
   if (nearest) {
     for (int n = n0v; n < n1; ++n) {

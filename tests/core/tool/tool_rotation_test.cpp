@@ -55,6 +55,21 @@ TEST(ToolRotation, BruteAndIncrementalAgreeExactly) {
   }
 }
 
+TEST(ToolRotation, VectorAndScalarKernelsAgreeExactly) {
+  const PreparedTool tool(textured_tool({21, 17, 23}));
+  for (glm::vec3 angles : kAngles)
+    for (Sampling s : {Sampling::kNearest, Sampling::kTrilinear}) {
+      const glm::mat3 r = euler_xyz_deg(angles);
+      (void)use_vector_kernel(false);
+      const RotatedTool scalar =
+          rotate_tool(tool, r, {1.3f, 2.7f, -0.4f}, RotationMethod::kIncremental, s);
+      (void)use_vector_kernel(true);
+      const RotatedTool vector =
+          rotate_tool(tool, r, {1.3f, 2.7f, -0.4f}, RotationMethod::kIncremental, s);
+      EXPECT_TRUE(scalar.density == vector.density);
+    }
+}
+
 TEST(ToolRotation, QuarterTurnsAreExact) {
   const Tool t = textured_tool({10, 10, 10});
   const PreparedTool tool(t);

@@ -38,6 +38,11 @@ enum class RotationMethod { kBrute, kIncremental };
 /// Rz * Ry * Rx, the matrix of scipy's Rotation.from_euler("xyz", deg, degrees=True).
 glm::mat3 euler_xyz_deg(glm::vec3 degrees);
 
+/// Allows (default) or forbids the AVX2 sampling kernel, which is used only
+/// when the CPU has AVX2; returns whether it will be used. Results are the
+/// same either way; tests compare the two paths. Affects all threads.
+bool use_vector_kernel(bool enabled);
+
 /// A reference tool made ready for fast sampling: a copy padded by two zero
 /// voxels on every side (no bounds tests in the inner loop), and a table
 /// marking the trilinear cells (a voxel and its +1 neighbours) whose 8
