@@ -12,8 +12,10 @@
 #if SCULPT_HAL_HAVE_SPNAV
 #include <poll.h>
 #include <spnav.h>
+#include <sys/stat.h>
 
 #include <atomic>
+#include <cstdlib>
 #include <deque>
 #include <memory>
 
@@ -26,6 +28,19 @@ namespace {
 #if SCULPT_HAL_HAVE_SPNAV
 
 constexpr const char* kNoDaemon = "spacenavd is not running: no connection to its socket";
+
+// libspnav connects to $SPNAV_SOCKET, else /var/run/spnav.sock. Looking for
+// the socket first answers "no daemon" without calling spnav_open(), which
+// leaks its connection state when the connect fails.
+bool daemon_socket_exists() {
+  const char* env = std::getenv("SPNAV_SOCKET");
+  struct stat st {};
+  return ::stat(env && *env ? env : "/var/run/spnav.sock", &st) == 0 && S_ISSOCK(st.st_mode);
+}
+
+bool connect_daemon() {
+  return daemon_socket_exists() && spnav_open() != -1;
+}
 
 // libspnav keeps one process-wide connection: while a device reads through
 // it, nothing else may call into the library.
@@ -121,14 +136,14 @@ class SpnavBackend final : public Backend {
 
   BackendStatus status() override {
     if (g_connection_in_use.load()) return {};
-    if (spnav_open() == -1) return {BackendState::kUnavailable, kNoDaemon};
+    if (!connect_daemon()) return {BackendState::kUnavailable, kNoDaemon};
     spnav_close();
     return {};
   }
 
   core::Result<std::vector<DeviceInfo>> enumerate() override {
     if (g_connection_in_use.load()) return std::vector<DeviceInfo>{cached_};
-    if (spnav_open() == -1) return core::Error(std::string("spnav: ") + kNoDaemon);
+    if (!connect_daemon()) return core::Error(std::string("spnav: ") + kNoDaemon);
     // Protocol 0 daemons (before 1.0) cannot describe the device: assume one.
     const bool described = spnav_protocol() >= 1;
     DeviceInfo info = described ? query_device() : DeviceInfo{};
@@ -150,7 +165,7 @@ class SpnavBackend final : public Backend {
     if (!g_connection_in_use.compare_exchange_strong(expected, true)) {
       return core::Error(info.id() + ": already open (libspnav has one connection per process)");
     }
-    if (spnav_open() == -1) {
+    if (!connect_daemon()) {
       g_connection_in_use.store(false);
       return core::Error(info.id() + ": " + kNoDaemon);
     }
