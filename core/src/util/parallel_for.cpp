@@ -7,12 +7,25 @@
 
 namespace sculpt::core {
 
+namespace {
+std::atomic<int> g_default_threads{0};
+}  // namespace
+
 int hardware_threads() {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
+int default_threads() {
+  const int n = g_default_threads.load(std::memory_order_relaxed);
+  return n > 0 ? n : hardware_threads();
+}
+
+void set_default_threads(int threads) {
+  g_default_threads.store(std::max(threads, 0), std::memory_order_relaxed);
+}
+
 void parallel_for(int64_t count, const std::function<void(int64_t)>& body, int threads) {
-  if (threads <= 0) threads = hardware_threads();
+  if (threads <= 0) threads = default_threads();
   const int64_t workers = std::min<int64_t>(threads, count);
   if (workers <= 1) {
     for (int64_t i = 0; i < count; ++i)

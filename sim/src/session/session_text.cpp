@@ -11,6 +11,8 @@ namespace sculpt::sim {
 namespace {
 
 using nlohmann::json;
+// Written with keys in a fixed, readable order ("t" first).
+using ordered = nlohmann::ordered_json;
 
 std::string to_hex(std::span<const uint8_t> bytes) {
   std::string s;
@@ -51,15 +53,15 @@ std::optional<std::vector<uint8_t>> from_hex(std::string_view s) {
   return out;
 }
 
-json floats(const float* v, int n) {
-  json a = json::array();
+ordered floats(const float* v, int n) {
+  ordered a = ordered::array();
   for (int i = 0; i < n; ++i)
     a.push_back(v[i]);
   return a;
 }
 
-json record_json(const SessionRecord& r) {
-  json j;
+ordered record_json(const SessionRecord& r) {
+  ordered j;
   j["t"] = r.t_ns();
   if (r.kind == SessionRecord::Kind::kEvent) {
     const hal::RawEvent& e = r.event;
@@ -116,26 +118,38 @@ json record_json(const SessionRecord& r) {
   return j;
 }
 
+// Field readers: each throws a std::string naming the field and the problem.
+const json& need(const json& j, const char* key) {
+  if (!j.contains(key)) throw std::string("missing \"") + key + "\"";
+  return j.at(key);
+}
+
+void read_numbers(const json& j, const char* key, float* out, int n) {
+  const json& a = need(j, key);
+  if (!a.is_array() || static_cast<int>(a.size()) != n) {
+    throw std::string(key) + ": expected " + std::to_string(n) + " numbers";
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!a[static_cast<size_t>(i)].is_number()) throw std::string(key) + ": expected numbers";
+    out[i] = a[static_cast<size_t>(i)].get<float>();
+  }
+}
+
+void read_number(const json& j, const char* key, float* out) {
+  const json& v = need(j, key);
+  if (!v.is_number()) throw std::string(key) + ": expected a number";
+  *out = v.get<float>();
+}
+
+SessionRecord parse_command(const json& j, int64_t t);
+
 // Reads one record line; throws std::string describing the problem.
 SessionRecord parse_record(const json& j) {
-  auto need = [&](const char* key) -> const json& {
-    if (!j.contains(key)) throw std::string("missing \"") + key + "\"";
-    return j.at(key);
-  };
-  auto number_array = [&](const char* key, float* out, int n) {
-    const json& a = need(key);
-    if (!a.is_array() || static_cast<int>(a.size()) != n) {
-      throw std::string(key) + ": expected " + std::to_string(n) + " numbers";
-    }
-    for (int i = 0; i < n; ++i) {
-      if (!a[static_cast<size_t>(i)].is_number()) throw std::string(key) + ": expected numbers";
-      out[i] = a[static_cast<size_t>(i)].get<float>();
-    }
-  };
-  const json& tj = need("t");
+  const json& tj = need(j, "t");
   if (!tj.is_number_integer()) throw std::string("t: expected integer nanoseconds");
   const int64_t t = tj.get<int64_t>();
 
+  if (j.contains("cmd")) return parse_command(j, t);
   if (j.contains("report")) {
     if (!j["report"].is_string()) throw std::string("report: expected a hex string");
     const auto bytes = from_hex(j["report"].get<std::string>());
@@ -160,16 +174,17 @@ SessionRecord parse_record(const json& j) {
   }
   if (j.contains("sync")) return SessionRecord::of(hal::RawEvent::sync(t));
   if (j.contains("removed")) return SessionRecord::of(hal::RawEvent::removed(t));
-  if (!j.contains("cmd"))
-    throw std::string("expected one of report, axis, button, sync, removed, cmd");
+  throw std::string("expected one of report, axis, button, sync, removed, cmd");
+}
 
+SessionRecord parse_command(const json& j, int64_t t) {
   const json& name = j["cmd"];
   const auto kind = name.is_string() ? parse_command_name(name.get<std::string>()) : std::nullopt;
   if (!kind) throw std::string("cmd: unknown command ") + name.dump();
   Command c;
   c.kind = *kind;
   auto choice = [&](const char* key, auto parse) {
-    const json& v = need(key);
+    const json& v = need(j, key);
     const auto parsed = v.is_string() ? parse(v.get<std::string>()) : std::nullopt;
     if (!parsed) throw std::string(key) + ": unknown value " + v.dump();
     c.choice = static_cast<uint8_t>(*parsed);
@@ -177,14 +192,14 @@ SessionRecord parse_record(const json& j) {
   switch (c.kind) {
     case CommandKind::kTool:
       choice("shape", parse_tool_shape);
-      number_array("size", c.values, 2);
+      read_numbers(j, "size", c.values, 2);
       break;
     case CommandKind::kMode:
       choice("mode", parse_sculpt_mode_id);
       break;
     case CommandKind::kStrength:
     case CommandKind::kSpacing:
-      number_array("value", c.values, 1);
+      read_number(j, "value", c.values);
       break;
     case CommandKind::kMirror: {
       choice("axis", [](const std::string& s) -> std::optional<uint8_t> {
@@ -192,16 +207,16 @@ SessionRecord parse_record(const json& j) {
         if (s.size() == 1 && s[0] >= 'x' && s[0] <= 'z') return static_cast<uint8_t>(s[0] - 'x');
         return std::nullopt;
       });
-      number_array("at", c.values, 1);
+      read_number(j, "at", c.values);
       break;
     }
     case CommandKind::kVolume:
-      number_array("size", c.values, 3);
-      number_array("fill", c.values + 3, 1);
+      read_numbers(j, "size", c.values, 3);
+      read_number(j, "fill", c.values + 3);
       break;
     case CommandKind::kToolPose:
-      number_array("position", c.values, 3);
-      number_array("orientation", c.values + 3, 4);
+      read_numbers(j, "position", c.values, 3);
+      read_numbers(j, "orientation", c.values + 3, 4);
       break;
     default:
       break;
@@ -213,7 +228,7 @@ SessionRecord parse_record(const json& j) {
 
 std::string session_to_text(const Session& session) {
   const hal::DeviceInfo& d = session.header.device;
-  json header = {
+  ordered header = {
       {"sculpt_session", kSessionVersion},
       {"device",
        {{"backend", d.backend},

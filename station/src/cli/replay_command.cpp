@@ -12,6 +12,7 @@
 #include "cli/commands.h"
 #include "sculpt/core/io/atomic_file.h"
 #include "sculpt/core/mesh/mesh_io.h"
+#include "sculpt/core/util/parallel_for.h"
 #include "sculpt/core/volume/volume_io.h"
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/session_replay.h"
@@ -23,6 +24,7 @@ struct ReplayCliOptions {
   std::string session;
   bool fast = false;
   double speed = 1.0;
+  int threads = 0;
   std::string volume, mesh, stats, samples;
 };
 
@@ -52,6 +54,7 @@ nlohmann::json sample_json(const hal::InputEvent& e) {
 }
 
 int run_replay(const ReplayCliOptions& o) {
+  core::set_default_threads(o.threads);
   // Check every output's format before the (possibly long) replay.
   std::optional<core::MeshFormat> mesh_format;
   if (!o.mesh.empty()) {
@@ -142,6 +145,9 @@ void add_replay_command(CLI::App& app, Action& action) {
   cmd->add_option("--speed", o->speed, "speed factor (1 = real time)")
       ->check(CLI::PositiveNumber)
       ->excludes(fast);
+  cmd->add_option("--threads", o->threads,
+                  "threads for volume work (0 = all cores); never changes the result")
+      ->check(CLI::Range(0, 256));
   cmd->add_option("--volume", o->volume, "write the resulting volume (NRRD)");
   cmd->add_option("--mesh", o->mesh, "write the resulting surface (.ply, .obj, .stl)");
   cmd->add_option("--stats", o->stats,

@@ -10,8 +10,15 @@ namespace sculpt::core {
 /// Number of threads the machine offers (at least 1).
 int hardware_threads();
 
+/// Threads that whole-volume work uses when a call asks for 0 ("all"):
+/// hardware_threads() unless set. Results never depend on it; tests and
+/// `--threads` use it to prove that.
+int default_threads();
+/// Sets default_threads() (0 restores the hardware count).
+void set_default_threads(int threads);
+
 /// Calls `body(i)` for every i in [0, count), spread over `threads` threads
-/// (0 = hardware_threads()). Work is handed out in order, one index at a time,
+/// (0 = default_threads()). Work is handed out in order, one index at a time,
 /// so uneven items (uniform vs detailed bricks) balance themselves. `body` must
 /// be safe to call concurrently for different i.
 void parallel_for(int64_t count, const std::function<void(int64_t)>& body, int threads = 0);

@@ -1,0 +1,68 @@
+#include "sculpt/sim/replay/sim_backend.h"
+
+#include <gtest/gtest.h>
+
+#include "sculpt/sim/synth/bundled_sessions.h"
+
+namespace sculpt::sim {
+namespace {
+
+TEST(SimBackend, PlaysTheSessionDeviceThroughTheHalInterfaces) {
+  Session s = short_session();
+  const size_t commands = static_cast<size_t>(std::count_if(
+      s.records.begin(), s.records.end(),
+      [](const SessionRecord& r) { return r.kind == SessionRecord::Kind::kCommand; }));
+  const size_t events = s.records.size() - commands;
+  SimBackend backend(s, "short.scs", /*speed=*/1000.0);
+  EXPECT_EQ(backend.name(), "sim");
+  auto devices = backend.enumerate();
+  ASSERT_TRUE(devices.ok());
+  ASSERT_EQ(devices->size(), 1u);
+  EXPECT_EQ((*devices)[0].id(), "sim:short.scs");
+  EXPECT_EQ((*devices)[0].vendor_product(), "046d:c626");
+  auto device = backend.open((*devices)[0]);
+  ASSERT_TRUE(device.ok());
+  EXPECT_FALSE(backend.open((*devices)[0]).ok());  // never opened twice
+
+  size_t got = 0;
+  int removals = 0;
+  hal::RawEvent e;
+  for (int timeouts = 0; timeouts < 3;) {
+    switch ((*device)->read(e, 50)) {
+      case hal::ReadResult::kEvent:
+        ++got;
+        break;
+      case hal::ReadResult::kRemoved:
+        ++removals;
+        ++got;
+        timeouts = 3;
+        break;
+      case hal::ReadResult::kTimeout:
+        ++timeouts;
+        break;
+    }
+  }
+  // The short session unplugs the device once: everything up to it arrives.
+  EXPECT_EQ(removals, 1);
+  EXPECT_LT(got, events);
+  EXPECT_GT(got, events / 2);
+  EXPECT_GT(backend.take_commands().size(), 3u);
+  EXPECT_EQ((*device)->read(e, 0), hal::ReadResult::kRemoved);  // and keeps saying so
+}
+
+TEST(SimBackend, ReadHonoursItsTimeoutDuringAPauseInTheRecording) {
+  Session s;
+  s.header.device.vendor_id = 0x256f;
+  s.header.device.product_id = 0xc635;
+  s.records.push_back(SessionRecord::of(hal::RawEvent::sync(0)));
+  s.records.push_back(SessionRecord::of(hal::RawEvent::sync(3'600'000'000'000)));  // an hour later
+  SimBackend backend(s, "pause.scs");
+  auto device = backend.open(backend.enumerate()->front());
+  ASSERT_TRUE(device.ok());
+  hal::RawEvent e;
+  EXPECT_EQ((*device)->read(e, 10), hal::ReadResult::kEvent);
+  EXPECT_EQ((*device)->read(e, 10), hal::ReadResult::kTimeout);  // returns, does not sleep an hour
+}
+
+}  // namespace
+}  // namespace sculpt::sim

@@ -1,0 +1,77 @@
+#include "sculpt/sim/session/session_text.h"
+
+#include <gtest/gtest.h>
+
+#include "sculpt/sim/session/session_file.h"
+#include "sculpt/sim/synth/bundled_sessions.h"
+
+namespace sculpt::sim {
+namespace {
+
+TEST(SessionText, ConvertsBothWaysWithoutLoss) {
+  for (std::string_view name : bundled_session_names()) {
+    const Session s = bundled_session(name);
+    const std::string text = session_to_text(s);
+    const auto back = session_from_text(text, "t.jsonl");
+    ASSERT_TRUE(back.ok()) << back.error().message();
+    EXPECT_EQ(*back, s);
+    EXPECT_EQ(serialize_session(*back), serialize_session(s));  // byte for byte
+    EXPECT_EQ(session_to_text(*back), text);
+  }
+}
+
+TEST(SessionText, ReadsAHandWrittenSessionWithPastedHex) {
+  const std::string text =
+      "# captured with usbhid-dump, pasted as is\n"
+      R"({"sculpt_session": 1, "device": {"vendor_product": "046d:c626", "name": "SpaceNavigator"}})"
+      "\n\n"
+      R"({"t": 100, "report": "01 0A 00 F6 FF 00 00"})"
+      "\n"
+      R"({"t": 108, "report": "02:00:00:05:00:00:00"})"
+      "\n"
+      R"({"t": 110, "cmd": "mirror", "axis": "y", "at": 31.5})"
+      "\n"
+      R"({"t": 120, "cmd": "tool_pose", "position": [1, 2, 3], "orientation": [1, 0, 0, 0]})"
+      "\n";
+  const auto s = session_from_text(text, "hand.jsonl");
+  ASSERT_TRUE(s.ok()) << s.error().message();
+  EXPECT_EQ(s->header.device.vendor_id, 0x046d);
+  ASSERT_EQ(s->records.size(), 4u);
+  EXPECT_EQ(s->records[0].event.size, 7);
+  EXPECT_EQ(s->records[0].event.data[3], 0xf6);
+  EXPECT_EQ(s->records[1].event.data[3], 0x05);
+  EXPECT_EQ(s->records[2].command.kind, CommandKind::kMirror);
+  EXPECT_EQ(s->records[2].command.choice, 1);
+  EXPECT_EQ(s->records[2].command.values[0], 31.5f);
+}
+
+TEST(SessionText, ErrorsNameTheLineAndTheProblem) {
+  const std::string header = R"({"sculpt_session": 1, "device": {"vendor_product": "046d:c626"}})"
+                             "\n";
+  auto error = [&](const std::string& body) {
+    const auto r = session_from_text(header + body, "bad.jsonl");
+    return r.ok() ? std::string("accepted") : r.error().message();
+  };
+  EXPECT_EQ(error(R"({"t": 1, "report": "zz"})"), "bad.jsonl:2: report: 'zz' is not hex");
+  EXPECT_EQ(error(R"({"t": 1, "report": "0"})"), "bad.jsonl:2: report: '0' is not hex");
+  EXPECT_EQ(error("{\"t\": 5, \"sync\": true}\n{\"t\": 4, \"sync\": true}"),
+            "bad.jsonl:3: t goes back in time");
+  EXPECT_EQ(error(R"({"t": 1, "cmd": "explode"})"),
+            "bad.jsonl:2: cmd: unknown command \"explode\"");
+  EXPECT_EQ(error(R"({"t": 1, "cmd": "tool", "shape": "blob", "size": [1, 2]})"),
+            "bad.jsonl:2: shape: unknown value \"blob\"");
+  EXPECT_EQ(error(R"({"t": 1, "cmd": "tool", "shape": "cube", "size": [1]})"),
+            "bad.jsonl:2: size: expected 2 numbers");
+  EXPECT_EQ(error("not json"), "bad.jsonl:2: not a JSON object");
+  EXPECT_EQ(error(R"({"report": "01"})"), "bad.jsonl:2: missing \"t\"");
+  EXPECT_EQ(error(R"({"t": 1, "report": ")" + std::string(65 * 2, 'a') + "\"}"),
+            "bad.jsonl:2: report: expected 1 to 64 bytes");
+  const auto no_header = session_from_text(R"({"t": 1, "sync": true})", "h.jsonl");
+  ASSERT_FALSE(no_header.ok());
+  EXPECT_NE(no_header.error().message().find("h.jsonl:1: the first line must be the header"),
+            std::string::npos);
+  EXPECT_FALSE(session_from_text("", "e.jsonl").ok());
+}
+
+}  // namespace
+}  // namespace sculpt::sim

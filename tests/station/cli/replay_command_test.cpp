@@ -1,0 +1,87 @@
+// `sculpt replay` and `sculpt session` from the command line.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "run_sculpt.h"
+#include "sculpt/sim/synth/bundled_sessions.h"
+
+namespace sculpt::station::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ReplayCommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("sculpt_replay_cli_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+  const std::string short_ = sculpt::sim::bundled_session_path("short");
+};
+
+TEST_F(ReplayCommandTest, WritesVolumeMeshStatsAndSamples) {
+  const CommandResult r =
+      run_sculpt("replay " + short_ + " --fast --volume " + path("v.nrrd") + " --mesh " +
+                 path("m.ply") + " --stats " + path("s.json") + " --samples " + path("x.jsonl"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"v.nrrd", "m.ply", "s.json", "x.jsonl"})
+    EXPECT_TRUE(fs::exists(dir_ / f)) << f;
+  const auto stats = nlohmann::json::parse(read_text(dir_ / "s.json"));
+  EXPECT_GT(stats["dabs"].get<int>(), 50);
+  EXPECT_GT(stats["triangles"].get<int>(), 1000);
+  EXPECT_GT(stats["dab_latency_us"]["count"].get<int>(), 50);
+  EXPECT_TRUE(stats["volume_hash"].is_number_unsigned());
+  // One JSON object a line, the first the device's connection.
+  std::ifstream samples(dir_ / "x.jsonl");
+  std::string first;
+  std::getline(samples, first);
+  EXPECT_TRUE(nlohmann::json::parse(first)["connected"].get<bool>());
+}
+
+TEST_F(ReplayCommandTest, TextAndBinaryConvertWithoutLossAndReplayAlike) {
+  ASSERT_EQ(run_sculpt("session to-text " + short_ + " " + path("s.jsonl")).exit_code, 0);
+  ASSERT_EQ(run_sculpt("session from-text " + path("s.jsonl") + " " + path("s.scs")).exit_code, 0);
+  EXPECT_EQ(read_text(path("s.scs")), read_text(short_));
+  const CommandResult a = run_sculpt("replay " + short_ + " --fast");
+  const CommandResult b = run_sculpt("replay " + path("s.jsonl") + " --fast --threads 1");
+  ASSERT_EQ(a.exit_code, 0);
+  ASSERT_EQ(b.exit_code, 0);
+  auto hash = [](const std::string& out) { return out.substr(out.find("volume hash")); };
+  EXPECT_EQ(hash(a.out), hash(b.out));
+}
+
+TEST_F(ReplayCommandTest, ACutOffRecordingReplaysWhatItHoldsAndSaysWhatWasLost) {
+  std::string bytes = read_text(short_);
+  bytes.resize(bytes.size() * 2 / 3 + 5);
+  std::ofstream(dir_ / "cut.scs", std::ios::binary) << bytes;
+  const CommandResult r = run_sculpt("replay " + path("cut.scs") + " --fast");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("cut.scs: cut off in the middle of record"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bytes lost"), std::string::npos);
+}
+
+TEST_F(ReplayCommandTest, BadInputIsRefusedWithOneLineAndNoOutput) {
+  std::ofstream(dir_ / "junk.scs") << "\x89SCS\r\n\x1a\n\x07";
+  const CommandResult junk =
+      run_sculpt("replay " + path("junk.scs") + " --volume " + path("v.nrrd"));
+  EXPECT_EQ(junk.exit_code, 1);
+  EXPECT_EQ(line_count(junk.err), 1) << junk.err;
+  EXPECT_FALSE(fs::exists(dir_ / "v.nrrd"));
+  const CommandResult format = run_sculpt("replay " + short_ + " --mesh " + path("m.xyz"));
+  EXPECT_EQ(format.exit_code, 1);
+  EXPECT_NE(format.err.find("m.xyz"), std::string::npos) << format.err;
+  EXPECT_EQ(run_sculpt("replay " + short_ + " --fast --speed 2").exit_code, 2);
+  EXPECT_EQ(run_sculpt("session generate nope " + path("n.scs")).exit_code, 1);
+  EXPECT_EQ(run_sculpt("session explode a b").exit_code, 2);
+}
+
+}  // namespace
+}  // namespace sculpt::station::test
