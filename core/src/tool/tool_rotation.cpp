@@ -84,19 +84,7 @@ size_t cell_index(const int32_t s[3], glm::ivec3 pd) {
 // library still runs on any x86-64). Same fixed-point arithmetic as the
 // scalar code, so results are identical. Processes whole groups of 8 from
 // the start of the span; returns how many samples it wrote and advances s.
-// Blend along x of the voxel pairs at idx + offset: 8-bit weights gx, fx.
-__attribute__((target("avx2"), always_inline)) inline __m256i lerp_x_avx2(const int* pb,
-                                                                          __m256i idx,
-                                                                          __m256i offset,
-                                                                          __m256i fx, __m256i gx) {
-  const __m256i m255 = _mm256_set1_epi32(255);
-  const __m256i g = _mm256_i32gather_epi32(pb, _mm256_add_epi32(idx, offset), 1);
-  const __m256i a = _mm256_and_si256(g, m255);
-  const __m256i b = _mm256_and_si256(_mm256_srli_epi32(g, 8), m255);
-  return _mm256_add_epi32(_mm256_mullo_epi32(a, gx), _mm256_mullo_epi32(b, fx));
-}
-
-__attribute__((target("avx2"))) int sample_span_avx2(const uint8_t* padded, const uint16_t* cells,
+__attribute__((target("avx2"))) int sample_span_avx2(const uint8_t* padded, const uint32_t* faces,
                                                      glm::ivec3 pd, int32_t s[3],
                                                      const int32_t st[3], int n, uint8_t* out,
                                                      bool nearest) {
@@ -110,13 +98,15 @@ __attribute__((target("avx2"))) int sample_span_avx2(const uint8_t* padded, cons
   }
   const __m256i vpx = _mm256_set1_epi32(pd.x), vpy = _mm256_set1_epi32(pd.y);
   const __m256i vpxy = _mm256_set1_epi32(pd.x * pd.y);
-  const __m256i m255 = _mm256_set1_epi32(255), m16 = _mm256_set1_epi32(0xFFFF);
+  const __m256i m255 = _mm256_set1_epi32(255);
   const __m256i v256 = _mm256_set1_epi32(256), half = _mm256_set1_epi32(1 << 23);
   const __m256i low_bytes =
       _mm256_setr_epi8(0, 4, 8, 12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 4, 8, 12, -1,
                        -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1);
   const auto* pb = reinterpret_cast<const int*>(padded);
-  const auto* cb = reinterpret_cast<const int*>(cells);
+  const auto* fb = reinterpret_cast<const int*>(faces);
+  const __m256i byte0 = _mm256_setr_epi8(0, 0, 0, 0, 4, 4, 4, 4, 8, 8, 8, 8, 12, 12, 12, 12, 0, 0,
+                                         0, 0, 4, 4, 4, 4, 8, 8, 8, 8, 12, 12, 12, 12);
   int done = 0;
   for (; done + 8 <= n; done += 8) {
     const __m256i ix = _mm256_srai_epi32(sv[0], kFracBits);
@@ -128,18 +118,33 @@ __attribute__((target("avx2"))) int sample_span_avx2(const uint8_t* padded, cons
     if (nearest) {
       v = _mm256_and_si256(_mm256_i32gather_epi32(pb, idx, 1), m255);
     } else {
-      const __m256i c = _mm256_and_si256(_mm256_i32gather_epi32(cb, idx, 2), m16);
-      const __m256i mixed = _mm256_cmpeq_epi32(c, _mm256_setzero_si256());
-      v = _mm256_and_si256(c, m255);
-      if (!_mm256_testz_si256(mixed, mixed)) {
+      // Two gathers bring a cell's 8 corners: its face at z and at z + 1.
+      const __m256i fa = _mm256_i32gather_epi32(fb, idx, 4);
+      const __m256i fc = _mm256_i32gather_epi32(fb, _mm256_add_epi32(idx, vpxy), 4);
+      const __m256i first = _mm256_and_si256(fa, m255);
+      const __m256i uniform = _mm256_and_si256(
+          _mm256_cmpeq_epi32(fa, _mm256_shuffle_epi8(fa, byte0)), _mm256_cmpeq_epi32(fc, fa));
+      v = first;
+      if (_mm256_movemask_epi8(uniform) != -1) {
+        const __m256i mixed = _mm256_xor_si256(uniform, _mm256_set1_epi32(-1));
         const __m256i fx = _mm256_and_si256(_mm256_srli_epi32(sv[0], 8), m255);
         const __m256i fy = _mm256_and_si256(_mm256_srli_epi32(sv[1], 8), m255);
         const __m256i fz = _mm256_and_si256(_mm256_srli_epi32(sv[2], 8), m255);
         const __m256i gx = _mm256_sub_epi32(v256, fx);
-        const __m256i c00 = lerp_x_avx2(pb, idx, _mm256_setzero_si256(), fx, gx);
-        const __m256i c10 = lerp_x_avx2(pb, idx, vpx, fx, gx);
-        const __m256i c01 = lerp_x_avx2(pb, idx, vpxy, fx, gx);
-        const __m256i c11 = lerp_x_avx2(pb, idx, _mm256_add_epi32(vpxy, vpx), fx, gx);
+        // Along x the products fit 16 bits (255 * 256): the cheaper 16-bit
+        // multiply is exact, the high halves being zero.
+        const __m256i c00 = _mm256_add_epi32(
+            _mm256_mullo_epi16(first, gx),
+            _mm256_mullo_epi16(_mm256_and_si256(_mm256_srli_epi32(fa, 8), m255), fx));
+        const __m256i c10 = _mm256_add_epi32(
+            _mm256_mullo_epi16(_mm256_and_si256(_mm256_srli_epi32(fa, 16), m255), gx),
+            _mm256_mullo_epi16(_mm256_srli_epi32(fa, 24), fx));
+        const __m256i c01 = _mm256_add_epi32(
+            _mm256_mullo_epi16(_mm256_and_si256(fc, m255), gx),
+            _mm256_mullo_epi16(_mm256_and_si256(_mm256_srli_epi32(fc, 8), m255), fx));
+        const __m256i c11 = _mm256_add_epi32(
+            _mm256_mullo_epi16(_mm256_and_si256(_mm256_srli_epi32(fc, 16), m255), gx),
+            _mm256_mullo_epi16(_mm256_srli_epi32(fc, 24), fx));
         const __m256i gy = _mm256_sub_epi32(v256, fy);
         const __m256i c0 =
             _mm256_add_epi32(_mm256_mullo_epi32(c00, gy), _mm256_mullo_epi32(c10, fy));
@@ -222,7 +227,8 @@ PreparedTool::PreparedTool(Tool tool) : tool_(std::move(tool)) {
   // Cells whose 8 corners are equal: their trilinear sample is that value
   // whatever the weights. The last layer has no +1 neighbours and is never
   // sampled (samples floor to at most dims + 2).
-  cells_.assign(count + 2, 0);  // + 2: the vector kernel gathers 4 bytes
+  cells_.assign(count, 0);
+  faces_.assign(count, 0);
   for (int z = 0; z + 1 < pd.z; ++z)
     for (int y = 0; y + 1 < pd.y; ++y)
       for (int x = 0; x + 1 < pd.x; ++x) {
@@ -233,6 +239,8 @@ PreparedTool::PreparedTool(Tool tool) : tool_(std::move(tool)) {
             p[pxy + px] == v && p[pxy + px + 1] == v) {
           cells_[i] = static_cast<uint16_t>(0x100 | v);
         }
+        faces_[i] = static_cast<uint32_t>(p[0]) | static_cast<uint32_t>(p[1]) << 8 |
+                    static_cast<uint32_t>(p[px]) << 16 | static_cast<uint32_t>(p[px + 1]) << 24;
       }
 }
 
@@ -327,7 +335,7 @@ void RotationFrame::sample_line(const PreparedTool& tool, const int32_t s0[3], i
   int n0v = n0;
 #ifdef SCULPT_TOOL_AVX2
   if (g_vector_kernel.load(std::memory_order_relaxed) && cpu_has_avx2())
-    n0v += sample_span_avx2(padded, cells, pd, s, st, n1 - n0, out + n0, nearest);
+    n0v += sample_span_avx2(padded, tool.faces(), pd, s, st, n1 - n0, out + n0, nearest);
 #endif
   if (nearest) {
     for (int n = n0v; n < n1; ++n) {

@@ -68,12 +68,16 @@ class PreparedTool {
   const uint8_t* padded() const { return padded_.data(); }
   /// Per cell: 0 when its corners differ, else 0x100 | their value.
   const uint16_t* cells() const { return cells_.data(); }
+  /// Per cell: its 4 corners at its own z, bytes (x, y), (x+1, y), (x, y+1),
+  /// (x+1, y+1) from the lowest; the vector kernel's trilinear source.
+  const uint32_t* faces() const { return faces_.data(); }
 
  private:
   Tool tool_;
   glm::ivec3 padded_dims_;
   std::vector<uint8_t> padded_;
   std::vector<uint16_t> cells_;
+  std::vector<uint32_t> faces_;
   float reach_vox_ = 0.0f;
 };
 
