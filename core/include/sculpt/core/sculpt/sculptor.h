@@ -109,6 +109,12 @@ class Sculptor {
   bool undo() { return history_.undo(volume_); }
   bool redo() { return history_.redo(volume_); }
 
+  /// Drops the kept decoded bricks. Needed only if the volume object was
+  /// replaced wholesale (assigned a new Volume): brick versions restart then,
+  /// and could match stale kept voxels. Edits through Volume's members are
+  /// always seen.
+  void forget_decoded_bricks() { decoded_.clear(); }
+
   const UndoHistory& history() const { return history_; }
   /// The cache of the tool (mirrored = false) or of its mirror image.
   const RotatedToolCache& cache(bool mirrored = false) const;
