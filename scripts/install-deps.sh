@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages the build needs, only those missing.
-# Usage: scripts/install-deps.sh [--peers]   (--peers adds the python3 peer libraries of the benchmarks)
+# Usage: scripts/install-deps.sh [--peers] [--ci]
+#   --peers  the python3 peer libraries the benchmark comparison runs
+#   --ci     clang and its runtimes, for the fuzz and ThreadSanitizer builds of .ci/run
 set -euo pipefail
 
 packages=(
@@ -10,10 +12,15 @@ packages=(
   libglfw3-dev libgl1-mesa-dri xvfb xauth
   libcli11-dev nlohmann-json3-dev libstb-dev libimgui-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
+  python3 python3-numpy python3-vtk9
 )
-if [[ "${1:-}" == "--peers" ]]; then
-  packages+=(python3 python3-numpy python3-scipy python3-skimage python3-pywt python3-vtk9 python3-openvdb)
-fi
+for arg in "$@"; do
+  case "$arg" in
+    --peers) packages+=(python3-scipy python3-skimage python3-pywt python3-openvdb) ;;
+    --ci) packages+=(clang libclang-rt-14-dev) ;;
+    *) echo "install-deps.sh: unknown option $arg" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

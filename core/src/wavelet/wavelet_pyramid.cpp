@@ -47,7 +47,10 @@ constexpr int kMaxHalf = WaveletPyramid::kMaxEdge / 2;
 // The level kernels are compiled twice, for AVX2 and for the x86-64 baseline,
 // and the loader picks the one the CPU runs: twice the lanes where available,
 // one portable binary.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+// Not under sanitizers: their runtimes start after ifunc resolvers run, and
+// ThreadSanitizer crashes in one before main().
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
+    !defined(__SANITIZE_THREAD__) && !defined(__SANITIZE_ADDRESS__)
 #define SCULPT_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define SCULPT_VECTOR_CLONES
