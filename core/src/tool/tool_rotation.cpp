@@ -82,8 +82,8 @@ size_t cell_index(const int32_t s[3], glm::ivec3 pd) {
 #define SCULPT_TOOL_AVX2 1
 // Eight samples at a time with AVX2 gathers (chosen at run time, so the
 // library still runs on any x86-64). Same fixed-point arithmetic as the
-// scalar code, so results are identical. Processes whole groups of 8 from
-// the start of the span; returns how many samples it wrote and advances s.
+// scalar code, so results are identical. Writes all n samples (the last
+// group masked); returns n and advances s past them.
 __attribute__((target("avx2"))) int sample_span_avx2(const uint8_t* padded, const uint32_t* faces,
                                                      glm::ivec3 pd, int32_t s[3],
                                                      const int32_t st[3], int n, uint8_t* out,
@@ -107,8 +107,13 @@ __attribute__((target("avx2"))) int sample_span_avx2(const uint8_t* padded, cons
   const auto* fb = reinterpret_cast<const int*>(faces);
   const __m256i byte0 = _mm256_setr_epi8(0, 0, 0, 0, 4, 4, 4, 4, 8, 8, 8, 8, 12, 12, 12, 12, 0, 0,
                                          0, 0, 4, 4, 4, 4, 8, 8, 8, 8, 12, 12, 12, 12);
+  const __m256i all = _mm256_set1_epi32(-1), zero = _mm256_setzero_si256();
   int done = 0;
-  for (; done + 8 <= n; done += 8) {
+  for (; done < n; done += 8) {
+    // The last group may be partial: its idle lanes gather nothing (masked
+    // off, so no read outside the grid) and are not stored.
+    const int active = std::min(8, n - done);
+    const __m256i on = active == 8 ? all : _mm256_cmpgt_epi32(_mm256_set1_epi32(active), lane);
     const __m256i ix = _mm256_srai_epi32(sv[0], kFracBits);
     const __m256i iy = _mm256_srai_epi32(sv[1], kFracBits);
     const __m256i iz = _mm256_srai_epi32(sv[2], kFracBits);
@@ -116,11 +121,11 @@ __attribute__((target("avx2"))) int sample_span_avx2(const uint8_t* padded, cons
         _mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(iz, vpy), iy), vpx), ix);
     __m256i v;
     if (nearest) {
-      v = _mm256_and_si256(_mm256_i32gather_epi32(pb, idx, 1), m255);
+      v = _mm256_and_si256(_mm256_mask_i32gather_epi32(zero, pb, idx, on, 1), m255);
     } else {
       // Two gathers bring a cell's 8 corners: its face at z and at z + 1.
-      const __m256i fa = _mm256_i32gather_epi32(fb, idx, 4);
-      const __m256i fc = _mm256_i32gather_epi32(fb, _mm256_add_epi32(idx, vpxy), 4);
+      const __m256i fa = _mm256_mask_i32gather_epi32(zero, fb, idx, on, 4);
+      const __m256i fc = _mm256_mask_i32gather_epi32(zero, fb, _mm256_add_epi32(idx, vpxy), on, 4);
       const __m256i first = _mm256_and_si256(fa, m255);
       const __m256i uniform = _mm256_and_si256(
           _mm256_cmpeq_epi32(fa, _mm256_shuffle_epi8(fa, byte0)), _mm256_cmpeq_epi32(fc, fa));
@@ -161,11 +166,19 @@ __attribute__((target("avx2"))) int sample_span_avx2(const uint8_t* padded, cons
     const __m256i packed = _mm256_shuffle_epi8(v, low_bytes);
     const uint32_t lo = static_cast<uint32_t>(_mm256_extract_epi32(packed, 0));
     const uint32_t hi = static_cast<uint32_t>(_mm256_extract_epi32(packed, 4));
-    std::memcpy(out + done, &lo, 4);
-    std::memcpy(out + done + 4, &hi, 4);
+    if (active == 8) {
+      std::memcpy(out + done, &lo, 4);
+      std::memcpy(out + done + 4, &hi, 4);
+    } else {
+      uint8_t bytes[8];
+      std::memcpy(bytes, &lo, 4);
+      std::memcpy(bytes + 4, &hi, 4);
+      std::memcpy(out + done, bytes, static_cast<size_t>(active));
+    }
     for (int i = 0; i < 3; ++i)
       sv[i] = _mm256_add_epi32(sv[i], step8[i]);
   }
+  done = std::min(done, n);
   for (int i = 0; i < 3; ++i)
     s[i] += done * st[i];
   return done;
