@@ -284,18 +284,64 @@ VolumeStats Volume::stats() const {
   return s;
 }
 
+namespace {
+
+// FNV-1a over 64-bit little-endian words of the voxel stream (the last word
+// zero-padded), with the byte count folded in at the end: eight times fewer
+// multiplications than byte-wise FNV, and the words are cut from the whole
+// x-fastest stream, so slabs of any size hash alike.
+class StreamHash {
+ public:
+  void add(std::span<const uint8_t> bytes) {
+    size_t i = 0;
+    while (pending_ > 0 && i < bytes.size())
+      push_byte(bytes[i++]);
+    for (; i + 8 <= bytes.size(); i += 8) {
+      uint64_t w;
+      std::memcpy(&w, bytes.data() + i, 8);
+      mix(w);
+    }
+    while (i < bytes.size())
+      push_byte(bytes[i++]);
+    count_ += bytes.size();
+  }
+  uint64_t finish() {
+    if (pending_ > 0) mix(word_);
+    mix(count_);
+    return hash_;
+  }
+
+ private:
+  void push_byte(uint8_t b) {
+    word_ |= uint64_t{b} << (8 * pending_);
+    if (++pending_ == 8) {
+      mix(word_);
+      word_ = 0;
+      pending_ = 0;
+    }
+  }
+  void mix(uint64_t w) {
+    hash_ ^= w;
+    hash_ *= 0x100000001b3ull;
+    hash_ ^= hash_ >> 29;  // spread the high bits back: FNV alone mixes words poorly
+  }
+  uint64_t hash_ = 0xcbf29ce484222325ull;
+  uint64_t word_ = 0;
+  int pending_ = 0;
+  uint64_t count_ = 0;
+};
+
+}  // namespace
+
 uint64_t Volume::content_hash() const {
-  uint64_t hash = 0xcbf29ce484222325ull;
+  StreamHash hash;
   const int e = options_.brick_edge;
   for (int z0 = 0; z0 < dims_.z; z0 += e) {
     const DenseGrid<uint8_t> slab =
         read(Box{glm::ivec3(0, 0, z0), glm::ivec3(dims_.x, dims_.y, std::min(z0 + e, dims_.z))});
-    for (uint8_t v : slab.values()) {
-      hash ^= v;
-      hash *= 0x100000001b3ull;
-    }
+    hash.add(slab.values());
   }
-  return hash;
+  return hash.finish();
 }
 
 }  // namespace sculpt::core

@@ -67,6 +67,10 @@ void StationLoop::new_volume(glm::ivec3 dims, uint8_t fill) {
 
 void StationLoop::apply_tool() {
   sculptor_->set_tool(make_tool(settings_.shape, settings_.size_a_vox, settings_.size_b_vox));
+  reset_sampler();
+}
+
+void StationLoop::reset_sampler() {
   sampler_ =
       hal::StrokeSampler(tool_size_vox(settings_.shape, settings_.size_a_vox, settings_.size_b_vox),
                          settings_.spacing);
@@ -98,7 +102,7 @@ void StationLoop::handle(const sim::Command& c) {
     case K::kSpacing:
       if (pressed_) release();
       settings_.spacing = std::max(c.values[0], 0.01f);
-      apply_tool();
+      reset_sampler();  // the tool itself is unchanged
       break;
     case K::kMirror:
       if (c.choice == sim::kMirrorOff) {

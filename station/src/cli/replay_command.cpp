@@ -81,6 +81,7 @@ int run_replay(const ReplayCliOptions& o) {
   if (!result) return report(result.error());
 
   const core::Volume& volume = loop.volume();
+  const uint64_t hash = volume.content_hash();
   const StationCounters& c = loop.counters();
   nlohmann::json stats = {
       {"session", o.session},
@@ -93,7 +94,7 @@ int run_replay(const ReplayCliOptions& o) {
       {"redos", c.redos},
       {"disconnects", c.disconnects},
       {"volume_dims", {volume.dims().x, volume.dims().y, volume.dims().z}},
-      {"volume_hash", volume.content_hash()},
+      {"volume_hash", hash},
       {"triangles", loop.mesh().triangle_count()},
       {"dab_latency_us",
        {{"count", result->dab_latency.count},
@@ -131,7 +132,7 @@ int run_replay(const ReplayCliOptions& o) {
       o.session.c_str(), static_cast<long long>(result->records), static_cast<long long>(c.dabs),
       static_cast<long long>(c.strokes), static_cast<long long>(loop.mesh().triangle_count()),
       result->wall_seconds, stats["speedup"].get<double>());
-  std::printf("volume hash %016llx\n", static_cast<unsigned long long>(volume.content_hash()));
+  std::printf("volume hash %016llx\n", static_cast<unsigned long long>(hash));
   return 0;
 }
 

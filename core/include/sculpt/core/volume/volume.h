@@ -110,8 +110,8 @@ class Volume {
   std::vector<glm::ivec3> take_dirty_bricks();
 
   VolumeStats stats() const;
-  /// 64-bit FNV-1a of the level-0 voxels in x-fastest order: equal for equal
-  /// contents whatever the brick edge.
+  /// A 64-bit hash (FNV-1a over 8-byte words) of the level-0 voxels in
+  /// x-fastest order: equal for equal contents whatever the brick edge.
   uint64_t content_hash() const;
 
  private:

@@ -80,6 +80,7 @@ class StationLoop {
  private:
   void new_volume(glm::ivec3 dims, uint8_t fill);
   void apply_tool();
+  void reset_sampler();
   void press();
   void release();
   void sculpt(const std::vector<hal::Dab>& dabs);
