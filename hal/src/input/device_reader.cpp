@@ -54,6 +54,7 @@ void DeviceReader::run() {
   while (!stop_.load(std::memory_order_relaxed)) {
     const ReadResult r = device_->read(raw, options_.read_timeout_ms);
     if (r == ReadResult::kTimeout) continue;
+    if (options_.on_raw) options_.on_raw(raw);
     if (r == ReadResult::kRemoved) {
       last_t_ns = raw.t_ns;
       break;

@@ -24,6 +24,19 @@ void add_rotate_command(CLI::App& app, Action& action);
 void add_stamp_command(CLI::App& app, Action& action);
 void add_replay_command(CLI::App& app, Action& action);
 void add_session_command(CLI::App& app, Action& action);
+void add_record_command(CLI::App& app, Action& action);
+
+/// What `sculpt replay` (and the main job, which replays the demo) computes
+/// and writes; an empty path means "do not write it".
+struct ReplayCliOptions {
+  std::string session;
+  bool fast = false;
+  double speed = 1.0;
+  int threads = 0;
+  std::string volume, mesh, png, stats, samples;
+};
+/// Replays and writes the outputs asked for; returns the exit code.
+int replay_to_outputs(const ReplayCliOptions& options);
 
 /// Prints "sculpt: <message>" on stderr and returns exit code 1.
 int report(const core::Error& error);

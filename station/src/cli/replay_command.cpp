@@ -16,17 +16,10 @@
 #include "sculpt/core/volume/volume_io.h"
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/session_replay.h"
+#include "sculpt/station/render/software_renderer.h"
 
 namespace sculpt::station::cli {
 namespace {
-
-struct ReplayCliOptions {
-  std::string session;
-  bool fast = false;
-  double speed = 1.0;
-  int threads = 0;
-  std::string volume, mesh, stats, samples;
-};
 
 nlohmann::json sample_json(const hal::InputEvent& e) {
   nlohmann::json j = {{"t", e.t_ns}, {"device", e.device_id}};
@@ -53,7 +46,9 @@ nlohmann::json sample_json(const hal::InputEvent& e) {
   return j;
 }
 
-int run_replay(const ReplayCliOptions& o) {
+}  // namespace
+
+int replay_to_outputs(const ReplayCliOptions& o) {
   core::set_default_threads(o.threads);
   // Check every output's format before the (possibly long) replay.
   std::optional<core::MeshFormat> mesh_format;
@@ -116,6 +111,13 @@ int run_replay(const ReplayCliOptions& o) {
       return report(st.error());
     }
   }
+  if (!o.png.empty()) {
+    const core::Mesh mesh = loop.mesh().welded_mesh();
+    const SoftwareView view = view_of(mesh, glm::vec3(0.0f), glm::vec3(volume.dims()));
+    if (core::Status st = write_png(o.png, render_mesh(mesh, view)); !st) {
+      return report(st.error());
+    }
+  }
   if (!o.samples.empty()) {
     core::AtomicFileWriter out(o.samples);
     out.write(samples_text);
@@ -136,8 +138,6 @@ int run_replay(const ReplayCliOptions& o) {
   return 0;
 }
 
-}  // namespace
-
 void add_replay_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<ReplayCliOptions>();
   CLI::App* cmd = app.add_subcommand("replay", "replay a recorded session through the station");
@@ -151,10 +151,12 @@ void add_replay_command(CLI::App& app, Action& action) {
       ->check(CLI::Range(0, 256));
   cmd->add_option("--volume", o->volume, "write the resulting volume (NRRD)");
   cmd->add_option("--mesh", o->mesh, "write the resulting surface (.ply, .obj, .stl)");
+  cmd->add_option("--png", o->png,
+                  "write a picture of the result (PNG, rendered without a display)");
   cmd->add_option("--stats", o->stats,
                   "write statistics (JSON): dabs, volume hash, triangles, latency");
   cmd->add_option("--samples", o->samples, "write the decoded, normalised samples (JSON Lines)");
-  cmd->callback([o, &action] { action = [o] { return run_replay(*o); }; });
+  cmd->callback([o, &action] { action = [o] { return replay_to_outputs(*o); }; });
 }
 
 }  // namespace sculpt::station::cli

@@ -333,7 +333,8 @@ int run_stamp(const StampOptions& o) {
   if (tool) {
     const core::RotatedToolCacheStats& c = sculptor.cache().stats();
     std::printf(
-        "rotation cache (last tool): %lld of %lld placements hit, %.1f%% of %lld requested voxels reused, %zu "
+        "rotation cache (last tool): %lld of %lld placements hit, %.1f%% of %lld requested voxels "
+        "reused, %zu "
         "bytes\n",
         static_cast<long long>(c.placement_hits), static_cast<long long>(c.placements),
         100.0 * c.voxel_hit_rate(), static_cast<long long>(c.voxels_requested), c.bytes);

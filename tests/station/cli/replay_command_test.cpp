@@ -85,3 +85,61 @@ TEST_F(ReplayCommandTest, BadInputIsRefusedWithOneLineAndNoOutput) {
 
 }  // namespace
 }  // namespace sculpt::station::test
+
+namespace sculpt::station::test {
+namespace {
+
+// The README's main job: no device, the demo session, results in a folder.
+TEST_F(ReplayCommandTest, MainJobReplaysTheDemoAndWritesPictureMeshVolumeAndStats) {
+  const CommandResult r = run_sculpt("run --headless --out " + path("out"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"sculpture.png", "sculpture.ply", "volume.nrrd", "stats.json"}) {
+    EXPECT_TRUE(fs::exists(dir_ / "out" / f)) << f;
+  }
+  const auto stats = nlohmann::json::parse(read_text(dir_ / "out" / "stats.json"));
+  EXPECT_GT(stats["dabs"].get<int>(), 200);
+  EXPECT_EQ(stats["volume_dims"], nlohmann::json::array({256, 256, 256}));
+  // PNG signature and the size of the picture.
+  const std::string png = read_text(dir_ / "out" / "sculpture.png");
+  ASSERT_GT(png.size(), 24u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  EXPECT_EQ(run_sculpt("run --device hidapi:/dev/hidraw9 --out " + path("o2")).exit_code, 1);
+}
+
+}  // namespace
+}  // namespace sculpt::station::test
+
+#include "sculpt/sim/session/session_file.h"
+
+namespace sculpt::station::test {
+namespace {
+
+// Recording a session played as a live device through the reader thread's
+// raw tap gives back its records exactly, up to the unplug that ends it.
+TEST_F(ReplayCommandTest, RecordCapturesTheRawReportsOfALiveDevice) {
+  const auto original = sculpt::sim::read_session_file(short_);
+  ASSERT_TRUE(original.ok());
+  std::ofstream(dir_ / "input.conf") << original->header.normalizer_config;
+  ::setenv("SCULPT_INPUT_CONFIG", path("input.conf").c_str(), 1);
+  const CommandResult r =
+      run_sculpt("record --device sim:" + short_ + " --speed 20 -o " + path("rec.scs"));
+  ::unsetenv("SCULPT_INPUT_CONFIG");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("the device was unplugged"), std::string::npos) << r.out;
+  const auto recorded = sculpt::sim::read_session_file(path("rec.scs"));
+  ASSERT_TRUE(recorded.ok()) << recorded.error().message();
+  EXPECT_EQ(recorded->header.normalizer_config, original->header.normalizer_config);
+  const auto removal =
+      std::find_if(original->records.begin(), original->records.end(), [](const auto& rec) {
+        return rec.kind == sculpt::sim::SessionRecord::Kind::kEvent &&
+               rec.event.kind == hal::RawEventKind::kRemoved;
+      });
+  ASSERT_NE(removal, original->records.end());
+  const std::vector<sculpt::sim::SessionRecord> expected(original->records.begin(), removal + 1);
+  EXPECT_EQ(recorded->records, expected);
+  EXPECT_EQ(run_sculpt("record --device 1234:5678 -o " + path("none.scs")).exit_code, 1);
+  EXPECT_FALSE(fs::exists(dir_ / "none.scs"));
+}
+
+}  // namespace
+}  // namespace sculpt::station::test

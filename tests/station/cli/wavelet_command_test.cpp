@@ -94,23 +94,5 @@ TEST_F(WaveletCommandTest, HelpExitsZero) {
   EXPECT_EQ(run_sculpt("--help").exit_code, 0);
 }
 
-TEST_F(WaveletCommandTest, RunWritesTheMainJobsResults) {
-  const CommandResult r = run_sculpt("run --headless --size 64 --out " + path("run"));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* f : {"volume.nrrd", "level1.nrrd", "level5.nrrd", "stats.json"}) {
-    EXPECT_TRUE(fs::exists(dir_ / "run" / f)) << f;
-  }
-  const auto volume = sculpt::core::read_nrrd_u8(path("run/volume.nrrd"));
-  ASSERT_TRUE(volume.ok());
-  // The carving removed material from the sphere.
-  int64_t before = 0, after = 0;
-  const sculpt::core::DenseGrid<uint8_t> sphere = sculpt::core::sphere_density(64);
-  for (uint8_t v : sphere.values())
-    before += v;
-  for (uint8_t v : volume->values())
-    after += v;
-  EXPECT_LT(after, before);
-}
-
 }  // namespace
 }  // namespace sculpt::station::test

@@ -14,6 +14,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <thread>
 #include <vector>
@@ -29,6 +30,10 @@ struct ReaderOptions {
   size_t ring_capacity = 4096;         ///< events; 4 s of a 1 kHz device
   int read_timeout_ms = 20;            ///< how often the thread checks for stop()
   int64_t late_after_ns = 20'000'000;  ///< a sample older than this when polled counts as late
+  /// Called on the reader thread with every raw event, the removal included,
+  /// before it is parsed: the session recorder's tap. Must be quick and
+  /// thread-safe; empty for none.
+  std::function<void(const RawEvent&)> on_raw;
 };
 
 struct ReaderCounters {
