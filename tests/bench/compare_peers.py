@@ -2,7 +2,7 @@
 """Runs the project's benchmarks and the peer libraries in one session and prints the ratios.
 
 Usage: tests/bench/compare_peers.py [--sculpt build/bin/sculpt] [--peers ../shared/bench/peers.py] [WORKLOAD ...]
-Workloads: haar (more are added as the issues that need them land).
+Workloads: haar (issue 2), mc (issue 4), rot (issue 3).
 Needs Debian's python3 peer packages: scripts/install-deps.sh --peers
 """
 import argparse, json, re, statistics, subprocess, sys, time
@@ -63,7 +63,35 @@ def haar(args):
         print(f"| {name} | {o * 1e3:.2f} ms | {p * 1e3:.1f} ms | {p / o:.0f}x |")
 
 
-WORKLOADS = {"haar": haar}
+def mc(args):
+    ours = sculpt_bench(args.sculpt, "BM_MeshExtract/n:(128|256)/threads:0/weld:0")
+    text = peers(args.peers, "mc", "128,256")
+    print(text.rstrip())
+    print()
+    print("| workload | sculpt (all threads) | vtkFlyingEdges3D | ratio |")
+    print("|---|---:|---:|---:|")
+    for n in (128, 256):
+        m = re.search(rf"vtkFlyingEdges3D {n}\^3 \(threads (\d+)\): ([0-9.]+) s", text)
+        o = ours[f"BM_MeshExtract/n:{n}/threads:0/weld:0"]
+        print(f"| extraction {n}^3 (VTK threads {m.group(1)}) | {o * 1e3:.1f} ms | {float(m.group(2)) * 1e3:.1f} ms | {float(m.group(2)) / o:.2f}x |")
+
+
+def rot(args):
+    ours = sculpt_bench(args.sculpt, "BM_ToolRotate/m:(16|32|64)/method:1/aa:[01]/angles:0")
+    text = peers(args.peers, "rot", "128")
+    print(text.rstrip())
+    print()
+    print("| tool | sculpt nearest | sculpt trilinear | AA overhead | scipy order=1 | trilinear ratio |")
+    print("|---|---:|---:|---:|---:|---:|")
+    for m_ in (16, 32, 64):
+        m = re.search(rf"affine_transform {m_}\^3: nearest ([0-9.]+) ms, trilinear ([0-9.]+) ms", text)
+        near = ours[f"BM_ToolRotate/m:{m_}/method:1/aa:0/angles:0"]
+        tri = ours[f"BM_ToolRotate/m:{m_}/method:1/aa:1/angles:0"]
+        sp = float(m.group(2)) * 1e-3
+        print(f"| {m_}^3 | {near * 1e6:.1f} us | {tri * 1e6:.1f} us | {100 * (tri / near - 1):+.0f}% | {sp * 1e3:.3f} ms | {sp / tri:.0f}x |")
+
+
+WORKLOADS = {"haar": haar, "mc": mc, "rot": rot}
 
 
 def main():
