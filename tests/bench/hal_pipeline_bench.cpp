@@ -36,6 +36,19 @@ RawEvent compact_report(int64_t t_ns, int i) {
   return RawEvent::report(t_ns, b);
 }
 
+// A SpaceMouse Compact plugged into a fake transport, and its open handle.
+std::shared_ptr<DeviceFeed> attach_compact(FeedBackend& backend) {
+  DeviceInfo info;
+  info.path = "bench";
+  info.vendor_id = 0x256f;
+  info.product_id = 0xc635;
+  return backend.attach(info);
+}
+
+std::unique_ptr<Device> open_compact(FeedBackend& backend) {
+  return std::move(backend.open(backend.enumerate()->front())).value();
+}
+
 MotionPipeline compact_pipeline() {
   return MotionPipeline(std::make_unique<SpaceMouseParser>(*find_quirks(0x256f, 0xc635)),
                         NormalizerConfig{});
@@ -83,13 +96,8 @@ BENCHMARK(BM_HalReportToPoseInline);
 // from the report's arrival stamp to the pose update, one report in flight.
 void BM_HalReportToPoseThreaded(benchmark::State& state) {
   FeedBackend backend;
-  DeviceInfo info;
-  info.path = "bench";
-  info.vendor_id = 0x256f;
-  info.product_id = 0xc635;
-  auto feed = backend.attach(info);
-  auto device = backend.open(backend.enumerate()->front());
-  DeviceReader reader(1, std::move(device).value(), compact_pipeline());
+  auto feed = attach_compact(backend);
+  DeviceReader reader(1, open_compact(backend), compact_pipeline());
   reader.start();
   PoseIntegrator integrator;
   std::vector<int64_t> latency;
@@ -119,13 +127,8 @@ void BM_HalSustained1kHz(benchmark::State& state) {
   constexpr int kReports = 3000;
   for (auto _ : state) {
     FeedBackend backend;
-    DeviceInfo info;
-    info.path = "bench";
-    info.vendor_id = 0x256f;
-    info.product_id = 0xc635;
-    auto feed = backend.attach(info);
-    auto device = backend.open(backend.enumerate()->front());
-    DeviceReader reader(1, std::move(device).value(), compact_pipeline());
+    auto feed = attach_compact(backend);
+    DeviceReader reader(1, open_compact(backend), compact_pipeline());
     reader.start();
     std::atomic<bool> done{false};
     std::thread device_thread([&] {

@@ -24,7 +24,7 @@ void BM_ReplayDemo(benchmark::State& state) {
   ReplayOptions options;
   options.fast = true;
   for (auto _ : state) {
-    StationLoop::Options o = loop_options_for(*session);
+    StationLoop::Options o;
     o.mesh = mesh;
     StationLoop loop(o);
     const auto r = replay_session(*session, "demo", loop, options);

@@ -130,21 +130,10 @@ void BM_WaveletMemory1024(benchmark::State& state) {
 }
 BENCHMARK(BM_WaveletMemory1024)->Iterations(1)->Unit(benchmark::kMillisecond);
 
-}  // namespace
-}  // namespace sculpt::core
-
-namespace sculpt::core {
-namespace {
-
 // One 32^3 brick of noise through the pyramid alone: the kernel's cost
 // without allocation or uniform detection.
 void BM_PyramidEncodeBrick(benchmark::State& state) {
-  std::vector<uint8_t> voxels(32 * 32 * 32);
-  uint32_t s = 7;
-  for (uint8_t& v : voxels) {
-    s = s * 1664525u + 1013904223u;
-    v = static_cast<uint8_t>(s >> 24);
-  }
+  std::vector<uint8_t> voxels = noise_volume(32).values();
   WaveletPyramid p(32, 5);
   for (auto _ : state) {
     p.encode(voxels);
@@ -155,12 +144,7 @@ void BM_PyramidEncodeBrick(benchmark::State& state) {
 BENCHMARK(BM_PyramidEncodeBrick)->Unit(benchmark::kMicrosecond);
 
 void BM_PyramidDecodeBrick(benchmark::State& state) {
-  std::vector<uint8_t> voxels(32 * 32 * 32);
-  uint32_t s = 7;
-  for (uint8_t& v : voxels) {
-    s = s * 1664525u + 1013904223u;
-    v = static_cast<uint8_t>(s >> 24);
-  }
+  std::vector<uint8_t> voxels = noise_volume(32).values();
   WaveletPyramid p(32, 5);
   p.encode(voxels);
   for (auto _ : state) {

@@ -36,22 +36,6 @@ hal::InputEvent lifecycle_event(hal::InputKind kind, int64_t t_ns) {
 
 }  // namespace
 
-StationLoop::Options loop_options_for(const sim::Session& session) {
-  StationLoop::Options o;
-  for (const sim::SessionRecord& r : session.records) {
-    if (r.kind == sim::SessionRecord::Kind::kCommand &&
-        r.command.kind == sim::CommandKind::kVolume) {
-      o.volume_dims =
-          glm::ivec3(static_cast<int>(r.command.values[0]), static_cast<int>(r.command.values[1]),
-                     static_cast<int>(r.command.values[2]));
-      o.volume_fill = static_cast<uint8_t>(std::clamp(r.command.values[3], 0.0f, 255.0f));
-      if (!core::Volume::validate(o.volume_dims, {}).ok()) o.volume_dims = glm::ivec3(256);
-      break;
-    }
-  }
-  return o;
-}
-
 core::Result<ReplayResult> replay_session(const sim::Session& session, const std::string& name,
                                           StationLoop& loop, const ReplayOptions& options) {
   const hal::DeviceInfo& device = session.header.device;

@@ -71,7 +71,7 @@ int replay_to_outputs(const ReplayCliOptions& o) {
       samples_text += sample_json(e).dump() + "\n";
     };
   }
-  StationLoop loop(loop_options_for(*session));
+  StationLoop loop(StationLoop::Options{});  // the session's volume command sizes the block
   auto result = replay_session(*session, o.session, loop, options);
   if (!result) return report(result.error());
 

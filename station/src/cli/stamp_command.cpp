@@ -38,6 +38,8 @@
 #include "sculpt/core/tool/tool.h"
 #include "sculpt/core/tool/tool_rotation.h"
 #include "sculpt/core/volume/volume_io.h"
+#include "sculpt/sim/session/session.h"
+#include "sculpt/station/app/station_loop.h"
 
 namespace sculpt::station::cli {
 namespace {
@@ -273,14 +275,9 @@ int run_stamp(const StampOptions& o) {
   for (auto& [n, op] : ops) {
     const std::string where = o.dabs + ":" + std::to_string(n);
     if (auto* t = std::get_if<ToolOp>(&op)) {
-      if (t->shape == "sphere") tool = core::make_sphere_tool(static_cast<float>(t->a));
-      if (t->shape == "cube") tool = core::make_cube_tool(static_cast<float>(t->a));
-      if (t->shape == "cylinder")
-        tool = core::make_cylinder_tool(static_cast<float>(t->a), static_cast<float>(t->b));
-      if (t->shape == "ring")
-        tool = core::make_ring_tool(static_cast<float>(t->a), static_cast<float>(t->b));
-      if (t->shape == "cone")
-        tool = core::make_cone_tool(static_cast<float>(t->a), static_cast<float>(t->b));
+      if (const auto shape = sim::parse_tool_shape(t->shape)) {
+        tool = make_tool(*shape, static_cast<float>(t->a), static_cast<float>(t->b));
+      }
       if (t->shape == "region") tool = core::tool_from_volume(*volume, t->box);
       if (t->shape == "file") {
         const std::filesystem::path p(t->path);

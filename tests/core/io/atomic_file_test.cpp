@@ -1,7 +1,9 @@
 #include "sculpt/core/io/atomic_file.h"
 
 #include <gtest/gtest.h>
+
 #include <sys/stat.h>
+#include "scratch_dir.h"
 
 #include <filesystem>
 #include <fstream>
@@ -25,13 +27,8 @@ size_t files_in(const fs::path& dir) {
 
 class AtomicFileTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("sculpt_atomic_test_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  sculpt::test::ScratchDir scratch_;
+  const fs::path& dir_ = scratch_.path();
 };
 
 TEST_F(AtomicFileTest, CommitReplacesTheTargetWhole) {

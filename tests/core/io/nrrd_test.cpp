@@ -1,7 +1,9 @@
 #include "sculpt/core/io/nrrd.h"
 
 #include <gtest/gtest.h>
+
 #include <zlib.h>
+#include "scratch_dir.h"
 
 #include <cstring>
 #include <filesystem>
@@ -15,15 +17,6 @@ namespace fs = std::filesystem;
 
 class NrrdTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("sculpt_nrrd_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   fs::path write_file(const std::string& name, const std::string& bytes) {
     const fs::path p = dir_ / name;
     std::ofstream(p, std::ios::binary) << bytes;
@@ -38,7 +31,8 @@ class NrrdTest : public ::testing::Test {
         << r.error().message() << " (wanted: " << what << ")";
     EXPECT_EQ(r.error().message().find('\n'), std::string::npos) << "one line";
   }
-  fs::path dir_;
+  sculpt::test::ScratchDir scratch_;
+  const fs::path& dir_ = scratch_.path();
 };
 
 std::string gzip(const std::string& data) {

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "scratch_dir.h"
+
 #include <filesystem>
 
 #include "sculpt/core/shapes/analytic_shapes.h"
@@ -13,13 +15,8 @@ namespace fs = std::filesystem;
 
 class VolumeIoTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("sculpt_volume_io_test_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  sculpt::test::ScratchDir scratch_;
+  const fs::path& dir_ = scratch_.path();
 };
 
 TEST_F(VolumeIoTest, StreamedReadEqualsTheDenseGrid) {

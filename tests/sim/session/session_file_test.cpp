@@ -70,7 +70,9 @@ TEST(SessionFile, EveryTruncationKeepsTheWholeRecordsBeforeIt) {
     for (size_t i = 0; i < r->records.size(); ++i)
       EXPECT_EQ(r->records[i], s.records[i]);
     EXPECT_EQ(info.bytes_lost == 0, info.warning.empty());
-    if (info.bytes_lost > 0) EXPECT_NE(info.warning.find("bytes lost"), std::string::npos);
+    if (info.bytes_lost > 0) {
+      EXPECT_NE(info.warning.find("bytes lost"), std::string::npos);
+    }
   }
 }
 

@@ -17,7 +17,7 @@ struct Outcome {
 
 Outcome replay(const sim::Session& s, double speed, bool fast, int threads) {
   core::set_default_threads(threads);
-  StationLoop loop(loop_options_for(s));
+  StationLoop loop(StationLoop::Options{});
   ReplayOptions o;
   o.speed = speed;
   o.fast = fast;
@@ -48,7 +48,7 @@ TEST(SessionReplay, IsDeterministicOnEveryBundledSession) {
 
 TEST(SessionReplay, ShortSessionStrokesUndoAndUnplugBehave) {
   const sim::Session s = sim::short_session();
-  StationLoop loop(loop_options_for(s));
+  StationLoop loop(StationLoop::Options{});
   ReplayOptions o;
   o.fast = true;
   int64_t connects = 0, disconnects = 0;
@@ -104,7 +104,7 @@ TEST(SessionReplay, RefusesADeviceWithoutAParser) {
   s.header.device.product_id = 0x5678;
   s.header.device.usage_page = 1;
   s.header.device.usage = 5;
-  StationLoop loop(loop_options_for(s));
+  StationLoop loop(StationLoop::Options{});
   const auto r = replay_session(s, "pad.scs", loop);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message().find("pad.scs: "), std::string::npos) << r.error().message();

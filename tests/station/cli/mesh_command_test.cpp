@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "scratch_dir.h"
+
 #include <filesystem>
 
 #include "run_sculpt.h"
@@ -16,14 +18,11 @@ namespace fs = std::filesystem;
 class MeshCommandTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("sculpt_mesh_cli_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     ASSERT_TRUE(sculpt::core::write_nrrd(dir_ / "in.nrrd", sculpt::core::sphere_density(70)).ok());
   }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
+  sculpt::test::ScratchDir scratch_;
+  const fs::path& dir_ = scratch_.path();
+  std::string path(const std::string& name) const { return scratch_.file(name); }
 };
 
 TEST_F(MeshCommandTest, WritesEachFormatClosed) {

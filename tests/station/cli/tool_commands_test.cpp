@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "scratch_dir.h"
+
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -16,14 +18,9 @@ namespace fs = std::filesystem;
 
 class ToolCommandsTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("sculpt_tool_cli_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
+  sculpt::test::ScratchDir scratch_;
+  const fs::path& dir_ = scratch_.path();
+  std::string path(const std::string& name) const { return scratch_.file(name); }
 };
 
 int64_t mass(const sculpt::core::DenseGrid<uint8_t>& g) {

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "scratch_dir.h"
+
 #include <filesystem>
 
 #include "run_sculpt.h"
@@ -17,17 +19,14 @@ namespace fs = std::filesystem;
 class WaveletCommandTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("sculpt_cli_test_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     input_ = sculpt::core::sphere_density(70);
     input_.at(5, 6, 7) = 99;
     ASSERT_TRUE(sculpt::core::write_nrrd(dir_ / "in.nrrd", input_).ok());
   }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
-  fs::path dir_;
+  sculpt::test::ScratchDir scratch_;
+  const fs::path& dir_ = scratch_.path();
+  std::string path(const std::string& name) const { return scratch_.file(name); }
   sculpt::core::DenseGrid<uint8_t> input_;
 };
 

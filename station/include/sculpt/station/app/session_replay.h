@@ -48,7 +48,4 @@ LatencyStats latency_stats(std::vector<double> us);
 core::Result<ReplayResult> replay_session(const sim::Session& session, const std::string& name,
                                           StationLoop& loop, const ReplayOptions& options = {});
 
-/// The StationLoop options a session needs (its first volume command's block).
-StationLoop::Options loop_options_for(const sim::Session& session);
-
 }  // namespace sculpt::station
