@@ -1,0 +1,48 @@
+#pragma once
+// The triangles of a level function's zero level (iso_triangulation.h),
+// indexed by cell, for nearest-surface-point searches near the surface.
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "sculpt/core/distance/iso_triangulation.h"
+#include "sculpt/core/grid/dense_grid.h"
+
+namespace sculpt::core {
+
+class SurfaceIndex {
+ public:
+  /// Triangulates every transverse cell of `phi` (in parallel).
+  explicit SurfaceIndex(const DenseGrid<float>& phi, int threads = 0);
+
+  const std::vector<Triangle3>& triangles() const { return triangles_; }
+  /// Cells span voxel centres: dims - 1 per axis (0 when dims < 2).
+  glm::ivec3 cell_dims() const { return cell_dims_; }
+
+  /// The triangles of cell c (lower corner), empty when not transverse.
+  std::pair<const Triangle3*, const Triangle3*> cell(glm::ivec3 c) const {
+    const size_t i = first_.index(c.x, c.y, c.z);
+    const Triangle3* b = triangles_.data() + first_[i];
+    return {b, b + count_[i]};
+  }
+
+  struct Nearest {
+    glm::vec3 point{0.0f};
+    /// Squared distance to it (+inf when no surface lies within max_radius).
+    float distance_squared = 0.0f;
+  };
+  /// The nearest point of the surface to voxel p, searching cells in rings
+  /// of growing Chebyshev radius until no nearer cell can exist; exact
+  /// whenever the nearest point is within max_radius voxels.
+  Nearest nearest(glm::ivec3 p, int max_radius = 8) const;
+
+ private:
+  glm::ivec3 cell_dims_{0};
+  std::vector<Triangle3> triangles_;
+  DenseGrid<int32_t> first_;
+  DenseGrid<uint8_t> count_;
+};
+
+}  // namespace sculpt::core

@@ -1,0 +1,100 @@
+#include "sculpt/core/distance/distance_shell.h"
+
+#include <cmath>
+
+#include <glm/common.hpp>
+
+#include "sculpt/core/util/parallel_for.h"
+
+namespace sculpt::core {
+namespace {
+
+// Sets `out` (value v where unset) at every 26-neighbour (and the voxel) of
+// each voxel of `in` equal to `from`. Per z-slice in parallel, reading only
+// `in`, so threads never race: each writes its own slice.
+void dilate26(const DenseGrid<uint8_t>& in, uint8_t from, DenseGrid<uint8_t>& out, uint8_t v,
+              int threads) {
+  const glm::ivec3 d = in.dims();
+  parallel_for(
+      d.z,
+      [&](int64_t zz) {
+        const int z = int(zz);
+        for (int y = 0; y < d.y; ++y)
+          for (int x = 0; x < d.x; ++x) {
+            if (out.at(x, y, z) != 0) continue;
+            bool hit = false;
+            for (int dz = -1; dz <= 1 && !hit; ++dz)
+              for (int dy = -1; dy <= 1 && !hit; ++dy)
+                for (int dx = -1; dx <= 1 && !hit; ++dx) {
+                  const int a = x + dx, b = y + dy, c = z + dz;
+                  hit = in.in_bounds(a, b, c) && in.at(a, b, c) == from;
+                }
+            if (hit) out.at(x, y, z) = v;
+          }
+      },
+      threads);
+}
+
+}  // namespace
+
+DenseGrid<uint8_t> boundary_voxels(const DenseGrid<uint8_t>& inside, int threads) {
+  const glm::ivec3 d = inside.dims();
+  DenseGrid<uint8_t> b(d, 0);
+  parallel_for(
+      d.z,
+      [&](int64_t zz) {
+        const int z = int(zz);
+        for (int y = 0; y < d.y; ++y)
+          for (int x = 0; x < d.x; ++x) {
+            if (inside.at(x, y, z) == 0) continue;
+            bool outside_neighbour = false;
+            for (int dz = -1; dz <= 1 && !outside_neighbour; ++dz)
+              for (int dy = -1; dy <= 1 && !outside_neighbour; ++dy)
+                for (int dx = -1; dx <= 1 && !outside_neighbour; ++dx) {
+                  const int a = x + dx, c = y + dy, e = z + dz;
+                  outside_neighbour = inside.in_bounds(a, c, e) && inside.at(a, c, e) == 0;
+                }
+            b.at(x, y, z) = outside_neighbour ? 1 : 0;
+          }
+      },
+      threads);
+  return b;
+}
+
+DistanceShell distance_shell(const DenseGrid<float>& phi, const SurfaceIndex& surface,
+                             int threads) {
+  const glm::ivec3 d = phi.dims();
+  const DenseGrid<uint8_t> inside = inside_mask(phi);
+  const DenseGrid<uint8_t> b = boundary_voxels(inside, threads);
+  DistanceShell shell;
+  // S_v: B dilated once; S_n: S_v dilated once more.
+  DenseGrid<uint8_t> sv(d, 0);
+  dilate26(b, 1, sv, DistanceShell::kInner, threads);
+  shell.membership = sv;
+  dilate26(sv, DistanceShell::kInner, shell.membership, DistanceShell::kOuter, threads);
+  shell.slot = DenseGrid<int32_t>(d, -1);
+  for (size_t i = 0; i < shell.membership.size(); ++i) {
+    if (shell.membership[i] == DistanceShell::kNone) continue;
+    shell.slot[i] = int32_t(shell.voxels.size());
+    shell.voxels.push_back(int32_t(i));
+  }
+  shell.closest.resize(shell.voxels.size());
+  shell.distance.resize(shell.voxels.size());
+  const int64_t n = int64_t(shell.voxels.size());
+  const int64_t chunk = 1024;
+  parallel_for((n + chunk - 1) / chunk,
+               [&](int64_t c) {
+                 for (int64_t k = c * chunk; k < std::min(n, (c + 1) * chunk); ++k) {
+                   const int32_t i = shell.voxels[k];
+                   const int x = i % d.x, y = (i / d.x) % d.y, z = i / (d.x * d.y);
+                   const SurfaceIndex::Nearest near = surface.nearest({x, y, z});
+                   const float dist = std::sqrt(near.distance_squared);
+                   shell.closest[k] = near.point;
+                   shell.distance[k] = inside[i] ? -dist : dist;
+                 }
+               },
+               threads);
+  return shell;
+}
+
+}  // namespace sculpt::core

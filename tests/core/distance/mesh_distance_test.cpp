@@ -1,0 +1,118 @@
+#include "sculpt/core/distance/mesh_distance.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <random>
+
+#include <glm/geometric.hpp>
+
+#include "sculpt/core/distance/point_triangle.h"
+
+namespace sculpt::core {
+namespace {
+
+// A closed octahedron-subdivided sphere: every feature kind occurs.
+Mesh icosphere_like(float radius, glm::vec3 centre, int subdiv) {
+  Mesh m;
+  m.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                 {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (int s = 0; s < subdiv; ++s) {
+    std::vector<glm::uvec3> next;
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
+    auto midpoint = [&](uint32_t a, uint32_t b) {
+      auto k = std::minmax(a, b);
+      auto it = mid.find(k);
+      if (it != mid.end()) return it->second;
+      m.positions.push_back(glm::normalize(m.positions[a] + m.positions[b]));
+      return mid[k] = uint32_t(m.positions.size() - 1);
+    };
+    for (auto t : m.triangles) {
+      const uint32_t ab = midpoint(t.x, t.y), bc = midpoint(t.y, t.z), ca = midpoint(t.z, t.x);
+      next.insert(next.end(), {{t.x, ab, ca}, {ab, t.y, bc}, {ca, bc, t.z}, {ab, bc, ca}});
+    }
+    m.triangles = next;
+  }
+  for (auto& p : m.positions)
+    p = centre + radius * glm::normalize(p);
+  return m;
+}
+
+TEST(PointTriangle, MatchesDenseSamplingOfTheTriangle) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-3.0f, 3.0f);
+  for (int k = 0; k < 300; ++k) {
+    const glm::vec3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng));
+    const glm::vec3 p(u(rng), u(rng), u(rng));
+    const float d = std::sqrt(point_triangle_distance_squared(p, a, b, c));
+    float best = 1e9f;
+    for (int i = 0; i <= 60; ++i)
+      for (int j = 0; i + j <= 60; ++j) {
+        const float s = i / 60.0f, t = j / 60.0f;
+        best = std::min(best, glm::length(p - (a + s * (b - a) + t * (c - a))));
+      }
+    ASSERT_LE(d, best + 1e-4f);
+    ASSERT_GE(d, best - 0.15f);
+  }
+  // Degenerate triangle: a segment.
+  EXPECT_NEAR(
+      std::sqrt(point_triangle_distance_squared({0, 1, 0}, {-1, 0, 0}, {1, 0, 0}, {0, 0, 0})), 1.0f,
+      1e-6f);
+}
+
+TEST(MeshDistance, NarrowBandEqualsBruteAndSignIsRight) {
+  const Mesh m = icosphere_like(8.3f, glm::vec3(12.2f, 11.7f, 12.4f), 3);
+  const MeshDistance md(m);
+  const glm::ivec3 dims(25);
+  for (int threads : {1, 2}) {
+    const NarrowBand nb = mesh_narrow_band(md, dims, NarrowBandOptions{3.0f, threads});
+    int in_band = 0;
+    for (int z = 0; z < 25; ++z)
+      for (int y = 0; y < 25; ++y)
+        for (int x = 0; x < 25; ++x) {
+          const glm::vec3 p(x, y, z);
+          const float ref = md.signed_distance_brute(p);
+          const float d = nb.distance.at(x, y, z);
+          if (std::abs(ref) < 2.999f) {
+            ASSERT_NEAR(d, ref, 1e-4f) << x << " " << y << " " << z;
+            ++in_band;
+          } else if (std::abs(ref) > 3.001f) {
+            ASSERT_TRUE(std::isinf(d));
+          }
+          // The pseudonormal sign agrees with the (almost) sphere.
+          const float sphere = glm::length(p - glm::vec3(12.2f, 11.7f, 12.4f)) - 8.3f;
+          if (std::abs(sphere) > 0.5f) ASSERT_EQ(ref < 0, sphere < 0);
+        }
+    EXPECT_GT(in_band, 1000);
+  }
+}
+
+TEST(MeshDistance, FullFieldIsSignedEverywhere) {
+  const Mesh m = icosphere_like(6.0f, glm::vec3(10.5f, 10.2f, 9.8f), 3);
+  const MeshDistance md(m);
+  const DenseGrid<float> d = mesh_signed_distance(md, glm::ivec3(21), 2);
+  for (int z = 0; z < 21; ++z)
+    for (int y = 0; y < 21; ++y)
+      for (int x = 0; x < 21; ++x) {
+        const float ref = md.signed_distance_brute(glm::vec3(x, y, z));
+        ASSERT_NEAR(d.at(x, y, z), ref, 0.05f) << x << " " << y << " " << z;
+      }
+}
+
+TEST(MeshDistance, FitMappingCentresTheMesh) {
+  const Mesh m = icosphere_like(1.0f, glm::vec3(5, 5, 5), 1);
+  const VoxelizeMapping map = fit_mesh_to_grid(m, 64, 4.0f);
+  const Mesh t = transform_mesh(m, map);
+  glm::vec3 lo(1e9f), hi(-1e9f);
+  for (auto p : t.positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  EXPECT_NEAR(lo.x, 4.0f, 1e-4f);
+  EXPECT_NEAR(hi.x, 59.0f, 1e-4f);
+}
+
+}  // namespace
+}  // namespace sculpt::core
