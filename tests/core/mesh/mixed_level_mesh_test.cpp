@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -86,12 +87,13 @@ TEST(MixedLevelMesh, TorusAcrossLevelsKeepsItsGenus) {
   expect_watertight(mesh, st, 0, "torus");
 }
 
-TEST(MixedLevelMesh, RandomLevelsLeaveNoCrack) {
-  // Any assignment of levels 0..3: every edge in exactly two triangles, walked
-  // once each way. (Random assignments can change the topology, see the
-  // header; the structured ones above keep it.)
+TEST(MixedLevelMesh, RandomLevelsKeepTheTopology) {
+  // Any assignment of levels 0..3, neighbours differing by up to three
+  // levels across faces, edges and corners: closed, manifold, and still one
+  // sphere (Euler characteristic 2, one component).
   const Volume v = sphere_volume(160, 0.3f);
-  for (uint32_t seed = 1; seed <= 12; ++seed) {
+  int64_t loops = 0;
+  for (uint32_t seed = 1; seed <= 40; ++seed) {
     uint32_t r = seed * 2654435761u;
     std::vector<int> levels;
     for (int64_t i = 0; i < v.brick_count(); ++i) {
@@ -100,13 +102,73 @@ TEST(MixedLevelMesh, RandomLevelsLeaveNoCrack) {
     }
     MixedLevelStats st;
     const Mesh mesh = mixed_level_mesh(v, levels, {}, &st);
-    const MeshTopology t = check_topology(mesh);
-    EXPECT_EQ(t.boundary_edges, 0) << "seed " << seed;
-    EXPECT_EQ(t.nonmanifold_edges, 0) << "seed " << seed;
-    EXPECT_EQ(t.misoriented_edges, 0) << "seed " << seed;
-    EXPECT_EQ(st.stitch_off_face, 0) << "seed " << seed;
-    EXPECT_GT(enclosed_volume(mesh), 0.0) << "seed " << seed;
+    const std::string what = "seed " + std::to_string(seed);
+    expect_watertight(mesh, st, 2, what.c_str());
+    EXPECT_EQ(component_count(mesh), 1) << what;
+    EXPECT_GT(enclosed_volume(mesh), 0.0) << what;
+    loops += st.stitch_loops;
   }
+  EXPECT_GT(loops, 0);
+}
+
+TEST(MixedLevelMeshCache, KeepsWhatDidNotChange) {
+  Volume v = sphere_volume(128);  // 4^3 bricks
+  std::vector<int> levels = levels_by(v, [](glm::ivec3 b) { return (b.x + 2 * b.y + b.z) % 3; });
+  MixedLevelMeshCache cache;
+  MeshUpdate u = cache.update(v, levels);
+  EXPECT_EQ(u.bricks_changed, v.brick_count());
+  EXPECT_GT(u.bricks_meshed, 0);
+  EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, levels));
+
+  // Nothing changed: nothing re-meshed, nothing decoded.
+  u = cache.update(v, levels);
+  EXPECT_EQ(u.bricks_changed, 0);
+  EXPECT_EQ(u.bricks_decoded, 0);
+
+  // A dent in the surface inside brick (2, 2, 3): it and its 26 neighbours
+  // at most are re-meshed, and the result is what meshing from scratch gives.
+  const Box box{glm::ivec3(66, 66, 100), glm::ivec3(76, 76, 115)};
+  v.edit(box, [&](glm::ivec3 origin, std::span<uint8_t> voxels) {
+    const int e = v.brick_edge();
+    const Box local = intersect(box, Box{origin, origin + e});
+    for (int z = local.lo.z; z < local.hi.z; ++z)
+      for (int y = local.lo.y; y < local.hi.y; ++y)
+        for (int x = local.lo.x; x < local.hi.x; ++x)
+          voxels[(static_cast<size_t>(z - origin.z) * e + (y - origin.y)) * e + (x - origin.x)] = 0;
+  });
+  u = cache.update(v, levels);
+  EXPECT_GT(u.bricks_changed, 0);
+  EXPECT_LE(u.bricks_changed, 27);
+  EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, levels));
+  MixedLevelStats st = cache.stats();
+  expect_watertight(cache.welded_mesh(), st, 2, "after edit");
+
+  // One brick changes level: only the bricks that read its level follow.
+  levels[(2 * 4 + 1) * 4 + 1] = 3;
+  u = cache.update(v, levels);
+  EXPECT_GT(u.bricks_changed, 0);
+  EXPECT_LE(u.bricks_changed, 27);
+  EXPECT_EQ(cache.brick_level({1, 1, 2}), 3);
+  EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, levels));
+  st = cache.stats();
+  expect_watertight(cache.welded_mesh(), st, 2, "after level change");
+}
+
+TEST(MixedLevelMeshCache, BrickMeshesDrawTheWholeSurface) {
+  // What a renderer draws: every brick's own mesh; together (welded by
+  // their seam keys) a closed surface, whichever bricks are coarse.
+  const Volume v = sphere_volume(128);
+  MixedLevelMeshCache cache;
+  cache.update(v, levels_by(v, [](glm::ivec3 b) { return b.x < 2 ? 0 : 2; }));
+  int64_t triangles = 0;
+  for (int z = 0; z < 4; ++z)
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x)
+        triangles += static_cast<int64_t>(cache.brick_mesh({x, y, z}).mesh.triangles.size());
+  EXPECT_EQ(triangles, cache.triangle_count());
+  const Mesh welded = cache.welded_mesh();
+  EXPECT_EQ(static_cast<int64_t>(welded.triangles.size()), triangles);
+  expect_watertight(welded, cache.stats(), 2, "halves 0/2");
 }
 
 }  // namespace

@@ -15,8 +15,8 @@
 // brick on an axis, the layer of cells just outside the volume), so every
 // cell is meshed by exactly one brick.
 //
-// One cache holds one level; a view mixing levels per brick is built by
-// mixed_level_mesh.h (not cached yet).
+// One cache holds one level; a view mixing levels per brick is cached by
+// MixedLevelMeshCache (mixed_level_mesh.h).
 //
 // Thread safety: update() needs exclusive access to the cache and read access
 // to the volume; const members may run concurrently.

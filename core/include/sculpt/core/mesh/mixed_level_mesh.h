@@ -1,6 +1,6 @@
 #pragma once
 // One surface from bricks meshed at different levels of detail, without
-// cracks (DESIGN.md §4 "Mixed levels must not show cracks").
+// cracks (DESIGN.md §4 "Mixed levels must not show cracks"), cached per brick.
 //
 // The method (a documented alternative to Transvoxel's transition cells):
 //  1. Every brick marches its own box [b e, (b+1) e] on its level's grid;
@@ -8,27 +8,36 @@
 //     brick faces.
 //  2. Samples on a brick face, edge or corner are taken from the coarsest
 //     level among the bricks sharing it, interpolated (bilinearly on a face,
-//     linearly along an edge) to the finer grids. Both sides of a face then
-//     cross every coarse grid line at the same point, and each such vertex is
-//     welded by the key of the coarse edge it lies on.
-//  3. Between those shared vertices the finer brick's boundary is a polyline
-//     where the coarser brick's is one segment; the thin planar gaps they
-//     leave in the face plane are closed by fanning each boundary loop of
-//     the welded mesh ("stitching").
-// The result is closed (every edge in exactly two triangles, consistently
-// oriented) for closed shapes that stay clear of the volume's low faces by
-// one coarse voxel (the whole-level meshes of marching_cubes.h have no such
-// limit). Known limit: where many bricks of different levels meet around a
-// brick edge, the stitch can join gaps into a small handle or pinch a vertex
-// (about one in five random level assignments in the tests changes the Euler
-// characteristic; level maps where neighbours differ along faces only, as a
-// view-distance LOD gives, keep it).
+//     linearly along an edge) to the finer grids. Inside one square of the
+//     coarser grid the finer brick's face samples are then the bilinear
+//     interpolant of the square's corners, so both sides cross every coarse
+//     grid line at the same point (welded by the key of the coarse edge) and
+//     pair those crossings the same way (the asymptotic decider is exactly
+//     the bilinear interpolant's topology).
+//  3. Inside each such coarse square the finer brick's surface meets the face
+//     along a polyline from one crossing to the other where the coarser
+//     brick's meets it along one segment. The finer brick closes each of
+//     these thin planar gaps itself: it fans the polyline, closed by the
+//     chord between its ends, from the polyline's centroid ("stitching").
+//     A gap never spans two squares, two faces or two bricks, so each is a
+//     disc and the stitch keeps the topology; and a brick's stitch reads only
+//     its own mesh, so it is cached with it.
+// The result is closed and manifold (every edge in exactly two triangles,
+// consistently oriented, the Euler characteristic of the shape) for closed
+// shapes that stay clear of the volume's low faces by one coarse voxel (the
+// whole-level meshes of marching_cubes.h have no such limit).
 
 #include <cstdint>
 #include <span>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "sculpt/core/mesh/marching_cubes.h"
 #include "sculpt/core/mesh/mesh.h"
+#include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/volume/volume.h"
 
 namespace sculpt::core {
@@ -36,11 +45,103 @@ namespace sculpt::core {
 struct MixedLevelStats {
   int64_t stitch_loops = 0;      ///< gaps closed in brick faces
   int64_t stitch_triangles = 0;  ///< triangles added for them
-  int64_t stitch_off_face = 0;   ///< loop vertices not on a brick face (0 unless broken)
+  int64_t stitch_off_face = 0;   ///< open mesh edges not on a brick face (0 unless broken)
+  MixedLevelStats& operator+=(const MixedLevelStats& o) {
+    stitch_loops += o.stitch_loops;
+    stitch_triangles += o.stitch_triangles;
+    stitch_off_face += o.stitch_off_face;
+    return *this;
+  }
+};
+
+/// The per-brick meshes of a volume whose bricks each have their own level of
+/// detail (a renderer's LOD by camera distance), kept up to date
+/// incrementally. Brick b's mesh (brick_mesh) is its surface at its level plus
+/// the stitch toward coarser face neighbours, so drawing every brick's mesh
+/// shows a closed surface; welded_mesh() joins them into one indexed mesh.
+///
+/// update() re-meshes a brick only when a brick its mesh reads changed
+/// (Volume::brick_version of itself and its 26 neighbours; 124 at one-voxel
+/// bricks) or when its own or one of those neighbours' levels changed;
+/// everything else is kept. Decoded level voxels are kept per brick and
+/// level, checked against brick versions.
+///
+/// Thread safety: update() needs exclusive access to the cache and read
+/// access to the volume; const members may run concurrently.
+class MixedLevelMeshCache {
+ public:
+  explicit MixedLevelMeshCache(const MarchingCubesOptions& options = {});
+
+  /// Brings the meshes up to date with `volume` and `brick_levels` (one per
+  /// brick, index (b.z * grid.y + b.y) * grid.x + b.x, each in
+  /// [0, volume.levels()]). A different volume (or one of another shape)
+  /// than the previous call's is meshed from scratch. bricks_changed counts
+  /// bricks whose inputs (versions, levels) changed, bricks_decoded the
+  /// (brick, level) decodes, bricks_meshed the non-empty meshes rebuilt.
+  MeshUpdate update(const Volume& volume, std::span<const int> brick_levels);
+
+  float iso() const { return options_.iso; }
+  glm::ivec3 brick_grid() const { return grid_; }
+  /// Level of brick b as of the last update().
+  int brick_level(glm::ivec3 b) const { return bricks_[index(b)].level; }
+  /// Brick b's mesh (level-0 voxel units), stitch included; empty before
+  /// the first update().
+  const BrickMesh& brick_mesh(glm::ivec3 b) const { return bricks_[index(b)].mesh; }
+  /// Stitching figures of the current meshes, summed over bricks.
+  MixedLevelStats stats() const;
+  int64_t triangle_count() const;
+  /// All bricks welded into one mesh, in brick order.
+  Mesh welded_mesh() const;
+
+ private:
+  struct CachedBrick {
+    int level = -1;
+    // Versions and levels of the bricks read, in neighbourhood order;
+    // empty before the first meshing.
+    std::vector<uint64_t> versions;
+    std::vector<int8_t> levels;
+    BrickMesh mesh;
+    MixedLevelStats stats;
+  };
+  struct Decoded {
+    uint64_t version = 0;
+    std::vector<uint8_t> voxels;  // (edge >> level)^3
+  };
+  size_t index(glm::ivec3 b) const {
+    return (static_cast<size_t>(b.z) * grid_.y + b.y) * grid_.x + b.x;
+  }
+  bool in_grid(glm::ivec3 b) const;
+  int level_of(glm::ivec3 b) const { return levels_[index(b)]; }
+  // The neighbourhood radius a brick at `level` reads (halo two voxels up).
+  int reach(int level) const { return (edge_ >> level) >= 2 ? 1 : 2; }
+  // Level-k voxel p (level coordinates), 0 outside the volume.
+  float raw(int k, glm::ivec3 p);
+  const Decoded& decoded(glm::ivec3 b, int k);
+  // The sample all bricks sharing level-k point p agree on.
+  float shared(int k, glm::ivec3 p);
+  float shared_value(int k, glm::ivec3 p);
+  // Finest and coarsest level among the bricks whose closed box holds
+  // level-0 point x2 / 2 (doubled so edge midpoints are integers).
+  glm::ivec2 levels_at(glm::ivec3 x2) const;
+  int coarsest_level_at(glm::ivec3 x2) const;
+  void mesh_brick(glm::ivec3 b, CachedBrick& cb);
+  void stitch(glm::ivec3 b, int k, BrickMesh& out, MixedLevelStats& st) const;
+
+  MarchingCubesOptions options_;
+  const Volume* volume_ = nullptr;
+  glm::ivec3 dims_{0};
+  glm::ivec3 grid_{0};
+  int edge_ = 0;
+  std::vector<int> levels_;
+  std::vector<CachedBrick> bricks_;
+  std::unordered_map<uint64_t, Decoded> decoded_;  // key: brick index * 8 + level
+  int64_t decodes_ = 0;
+  std::vector<float> block_;
 };
 
 /// The surface of `volume` with brick b at level brick_levels[i], i the brick
-/// index ((b.z * grid.y + b.y) * grid.x + b.x), each in [0, volume.levels()].
+/// index ((b.z * grid.y + b.y) * grid.x + b.x), each in [0, volume.levels()]:
+/// MixedLevelMeshCache::update() then welded_mesh().
 Mesh mixed_level_mesh(const Volume& volume, std::span<const int> brick_levels,
                       const MarchingCubesOptions& options = {}, MixedLevelStats* stats = nullptr);
 

@@ -1,0 +1,415 @@
+#include "sculpt/core/mesh/mixed_level_mesh.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "march_cells.h"
+
+namespace sculpt::core {
+namespace {
+
+constexpr glm::ivec3 corner_offset(int k) {
+  return {k & 1, (k >> 1) & 1, k >> 2};
+}
+
+uint64_t pack_edge(int level, glm::ivec3 lower, int axis) {
+  // 19 bits per coordinate (level-0 coordinates up to 2^16, plus margin).
+  return (static_cast<uint64_t>(level) << 59) | (static_cast<uint64_t>(axis) << 57) |
+         (static_cast<uint64_t>(lower.z + 1) << 38) | (static_cast<uint64_t>(lower.y + 1) << 19) |
+         static_cast<uint64_t>(lower.x + 1);
+}
+
+}  // namespace
+
+MixedLevelMeshCache::MixedLevelMeshCache(const MarchingCubesOptions& options) : options_(options) {}
+
+bool MixedLevelMeshCache::in_grid(glm::ivec3 b) const {
+  return glm::all(glm::greaterThanEqual(b, glm::ivec3(0))) && glm::all(glm::lessThan(b, grid_));
+}
+
+const MixedLevelMeshCache::Decoded& MixedLevelMeshCache::decoded(glm::ivec3 b, int k) {
+  const uint64_t key = static_cast<uint64_t>(index(b)) * 8 + static_cast<uint64_t>(k);
+  Decoded& d = decoded_[key];
+  const uint64_t version = volume_->brick_version(b);
+  const int m = edge_ >> k;
+  const size_t n = static_cast<size_t>(m) * m * m;
+  if (d.voxels.size() != n || d.version != version) {
+    d.voxels.resize(n);
+    volume_->decode_brick(b, d.voxels, k);
+    d.version = version;
+    ++decodes_;
+  }
+  return d;
+}
+
+float MixedLevelMeshCache::raw(int k, glm::ivec3 p) {
+  const glm::ivec3 d = volume_->level_dims(k);
+  if (glm::any(glm::lessThan(p, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(p, d)))
+    return 0.0f;
+  const int m = edge_ >> k;
+  const glm::ivec3 b = p / m;
+  const glm::ivec3 l = p - b * m;
+  return decoded(b, k).voxels[(static_cast<size_t>(l.z) * m + l.y) * m + l.x];
+}
+
+float MixedLevelMeshCache::shared(int k, glm::ivec3 p) {
+  // A sample exactly at the iso-level puts the crossings of the edges
+  // around it on the grid point itself, where the finer side's polyline
+  // could end on an edge the coarser side does not have (the symmetric
+  // density ramp makes interpolated ties common). Every brick reads this
+  // same value, so moving ties just below the level keeps them agreeing.
+  const float v = shared_value(k, p);
+  return v == options_.iso ? options_.iso - 1.0f / 1024.0f : v;
+}
+
+float MixedLevelMeshCache::shared_value(int k, glm::ivec3 p) {
+  const glm::ivec3 d = volume_->level_dims(k);
+  if (glm::any(glm::lessThan(p, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(p, d)))
+    return 0.0f;
+  const int s = 1 << k;
+  const glm::ivec3 x = p * s;  // level-0 position
+  const glm::ivec2 range = levels_at(x * 2);
+  if (range.y <= k) {
+    // On the grid of every brick sharing it: the finest one's voxel. Level-f
+    // voxel i stands for the mean of [i 2^f, (i+1) 2^f) but sits at i 2^f,
+    // (2^f - 1) / 2 voxels below its centre; the finest level keeps that
+    // offset smallest, so no brick sees its face samples lie beyond its own
+    // first inner layer (which pinched off bubbles and handles where the
+    // surface grazes a face between levels two or more apart).
+    const int f = range.x;
+    return raw(f, x >> f);
+  }
+  const int lambda = range.y;
+  const int big = 1 << lambda;
+  glm::ivec3 i0;
+  glm::vec3 w;
+  for (int a = 0; a < 3; ++a) {
+    i0[a] = x[a] / big;
+    w[a] = static_cast<float>(x[a] - i0[a] * big) / static_cast<float>(big);
+  }
+  float value = 0.0f;
+  for (int c = 0; c < 8; ++c) {
+    const glm::ivec3 o = corner_offset(c);
+    float weight = 1.0f;
+    for (int a = 0; a < 3; ++a)
+      weight *= o[a] ? w[a] : 1.0f - w[a];
+    if (weight == 0.0f) continue;
+    value += weight * shared(lambda, i0 + o);
+  }
+  return value;
+}
+
+glm::ivec2 MixedLevelMeshCache::levels_at(glm::ivec3 x2) const {
+  const int e2 = 2 * edge_;
+  glm::ivec3 lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    const int b = x2[a] / e2;
+    lo[a] = std::clamp((x2[a] % e2 == 0) ? b - 1 : b, 0, grid_[a] - 1);
+    hi[a] = std::clamp(b, 0, grid_[a] - 1);
+  }
+  glm::ivec2 range(100, 0);
+  for (int z = lo.z; z <= hi.z; ++z)
+    for (int y = lo.y; y <= hi.y; ++y)
+      for (int x = lo.x; x <= hi.x; ++x) {
+        const int l = level_of({x, y, z});
+        range = glm::ivec2(std::min(range.x, l), std::max(range.y, l));
+      }
+  return range;
+}
+
+int MixedLevelMeshCache::coarsest_level_at(glm::ivec3 x2) const {
+  return levels_at(x2).y;
+}
+
+void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb) {
+  const int k = cb.level;
+  const int m = edge_ >> k, s = 1 << k;
+  const glm::ivec3 origin = b * m;
+  const glm::ivec3 ld = volume_->level_dims(k);
+  const int side = m + 3;
+  block_.assign(static_cast<size_t>(side) * side * side, 0.0f);
+  // Plain level-k voxels, row by row, a brick's run at a time.
+  for (int z = -1; z <= m + 1; ++z)
+    for (int y = -1; y <= m + 1; ++y) {
+      const glm::ivec3 p0 = origin + glm::ivec3(-1, y, z);
+      float* row = &block_[(static_cast<size_t>(z + 1) * side + (y + 1)) * side];
+      if (p0.y < 0 || p0.z < 0 || p0.y >= ld.y || p0.z >= ld.z) continue;
+      for (int x = std::max(0, p0.x); x < std::min(ld.x, p0.x + side);) {
+        const glm::ivec3 nb(x / m, p0.y / m, p0.z / m);
+        const int run_end = std::min({ld.x, p0.x + side, (nb.x + 1) * m});
+        const std::vector<uint8_t>& v = decoded(nb, k).voxels;
+        const uint8_t* src = &v[(static_cast<size_t>(p0.z - nb.z * m) * m + (p0.y - nb.y * m)) * m];
+        for (; x < run_end; ++x)
+          row[x - p0.x] = src[x - nb.x * m];
+      }
+    }
+  // Face, edge and corner points: the coarsest sharing level's values.
+  for (int z = 0; z <= m; ++z)
+    for (int y = 0; y <= m; ++y) {
+      const bool yz_face = z == 0 || y == 0 || z == m || y == m;
+      for (int x = 0; x <= m; x += (yz_face ? 1 : m)) {
+        const glm::ivec3 p = origin + glm::ivec3(x, y, z);
+        const glm::ivec2 range = levels_at(p * s * 2);
+        if (range.x < k || range.y > k)
+          block_[(static_cast<size_t>(z + 1) * side + (y + 1)) * side + (x + 1)] = shared(k, p);
+      }
+    }
+  bool any_in = false, any_out = false;
+  for (int z = 1; z <= m + 1; ++z)
+    for (int y = 1; y <= m + 1; ++y)
+      for (int x = 1; x <= m + 1; ++x) {
+        const bool in = block_[(static_cast<size_t>(z) * side + y) * side + x] > options_.iso;
+        any_in = any_in || in;
+        any_out = any_out || !in;
+      }
+  cb.stats = {};
+  if (!any_in || !any_out) {
+    cb.mesh.clear();
+    return;
+  }
+  auto key = [&](glm::ivec3 p, int axis) -> uint64_t {
+    bool seam = false;
+    for (int a = 0; a < 3; ++a)
+      if (a != axis && (p[a] == 0 || p[a] == m)) seam = true;
+    if (!seam) return BrickMesh::kNotSeam;
+    const glm::ivec3 x = (origin + p) * s;
+    glm::ivec3 mid2 = x * 2;
+    mid2[axis] += s;
+    const int lambda = coarsest_level_at(mid2);
+    const int big = 1 << lambda;
+    bool on_line = true;
+    for (int a = 0; a < 3; ++a)
+      if (a != axis && x[a] % big != 0) on_line = false;
+    // Sub-edges of one coarse edge share its key: only one of them is
+    // crossed, where the coarse edge is.
+    if (lambda > k && on_line) return pack_edge(lambda, x / big, axis);
+    return pack_edge(k, x / s, axis);
+  };
+  detail::march_float_cells(block_.data(), glm::ivec3(m), origin, k, options_.iso, key, cb.mesh);
+  stitch(b, k, cb.mesh, cb.stats);
+}
+
+void MixedLevelMeshCache::stitch(glm::ivec3 b, int k, BrickMesh& out, MixedLevelStats& st) const {
+  Mesh& mesh = out.mesh;
+  // Edges used by one triangle of this brick lie on its faces: the seams
+  // with its neighbours. Against a coarser face neighbour they bound the
+  // gaps this brick closes.
+  std::vector<uint64_t> undirected;
+  undirected.reserve(mesh.triangles.size() * 3);
+  auto edge_key = [](uint32_t a, uint32_t c) {
+    return (static_cast<uint64_t>(std::min(a, c)) << 32) | std::max(a, c);
+  };
+  for (const glm::uvec3& t : mesh.triangles)
+    for (int c = 0; c < 3; ++c)
+      undirected.push_back(edge_key(t[c], t[(c + 1) % 3]));
+  std::sort(undirected.begin(), undirected.end());
+  auto used_once = [&](uint64_t key) {
+    const auto [lo, hi] = std::equal_range(undirected.begin(), undirected.end(), key);
+    return hi - lo == 1;
+  };
+  struct Gap {
+    uint64_t group;  // face and coarse square
+    uint32_t from, to;
+  };
+  std::vector<Gap> gaps;
+  const glm::vec3 lo(b * edge_), hi((b + 1) * edge_);
+  for (const glm::uvec3& t : mesh.triangles)
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t from = t[c], to = t[(c + 1) % 3];
+      if (!used_once(edge_key(from, to))) continue;
+      // Vertices on a face plane have that coordinate exactly (the
+      // crossing moves along its edge only); the midpoint would round a
+      // vertex one ulp off the plane onto it.
+      const glm::vec3 p = mesh.positions[from], q = mesh.positions[to];
+      const glm::dvec3 mid = 0.5 * (glm::dvec3(p) + glm::dvec3(q));
+      int face = -1;
+      for (int a = 0; a < 3 && face < 0; ++a) {
+        if (p[a] == lo[a] && q[a] == lo[a]) face = 2 * a;
+        if (p[a] == hi[a] && q[a] == hi[a]) face = 2 * a + 1;
+      }
+      if (face < 0) {
+        ++st.stitch_off_face;
+        continue;
+      }
+      const int axis = face / 2;
+      glm::ivec3 nb = b;
+      nb[axis] += (face & 1) ? 1 : -1;
+      if (!in_grid(nb)) continue;
+      const int lambda = level_of(nb);
+      if (lambda <= k) continue;  // same level: welded; finer: its stitch
+      const double big = 1 << lambda;
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      const auto su = static_cast<uint64_t>(std::floor(mid[u] / big));
+      const auto sv = static_cast<uint64_t>(std::floor(mid[v] / big));
+      gaps.push_back({static_cast<uint64_t>(face) | (su << 3) | (sv << 23), from, to});
+    }
+  std::sort(gaps.begin(), gaps.end(), [](const Gap& a, const Gap& c) {
+    return a.group != c.group ? a.group < c.group : a.from < c.from;
+  });
+
+  // Fans the loop (a polyline closed by its chord) from its centroid, each
+  // triangle walking the loop backwards, so every loop edge ends up in two
+  // triangles.
+  std::vector<uint32_t> loop;
+  auto fill = [&] {
+    if (loop.size() < 3) return;  // one segment: the coarse side's own edge
+    ++st.stitch_loops;
+    glm::vec3 centre(0.0f), normal(0.0f);
+    for (uint32_t v : loop) {
+      centre += mesh.positions[v];
+      normal += mesh.normals[v];
+    }
+    const auto c = static_cast<uint32_t>(mesh.positions.size());
+    mesh.positions.push_back(centre / static_cast<float>(loop.size()));
+    const float len = glm::length(normal);
+    mesh.normals.push_back(len > 0.0f ? normal / len : mesh.normals[loop[0]]);
+    out.seam_keys.push_back(BrickMesh::kNotSeam);
+    for (size_t i = 0; i < loop.size(); ++i) {
+      mesh.triangles.emplace_back(c, loop[(i + 1) % loop.size()], loop[i]);
+      ++st.stitch_triangles;
+    }
+  };
+  std::vector<uint8_t> done;
+  for (size_t g0 = 0; g0 < gaps.size();) {
+    size_t g1 = g0;
+    while (g1 < gaps.size() && gaps[g1].group == gaps[g0].group)
+      ++g1;
+    const std::span<const Gap> group(&gaps[g0], g1 - g0);
+    done.assign(group.size(), 0);
+    auto next_from = [&](uint32_t v) -> int {
+      for (size_t i = 0; i < group.size(); ++i)
+        if (!done[i] && group[i].from == v) return static_cast<int>(i);
+      return -1;
+    };
+    auto walk = [&](size_t first) {
+      loop.clear();
+      loop.push_back(group[first].from);
+      for (int i = static_cast<int>(first); i >= 0;
+           i = next_from(group[static_cast<size_t>(i)].to)) {
+        done[static_cast<size_t>(i)] = 1;
+        if (group[static_cast<size_t>(i)].to == loop.front()) break;  // a closed loop
+        loop.push_back(group[static_cast<size_t>(i)].to);
+      }
+    };
+    // Polylines, from their starts (no gap edge ends there). Each is closed
+    // by the coarser brick's segment between its ends: inside one coarse
+    // square both sides see the same bilinear interpolant, whose sample
+    // arithmetic is exact (dyadic weights times bytes), so the asymptotic
+    // decider pairs the crossings the same way on both.
+    for (size_t i = 0; i < group.size(); ++i) {
+      bool start = true;
+      for (const Gap& g : group)
+        if (g.to == group[i].from) start = false;
+      if (start && !done[i]) {
+        walk(i);
+        fill();
+      }
+    }
+    // Closed loops: a contour inside one coarse square, which the coarser
+    // brick does not see at all.
+    for (size_t i = 0; i < group.size(); ++i)
+      if (!done[i]) {
+        walk(i);
+        fill();
+      }
+    g0 = g1;
+  }
+}
+
+MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int> brick_levels) {
+  assert(static_cast<int64_t>(brick_levels.size()) == volume.brick_count());
+  if (volume_ != &volume || volume.dims() != dims_ || volume.brick_grid() != grid_ ||
+      volume.brick_edge() != edge_) {
+    volume_ = &volume;
+    dims_ = volume.dims();
+    grid_ = volume.brick_grid();
+    edge_ = volume.brick_edge();
+    bricks_.assign(static_cast<size_t>(volume.brick_count()), CachedBrick{});
+    decoded_.clear();
+  }
+  levels_.assign(brick_levels.begin(), brick_levels.end());
+  for ([[maybe_unused]] int l : levels_)
+    assert(l >= 0 && l <= volume.levels());
+  decodes_ = 0;
+  MeshUpdate stats;
+  std::vector<uint64_t> versions;
+  std::vector<int8_t> levels;
+  for (int z = 0; z < grid_.z; ++z)
+    for (int y = 0; y < grid_.y; ++y)
+      for (int x = 0; x < grid_.x; ++x) {
+        const glm::ivec3 b(x, y, z);
+        CachedBrick& cb = bricks_[index(b)];
+        const int k = level_of(b);
+        const int r = reach(k);
+        versions.clear();
+        levels.clear();
+        for (int dz = -r; dz <= r; ++dz)
+          for (int dy = -r; dy <= r; ++dy)
+            for (int dx = -r; dx <= r; ++dx) {
+              const glm::ivec3 nb = b + glm::ivec3(dx, dy, dz);
+              const bool in = in_grid(nb);
+              versions.push_back(in ? volume.brick_version(nb) : 0);
+              levels.push_back(static_cast<int8_t>(in ? level_of(nb) : -1));
+            }
+        if (cb.level == k && cb.versions == versions && cb.levels == levels) continue;
+        ++stats.bricks_changed;
+        cb.level = k;
+        cb.versions.swap(versions);
+        cb.levels.swap(levels);
+        mesh_brick(b, cb);
+        stats.bricks_meshed += cb.mesh.empty() ? 0 : 1;
+      }
+  // Forget decoded bricks at levels no brick around them uses any more.
+  std::erase_if(decoded_, [&](const auto& entry) {
+    const size_t i = static_cast<size_t>(entry.first / 8);
+    const int k = static_cast<int>(entry.first % 8);
+    const glm::ivec3 b(
+        static_cast<int>(i % static_cast<size_t>(grid_.x)),
+        static_cast<int>((i / static_cast<size_t>(grid_.x)) % static_cast<size_t>(grid_.y)),
+        static_cast<int>(i / (static_cast<size_t>(grid_.x) * grid_.y)));
+    for (int dz = -2; dz <= 2; ++dz)
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+          const glm::ivec3 nb = b + glm::ivec3(dx, dy, dz);
+          if (in_grid(nb) && level_of(nb) <= k) return false;
+        }
+    return true;
+  });
+  stats.bricks_decoded = decodes_;
+  return stats;
+}
+
+MixedLevelStats MixedLevelMeshCache::stats() const {
+  MixedLevelStats st;
+  for (const CachedBrick& cb : bricks_)
+    st += cb.stats;
+  return st;
+}
+
+int64_t MixedLevelMeshCache::triangle_count() const {
+  int64_t n = 0;
+  for (const CachedBrick& cb : bricks_)
+    n += static_cast<int64_t>(cb.mesh.mesh.triangles.size());
+  return n;
+}
+
+Mesh MixedLevelMeshCache::welded_mesh() const {
+  std::vector<const BrickMesh*> meshes;
+  meshes.reserve(bricks_.size());
+  for (const CachedBrick& cb : bricks_)
+    if (!cb.mesh.empty()) meshes.push_back(&cb.mesh);
+  return weld_brick_meshes(meshes);
+}
+
+Mesh mixed_level_mesh(const Volume& volume, std::span<const int> brick_levels,
+                      const MarchingCubesOptions& options, MixedLevelStats* stats) {
+  MixedLevelMeshCache cache(options);
+  cache.update(volume, brick_levels);
+  if (stats) *stats = cache.stats();
+  return cache.welded_mesh();
+}
+
+}  // namespace sculpt::core
