@@ -106,11 +106,16 @@ ordered record_json(const SessionRecord& r) {
       break;
     case CommandKind::kVolume:
       j["size"] = floats(c.values, 3);
-      j["fill"] = c.values[3];
+      j[c.choice == kVolumeClay ? "clay_margin" : "fill"] = c.values[3];
       break;
     case CommandKind::kToolPose:
+    case CommandKind::kPointer:
       j["position"] = floats(c.values, 3);
       j["orientation"] = floats(c.values + 3, 4);
+      break;
+    case CommandKind::kToolFromRegion:
+      j["lo"] = floats(c.values, 3);
+      j["hi"] = floats(c.values + 3, 3);
       break;
     default:
       break;
@@ -212,11 +217,17 @@ SessionRecord parse_command(const json& j, int64_t t) {
     }
     case CommandKind::kVolume:
       read_numbers(j, "size", c.values, 3);
-      read_number(j, "fill", c.values + 3);
+      c.choice = j.contains("clay_margin") ? kVolumeClay : kVolumeFill;
+      read_number(j, c.choice == kVolumeClay ? "clay_margin" : "fill", c.values + 3);
       break;
     case CommandKind::kToolPose:
+    case CommandKind::kPointer:
       read_numbers(j, "position", c.values, 3);
       read_numbers(j, "orientation", c.values + 3, 4);
+      break;
+    case CommandKind::kToolFromRegion:
+      read_numbers(j, "lo", c.values, 3);
+      read_numbers(j, "hi", c.values + 3, 3);
       break;
     default:
       break;

@@ -1,6 +1,11 @@
 #include "sculpt/station/app/station_loop.h"
 
+#include <glm/geometric.hpp>
+
+#include "sculpt/core/shapes/analytic_shapes.h"
+
 #include <algorithm>
+#include <cmath>
 
 namespace sculpt::station {
 namespace {
@@ -27,6 +32,25 @@ core::Tool make_tool(sim::ToolShape shape, float a, float b) {
   return core::make_sphere_tool(a);
 }
 
+core::Volume clay_block(glm::ivec3 dims, int margin) {
+  const glm::vec3 lo(static_cast<float>(margin));
+  const glm::vec3 hi = glm::vec3(dims) - 1.0f - static_cast<float>(margin);
+  if (glm::any(glm::greaterThan(lo, hi))) return core::Volume(dims, 0);
+  return core::Volume::from_bricks(dims, {}, [&](const core::Box& box, std::span<uint8_t> out) {
+    size_t i = 0;
+    for (int z = box.lo.z; z < box.hi.z; ++z)
+      for (int y = box.lo.y; y < box.hi.y; ++y)
+        for (int x = box.lo.x; x < box.hi.x; ++x, ++i) {
+          // Signed distance to the slab's faces (the box's inside is negative).
+          const glm::vec3 p(x, y, z);
+          const glm::vec3 q = glm::max(lo - p, p - hi);
+          const float outside = glm::length(glm::max(q, glm::vec3(0.0f)));
+          const float inside = std::min(std::max({q.x, q.y, q.z}), 0.0f);
+          out[i] = core::density_from_distance(outside + inside);
+        }
+  });
+}
+
 float tool_size_vox(sim::ToolShape shape, float a, float b) {
   a = std::max(a, kMinSize);
   b = std::max(b, kMinSize);
@@ -49,31 +73,70 @@ StationLoop::StationLoop(const Options& options)
       integrator_(options.pose),
       sampler_(tool_size_vox(settings_.shape, settings_.size_a_vox, settings_.size_b_vox),
                settings_.spacing) {
-  new_volume(options.volume_dims, options.volume_fill);
+  new_volume(options.volume_dims, options.volume_fill, options.clay_margin);
   hal::ToolPose start;
   start.position = glm::vec3(options.volume_dims) * 0.5f;
   integrator_.reset(start);
 }
 
-void StationLoop::new_volume(glm::ivec3 dims, uint8_t fill) {
+void StationLoop::new_volume(glm::ivec3 dims, uint8_t fill, int clay_margin) {
   if (pressed_) release();
   sculptor_.reset();
-  volume_ = std::make_unique<core::Volume>(dims, fill);
+  volume_ = clay_margin > 0 ? std::make_unique<core::Volume>(clay_block(dims, clay_margin))
+                            : std::make_unique<core::Volume>(dims, fill);
   sculptor_ = std::make_unique<core::Sculptor>(*volume_);
   apply_tool();
   sculptor_->set_mirror(settings_.mirror);
   mesh_ = core::MeshCache(0);
 }
 
+void StationLoop::restore(std::unique_ptr<core::Volume> volume, const StationSettings& settings,
+                          std::optional<core::Tool> custom_tool) {
+  if (pressed_) release();
+  sculptor_.reset();
+  volume_ = std::move(volume);
+  sculptor_ = std::make_unique<core::Sculptor>(*volume_);
+  settings_ = settings;
+  settings_.custom_tool = custom_tool.has_value();
+  tool_ = custom_tool ? std::move(*custom_tool)
+                      : make_tool(settings_.shape, settings_.size_a_vox, settings_.size_b_vox);
+  sculptor_->set_tool(tool_);
+  sculptor_->set_mirror(settings_.mirror);
+  reset_sampler();
+  mesh_ = core::MeshCache(0);
+}
+
 void StationLoop::apply_tool() {
-  sculptor_->set_tool(make_tool(settings_.shape, settings_.size_a_vox, settings_.size_b_vox));
+  tool_ = settings_.custom_tool
+              ? core::tool_from_volume(*volume_, settings_.custom_region)
+              : make_tool(settings_.shape, settings_.size_a_vox, settings_.size_b_vox);
+  sculptor_->set_tool(tool_);
   reset_sampler();
 }
 
+float StationLoop::tool_size() const {
+  if (!settings_.custom_tool)
+    return tool_size_vox(settings_.shape, settings_.size_a_vox, settings_.size_b_vox);
+  const glm::ivec3 d = settings_.custom_region.size();
+  return static_cast<float>(std::max({d.x, d.y, d.z, 1}));
+}
+
 void StationLoop::reset_sampler() {
-  sampler_ =
-      hal::StrokeSampler(tool_size_vox(settings_.shape, settings_.size_a_vox, settings_.size_b_vox),
-                         settings_.spacing);
+  sampler_ = hal::StrokeSampler(tool_size(), settings_.spacing);
+}
+
+void StationLoop::move_tool(const float* v, bool keep_stroke) {
+  if (pressed_ && !keep_stroke) release();
+  hal::ToolPose p;
+  p.position = glm::vec3(v[0], v[1], v[2]);
+  const glm::quat q(v[3], v[4], v[5], v[6]);
+  p.orientation = glm::dot(q, q) > 0 ? glm::normalize(q) : glm::quat(1, 0, 0, 0);
+  integrator_.reset(p);
+  if (pressed_) {
+    dabs_.clear();
+    sampler_.add(integrator_.pose(), dabs_);
+    sculpt(dabs_);
+  }
 }
 
 void StationLoop::handle(const sim::Command& c) {
@@ -89,6 +152,7 @@ void StationLoop::handle(const sim::Command& c) {
       // A tool change ends the stroke: the dabs of one stroke share one tool.
       if (pressed_) release();
       settings_.shape = static_cast<sim::ToolShape>(c.choice);
+      settings_.custom_tool = false;
       settings_.size_a_vox = c.values[0];
       settings_.size_b_vox = c.values[1];
       apply_tool();
@@ -124,16 +188,34 @@ void StationLoop::handle(const sim::Command& c) {
       const glm::ivec3 dims(static_cast<int>(c.values[0]), static_cast<int>(c.values[1]),
                             static_cast<int>(c.values[2]));
       if (core::Volume::validate(dims, {}).ok()) {
-        new_volume(dims, static_cast<uint8_t>(std::clamp(c.values[3], 0.0f, 255.0f)));
+        const float v = std::isfinite(c.values[3]) ? c.values[3] : 0.0f;
+        if (c.choice == sim::kVolumeClay) {
+          new_volume(dims, 0, static_cast<int>(std::clamp(v, 0.0f, 65536.0f)));
+        } else {
+          new_volume(dims, static_cast<uint8_t>(std::clamp(v, 0.0f, 255.0f)), 0);
+        }
       }
       break;
     }
-    case K::kToolPose: {
+    case K::kToolPose:
+      move_tool(c.values, /*keep_stroke=*/false);
+      break;
+    case K::kPointer:
+      move_tool(c.values, /*keep_stroke=*/true);
+      break;
+    case K::kToolFromRegion: {
+      // Clamped to the block; a region with no voxel in it changes nothing.
+      core::Box region;
+      for (int a = 0; a < 3; ++a) {
+        region.lo[a] = std::clamp(static_cast<int>(std::floor(c.values[a])), 0, volume_->dims()[a]);
+        region.hi[a] =
+            std::clamp(static_cast<int>(std::ceil(c.values[3 + a])), 0, volume_->dims()[a]);
+      }
+      if (region.empty()) break;
       if (pressed_) release();
-      hal::ToolPose p;
-      p.position = glm::vec3(c.values[0], c.values[1], c.values[2]);
-      p.orientation = glm::normalize(glm::quat(c.values[3], c.values[4], c.values[5], c.values[6]));
-      integrator_.reset(p);
+      settings_.custom_tool = true;
+      settings_.custom_region = region;
+      apply_tool();
       break;
     }
   }

@@ -34,6 +34,8 @@ struct ReplayCliOptions {
   double speed = 1.0;
   int threads = 0;
   std::string volume, mesh, png, stats, samples;
+  std::string renderer = "auto";  ///< for png: auto, gl or software
+  std::string project;            ///< write the final state as a project file
 };
 /// Replays and writes the outputs asked for; returns the exit code.
 int replay_to_outputs(const ReplayCliOptions& options);

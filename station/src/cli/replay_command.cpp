@@ -16,10 +16,14 @@
 #include "sculpt/core/volume/volume_io.h"
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/session_replay.h"
+#include "sculpt/station/project/project_file.h"
 #include "sculpt/station/render/software_renderer.h"
+#include "sculpt/station/window/gl_snapshot.h"
 
 namespace sculpt::station::cli {
 namespace {
+
+constexpr int kPictureSize = 800;  // pixels a side
 
 nlohmann::json sample_json(const hal::InputEvent& e) {
   nlohmann::json j = {{"t", e.t_ns}, {"device", e.device_id}};
@@ -113,8 +117,25 @@ int replay_to_outputs(const ReplayCliOptions& o) {
   }
   if (!o.png.empty()) {
     const core::Mesh mesh = loop.mesh().welded_mesh();
-    const SoftwareView view = view_of(mesh, glm::vec3(0.0f), glm::vec3(volume.dims()));
-    if (core::Status st = write_png(o.png, render_mesh(mesh, view)); !st) {
+    // The station's GL renderer through an invisible window when there is a
+    // display; the CPU rasteriser otherwise.
+    const bool gl = o.renderer == "gl" || (o.renderer == "auto" && display_available());
+    RgbImage image;
+    if (gl) {
+      auto picture = render_mesh_gl(mesh, glm::vec3(volume.dims()), kPictureSize, kPictureSize);
+      if (!picture) return report(core::Error("--png " + o.png + ": " + picture.error().message()));
+      image = std::move(picture).value();
+    } else {
+      image = render_mesh(mesh, view_of(mesh, glm::vec3(0.0f), glm::vec3(volume.dims())));
+    }
+    stats["renderer"] = gl ? "gl" : "software";
+    if (core::Status st = write_png(o.png, image); !st) return report(st.error());
+  }
+  if (!o.project.empty()) {
+    const StationSettings& settings = loop.settings();
+    if (core::Status st = save_project(o.project, volume, settings,
+                                       settings.custom_tool ? &loop.tool() : nullptr, {});
+        !st) {
       return report(st.error());
     }
   }
@@ -151,10 +172,16 @@ void add_replay_command(CLI::App& app, Action& action) {
       ->check(CLI::Range(0, 256));
   cmd->add_option("--volume", o->volume, "write the resulting volume (NRRD)");
   cmd->add_option("--mesh", o->mesh, "write the resulting surface (.ply, .obj, .stl)");
-  cmd->add_option("--png", o->png,
-                  "write a picture of the result (PNG, rendered without a display)");
+  cmd->add_option("--png", o->png, "write a picture of the result (PNG)");
+  cmd->add_option("--renderer", o->renderer,
+                  "for --png: gl (an invisible window), software (no display needed), or auto "
+                  "(gl when there is a display)")
+      ->check(CLI::IsMember({"auto", "gl", "software"}))
+      ->capture_default_str();
   cmd->add_option("--stats", o->stats,
                   "write statistics (JSON): dabs, volume hash, triangles, latency");
+  cmd->add_option("--project", o->project,
+                  "write the final state as a project the station opens (.sculpt)");
   cmd->add_option("--samples", o->samples, "write the decoded, normalised samples (JSON Lines)");
   cmd->callback([o, &action] { action = [o] { return replay_to_outputs(*o); }; });
 }

@@ -1,50 +1,40 @@
-// sculpt run [--device auto|sim:FILE] [--headless] [--out DIR]
+// sculpt run [--device auto|sim:FILE|ID] [--headless] [--open PROJECT] [--record FILE] ...
 //
-// The station's main job. With no device attached it replays the bundled
-// demo session (sim/sessions/demo.scs) through the whole station and writes
-// what it made to DIR: sculpture.png (rendered without a display),
-// sculpture.ply, volume.nrrd and stats.json. `--device sim:FILE` replays
-// another session. The live window and hardware devices arrive with the
-// station issue; until then `--device auto` with a device attached says so.
+// The station. With a display it opens the window: a 3D mouse if one is
+// attached (else the bundled demo session played as a live device), and the
+// ordinary mouse and keyboard. With --headless, or no display, it runs the
+// same loop without a window on a session (the demo by default) and writes
+// what it made to DIR: sculpture.png, sculpture.ply, volume.nrrd, stats.json.
 
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
 #include "cli/commands.h"
-#include "sculpt/hal/device/device_registry.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
+#include "sculpt/station/window/gl_snapshot.h"
+#include "sculpt/station/window/station_window.h"
 
 namespace sculpt::station::cli {
 namespace {
 
 struct RunOptions {
-  std::string device = "auto";
+  WindowOptions window;
   bool headless = false;
   std::string out_dir = "sculpt-out";
 };
 
-int run_station(const RunOptions& o) {
+int run_headless(const RunOptions& o) {
   namespace fs = std::filesystem;
   std::string session;
-  if (o.device.rfind("sim:", 0) == 0) {
-    session = o.device.substr(4);
-  } else if (o.device == "auto") {
+  if (o.window.device.rfind("sim:", 0) == 0) {
+    session = o.window.device.substr(4);
+  } else if (o.window.device == "auto") {
     session = sim::bundled_session_path("demo");
-    hal::DeviceRegistry registry(hal::DeviceRegistry::default_backends());
-    for (const hal::BackendListing& b : registry.list()) {
-      if (!b.devices.empty()) {
-        std::printf(
-            "found %s on %s; the live window is not built yet, replaying the demo session "
-            "instead\n",
-            b.devices.front().name.c_str(), b.backend.c_str());
-        break;
-      }
-    }
   } else {
-    return report(core::Error(
-        "--device " + o.device +
-        ": live devices need the station window (not built yet); use sim:FILE or auto"));
+    return report(core::Error("--device " + o.window.device +
+                              ": a live device needs the window; headless runs replay sessions "
+                              "(auto or sim:FILE; record one with `sculpt record`)"));
   }
   std::error_code ec;
   fs::create_directories(o.out_dir, ec);
@@ -58,6 +48,7 @@ int run_station(const RunOptions& o) {
   r.mesh = (dir / "sculpture.ply").string();
   r.volume = (dir / "volume.nrrd").string();
   r.stats = (dir / "stats.json").string();
+  r.renderer = "software";  // no display here, or none wanted
   const int code = replay_to_outputs(r);
   if (code == 0) {
     std::printf("wrote %s/sculpture.png, sculpture.ply, volume.nrrd and stats.json\n",
@@ -66,16 +57,42 @@ int run_station(const RunOptions& o) {
   return code;
 }
 
+int run_station(const RunOptions& o) {
+  if (o.headless) return run_headless(o);
+  if (!display_available()) {
+    std::printf("no display: running headless (see --out)\n");
+    return run_headless(o);
+  }
+  return run_window(o.window);
+}
+
 }  // namespace
 
 void add_run_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<RunOptions>();
-  CLI::App* cmd =
-      app.add_subcommand("run", "run the station's main job (the demo session, headless)");
-  cmd->add_option("--device", o->device, "auto (the demo session) or sim:FILE (a recorded session)")
+  CLI::App* cmd = app.add_subcommand(
+      "run", "the station: a window with a display, else the demo session headless");
+  WindowOptions& w = o->window;
+  cmd->add_option("--device", w.device,
+                  "auto (a 3D mouse if attached, else the demo session), sim:FILE, or a device "
+                  "id as `sculpt devices` prints it")
       ->capture_default_str();
-  cmd->add_flag("--headless", o->headless, "no window (the only mode until the window exists)");
-  cmd->add_option("--out", o->out_dir, "folder for the results")->capture_default_str();
+  cmd->add_flag("--headless", o->headless, "no window: replay the session and write --out");
+  cmd->add_option("--out", o->out_dir, "headless: folder for the results")->capture_default_str();
+  cmd->add_option("--open", w.project, "window: open this project (.sculpt)");
+  cmd->add_option("--record", w.record, "window: record the session to this file (.scs)");
+  cmd->add_option("--speed", w.sim_speed, "window, sim devices: play the session this much faster")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--frames", w.frames, "window: stop after this many frames")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--until-replayed", w.exit_when_replayed,
+                "window: stop when the sim device's session has been played");
+  cmd->add_option("--stats", w.stats, "window: write frame times and dab latency (JSON) at exit");
+  cmd->add_option("--screenshot", w.screenshot, "window: PNG of the last frame (with --frames)");
+  cmd->add_flag("--no-vsync", [&w = *o](int64_t) { w.window.vsync = false; },
+                "window: draw as fast as possible (to measure frame rates)");
+  cmd->add_flag("--hidden", [&w = *o](int64_t) { w.window.visible = false; },
+                "window: do not show it (tests, benchmarks)");
   cmd->callback([o, &action] { action = [o] { return run_station(*o); }; });
 }
 

@@ -27,10 +27,21 @@ enum class CommandKind : uint8_t {
   kMirror,     ///< choice = axis 0..2, or kMirrorOff; values[0] = plane position, voxels
   kUndo,
   kRedo,
-  kVolume,    ///< a new block: values[0..2] = size in voxels, values[3] = fill density
+  /// A new block: values[0..2] = size in voxels; choice kVolumeFill: values[3]
+  /// = density of every voxel; choice kVolumeClay: a slab of clay fills the
+  /// block but for a margin of values[3] voxels on every side.
+  kVolume,
   kToolPose,  ///< places the tool: values[0..2] position (voxels), values[3..6] w x y z
+  /// The ordinary mouse or keyboard moved the tool: values as kToolPose, but a
+  /// stroke in progress goes on (dabs are sampled along the move).
+  kPointer,
+  /// The material in a box becomes the tool (pivot at the box's centre):
+  /// values[0..2] low corner, values[3..5] high corner (voxels, half-open).
+  kToolFromRegion,
 };
-inline constexpr uint8_t kCommandKindCount = 11;
+inline constexpr uint8_t kCommandKindCount = 13;
+inline constexpr uint8_t kVolumeFill = 0;
+inline constexpr uint8_t kVolumeClay = 1;
 
 enum class ToolShape : uint8_t { kSphere, kCube, kCylinder, kRing, kCone };
 inline constexpr uint8_t kToolShapeCount = 5;

@@ -22,8 +22,10 @@
 //   {"t": ..., "cmd": "mode", "mode": "add|subtract|union|difference|smooth"}
 //   {"t": ..., "cmd": "strength", "value": 0.8}    {"t": ..., "cmd": "spacing", "value": 0.25}
 //   {"t": ..., "cmd": "mirror", "axis": "x|y|z|off", "at": 127.5}
-//   {"t": ..., "cmd": "volume", "size": [X, Y, Z], "fill": 255}
+//   {"t": ..., "cmd": "volume", "size": [X, Y, Z], "fill": 255}   (or "clay_margin": M)
 //   {"t": ..., "cmd": "tool_pose", "position": [X, Y, Z], "orientation": [W, X, Y, Z]}
+//   {"t": ..., "cmd": "pointer", "position": [X, Y, Z], "orientation": [W, X, Y, Z]}
+//   {"t": ..., "cmd": "tool_from_region", "lo": [X, Y, Z], "hi": [X, Y, Z]}
 // Empty lines and lines starting with # are skipped.
 
 #include <string>

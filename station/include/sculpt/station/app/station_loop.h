@@ -28,6 +28,9 @@ namespace sculpt::station {
 /// What the user has chosen (the UI panel's state).
 struct StationSettings {
   sim::ToolShape shape = sim::ToolShape::kSphere;
+  /// The tool is a region of the material (tool_from_region), not `shape`.
+  bool custom_tool = false;
+  core::Box custom_region;  ///< that region, voxels
   float size_a_vox = 8.0f;  ///< sphere radius, cube edge, cylinder/cone radius, ring major radius
   float size_b_vox = 0.0f;  ///< cylinder/cone height, ring minor radius
   core::SculptMode mode = core::SculptMode::kAdd;
@@ -38,6 +41,9 @@ struct StationSettings {
 
 /// The tool a shape and sizes describe (sizes are clamped to at least 0.5 voxel).
 core::Tool make_tool(sim::ToolShape shape, float size_a_vox, float size_b_vox);
+/// A block of `dims` voxels holding a slab of clay inset by `margin` voxels
+/// on every side (a 2-voxel density ramp at its faces).
+core::Volume clay_block(glm::ivec3 dims, int margin);
 /// The diameter of that tool, voxels: what dab spacing is relative to.
 float tool_size_vox(sim::ToolShape shape, float size_a_vox, float size_b_vox);
 
@@ -55,6 +61,8 @@ class StationLoop {
   struct Options {
     glm::ivec3 volume_dims{256};
     uint8_t volume_fill = 0;
+    /// > 0: start with a slab of clay filling the block but for this margin.
+    int clay_margin = 0;
     /// Keep a level-0 mesh up to date after every input (for drawing and for
     /// the latency figure); off for the fastest possible replay.
     bool mesh = true;
@@ -66,6 +74,16 @@ class StationLoop {
   void handle(const sim::Command& command);
   /// One normalised device event.
   void handle(const hal::InputEvent& event);
+  /// Takes over an opened project's state; the undo history starts empty.
+  /// `custom_tool` is the tool when settings.custom_tool.
+  void restore(std::unique_ptr<core::Volume> volume, const StationSettings& settings,
+               std::optional<core::Tool> custom_tool);
+  /// Stops the stroke in progress (the UI lost the pointer, a device went).
+  void release_stroke() { release(); }
+  /// The tool in use (its reference, unrotated form).
+  const core::Tool& tool() const { return tool_; }
+  /// Diameter of the tool in use, voxels (what dab spacing is relative to).
+  float tool_size() const;
   /// Re-meshes what changed since the last call; returns bricks meshed.
   int64_t update_mesh();
 
@@ -78,9 +96,10 @@ class StationLoop {
   const core::Sculptor& sculptor() const { return *sculptor_; }
 
  private:
-  void new_volume(glm::ivec3 dims, uint8_t fill);
+  void new_volume(glm::ivec3 dims, uint8_t fill, int clay_margin);
   void apply_tool();
   void reset_sampler();
+  void move_tool(const float* values, bool keep_stroke);
   void press();
   void release();
   void sculpt(const std::vector<hal::Dab>& dabs);
@@ -88,6 +107,7 @@ class StationLoop {
   Options options_;
   std::unique_ptr<core::Volume> volume_;
   std::unique_ptr<core::Sculptor> sculptor_;
+  core::Tool tool_;  // what the sculptor holds, kept for drawing
   core::MeshCache mesh_;
   hal::PoseIntegrator integrator_;
   hal::StrokeSampler sampler_;

@@ -1,0 +1,196 @@
+#pragma once
+// The station as the user drives it, without any GL: what the panel's
+// buttons, the keyboard shortcuts, the ordinary mouse and the 3D mouse do.
+// The window (station/window) only turns GLFW and ImGui events into calls of
+// this class and draws its state, so all of the UI's logic is tested here.
+//
+// Every change of a setting becomes a sim::Command handed to the StationLoop
+// (and to the recorder when recording), so a recorded session replays what
+// the user did through the panel, not only the device's motion.
+//
+// Thread safety: one thread (the main loop), except raw_report(), which the
+// device reader threads call.
+
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <future>
+#include <optional>
+#include <string>
+
+#include "sculpt/hal/device/device_info.h"
+#include "sculpt/hal/input/device_reader.h"
+#include "sculpt/station/app/session_recorder.h"
+#include "sculpt/station/app/session_replay.h"
+#include "sculpt/station/app/station_loop.h"
+#include "sculpt/station/project/project_file.h"
+#include "sculpt/station/view/lod_selector.h"
+#include "sculpt/station/view/orbit_camera.h"
+
+namespace sculpt::station {
+
+/// What the 3D mouse moves.
+enum class DeviceTarget { kTool, kCamera };
+
+/// The actions keyboard shortcuts reach (the panel reaches them too).
+enum class Action {
+  kUndo,
+  kRedo,
+  kToggleAddSubtract,
+  kSmooth,
+  kToolSphere,
+  kToolCube,
+  kToolCylinder,
+  kToolRing,
+  kToolCone,
+  kToolBigger,
+  kToolSmaller,
+  kStronger,
+  kWeaker,
+  kToggleMirror,
+  kToggleDeviceTarget,
+  kToggleRecording,
+  kSave,
+  kExportMesh,
+  kUseSculptureAsTool,
+  kFrameView,
+};
+
+/// The action of a key (GLFW key code and modifier bits), if any.
+std::optional<Action> shortcut(int glfw_key, int glfw_mods);
+/// "Ctrl+Z" and the like, for the panel's tooltips.
+const char* shortcut_label(Action action);
+
+struct DeviceStatus {
+  bool connected = false;
+  std::string name;
+  std::string backend;
+  double report_rate_hz = 0;  ///< motion samples per second, last second
+  int battery_percent = -1;   ///< -1: the device does not report one
+  bool charging = false;
+};
+
+struct ControllerOptions {
+  StationLoop::Options loop;
+  /// Where Save writes and Open reads by default; the autosave sits beside
+  /// it as PROJECT.autosave.
+  std::filesystem::path project = "sculpture.sculpt";
+  std::filesystem::path mesh_export = "sculpture.ply";
+  std::filesystem::path recording = "recording.scs";
+  /// Autosave interval, seconds (0: never).
+  double autosave_seconds = 5.0;
+  /// The input.conf the sensitivity and deadzone settings are saved to.
+  std::string normalizer_config_path;
+};
+
+class StationController {
+ public:
+  explicit StationController(ControllerOptions options);
+  ~StationController();
+
+  StationLoop& loop() { return loop_; }
+  const StationLoop& loop() const { return loop_; }
+  OrbitCamera& camera() { return camera_; }
+  LodSelector& lod() { return lod_; }
+  const ControllerOptions& options() const { return options_; }
+  ControllerOptions& options() { return options_; }
+
+  // --- settings and actions (each a command, recorded) -----------------
+  void command(const sim::Command& command, int64_t now_ns);
+  void set_tool(sim::ToolShape shape, float size_a_vox, float size_b_vox, int64_t now_ns);
+  void set_mode(core::SculptMode mode, int64_t now_ns);
+  void set_strength(float strength, int64_t now_ns);
+  void set_spacing(float spacing, int64_t now_ns);
+  /// axis 0..2 mirrors across the block's middle plane on that axis.
+  void set_mirror(std::optional<int> axis, int64_t now_ns);
+  void undo(int64_t now_ns);
+  void redo(int64_t now_ns);
+  /// The material's bounding box becomes the tool (false, with the reason
+  /// in status(), when there is no material or it is too big for a tool).
+  bool use_sculpture_as_tool(int64_t now_ns);
+  /// Runs a shortcut's action; false when it failed (see status()).
+  bool perform(Action action, int64_t now_ns);
+
+  DeviceTarget device_target() const { return device_target_; }
+  void set_device_target(DeviceTarget target) { device_target_ = target; }
+
+  // --- input -------------------------------------------------------------
+  /// Everything the device readers delivered since the last frame.
+  void device_frame(const hal::InputFrame& frame, int64_t now_ns);
+  /// The ordinary mouse moved the tool to `position` (voxels); while the
+  /// pointer is down, the move sculpts.
+  void pointer_move(glm::vec3 position, int64_t now_ns);
+  void pointer_down(int64_t now_ns);
+  void pointer_up(int64_t now_ns);
+  /// A raw device event for the recording (reader threads).
+  void raw_report(const hal::RawEvent& event) { recorder_.raw(event); }
+  void set_device(const hal::DeviceInfo& info, const std::string& normalizer_text);
+
+  // --- after input ------------------------------------------------------
+  /// Re-meshes what changed and notes the latency of every dab made since
+  /// the previous call (report time to mesh ready). Returns bricks meshed.
+  int64_t update_mesh(int64_t now_ns);
+  /// Latency of the last few hundred dabs, and of all of them.
+  LatencyStats recent_latency() const;
+  LatencyStats session_latency() const;
+  const DeviceStatus& device_status() const { return device_; }
+
+  // --- files ---------------------------------------------------------------
+  core::Status save(const std::filesystem::path& path);
+  core::Status open(const std::filesystem::path& path);
+  core::Status export_mesh(const std::filesystem::path& path);
+  core::Status start_recording(const std::filesystem::path& path, int64_t now_ns);
+  core::Status stop_recording();
+  bool recording() const { return recorder_.recording(); }
+  /// Periodic work: the recording's flush, the autosave when due.
+  void tick(int64_t now_ns);
+  /// Waits for an autosave in flight (tests, shutdown).
+  void finish_autosave();
+  std::filesystem::path autosave_path() const;
+  int64_t autosaves() const { return autosaves_; }
+
+  /// Saves sensitivity (one factor for all axes) and deadzone to the
+  /// normaliser config file; they apply to devices opened afterwards.
+  core::Status save_input_settings(float sensitivity, float deadzone);
+
+  /// One line for the status bar: what the last action did or why it failed.
+  const std::string& status() const { return status_; }
+
+ private:
+  bool report(const core::Status& status, const std::string& done);
+  void camera_motion(const hal::InputEvent& e);
+  static int64_t report_time(int64_t t_ns, int64_t now_ns);
+  void note_dabs(int64_t dabs_before, int64_t t_ns);
+  ProjectView view() const;
+  std::vector<sim::Command> opening_commands() const;
+
+  ControllerOptions options_;
+  StationLoop loop_;
+  OrbitCamera camera_;
+  LodSelector lod_;
+  DeviceTarget device_target_ = DeviceTarget::kTool;
+  SessionRecorder recorder_;
+  DeviceStatus device_;
+  hal::DeviceInfo device_info_;
+  std::string normalizer_text_;
+  std::string status_;
+
+  bool pointer_down_ = false;
+  // Dabs not yet meshed: their report times.
+  std::vector<int64_t> unmeshed_dab_t_ns_;
+  std::deque<double> recent_latency_us_;
+  std::vector<double> all_latency_us_;
+  // Report rate: motion sample times of the last second.
+  std::deque<int64_t> motion_t_ns_;
+  int64_t last_camera_t_ns_ = 0;
+
+  // Autosave: what the volume was at the last save, and the save in flight.
+  uint64_t saved_generation_ = 0;
+  uint64_t generation_ = 0;
+  int64_t last_autosave_ns_ = 0;
+  int64_t autosaves_ = 0;
+  std::future<core::Status> autosave_;
+};
+
+}  // namespace sculpt::station

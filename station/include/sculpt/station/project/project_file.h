@@ -1,0 +1,62 @@
+#pragma once
+// Project files (".sculpt"): the whole state of a station in one file, so a
+// sculpture can be closed and opened again exactly as it was.
+//
+// Layout (integers little endian):
+//   8 bytes  "SCULPTPJ"
+//   u32      version (1)
+//   u32      n, then n bytes of JSON: {"volume": {"dims", "brick_edge", "levels",
+//            "content_hash"}, "settings": {...}, "view": {...}, "tool": null |
+//            {"dims", "pivot"}}  (README "File formats" lists every field)
+//   u64      m, then m bytes of zlib (deflate) data holding, for every brick in
+//            index order, u8 0 + u8 value (a uniform brick) or u8 1 + the
+//            brick's edge^3 int16 Haar coefficients (wavelet_pyramid.h layout);
+//            then the custom tool's density, dims.x * dims.y * dims.z bytes
+//   u32      CRC-32 of everything before it
+// The volume is stored as its wavelet bricks, as the station holds it: the
+// detail coefficients of a sculpture are mostly zero, which deflate packs
+// well. Opening checks the CRC, every size against the file, and the content
+// hash of the rebuilt volume, so a damaged file is refused, never half-read.
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include <glm/vec3.hpp>
+
+#include "sculpt/core/tool/tool.h"
+#include "sculpt/core/util/result.h"
+#include "sculpt/core/volume/volume.h"
+#include "sculpt/station/app/station_loop.h"
+#include "sculpt/station/view/lod_selector.h"
+
+namespace sculpt::station {
+
+/// How the project was being looked at.
+struct ProjectView {
+  glm::vec3 camera_target{128.0f};
+  float camera_yaw = 0.5f;
+  float camera_pitch = 0.35f;
+  float camera_distance = 600.0f;
+  LodPolicy lod;
+};
+
+struct Project {
+  std::unique_ptr<core::Volume> volume;
+  StationSettings settings;
+  /// The tool when settings.custom_tool (a sculpture made a tool).
+  std::optional<core::Tool> custom_tool;
+  ProjectView view;
+};
+
+inline constexpr uint32_t kProjectVersion = 1;
+
+/// Writes the project atomically (temporary file, fsync, rename).
+core::Status save_project(const std::filesystem::path& path, const core::Volume& volume,
+                          const StationSettings& settings, const core::Tool* custom_tool,
+                          const ProjectView& view);
+
+/// Opens a project; errors name the file and what is wrong with it.
+core::Result<Project> load_project(const std::filesystem::path& path);
+
+}  // namespace sculpt::station

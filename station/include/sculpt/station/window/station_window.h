@@ -1,0 +1,37 @@
+#pragma once
+// The live station: a GLFW window with the GL renderer and the ImGui panel,
+// fed by the device readers (or, with no device, by the demo session played
+// as a live device) and by the ordinary mouse and keyboard.
+//
+// Per frame: drain the readers' rings, integrate the pose, sample dabs,
+// sculpt, re-mesh dirty bricks, upload what changed, draw. Reading never
+// waits for sculpting: each device has its own reader thread, and a slow
+// frame only means the next frame integrates more motion (nothing is lost).
+
+#include <string>
+
+namespace sculpt::station {
+
+struct WindowOptions {
+  /// auto (a device if one is attached, else the demo session), sim:FILE,
+  /// or a device id as `sculpt devices` prints it.
+  std::string device = "auto";
+  double sim_speed = 1.0;      ///< sim devices: play this much faster
+  std::string project;         ///< open this project first
+  std::string record;          ///< start recording to this session file
+  std::string stats;           ///< write frame and latency figures here at exit (JSON)
+  std::string screenshot;      ///< PNG of the last frame, at exit
+  int frames = 0;              ///< stop after this many frames (0: when closed)
+  bool exit_when_replayed = false;  ///< stop when the sim device's session ends
+  bool vsync = true;
+  bool visible = true;
+  int width = 1280;
+  int height = 800;
+};
+
+/// Runs the window until it is closed (or `frames` are drawn). Returns the
+/// process exit code; errors (no display, a device that cannot be opened,
+/// a project that does not open) are reported on stderr.
+int run_window(const WindowOptions& options);
+
+}  // namespace sculpt::station

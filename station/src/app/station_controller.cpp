@@ -1,0 +1,559 @@
+#include "sculpt/station/app/station_controller.h"
+
+#include <GLFW/glfw3.h>  // key codes only: this file opens no window
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "sculpt/core/io/atomic_file.h"
+#include "sculpt/core/mesh/mesh_io.h"
+#include "sculpt/hal/normalizer/normalizer_config.h"
+#include "sculpt/sim/synth/session_script.h"
+
+namespace sculpt::station {
+namespace {
+
+constexpr size_t kRecentDabs = 256;
+// The largest sculpture that becomes a tool: a tool is rotated voxel by voxel
+// at every new orientation, so it must stay small next to the block.
+constexpr int kMaxToolEdge = 96;
+// A 3D mouse at full deflection turns the camera this fast (rad/s) and moves
+// it this many view heights per second.
+constexpr float kCameraTurnRate = 2.0f;
+constexpr float kCameraMoveRate = 0.8f;
+constexpr int64_t kSecondNs = 1'000'000'000;
+constexpr uint16_t kSpaceMouseVendor = 0x256f;
+constexpr uint16_t kSpaceMouseProduct = 0xc635;
+
+sim::Command make(sim::CommandKind kind, uint8_t choice = 0, std::initializer_list<float> v = {}) {
+  sim::Command c{kind, choice, {}};
+  std::copy(v.begin(), v.end(), c.values);
+  return c;
+}
+
+}  // namespace
+
+std::optional<Action> shortcut(int key, int mods) {
+  const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0;
+  const bool shift = (mods & GLFW_MOD_SHIFT) != 0;
+  if (ctrl) {
+    switch (key) {
+      case GLFW_KEY_Z:
+        return shift ? Action::kRedo : Action::kUndo;
+      case GLFW_KEY_Y:
+        return Action::kRedo;
+      case GLFW_KEY_S:
+        return Action::kSave;
+      case GLFW_KEY_E:
+        return Action::kExportMesh;
+      case GLFW_KEY_T:
+        return Action::kUseSculptureAsTool;
+      default:
+        return std::nullopt;
+    }
+  }
+  switch (key) {
+    case GLFW_KEY_TAB:
+      return Action::kToggleAddSubtract;
+    case GLFW_KEY_M:
+      return Action::kSmooth;
+    case GLFW_KEY_1:
+      return Action::kToolSphere;
+    case GLFW_KEY_2:
+      return Action::kToolCube;
+    case GLFW_KEY_3:
+      return Action::kToolCylinder;
+    case GLFW_KEY_4:
+      return Action::kToolRing;
+    case GLFW_KEY_5:
+      return Action::kToolCone;
+    case GLFW_KEY_RIGHT_BRACKET:
+      return Action::kToolBigger;
+    case GLFW_KEY_LEFT_BRACKET:
+      return Action::kToolSmaller;
+    case GLFW_KEY_EQUAL:
+      return Action::kStronger;
+    case GLFW_KEY_MINUS:
+      return Action::kWeaker;
+    case GLFW_KEY_X:
+      return Action::kToggleMirror;
+    case GLFW_KEY_C:
+      return Action::kToggleDeviceTarget;
+    case GLFW_KEY_R:
+      return Action::kToggleRecording;
+    case GLFW_KEY_F:
+      return Action::kFrameView;
+    default:
+      return std::nullopt;
+  }
+}
+
+const char* shortcut_label(Action action) {
+  switch (action) {
+    case Action::kUndo: return "Ctrl+Z";
+    case Action::kRedo: return "Ctrl+Y, Ctrl+Shift+Z";
+    case Action::kToggleAddSubtract: return "Tab";
+    case Action::kSmooth: return "M";
+    case Action::kToolSphere: return "1";
+    case Action::kToolCube: return "2";
+    case Action::kToolCylinder: return "3";
+    case Action::kToolRing: return "4";
+    case Action::kToolCone: return "5";
+    case Action::kToolBigger: return "]";
+    case Action::kToolSmaller: return "[";
+    case Action::kStronger: return "=";
+    case Action::kWeaker: return "-";
+    case Action::kToggleMirror: return "X";
+    case Action::kToggleDeviceTarget: return "C";
+    case Action::kToggleRecording: return "R";
+    case Action::kSave: return "Ctrl+S";
+    case Action::kExportMesh: return "Ctrl+E";
+    case Action::kUseSculptureAsTool: return "Ctrl+T";
+    case Action::kFrameView: return "F";
+  }
+  return "";
+}
+
+StationController::StationController(ControllerOptions options)
+    : options_(std::move(options)), loop_(options_.loop) {
+  camera_.frame(glm::vec3(0.0f), glm::vec3(loop_.volume().dims()));
+  device_info_ = sim::scripted_device(kSpaceMouseVendor, kSpaceMouseProduct);
+  normalizer_text_ = hal::to_text(hal::NormalizerConfig{});
+}
+
+StationController::~StationController() {
+  finish_autosave();
+  if (recorder_.recording()) (void)recorder_.stop();
+}
+
+bool StationController::report(const core::Status& st, const std::string& done) {
+  status_ = st ? done : st.error().message();
+  return st.ok();
+}
+
+void StationController::command(const sim::Command& c, int64_t now_ns) {
+  loop_.handle(c);
+  recorder_.command(c, now_ns);
+  ++generation_;
+}
+
+void StationController::set_tool(sim::ToolShape shape, float a, float b, int64_t now_ns) {
+  command(make(sim::CommandKind::kTool, static_cast<uint8_t>(shape), {a, b}), now_ns);
+}
+void StationController::set_mode(core::SculptMode mode, int64_t now_ns) {
+  command(make(sim::CommandKind::kMode, static_cast<uint8_t>(mode)), now_ns);
+}
+void StationController::set_strength(float s, int64_t now_ns) {
+  command(make(sim::CommandKind::kStrength, 0, {std::clamp(s, 0.0f, 1.0f)}), now_ns);
+}
+void StationController::set_spacing(float s, int64_t now_ns) {
+  command(make(sim::CommandKind::kSpacing, 0, {std::max(s, 0.01f)}), now_ns);
+}
+void StationController::set_mirror(std::optional<int> axis, int64_t now_ns) {
+  if (!axis) {
+    command(make(sim::CommandKind::kMirror, sim::kMirrorOff, {0.0f}), now_ns);
+    return;
+  }
+  // The block's middle plane: voxel centres 0..n-1 mirror about (n-1)/2.
+  const float at = 0.5f * static_cast<float>(loop_.volume().dims()[*axis] - 1);
+  command(make(sim::CommandKind::kMirror, static_cast<uint8_t>(*axis), {at}), now_ns);
+}
+void StationController::undo(int64_t now_ns) {
+  const int64_t before = loop_.counters().undos;
+  command(make(sim::CommandKind::kUndo), now_ns);
+  status_ = loop_.counters().undos > before ? "undone" : "nothing to undo";
+}
+void StationController::redo(int64_t now_ns) {
+  const int64_t before = loop_.counters().redos;
+  command(make(sim::CommandKind::kRedo), now_ns);
+  status_ = loop_.counters().redos > before ? "redone" : "nothing to redo";
+}
+
+bool StationController::use_sculpture_as_tool(int64_t now_ns) {
+  // The bounds of the material: bricks not uniformly empty, then their voxels.
+  const core::Volume& v = loop_.volume();
+  core::Box bricks{glm::ivec3(v.brick_grid()), glm::ivec3(0)};
+  const glm::ivec3 g = v.brick_grid();
+  for (int z = 0; z < g.z; ++z)
+    for (int y = 0; y < g.y; ++y)
+      for (int x = 0; x < g.x; ++x) {
+        const core::Brick& b = v.brick({x, y, z});
+        if (b.is_uniform() && b.uniform_value() == 0) continue;
+        bricks.lo = glm::min(bricks.lo, glm::ivec3(x, y, z));
+        bricks.hi = glm::max(bricks.hi, glm::ivec3(x, y, z) + 1);
+      }
+  if (bricks.empty()) {
+    status_ = "no material to make a tool of";
+    return false;
+  }
+  const core::Box region{glm::min(bricks.lo * v.brick_edge(), v.dims()),
+                         glm::min(bricks.hi * v.brick_edge(), v.dims())};
+  const core::DenseGrid<uint8_t> grid = v.read(region);
+  core::Box tight{region.hi, region.lo};
+  for (int z = 0; z < grid.dims().z; ++z)
+    for (int y = 0; y < grid.dims().y; ++y)
+      for (int x = 0; x < grid.dims().x; ++x) {
+        if (grid.at(x, y, z) == 0) continue;
+        const glm::ivec3 p = region.lo + glm::ivec3(x, y, z);
+        tight.lo = glm::min(tight.lo, p);
+        tight.hi = glm::max(tight.hi, p + 1);
+      }
+  const glm::ivec3 size = tight.size();
+  if (std::max({size.x, size.y, size.z}) > kMaxToolEdge) {
+    status_ = "the sculpture (" + std::to_string(size.x) + "x" + std::to_string(size.y) + "x" +
+              std::to_string(size.z) + " voxels) is too big for a tool: at most " +
+              std::to_string(kMaxToolEdge) + " voxels a side";
+    return false;
+  }
+  command(make(sim::CommandKind::kToolFromRegion, 0,
+               {static_cast<float>(tight.lo.x), static_cast<float>(tight.lo.y),
+                static_cast<float>(tight.lo.z), static_cast<float>(tight.hi.x),
+                static_cast<float>(tight.hi.y), static_cast<float>(tight.hi.z)}),
+          now_ns);
+  status_ = "the sculpture is the tool now";
+  return true;
+}
+
+bool StationController::perform(Action action, int64_t now_ns) {
+  const StationSettings& s = loop_.settings();
+  auto tool = [&](sim::ToolShape shape) {
+    set_tool(shape, s.size_a_vox, s.size_b_vox > 0 ? s.size_b_vox : s.size_a_vox, now_ns);
+    return true;
+  };
+  switch (action) {
+    case Action::kUndo:
+      undo(now_ns);
+      return true;
+    case Action::kRedo:
+      redo(now_ns);
+      return true;
+    case Action::kToggleAddSubtract:
+      set_mode(s.mode == core::SculptMode::kAdd ? core::SculptMode::kSubtract
+                                                : core::SculptMode::kAdd,
+               now_ns);
+      return true;
+    case Action::kSmooth:
+      set_mode(core::SculptMode::kSmooth, now_ns);
+      return true;
+    case Action::kToolSphere: return tool(sim::ToolShape::kSphere);
+    case Action::kToolCube: return tool(sim::ToolShape::kCube);
+    case Action::kToolCylinder: return tool(sim::ToolShape::kCylinder);
+    case Action::kToolRing: return tool(sim::ToolShape::kRing);
+    case Action::kToolCone: return tool(sim::ToolShape::kCone);
+    case Action::kToolBigger:
+    case Action::kToolSmaller: {
+      if (s.custom_tool) {
+        status_ = "a sculpture tool keeps its size";
+        return false;
+      }
+      const float f = action == Action::kToolBigger ? 1.25f : 0.8f;
+      set_tool(s.shape, std::clamp(s.size_a_vox * f, 1.0f, 64.0f),
+               std::clamp(s.size_b_vox * f, 0.0f, 64.0f), now_ns);
+      return true;
+    }
+    case Action::kStronger:
+    case Action::kWeaker:
+      set_strength(s.strength + (action == Action::kStronger ? 0.1f : -0.1f), now_ns);
+      return true;
+    case Action::kToggleMirror:
+      set_mirror(s.mirror ? std::nullopt : std::optional<int>(0), now_ns);
+      return true;
+    case Action::kToggleDeviceTarget:
+      device_target_ =
+          device_target_ == DeviceTarget::kTool ? DeviceTarget::kCamera : DeviceTarget::kTool;
+      status_ = device_target_ == DeviceTarget::kTool ? "the 3D mouse moves the tool"
+                                                      : "the 3D mouse moves the camera";
+      return true;
+    case Action::kToggleRecording:
+      return recording() ? stop_recording().ok() : start_recording(options_.recording, now_ns).ok();
+    case Action::kSave:
+      return save(options_.project).ok();
+    case Action::kExportMesh:
+      return export_mesh(options_.mesh_export).ok();
+    case Action::kUseSculptureAsTool:
+      return use_sculpture_as_tool(now_ns);
+    case Action::kFrameView:
+      camera_.frame(glm::vec3(0.0f), glm::vec3(loop_.volume().dims()));
+      return true;
+  }
+  return false;
+}
+
+void StationController::set_device(const hal::DeviceInfo& info, const std::string& normalizer) {
+  device_info_ = info;
+  normalizer_text_ = normalizer;
+  device_.name = info.name;
+  device_.backend = info.backend;
+}
+
+void StationController::camera_motion(const hal::InputEvent& e) {
+  const double dt =
+      last_camera_t_ns_ == 0 ? 0.0
+                             : std::clamp(static_cast<double>(e.t_ns - last_camera_t_ns_) * 1e-9, 0.0, 0.1);
+  last_camera_t_ns_ = e.t_ns;
+  const float k = static_cast<float>(dt);
+  // Turning the cap turns the object under it: the camera goes the other way.
+  camera_.orbit(-e.axes[hal::kRy] * kCameraTurnRate * k, e.axes[hal::kRx] * kCameraTurnRate * k);
+  camera_.pan(glm::vec2(-e.axes[hal::kTx], -e.axes[hal::kTy]) * (kCameraMoveRate * k * 1000.0f),
+              1000.0f);
+  camera_.zoom(std::exp(e.axes[hal::kTz] * kCameraMoveRate * k));
+}
+
+int64_t StationController::report_time(int64_t t_ns, int64_t now_ns) {
+  // A hardware report carries the monotonic time it was read at; a sim
+  // device's carries the time recorded in its session, which says nothing
+  // about this run: its latency counts from the frame that received it.
+  return t_ns <= now_ns && t_ns > now_ns - kSecondNs ? t_ns : now_ns;
+}
+
+void StationController::note_dabs(int64_t dabs_before, int64_t t_ns) {
+  unmeshed_dab_t_ns_.insert(unmeshed_dab_t_ns_.end(),
+                            static_cast<size_t>(loop_.counters().dabs - dabs_before), t_ns);
+}
+
+void StationController::device_frame(const hal::InputFrame& frame, int64_t now_ns) {
+  for (const hal::InputEvent& e : frame.events) {
+    switch (e.kind) {
+      case hal::InputKind::kConnected:
+        device_.connected = true;
+        break;
+      case hal::InputKind::kDisconnected:
+        device_.connected = false;
+        device_.report_rate_hz = 0;
+        motion_t_ns_.clear();
+        break;
+      case hal::InputKind::kBattery:
+        device_.battery_percent = e.battery_percent;
+        device_.charging = e.charging;
+        break;
+      default:
+        break;
+    }
+    const int64_t dabs = loop_.counters().dabs;
+    loop_.handle(e);
+    note_dabs(dabs, report_time(e.t_ns, now_ns));
+  }
+  for (const hal::InputEvent& e : frame.motion) {
+    motion_t_ns_.push_back(e.t_ns);
+    if (device_target_ == DeviceTarget::kCamera) {
+      camera_motion(e);
+      continue;
+    }
+    last_camera_t_ns_ = 0;
+    const int64_t dabs = loop_.counters().dabs;
+    loop_.handle(e);
+    note_dabs(dabs, report_time(e.t_ns, now_ns));
+  }
+  while (!motion_t_ns_.empty() && motion_t_ns_.front() < now_ns - kSecondNs)
+    motion_t_ns_.pop_front();
+  device_.report_rate_hz = static_cast<double>(motion_t_ns_.size());
+}
+
+void StationController::pointer_move(glm::vec3 position, int64_t now_ns) {
+  const glm::quat q = loop_.pose().orientation;
+  const int64_t dabs = loop_.counters().dabs;
+  command(make(sim::CommandKind::kPointer, 0,
+               {position.x, position.y, position.z, q.w, q.x, q.y, q.z}),
+          now_ns);
+  note_dabs(dabs, now_ns);
+}
+
+void StationController::pointer_down(int64_t now_ns) {
+  if (pointer_down_) return;
+  pointer_down_ = true;
+  const int64_t dabs = loop_.counters().dabs;
+  command(make(sim::CommandKind::kPress), now_ns);
+  note_dabs(dabs, now_ns);
+}
+
+void StationController::pointer_up(int64_t now_ns) {
+  if (!pointer_down_) return;
+  pointer_down_ = false;
+  command(make(sim::CommandKind::kRelease), now_ns);
+}
+
+int64_t StationController::update_mesh(int64_t now_ns) {
+  const int64_t meshed = loop_.update_mesh();
+  if (!unmeshed_dab_t_ns_.empty()) ++generation_;
+  for (int64_t t : unmeshed_dab_t_ns_) {
+    const double us = static_cast<double>(now_ns - t) * 1e-3;
+    recent_latency_us_.push_back(us);
+    if (recent_latency_us_.size() > kRecentDabs) recent_latency_us_.pop_front();
+    all_latency_us_.push_back(us);
+  }
+  unmeshed_dab_t_ns_.clear();
+  return meshed;
+}
+
+LatencyStats StationController::recent_latency() const {
+  return latency_stats({recent_latency_us_.begin(), recent_latency_us_.end()});
+}
+LatencyStats StationController::session_latency() const {
+  return latency_stats(all_latency_us_);
+}
+
+ProjectView StationController::view() const {
+  ProjectView v;
+  v.camera_target = camera_.target();
+  v.camera_yaw = camera_.yaw();
+  v.camera_pitch = camera_.pitch();
+  v.camera_distance = camera_.distance();
+  v.lod = lod_.policy();
+  return v;
+}
+
+core::Status StationController::save(const std::filesystem::path& path) {
+  const StationSettings& s = loop_.settings();
+  core::Status st = save_project(path, loop_.volume(), s, s.custom_tool ? &loop_.tool() : nullptr,
+                                 view());
+  if (st) saved_generation_ = generation_;
+  report(st, "saved " + path.string());
+  return st;
+}
+
+core::Status StationController::open(const std::filesystem::path& path) {
+  auto project = load_project(path);
+  if (!project) {
+    report(project.error(), "");
+    return project.error();
+  }
+  finish_autosave();
+  loop_.restore(std::move(project->volume), project->settings, std::move(project->custom_tool));
+  const ProjectView& v = project->view;
+  camera_.set(v.camera_target, v.camera_yaw, v.camera_pitch, v.camera_distance);
+  lod_.set_policy(v.lod);
+  options_.project = path;
+  ++generation_;
+  saved_generation_ = generation_;
+  status_ = "opened " + path.string();
+  return {};
+}
+
+core::Status StationController::export_mesh(const std::filesystem::path& path) {
+  auto format = core::mesh_format_for(path);
+  if (!format) {
+    report(format.error(), "");
+    return format.error();
+  }
+  loop_.update_mesh();
+  core::Status st = core::write_mesh(path, loop_.mesh().welded_mesh(), *format);
+  report(st, "exported " + path.string());
+  return st;
+}
+
+std::vector<sim::Command> StationController::opening_commands() const {
+  const StationSettings& s = loop_.settings();
+  const hal::ToolPose& p = loop_.pose();
+  std::vector<sim::Command> c;
+  const glm::vec3 d(loop_.volume().dims());
+  const StationLoop::Options& o = options_.loop;
+  // The recording starts from the block the station started with; work done
+  // before it (or an opened project) is not in the session (README).
+  c.push_back(o.clay_margin > 0
+                  ? make(sim::CommandKind::kVolume, sim::kVolumeClay,
+                         {d.x, d.y, d.z, static_cast<float>(o.clay_margin)})
+                  : make(sim::CommandKind::kVolume, sim::kVolumeFill,
+                         {d.x, d.y, d.z, static_cast<float>(o.volume_fill)}));
+  c.push_back(make(sim::CommandKind::kTool, static_cast<uint8_t>(s.shape),
+                   {s.size_a_vox, s.size_b_vox}));
+  c.push_back(make(sim::CommandKind::kMode, static_cast<uint8_t>(s.mode)));
+  c.push_back(make(sim::CommandKind::kStrength, 0, {s.strength}));
+  c.push_back(make(sim::CommandKind::kSpacing, 0, {s.spacing}));
+  c.push_back(s.mirror ? make(sim::CommandKind::kMirror, static_cast<uint8_t>(s.mirror->axis),
+                              {s.mirror->centre_vox})
+                       : make(sim::CommandKind::kMirror, sim::kMirrorOff, {0.0f}));
+  c.push_back(make(sim::CommandKind::kToolPose, 0,
+                   {p.position.x, p.position.y, p.position.z, p.orientation.w, p.orientation.x,
+                    p.orientation.y, p.orientation.z}));
+  return c;
+}
+
+core::Status StationController::start_recording(const std::filesystem::path& path,
+                                                int64_t now_ns) {
+  sim::SessionHeader header;
+  header.device = device_info_;
+  header.normalizer_config = normalizer_text_;
+  header.created_unix_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                               std::chrono::system_clock::now().time_since_epoch())
+                               .count();
+  // The opening commands rebuild the settings, not the sculpture: the
+  // recording replays onto the block the station started with.
+  const bool fresh = generation_ == 0;
+  core::Status st = recorder_.start(path, header, opening_commands(), now_ns);
+  report(st, "recording to " + path.string() +
+                 (fresh ? "" : " (the session starts from a fresh block, not this sculpture)"));
+  return st;
+}
+
+core::Status StationController::stop_recording() {
+  auto records = recorder_.stop();
+  if (!records) {
+    report(records.error(), "");
+    return records.error();
+  }
+  status_ = "recorded " + std::to_string(*records) + " records to " + recorder_.path().string();
+  return {};
+}
+
+std::filesystem::path StationController::autosave_path() const {
+  std::filesystem::path p = options_.project;
+  p += ".autosave";
+  return p;
+}
+
+void StationController::finish_autosave() {
+  if (autosave_.valid()) {
+    core::Status st = autosave_.get();
+    if (!st) status_ = "autosave failed: " + st.error().message();
+  }
+}
+
+void StationController::tick(int64_t now_ns) {
+  if (recorder_.recording()) {
+    if (core::Status st = recorder_.flush(); !st)
+      status_ = "recording stopped: " + st.error().message();
+  }
+  if (options_.autosave_seconds <= 0 || generation_ == saved_generation_) return;
+  if (autosave_.valid() &&
+      autosave_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+    return;
+  if (now_ns - last_autosave_ns_ < static_cast<int64_t>(options_.autosave_seconds * 1e9)) return;
+  finish_autosave();
+  last_autosave_ns_ = now_ns;
+  saved_generation_ = generation_;
+  ++autosaves_;
+  // A copy of the state is written on another thread, so sculpting goes on
+  // while it is compressed and synced.
+  auto volume = std::make_shared<core::Volume>(loop_.volume());
+  const StationSettings settings = loop_.settings();
+  auto tool = settings.custom_tool ? std::make_shared<core::Tool>(loop_.tool()) : nullptr;
+  autosave_ = std::async(std::launch::async,
+                         [path = autosave_path(), volume, settings, tool, view = view()] {
+                           return save_project(path, *volume, settings, tool.get(), view);
+                         });
+}
+
+core::Status StationController::save_input_settings(float sensitivity, float deadzone) {
+  const std::string& path = options_.normalizer_config_path;
+  if (path.empty()) return core::Error("no input settings file");
+  auto config = hal::load_normalizer_config_or_defaults(path);
+  if (!config) {
+    report(config.error(), "");
+    return config.error();
+  }
+  config->sensitivity.fill(std::clamp(sensitivity, 0.05f, 20.0f));
+  config->deadzone.fill(std::clamp(deadzone, 0.0f, 0.9f));
+  std::error_code ec;
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
+  core::AtomicFileWriter writer(path);
+  if (!writer.ok()) return writer.error();
+  writer.write(hal::to_text(*config));
+  core::Status st = writer.commit();
+  report(st, "saved the input settings to " + path + " (devices opened from now on use them)");
+  return st;
+}
+
+}  // namespace sculpt::station

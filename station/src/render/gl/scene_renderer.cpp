@@ -1,0 +1,219 @@
+#include "render/gl/scene_renderer.h"
+
+#include <algorithm>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "sculpt/core/mesh/marching_cubes.h"
+
+namespace sculpt::station::gl {
+namespace {
+
+constexpr const char* kLitVertex = R"(#version 330 core
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+uniform mat4 model;
+uniform mat4 view_projection;
+out vec3 world_position;
+out vec3 world_normal;
+void main() {
+  vec4 p = model * vec4(position, 1.0);
+  world_position = p.xyz;
+  world_normal = mat3(model) * normal;
+  gl_Position = view_projection * p;
+}
+)";
+
+// Studio lighting: a warm key light from the upper left, a cool fill from the
+// right, a rim light from behind, and a sky/ground ambient term.
+constexpr const char* kLitFragment = R"(#version 330 core
+in vec3 world_position;
+in vec3 world_normal;
+uniform vec3 eye;
+uniform vec4 colour;
+out vec4 fragment;
+void main() {
+  vec3 n = normalize(world_normal);
+  if (!gl_FrontFacing) n = -n;
+  vec3 v = normalize(eye - world_position);
+  vec3 key = normalize(vec3(-0.5, 0.8, 0.6));
+  vec3 fill = normalize(vec3(0.7, 0.2, 0.4));
+  float rim = pow(1.0 - max(dot(n, v), 0.0), 3.0);
+  float ambient = mix(0.18, 0.32, 0.5 + 0.5 * n.y);
+  float spec = pow(max(dot(n, normalize(key + v)), 0.0), 40.0);
+  vec3 c = colour.rgb * (ambient + 0.75 * max(dot(n, key), 0.0) * vec3(1.0, 0.96, 0.9) +
+                         0.3 * max(dot(n, fill), 0.0) * vec3(0.85, 0.9, 1.0)) +
+           0.25 * spec + 0.25 * rim * vec3(0.9, 0.95, 1.0);
+  fragment = vec4(c, colour.a);
+}
+)";
+
+constexpr const char* kFlatVertex = R"(#version 330 core
+layout(location = 0) in vec3 position;
+uniform mat4 view_projection;
+void main() { gl_Position = view_projection * vec4(position, 1.0); }
+)";
+
+constexpr const char* kFlatFragment = R"(#version 330 core
+uniform vec4 colour;
+out vec4 fragment;
+void main() { fragment = colour; }
+)";
+
+const glm::vec3 kClay(0.80f, 0.70f, 0.60f);
+
+glm::vec3 mode_colour(core::SculptMode mode) {
+  switch (mode) {
+    case core::SculptMode::kAdd:
+    case core::SculptMode::kUnion:
+      return {0.35f, 0.75f, 0.40f};
+    case core::SculptMode::kSubtract:
+    case core::SculptMode::kDifference:
+      return {0.85f, 0.35f, 0.30f};
+    case core::SculptMode::kSmooth:
+      return {0.35f, 0.55f, 0.90f};
+  }
+  return {0.8f, 0.8f, 0.8f};
+}
+
+}  // namespace
+
+core::Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create() {
+  std::unique_ptr<SceneRenderer> r(new SceneRenderer());
+  auto lit = ShaderProgram::build(kLitVertex, kLitFragment, "lit");
+  if (!lit) return lit.error();
+  auto flat = ShaderProgram::build(kFlatVertex, kFlatFragment, "flat");
+  if (!flat) return flat.error();
+  r->lit_ = std::move(lit).value();
+  r->flat_ = std::move(flat).value();
+  glGenVertexArrays(1, &r->line_vao_);
+  glGenBuffers(1, &r->line_vbo_);
+  glBindVertexArray(r->line_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, r->line_vbo_);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+  glBindVertexArray(0);
+  return r;
+}
+
+SurfaceSync SceneRenderer::sync_surface(const core::Volume& volume, const core::MeshCache& level0,
+                                        const SurfaceLod& coarse, std::span<const int> levels) {
+  SurfaceSync sync;
+  visible_.clear();
+  const glm::ivec3 g = volume.brick_grid();
+  size_t i = 0;
+  for (int z = 0; z < g.z; ++z)
+    for (int y = 0; y < g.y; ++y)
+      for (int x = 0; x < g.x; ++x, ++i) {
+        const glm::ivec3 b(x, y, z);
+        const int level = i < levels.size() ? std::clamp(levels[i], 0, coarse.max_level()) : 0;
+        const core::BrickMesh& m = level == 0 ? level0.brick_mesh(b) : coarse.brick_mesh(b, level);
+        const uint64_t key = static_cast<uint64_t>(i) * 8 + static_cast<uint64_t>(level);
+        if (m.empty()) {
+          if (auto it = slots_.find(key); it != slots_.end()) slots_.erase(it);
+          continue;
+        }
+        Slot& slot = slots_[key];
+        const uint64_t stamp = SurfaceLod::neighbourhood_stamp(volume, b);
+        if (slot.stamp != stamp) {
+          slot.mesh.upload(m.mesh);
+          slot.stamp = stamp;
+          ++sync.uploaded;
+        }
+        visible_.push_back(&slot.mesh);
+        sync.triangles += slot.mesh.triangles();
+      }
+  return sync;
+}
+
+void SceneRenderer::show_mesh(const core::Mesh& mesh) {
+  single_mesh_.upload(mesh);
+  visible_.assign(1, &single_mesh_);
+}
+
+void SceneRenderer::set_tool(const core::Tool& tool) {
+  if (tool.density.dims() == tool_.density.dims() && tool.pivot == tool_.pivot &&
+      std::equal(tool.density.data(), tool.density.data() + tool.density.size(),
+                 tool_.density.data())) {
+    return;
+  }
+  tool_ = tool;
+  const core::Volume v = core::Volume::from_dense(tool.density);
+  core::MarchingCubesOptions options;
+  options.threads = 1;
+  tool_mesh_.upload(core::marching_cubes(v, 0, options));
+}
+
+void SceneRenderer::draw_lines(const std::vector<glm::vec3>& points, glm::vec4 colour,
+                               const glm::mat4& mvp) {
+  flat_.use();
+  flat_.set("view_projection", mvp);
+  flat_.set("colour", colour);
+  glBindVertexArray(line_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, line_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(points.size() * sizeof(glm::vec3)),
+               points.data(), GL_STREAM_DRAW);
+  glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(points.size()));
+}
+
+void SceneRenderer::draw(const SceneView& view, const ToolDraw& tool, glm::vec3 block) {
+  const glm::mat4 vp = view.projection * view.view;
+  glViewport(0, 0, view.width, view.height);
+  glClearColor(0.16f, 0.17f, 0.19f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_BLEND);
+
+  // The ground grid under the block, every 32 voxels, and the block's edges.
+  std::vector<glm::vec3> grid;
+  const float step = 32.0f;
+  const float reach = std::max(block.x, block.z) * 1.5f;
+  const glm::vec3 c = 0.5f * block;
+  for (float t = -reach; t <= reach + 0.5f; t += step) {
+    grid.insert(grid.end(), {{c.x + t, 0, c.z - reach}, {c.x + t, 0, c.z + reach},
+                             {c.x - reach, 0, c.z + t}, {c.x + reach, 0, c.z + t}});
+  }
+  draw_lines(grid, {0.32f, 0.33f, 0.36f, 1.0f}, vp);
+  std::vector<glm::vec3> edges;
+  for (int a = 0; a < 3; ++a)
+    for (int j = 0; j < 4; ++j) {
+      glm::vec3 p(0.0f);
+      p[(a + 1) % 3] = (j & 1) ? block[(a + 1) % 3] : 0.0f;
+      p[(a + 2) % 3] = (j & 2) ? block[(a + 2) % 3] : 0.0f;
+      glm::vec3 q = p;
+      q[a] = block[a];
+      edges.insert(edges.end(), {p, q});
+    }
+  draw_lines(edges, {0.55f, 0.57f, 0.62f, 1.0f}, vp);
+
+  lit_.use();
+  lit_.set("view_projection", vp);
+  lit_.set("eye", view.eye);
+  lit_.set("model", glm::mat4(1.0f));
+  lit_.set("colour", glm::vec4(kClay, 1.0f));
+  for (const GpuMesh* m : visible_) m->draw();
+
+  if (!tool.visible || tool_mesh_.empty()) return;
+  // The GPU turns the tool's own mesh: the pivot goes to the tool position.
+  const glm::mat4 model = glm::translate(glm::mat4(1.0f), tool.position) *
+                          glm::mat4_cast(tool.orientation) *
+                          glm::translate(glm::mat4(1.0f), -tool_.pivot);
+  const glm::vec3 colour = mode_colour(tool.mode);
+  lit_.set("model", model);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  // The ghost: the tool's parts hidden by the material, seen through it, which
+  // is the footprint the next dab will leave.
+  glDepthMask(GL_FALSE);
+  glDepthFunc(GL_GREATER);
+  lit_.set("colour", glm::vec4(colour, 0.35f));
+  tool_mesh_.draw();
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  lit_.set("colour", glm::vec4(colour, tool.pressed ? 0.85f : 0.6f));
+  tool_mesh_.draw();
+  glDisable(GL_BLEND);
+}
+
+}  // namespace sculpt::station::gl

@@ -1,0 +1,80 @@
+#pragma once
+// The station's OpenGL 3.3 core renderer: the sculpture from the per-brick
+// mesh cache at a level of detail per brick, the tool from its own mesh
+// turned on the GPU (not the discrete rotation the sculpting uses), a ghost
+// of the part of the tool inside the material, the block's bounds and a
+// ground grid, under simple studio lighting (key, fill, rim, sky/ground
+// ambient). Needs a current GL 3.3 context; one thread.
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat4x4.hpp>
+
+#include "render/gl/gpu_mesh.h"
+#include "render/gl/shader_program.h"
+#include "sculpt/core/mesh/mesh_cache.h"
+#include "sculpt/core/sculpt/sculptor.h"
+#include "sculpt/core/tool/tool.h"
+#include "sculpt/station/view/surface_lod.h"
+
+namespace sculpt::station::gl {
+
+struct SceneView {
+  glm::mat4 view{1.0f};
+  glm::mat4 projection{1.0f};
+  glm::vec3 eye{0.0f};
+  int width = 1;  ///< framebuffer pixels
+  int height = 1;
+};
+
+struct ToolDraw {
+  bool visible = true;
+  glm::vec3 position{0.0f};  ///< where the pivot is, voxels
+  glm::quat orientation{1, 0, 0, 0};
+  core::SculptMode mode = core::SculptMode::kAdd;
+  bool pressed = false;
+};
+
+struct SurfaceSync {
+  int64_t uploaded = 0;   ///< brick meshes sent to the GPU this time
+  int64_t triangles = 0;  ///< triangles drawn per frame at the chosen levels
+};
+
+class SceneRenderer {
+ public:
+  static core::Result<std::unique_ptr<SceneRenderer>> create();
+
+  /// Sends the brick meshes whose neighbourhood changed (at the level each
+  /// brick is drawn at) to the GPU.
+  SurfaceSync sync_surface(const core::Volume& volume, const core::MeshCache& level0,
+                           const SurfaceLod& coarse, std::span<const int> levels);
+  /// Draws this one mesh as the surface instead (pictures of a result).
+  void show_mesh(const core::Mesh& mesh);
+  /// Remakes the tool's mesh when the tool changed.
+  void set_tool(const core::Tool& tool);
+  void draw(const SceneView& view, const ToolDraw& tool, glm::vec3 block_dims);
+
+ private:
+  SceneRenderer() = default;
+  struct Slot {
+    uint64_t stamp = ~uint64_t{0};
+    GpuMesh mesh;
+  };
+  void draw_lines(const std::vector<glm::vec3>& points, glm::vec4 colour, const glm::mat4& mvp);
+
+  ShaderProgram lit_;
+  ShaderProgram flat_;
+  std::unordered_map<uint64_t, Slot> slots_;  // key: brick index * 8 + level
+  std::vector<const GpuMesh*> visible_;
+  core::Tool tool_;
+  GpuMesh tool_mesh_;
+  GpuMesh single_mesh_;
+  GLuint line_vao_ = 0, line_vbo_ = 0;
+};
+
+}  // namespace sculpt::station::gl

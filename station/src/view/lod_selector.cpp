@@ -1,0 +1,66 @@
+#include "sculpt/station/view/lod_selector.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace sculpt::station {
+namespace {
+
+// Hysteresis: a few frames in a row must agree before the bias moves, so one
+// slow frame (a large dab's re-mesh) does not make the picture pop.
+constexpr int kFramesToAct = 8;
+constexpr float kBiasStep = 0.25f;
+
+}  // namespace
+
+void LodSelector::set_policy(const LodPolicy& policy) {
+  policy_ = policy;
+  bias_ = std::clamp(bias_, 0.0f, static_cast<float>(std::max(policy_.max_level, 0)));
+}
+
+std::vector<int> LodSelector::select(glm::ivec3 grid, int edge, glm::vec3 eye) const {
+  std::vector<int> levels(static_cast<size_t>(grid.x) * grid.y * grid.z, 0);
+  const int max_level = std::max(policy_.max_level, 0);
+  if (policy_.fixed_level >= 0) {
+    std::fill(levels.begin(), levels.end(), std::min(policy_.fixed_level, max_level));
+    return levels;
+  }
+  const float near = std::max(policy_.full_detail_distance, 1.0f);
+  size_t i = 0;
+  for (int z = 0; z < grid.z; ++z) {
+    for (int y = 0; y < grid.y; ++y) {
+      for (int x = 0; x < grid.x; ++x, ++i) {
+        const glm::vec3 centre = (glm::vec3(x, y, z) + 0.5f) * static_cast<float>(edge);
+        const float d = glm::length(centre - eye);
+        const float level = std::log2(std::max(d / near, 1.0f)) + bias_;
+        levels[i] = std::clamp(static_cast<int>(std::floor(level)), 0, max_level);
+      }
+    }
+  }
+  return levels;
+}
+
+bool LodSelector::frame_done(double frame_ms) {
+  if (policy_.fixed_level >= 0) return false;
+  const float old = bias_;
+  if (frame_ms > policy_.frame_budget_ms) {
+    fast_frames_ = 0;
+    if (++slow_frames_ >= kFramesToAct) {
+      bias_ = std::min(bias_ + kBiasStep, static_cast<float>(std::max(policy_.max_level, 0)));
+      slow_frames_ = 0;
+    }
+  } else if (frame_ms < 0.6 * policy_.frame_budget_ms) {
+    slow_frames_ = 0;
+    if (++fast_frames_ >= kFramesToAct) {
+      bias_ = std::max(bias_ - kBiasStep, 0.0f);
+      fast_frames_ = 0;
+    }
+  } else {
+    slow_frames_ = fast_frames_ = 0;
+  }
+  return bias_ != old;
+}
+
+}  // namespace sculpt::station

@@ -1,0 +1,32 @@
+#pragma once
+// A GLFW window with an OpenGL 3.3 core context, visible or not.
+
+#include <memory>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/gl/gl_api.h"
+#include "sculpt/core/util/result.h"
+
+namespace sculpt::station {
+
+class GlWindow {
+ public:
+  /// Initialises GLFW (once per process) and opens the window.
+  static core::Result<std::unique_ptr<GlWindow>> open(int width, int height,
+                                                      const std::string& title, bool visible);
+  ~GlWindow();
+  GlWindow(const GlWindow&) = delete;
+  GlWindow& operator=(const GlWindow&) = delete;
+  GLFWwindow* handle() const { return window_; }
+
+ private:
+  explicit GlWindow(GLFWwindow* w) : window_(w) {}
+  GLFWwindow* window_;
+};
+
+/// Reads the current framebuffer's colour (width x height) top row first.
+void read_pixels(int width, int height, std::vector<uint8_t>& rgb);
+
+}  // namespace sculpt::station

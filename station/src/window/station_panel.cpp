@@ -1,0 +1,172 @@
+#include "window/station_panel.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+namespace sculpt::station {
+namespace {
+
+void copy_path(char* out, size_t n, const std::string& s) {
+  std::snprintf(out, n, "%s", s.c_str());
+}
+
+void tip(Action action) {
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", shortcut_label(action));
+}
+
+constexpr const char* kShapes[] = {"sphere", "cube", "cylinder", "ring", "cone"};
+constexpr const char* kMirror[] = {"off", "x", "y", "z"};
+
+}  // namespace
+
+StationPanel::StationPanel(StationController& c) : c_(c) {
+  copy_path(project_, sizeof(project_), c_.options().project.string());
+  copy_path(mesh_, sizeof(mesh_), c_.options().mesh_export.string());
+  copy_path(recording_, sizeof(recording_), c_.options().recording.string());
+}
+
+void StationPanel::draw(const FrameFigures& f, int64_t now) {
+  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Sculpt station");
+  const StationSettings& s = c_.loop().settings();
+
+  if (ImGui::CollapsingHeader("Device", ImGuiTreeNodeFlags_DefaultOpen)) {
+    const DeviceStatus& d = c_.device_status();
+    if (d.name.empty()) {
+      ImGui::TextUnformatted("no 3D mouse: the mouse and keyboard sculpt");
+    } else {
+      ImGui::Text("%s (%s)%s", d.name.c_str(), d.backend.c_str(),
+                  d.connected ? "" : " - unplugged");
+      ImGui::Text("%.0f reports/s", d.report_rate_hz);
+      if (d.battery_percent >= 0)
+        ImGui::Text("battery %d%%%s", d.battery_percent, d.charging ? " (charging)" : "");
+    }
+    int target = c_.device_target() == DeviceTarget::kTool ? 0 : 1;
+    ImGui::RadioButton("moves the tool", &target, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("moves the camera", &target, 1);
+    tip(Action::kToggleDeviceTarget);
+    c_.set_device_target(target == 0 ? DeviceTarget::kTool : DeviceTarget::kCamera);
+    ImGui::SliderFloat("sensitivity", &sensitivity_, 0.1f, 4.0f, "%.2f");
+    ImGui::SliderFloat("deadzone", &deadzone_, 0.0f, 0.5f, "%.2f");
+    if (ImGui::Button("Save input settings")) (void)c_.save_input_settings(sensitivity_, deadzone_);
+  }
+
+  if (ImGui::CollapsingHeader("Tool", ImGuiTreeNodeFlags_DefaultOpen)) {
+    int shape = static_cast<int>(s.shape);
+    if (s.custom_tool) ImGui::TextUnformatted("tool: the sculpture");
+    if (ImGui::Combo("shape", &shape, kShapes, IM_ARRAYSIZE(kShapes)) &&
+        (shape != static_cast<int>(s.shape) || s.custom_tool)) {
+      c_.set_tool(static_cast<sim::ToolShape>(shape), s.size_a_vox, s.size_b_vox, now);
+    }
+    float a = s.size_a_vox, b = s.size_b_vox;
+    ImGui::SliderFloat("size", &a, 1.0f, 64.0f, "%.1f vox");
+    if (ImGui::IsItemDeactivatedAfterEdit()) c_.set_tool(s.shape, a, s.size_b_vox, now);
+    if (s.shape != sim::ToolShape::kSphere && s.shape != sim::ToolShape::kCube) {
+      ImGui::SliderFloat(s.shape == sim::ToolShape::kRing ? "tube" : "height", &b, 1.0f, 64.0f,
+                         "%.1f vox");
+      if (ImGui::IsItemDeactivatedAfterEdit()) c_.set_tool(s.shape, s.size_a_vox, b, now);
+    }
+    if (ImGui::Button("Use this sculpture as a tool")) c_.use_sculpture_as_tool(now);
+    tip(Action::kUseSculptureAsTool);
+
+    int mode = s.mode == core::SculptMode::kSubtract ? 1
+               : s.mode == core::SculptMode::kSmooth ? 2
+                                                     : 0;
+    const int before = mode;
+    ImGui::RadioButton("add", &mode, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("subtract", &mode, 1);
+    ImGui::SameLine();
+    ImGui::RadioButton("smooth", &mode, 2);
+    if (mode != before) {
+      c_.set_mode(mode == 0   ? core::SculptMode::kAdd
+                  : mode == 1 ? core::SculptMode::kSubtract
+                              : core::SculptMode::kSmooth,
+                  now);
+    }
+    float strength = s.strength;
+    ImGui::SliderFloat("strength", &strength, 0.0f, 1.0f, "%.2f");
+    if (ImGui::IsItemDeactivatedAfterEdit()) c_.set_strength(strength, now);
+    float spacing = s.spacing;
+    ImGui::SliderFloat("dab spacing", &spacing, 0.05f, 1.0f, "%.2f of size");
+    if (ImGui::IsItemDeactivatedAfterEdit()) c_.set_spacing(spacing, now);
+    int mirror = s.mirror ? s.mirror->axis + 1 : 0;
+    if (ImGui::Combo("symmetry", &mirror, kMirror, IM_ARRAYSIZE(kMirror))) {
+      c_.set_mirror(mirror == 0 ? std::nullopt : std::optional<int>(mirror - 1), now);
+    }
+  }
+
+  if (ImGui::CollapsingHeader("Edit and files", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (ImGui::Button("Undo")) c_.undo(now);
+    tip(Action::kUndo);
+    ImGui::SameLine();
+    if (ImGui::Button("Redo")) c_.redo(now);
+    tip(Action::kRedo);
+    ImGui::InputText("project", project_, sizeof(project_));
+    if (ImGui::Button("Save")) {
+      c_.options().project = project_;
+      (void)c_.save(project_);
+    }
+    tip(Action::kSave);
+    ImGui::SameLine();
+    if (ImGui::Button("Open")) (void)c_.open(project_);
+    ImGui::InputText("mesh", mesh_, sizeof(mesh_));
+    if (ImGui::Button("Export mesh")) {
+      c_.options().mesh_export = mesh_;
+      (void)c_.export_mesh(mesh_);
+    }
+    tip(Action::kExportMesh);
+    ImGui::InputText("session", recording_, sizeof(recording_));
+    if (!c_.recording()) {
+      if (ImGui::Button("Record")) {
+        c_.options().recording = recording_;
+        (void)c_.start_recording(recording_, now);
+      }
+    } else if (ImGui::Button("Stop recording")) {
+      (void)c_.stop_recording();
+    }
+    tip(Action::kToggleRecording);
+  }
+
+  if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
+    LodPolicy lod = c_.lod().policy();
+    bool automatic = lod.fixed_level < 0;
+    bool changed = ImGui::Checkbox("automatic level of detail", &automatic);
+    if (automatic) {
+      changed |= ImGui::SliderFloat("full detail within", &lod.full_detail_distance, 50.0f,
+                                    2000.0f, "%.0f vox");
+      float budget = static_cast<float>(lod.frame_budget_ms);
+      if (ImGui::SliderFloat("frame budget", &budget, 5.0f, 50.0f, "%.0f ms")) {
+        lod.frame_budget_ms = budget;
+        changed = true;
+      }
+      ImGui::Text("coarsening bias %.2f", c_.lod().bias());
+      if (changed && lod.fixed_level >= 0) lod.fixed_level = -1;
+    } else {
+      if (lod.fixed_level < 0) lod.fixed_level = 0;
+      changed |= ImGui::SliderInt("level", &lod.fixed_level, 0, lod.max_level);
+    }
+    if (!automatic && changed && lod.fixed_level < 0) lod.fixed_level = 0;
+    if (changed) c_.lod().set_policy(lod);
+    if (ImGui::Button("Frame the block")) c_.perform(Action::kFrameView, now);
+    tip(Action::kFrameView);
+  }
+
+  if (ImGui::CollapsingHeader("Figures", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::Text("%.0f fps (%.1f ms), %lld triangles", f.fps, f.frame_ms,
+                static_cast<long long>(f.triangles));
+    const LatencyStats l = c_.recent_latency();
+    ImGui::Text("dab latency p50 %.2f ms, p99 %.2f ms", l.p50_us * 1e-3, l.p99_us * 1e-3);
+    ImGui::Text("dabs %lld, strokes %lld", static_cast<long long>(c_.loop().counters().dabs),
+                static_cast<long long>(c_.loop().counters().strokes));
+  }
+  if (!c_.status().empty()) ImGui::TextWrapped("%s", c_.status().c_str());
+  ImGui::End();
+}
+
+}  // namespace sculpt::station

@@ -1,0 +1,331 @@
+#include "sculpt/station/window/station_window.h"
+
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "render/gl/scene_renderer.h"
+#include "sculpt/core/io/atomic_file.h"
+#include "sculpt/hal/device/clock.h"
+#include "sculpt/hal/device/device_registry.h"
+#include "sculpt/hal/normalizer/normalizer_config.h"
+#include "sculpt/sim/replay/sim_backend.h"
+#include "sculpt/sim/synth/bundled_sessions.h"
+#include "sculpt/station/app/session_loading.h"
+#include "sculpt/station/app/station_controller.h"
+#include "sculpt/station/render/software_renderer.h"
+#include "sculpt/station/view/surface_lod.h"
+#include "sculpt/station/view/volume_raycast.h"
+#include "window/gl_context.h"
+#include "window/station_panel.h"
+
+namespace sculpt::station {
+namespace {
+
+constexpr int64_t kScanIntervalNs = 1'000'000'000;  // hot-plug: look for new devices each second
+constexpr float kOrbitRadPerPixel = 0.008f;
+constexpr float kKeyMoveVoxPerSecond = 60.0f;
+
+int fail(const core::Error& e) {
+  std::fprintf(stderr, "sculpt run: %s\n", e.message().c_str());
+  return 1;
+}
+
+// What the mouse and keyboard are doing to the view and the tool.
+struct PointerState {
+  bool orbiting = false;
+  bool panning = false;
+  bool sculpting = false;
+  bool space_held = false;
+  double x = 0, y = 0;
+  double scroll = 0;
+};
+
+PointerState* g_pointer = nullptr;  // GLFW callbacks have no user pointer to spare: ImGui uses it
+
+extern "C" void on_scroll(GLFWwindow* w, double dx, double dy) {
+  ImGui_ImplGlfw_ScrollCallback(w, dx, dy);
+  if (g_pointer != nullptr && !ImGui::GetIO().WantCaptureMouse) g_pointer->scroll += dy;
+}
+
+// Frame and latency figures for --stats.
+struct RunFigures {
+  std::vector<double> frame_ms;
+  int64_t uploads = 0;
+  // Where the frames' time went, milliseconds summed over all frames.
+  double input_ms = 0, mesh_ms = 0, upload_ms = 0, draw_ms = 0;
+};
+
+core::Status write_stats(const std::string& path, const RunFigures& f,
+                         const StationController& c) {
+  std::vector<double> sorted = f.frame_ms;
+  std::sort(sorted.begin(), sorted.end());
+  auto at = [&](double q) {
+    return sorted.empty() ? 0.0
+                          : sorted[std::min(sorted.size() - 1,
+                                            static_cast<size_t>(q * static_cast<double>(sorted.size())))];
+  };
+  double total = 0;
+  for (double ms : f.frame_ms) total += ms;
+  const double n = std::max<double>(1.0, static_cast<double>(f.frame_ms.size()));
+  const LatencyStats l = c.session_latency();
+  const nlohmann::ordered_json j = {
+      {"frames", f.frame_ms.size()},
+      {"fps_mean", total > 0 ? 1000.0 * static_cast<double>(f.frame_ms.size()) / total : 0.0},
+      {"frame_ms_p50", at(0.5)},
+      {"frame_ms_p90", at(0.9)},
+      {"frame_ms_p99", at(0.99)},
+      {"brick_uploads", f.uploads},
+      {"mean_ms",
+       {{"input_and_sculpt", f.input_ms / n}, {"mesh", f.mesh_ms / n}, {"upload", f.upload_ms / n},
+        {"draw", f.draw_ms / n}}},
+      {"dabs", c.loop().counters().dabs},
+      {"strokes", c.loop().counters().strokes},
+      {"volume_hash", c.loop().volume().content_hash()},
+      {"triangles", c.loop().mesh().triangle_count()},
+      {"dab_latency_us",
+       {{"count", l.count}, {"p50", l.p50_us}, {"p90", l.p90_us}, {"p99", l.p99_us},
+        {"max", l.max_us}}}};
+  core::AtomicFileWriter w(path);
+  if (!w.ok()) return w.error();
+  w.write(j.dump(2) + "\n");
+  return w.commit();
+}
+
+}  // namespace
+
+int run_window(const WindowOptions& o) {
+  auto window = GlWindow::open(o.width, o.height, "Sculpt station", o.visible);
+  if (!window) return fail(window.error());
+  GLFWwindow* w = (*window)->handle();
+  glfwSwapInterval(o.vsync ? 1 : 0);
+  auto renderer = gl::SceneRenderer::create();
+  if (!renderer) return fail(renderer.error());
+
+  ControllerOptions co;
+  co.loop.clay_margin = 64;  // a slab of clay to carve, 128 voxels a side
+  co.normalizer_config_path = hal::default_normalizer_config_path();
+  StationController controller(co);
+  if (!o.project.empty()) {
+    if (core::Status st = controller.open(o.project); !st) return fail(st.error());
+  }
+
+  // Devices: readers tap their raw reports into the recorder.
+  auto config = hal::load_normalizer_config_or_defaults(co.normalizer_config_path);
+  if (!config) return fail(config.error());
+  hal::ReaderOptions reader_options;
+  reader_options.on_raw = [&controller](const hal::RawEvent& e) { controller.raw_report(e); };
+  hal::DeviceRegistry registry(hal::DeviceRegistry::default_backends(), *config, reader_options);
+  sim::SimBackend* sim_backend = nullptr;
+  auto add_sim = [&](const std::string& file) -> core::Status {
+    auto session = load_session(file);
+    if (!session) return session.error();
+    auto backend = std::make_unique<sim::SimBackend>(std::move(session).value(), file, o.sim_speed);
+    sim_backend = backend.get();
+    registry.add_backend(std::move(backend), /*first=*/true);
+    auto id = registry.open_device("sim");
+    if (!id) return id.error();
+    return {};
+  };
+  if (o.device.rfind("sim:", 0) == 0) {
+    if (core::Status st = add_sim(o.device.substr(4)); !st) return fail(st.error());
+  } else if (o.device == "auto") {
+    registry.scan();
+    if (registry.open_count() == 0 && o.project.empty()) {
+      std::printf("no 3D mouse found: playing the demo session as a live device\n");
+      if (core::Status st = add_sim(sim::bundled_session_path("demo")); !st)
+        return fail(st.error());
+    }
+  } else {
+    auto id = registry.open_device(o.device);
+    if (!id) return fail(id.error());
+  }
+  auto note_devices = [&] {
+    for (uint32_t id = 0; id < 64; ++id) {
+      if (const hal::DeviceReader* r = registry.reader(id); r != nullptr) {
+        controller.set_device(r->info(), hal::to_text(*config));
+        return;
+      }
+    }
+  };
+  note_devices();
+  if (!o.record.empty()) {
+    if (core::Status st = controller.start_recording(o.record, hal::monotonic_ns()); !st)
+      return fail(st.error());
+  }
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // the panel's layout is not worth a file in the cwd
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(w, /*install_callbacks=*/true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+  PointerState pointer;
+  g_pointer = &pointer;
+  glfwSetScrollCallback(w, on_scroll);
+  StationPanel panel(controller);
+
+  const core::Volume* meshed_volume = nullptr;
+  std::unique_ptr<SurfaceLod> coarse = std::make_unique<SurfaceLod>(2);
+  RunFigures figures;
+  FrameFigures frame_figures;
+  hal::InputFrame input;
+  int64_t last_scan = hal::monotonic_ns();
+  int64_t last_frame = last_scan;
+  bool replay_done = false;
+  for (int frame = 0; !glfwWindowShouldClose(w) && (o.frames <= 0 || frame < o.frames) &&
+                      !(o.exit_when_replayed && replay_done);
+       ++frame) {
+    glfwPollEvents();
+    const int64_t now = hal::monotonic_ns();
+    // Device input: what the reader threads delivered since the last frame.
+    if (now - last_scan > kScanIntervalNs) {
+      if (!registry.scan().opened.empty()) note_devices();
+      last_scan = now;
+    }
+    if (sim_backend != nullptr) {
+      for (const auto& [t, c] : sim_backend->take_commands()) controller.command(c, t);
+    }
+    input.clear();
+    registry.poll(input, now);
+    for (const hal::InputEvent& e : input.events)
+      replay_done |= sim_backend != nullptr && e.kind == hal::InputKind::kDisconnected;
+    controller.device_frame(input, now);
+
+    // The ordinary mouse and keyboard.
+    ImGuiIO& io = ImGui::GetIO();
+    int fb_w = 1, fb_h = 1, win_w = 1, win_h = 1;
+    glfwGetFramebufferSize(w, &fb_w, &fb_h);
+    glfwGetWindowSize(w, &win_w, &win_h);
+    const float aspect = static_cast<float>(std::max(fb_w, 1)) / static_cast<float>(std::max(fb_h, 1));
+    double mx, my;
+    glfwGetCursorPos(w, &mx, &my);
+    OrbitCamera& camera = controller.camera();
+    if (!io.WantCaptureMouse) {
+      const bool left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+      const bool right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+      const bool middle = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+      const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
+      const glm::vec2 delta(static_cast<float>(mx - pointer.x), static_cast<float>(my - pointer.y));
+      if (right && !shift && pointer.orbiting)
+        camera.orbit(-delta.x * kOrbitRadPerPixel, delta.y * kOrbitRadPerPixel);
+      if ((middle || (right && shift)) && pointer.panning)
+        camera.pan(delta, static_cast<float>(win_h));
+      pointer.orbiting = right && !shift;
+      pointer.panning = middle || (right && shift);
+      if (pointer.scroll != 0) camera.zoom(std::pow(0.9f, static_cast<float>(pointer.scroll)));
+      pointer.scroll = 0;
+      // The tool sits on the surface under the cursor; the left button sculpts.
+      const glm::vec2 ndc(static_cast<float>(2.0 * mx / std::max(win_w, 1) - 1.0),
+                          static_cast<float>(1.0 - 2.0 * my / std::max(win_h, 1)));
+      if (left || delta != glm::vec2(0.0f)) {
+        if (auto hit = raycast_surface(controller.loop().volume(), camera.ray(ndc, aspect)))
+          controller.pointer_move(*hit, now);
+      }
+      if (left && !pointer.sculpting) controller.pointer_down(now);
+      if (!left && pointer.sculpting) controller.pointer_up(now);
+      pointer.sculpting = left;
+    }
+    pointer.x = mx;
+    pointer.y = my;
+    if (!io.WantCaptureKeyboard) {
+      // Arrows move the tool in the view plane, Page Up/Down in depth; Space sculpts.
+      const float step = kKeyMoveVoxPerSecond * static_cast<float>(now - last_frame) * 1e-9f;
+      glm::vec3 move(0.0f);
+      auto key = [&](int k) { return glfwGetKey(w, k) == GLFW_PRESS ? 1.0f : 0.0f; };
+      move += camera.right() * (key(GLFW_KEY_RIGHT) - key(GLFW_KEY_LEFT));
+      move += camera.up() * (key(GLFW_KEY_UP) - key(GLFW_KEY_DOWN));
+      move += camera.forward() * (key(GLFW_KEY_PAGE_DOWN) - key(GLFW_KEY_PAGE_UP));
+      if (move != glm::vec3(0.0f))
+        controller.pointer_move(controller.loop().pose().position + move * step, now);
+      const bool space = key(GLFW_KEY_SPACE) > 0;
+      if (space && !pointer.space_held) controller.pointer_down(now);
+      if (!space && pointer.space_held) controller.pointer_up(now);
+      pointer.space_held = space;
+    }
+
+    // Sculpt results to the GPU.
+    const int64_t t_mesh = hal::monotonic_ns();
+    figures.input_ms += static_cast<double>(t_mesh - now) * 1e-6;
+    controller.update_mesh(t_mesh);
+    const core::Volume& volume = controller.loop().volume();
+    if (meshed_volume != &volume) {
+      coarse = std::make_unique<SurfaceLod>(std::min(2, volume.levels()));
+      meshed_volume = &volume;
+    }
+    LodPolicy policy = controller.lod().policy();
+    policy.max_level = coarse->max_level();
+    controller.lod().set_policy(policy);
+    const std::vector<int> levels =
+        controller.lod().select(volume.brick_grid(), volume.brick_edge(), camera.eye());
+    coarse->update(volume, levels);
+    const int64_t t_upload = hal::monotonic_ns();
+    figures.mesh_ms += static_cast<double>(t_upload - t_mesh) * 1e-6;
+    const gl::SurfaceSync sync =
+        (*renderer)->sync_surface(volume, controller.loop().mesh(), *coarse, levels);
+    (*renderer)->set_tool(controller.loop().tool());
+
+    // Draw.
+    const int64_t t_draw = hal::monotonic_ns();
+    figures.upload_ms += static_cast<double>(t_draw - t_upload) * 1e-6;
+    const hal::ToolPose& pose = controller.loop().pose();
+    gl::ToolDraw tool{true, pose.position, pose.orientation, controller.loop().settings().mode,
+                      controller.loop().pressed()};
+    (*renderer)->draw({camera.view(), camera.projection(aspect), camera.eye(), fb_w, fb_h}, tool,
+                      glm::vec3(volume.dims()));
+    if (!o.screenshot.empty() && (o.frames > 0 && frame == o.frames - 1)) {
+      RgbImage shot{fb_w, fb_h, {}};
+      read_pixels(fb_w, fb_h, shot.rgb);
+      if (core::Status st = write_png(o.screenshot, shot); !st) return fail(st.error());
+    }
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    frame_figures.triangles = sync.triangles;
+    frame_figures.uploaded = sync.uploaded;
+    panel.draw(frame_figures, now);
+    if (!io.WantCaptureKeyboard) {
+      for (int k = GLFW_KEY_SPACE; k <= GLFW_KEY_LAST; ++k) {
+        if (!ImGui::IsKeyPressed(k, false)) continue;
+        const int mods = (io.KeyCtrl ? GLFW_MOD_CONTROL : 0) | (io.KeyShift ? GLFW_MOD_SHIFT : 0);
+        if (auto action = shortcut(k, mods)) controller.perform(*action, now);
+      }
+    }
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    glfwSwapBuffers(w);
+    figures.draw_ms += static_cast<double>(hal::monotonic_ns() - t_draw) * 1e-6;
+
+    controller.tick(hal::monotonic_ns());
+    const int64_t end = hal::monotonic_ns();
+    const double ms = static_cast<double>(end - now) * 1e-6;
+    figures.frame_ms.push_back(ms);
+    figures.uploads += sync.uploaded;
+    controller.lod().frame_done(ms);
+    frame_figures.frame_ms = 0.9 * frame_figures.frame_ms + 0.1 * ms;
+    frame_figures.fps = frame_figures.frame_ms > 0 ? 1000.0 / frame_figures.frame_ms : 0;
+    last_frame = now;
+  }
+
+  g_pointer = nullptr;
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  if (controller.recording()) {
+    if (core::Status st = controller.stop_recording(); !st) return fail(st.error());
+    std::printf("%s\n", controller.status().c_str());
+  }
+  controller.finish_autosave();
+  if (!o.stats.empty()) {
+    if (core::Status st = write_stats(o.stats, figures, controller); !st) return fail(st.error());
+  }
+  return 0;
+}
+
+}  // namespace sculpt::station
