@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   cli::add_replay_command(app, action);
   cli::add_session_command(app, action);
   cli::add_record_command(app, action);
+  cli::add_nurbs_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

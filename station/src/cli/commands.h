@@ -25,6 +25,7 @@ void add_stamp_command(CLI::App& app, Action& action);
 void add_replay_command(CLI::App& app, Action& action);
 void add_session_command(CLI::App& app, Action& action);
 void add_record_command(CLI::App& app, Action& action);
+void add_nurbs_command(CLI::App& app, Action& action);
 
 /// What `sculpt replay` (and the main job, which replays the demo) computes
 /// and writes; an empty path means "do not write it".
