@@ -34,6 +34,33 @@ void Brick::encode(std::span<const uint8_t> voxels, int edge, int levels) {
   pyramid_->encode(voxels);
 }
 
+void Brick::encode_region(std::span<const uint8_t> voxels, int edge, int levels,
+                          std::array<int, 3> lo, std::array<int, 3> hi) {
+  if (!pyramid_ || pyramid_->edge() != edge || pyramid_->levels() != levels) {
+    encode(voxels, edge, levels);  // uniform before: no coefficients to update
+    return;
+  }
+  // A detailed brick rarely turns uniform under one dab: stop at the first
+  // 64-byte block that is not all the first voxel (memcmp runs at the
+  // widest vectors the CPU has, and the scan is the dab's cost otherwise).
+  uint8_t pattern[64];
+  std::memset(pattern, voxels[0], sizeof pattern);
+  size_t i = 0;
+  while (i + sizeof pattern <= voxels.size() &&
+         std::memcmp(&voxels[i], pattern, sizeof pattern) == 0)
+    i += sizeof pattern;
+  const bool uniform =
+      i >= voxels.size() || (i + sizeof pattern > voxels.size() &&
+                             std::all_of(voxels.begin() + static_cast<std::ptrdiff_t>(i),
+                                         voxels.end(), [&](uint8_t v) { return v == voxels[0]; }));
+  if (uniform) {
+    value_ = voxels[0];
+    pyramid_.reset();
+    return;
+  }
+  pyramid_->encode_region(voxels, lo, hi);
+}
+
 void Brick::extract_level(int level, std::span<uint8_t> out) const {
   if (pyramid_) {
     pyramid_->extract_level(level, out);

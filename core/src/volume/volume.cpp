@@ -218,6 +218,26 @@ void Volume::store_brick(glm::ivec3 b, std::span<uint8_t> voxels) {
   }
 }
 
+void Volume::store_brick(glm::ivec3 b, std::span<uint8_t> voxels, const Box& changed) {
+  const Box box = brick_box(b);
+  const Box local = intersect(changed, box);
+  const int e = options_.brick_edge;
+  // A far-face brick's padding repeats its last voxels: a change there can
+  // reach beyond the box, so it takes the whole re-encode.
+  if (local.empty() || box.size() != glm::ivec3(e)) {
+    store_brick(b, voxels);
+    return;
+  }
+  const size_t i = brick_index(b);
+  const glm::ivec3 lo = local.lo - box.lo, hi = local.hi - box.lo;
+  bricks_[i].encode_region(voxels, e, options_.levels, {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
+  ++versions_[i];
+  if (!dirty_flags_[i]) {
+    dirty_flags_[i] = 1;
+    dirty_list_.push_back(static_cast<int64_t>(i));
+  }
+}
+
 void Volume::edit(
     const Box& region,
     const std::function<void(glm::ivec3 brick_origin, std::span<uint8_t> voxels)>& edit) {

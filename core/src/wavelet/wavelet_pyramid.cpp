@@ -1,6 +1,7 @@
 #include "sculpt/core/wavelet/wavelet_pyramid.h"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cstring>
 
@@ -23,6 +24,13 @@ template <class T>
 CubeView<T> compact(T* data, int n) {
   return {data, n, ptrdiff_t{n} * n};
 }
+
+// The 2x2x2 blocks of one level a step works on: [i0, i1) x [j0, j1) x
+// [k0, k1) in block (output) coordinates.
+struct BlockRange {
+  int i0, i1, j0, j1, k0, k1;
+  static BlockRange all(int h) { return {0, h, 0, h, 0, h}; }
+};
 
 // Lifting on int16 values: every intermediate fits (see the header's ranges),
 // and 16-bit lanes let the compiler put twice as many voxels in a vector.
@@ -104,22 +112,24 @@ inline void merge_row(const int16_t* __restrict low, const int16_t* __restrict h
 // band (L = 0, H = 1) or, before a step, the input row's (dy, dz).
 template <class Src>
 SCULPT_VECTOR_CLONES void forward_level(CubeView<const Src> src, int n, CubeView<int16_t> low,
-                                        CubeView<int16_t> bands) {
+                                        CubeView<int16_t> bands, BlockRange r) {
   const int h = n / 2;
+  const int w = r.i1 - r.i0, i0 = r.i0;
   alignas(64) int16_t lx[4][kMaxHalf], hx[4][kMaxHalf];  // x step of rows (dy,dz) = 00,10,01,11
   alignas(64) int16_t ll[2][kMaxHalf], lh[2][kMaxHalf], hl[2][kMaxHalf], hh[2][kMaxHalf];  // [dz]
-  for (int k = 0; k < h; ++k) {
-    for (int j = 0; j < h; ++j) {
-      for (int r = 0; r < 4; ++r)
-        split_row(src.row_ptr(2 * j + (r & 1), 2 * k + (r >> 1)), h, lx[r], hx[r]);
+  for (int k = r.k0; k < r.k1; ++k) {
+    for (int j = r.j0; j < r.j1; ++j) {
+      for (int q = 0; q < 4; ++q)
+        split_row(src.row_ptr(2 * j + (q & 1), 2 * k + (q >> 1)) + 2 * i0, w, lx[q], hx[q]);
       for (int dz = 0; dz < 2; ++dz) {
-        split_rows(lx[2 * dz], lx[2 * dz + 1], h, ll[dz], lh[dz]);
-        split_rows(hx[2 * dz], hx[2 * dz + 1], h, hl[dz], hh[dz]);
+        split_rows(lx[2 * dz], lx[2 * dz + 1], w, ll[dz], lh[dz]);
+        split_rows(hx[2 * dz], hx[2 * dz + 1], w, hl[dz], hh[dz]);
       }
-      split_rows(ll[0], ll[1], h, low.row_ptr(j, k), bands.row_ptr(j, k + h));
-      split_rows(hl[0], hl[1], h, bands.row_ptr(j, k) + h, bands.row_ptr(j, k + h) + h);
-      split_rows(lh[0], lh[1], h, bands.row_ptr(j + h, k), bands.row_ptr(j + h, k + h));
-      split_rows(hh[0], hh[1], h, bands.row_ptr(j + h, k) + h, bands.row_ptr(j + h, k + h) + h);
+      split_rows(ll[0], ll[1], w, low.row_ptr(j, k) + i0, bands.row_ptr(j, k + h) + i0);
+      split_rows(hl[0], hl[1], w, bands.row_ptr(j, k) + h + i0, bands.row_ptr(j, k + h) + h + i0);
+      split_rows(lh[0], lh[1], w, bands.row_ptr(j + h, k) + i0, bands.row_ptr(j + h, k + h) + i0);
+      split_rows(hh[0], hh[1], w, bands.row_ptr(j + h, k) + h + i0,
+                 bands.row_ptr(j + h, k + h) + h + i0);
     }
   }
 }
@@ -127,22 +137,24 @@ SCULPT_VECTOR_CLONES void forward_level(CubeView<const Src> src, int n, CubeView
 // The exact inverse of forward_level: the z, y, x steps undone in that order.
 template <class Dst>
 SCULPT_VECTOR_CLONES void inverse_level(CubeView<const int16_t> low, CubeView<const int16_t> bands,
-                                        int n, CubeView<Dst> dst) {
+                                        int n, CubeView<Dst> dst, BlockRange r) {
   const int h = n / 2;
+  const int w = r.i1 - r.i0, i0 = r.i0;
   alignas(64) int16_t ll[2][kMaxHalf], lh[2][kMaxHalf], hl[2][kMaxHalf], hh[2][kMaxHalf];
   alignas(64) int16_t lx[4][kMaxHalf], hx[4][kMaxHalf];
-  for (int k = 0; k < h; ++k) {
-    for (int j = 0; j < h; ++j) {
-      merge_rows(low.row_ptr(j, k), bands.row_ptr(j, k + h), h, ll[0], ll[1]);
-      merge_rows(bands.row_ptr(j, k) + h, bands.row_ptr(j, k + h) + h, h, hl[0], hl[1]);
-      merge_rows(bands.row_ptr(j + h, k), bands.row_ptr(j + h, k + h), h, lh[0], lh[1]);
-      merge_rows(bands.row_ptr(j + h, k) + h, bands.row_ptr(j + h, k + h) + h, h, hh[0], hh[1]);
+  for (int k = r.k0; k < r.k1; ++k) {
+    for (int j = r.j0; j < r.j1; ++j) {
+      merge_rows(low.row_ptr(j, k) + i0, bands.row_ptr(j, k + h) + i0, w, ll[0], ll[1]);
+      merge_rows(bands.row_ptr(j, k) + h + i0, bands.row_ptr(j, k + h) + h + i0, w, hl[0], hl[1]);
+      merge_rows(bands.row_ptr(j + h, k) + i0, bands.row_ptr(j + h, k + h) + i0, w, lh[0], lh[1]);
+      merge_rows(bands.row_ptr(j + h, k) + h + i0, bands.row_ptr(j + h, k + h) + h + i0, w, hh[0],
+                 hh[1]);
       for (int dz = 0; dz < 2; ++dz) {
-        merge_rows(ll[dz], lh[dz], h, lx[2 * dz], lx[2 * dz + 1]);
-        merge_rows(hl[dz], hh[dz], h, hx[2 * dz], hx[2 * dz + 1]);
+        merge_rows(ll[dz], lh[dz], w, lx[2 * dz], lx[2 * dz + 1]);
+        merge_rows(hl[dz], hh[dz], w, hx[2 * dz], hx[2 * dz + 1]);
       }
-      for (int r = 0; r < 4; ++r)
-        merge_row(lx[r], hx[r], h, dst.row_ptr(2 * j + (r & 1), 2 * k + (r >> 1)));
+      for (int q = 0; q < 4; ++q)
+        merge_row(lx[q], hx[q], w, dst.row_ptr(2 * j + (q & 1), 2 * k + (q >> 1)) + 2 * i0);
     }
   }
 }
@@ -189,9 +201,11 @@ void WaveletPyramid::encode(std::span<const uint8_t> voxels) {
   s.reserve(e);
   int16_t* cur = s.a.data();
   int16_t* next = s.b.data();
-  forward_level<uint8_t>({voxels.data(), e, ptrdiff_t{e} * e}, e, compact(cur, e / 2), all);
+  forward_level<uint8_t>({voxels.data(), e, ptrdiff_t{e} * e}, e, compact(cur, e / 2), all,
+                         BlockRange::all(e / 2));
   for (int l = 2, n = e / 2; l <= levels_; ++l, n /= 2) {
-    forward_level<int16_t>(compact<const int16_t>(cur, n), n, compact(next, n / 2), all);
+    forward_level<int16_t>(compact<const int16_t>(cur, n), n, compact(next, n / 2), all,
+                           BlockRange::all(n / 2));
     std::swap(cur, next);
   }
   // The coarsest low-pass block goes to the corner of the layout.
@@ -199,6 +213,63 @@ void WaveletPyramid::encode(std::span<const uint8_t> voxels) {
   for (int z = 0; z < m; ++z)
     for (int y = 0; y < m; ++y)
       std::memcpy(all.row_ptr(y, z), cur + (z * m + y) * m, m * sizeof(int16_t));
+}
+
+void WaveletPyramid::encode_region(std::span<const uint8_t> voxels, std::array<int, 3> lo,
+                                   std::array<int, 3> hi) {
+  assert(voxels.size() == coefficients_.size());
+  const int e = edge_;
+  const CubeView<int16_t> all{coefficients_.data(), e, ptrdiff_t{e} * e};
+  for (int a = 0; a < 3; ++a)
+    assert(0 <= lo[a] && lo[a] < hi[a] && hi[a] <= e);
+  if (levels_ == 0) {
+    for (int z = lo[2]; z < hi[2]; ++z)
+      for (int y = lo[1]; y < hi[1]; ++y)
+        for (int x = lo[0]; x < hi[0]; ++x)
+          all.row_ptr(y, z)[x] = voxels[(static_cast<size_t>(z) * e + y) * e + x];
+    return;
+  }
+  // The level-l blocks holding a changed voxel.
+  auto blocks = [&](int l) {
+    return BlockRange{lo[0] >> l, ((hi[0] - 1) >> l) + 1, lo[1] >> l, ((hi[1] - 1) >> l) + 1,
+                      lo[2] >> l, ((hi[2] - 1) >> l) + 1};
+  };
+  // Low-pass cubes of levels 1..L (lows[l], (e >> l)^3), filled only where
+  // needed.
+  thread_local std::vector<int16_t> lows[8];
+  for (int l = 1; l <= levels_; ++l) {
+    const size_t n = static_cast<size_t>(e >> l);
+    if (lows[l].size() < n * n * n) lows[l].resize(n * n * n);
+  }
+  // Top down: the old level l-1 low-pass values of the changed level-l
+  // blocks, by the inverse step from the stored pyramid. Outside the
+  // changed level-(l-1) blocks they are still valid (Haar supports of one
+  // level never overlap), and the forward step of level l needs them.
+  const int m = e >> levels_;
+  for (int z = 0; z < m; ++z)
+    for (int y = 0; y < m; ++y)
+      std::memcpy(&lows[levels_][(static_cast<size_t>(z) * m + y) * m], all.row_ptr(y, z),
+                  static_cast<size_t>(m) * sizeof(int16_t));
+  for (int l = levels_; l >= 2; --l) {
+    const int n = e >> (l - 1);
+    inverse_level<int16_t>(compact<const int16_t>(lows[l].data(), n / 2),
+                           {all.data, all.row, all.slice}, n, compact(lows[l - 1].data(), n),
+                           blocks(l));
+  }
+  // Bottom up: the forward steps over the changed blocks only, each level
+  // reading the new low-pass values below it where they changed and the old
+  // ones around them.
+  forward_level<uint8_t>({voxels.data(), e, ptrdiff_t{e} * e}, e, compact(lows[1].data(), e / 2),
+                         all, blocks(1));
+  for (int l = 2; l <= levels_; ++l) {
+    const int n = e >> (l - 1);
+    forward_level<int16_t>(compact<const int16_t>(lows[l - 1].data(), n), n,
+                           compact(lows[l].data(), n / 2), all, blocks(l));
+  }
+  for (int z = 0; z < m; ++z)
+    for (int y = 0; y < m; ++y)
+      std::memcpy(all.row_ptr(y, z), &lows[levels_][(static_cast<size_t>(z) * m + y) * m],
+                  static_cast<size_t>(m) * sizeof(int16_t));
 }
 
 void WaveletPyramid::extract_level(int level, std::span<uint8_t> out) const {
@@ -221,11 +292,11 @@ void WaveletPyramid::extract_level(int level, std::span<uint8_t> out) const {
   int16_t* cur = s.a.data();
   int16_t* next = s.b.data();
   for (int l = levels_, n = e >> (levels_ - 1); l > level + 1; --l, n *= 2) {
-    inverse_level<int16_t>(low, all, n, compact(cur, n));
+    inverse_level<int16_t>(low, all, n, compact(cur, n), BlockRange::all(n / 2));
     low = compact<const int16_t>(cur, n);
     std::swap(cur, next);
   }
-  inverse_level<uint8_t>(low, all, m, compact(out.data(), m));
+  inverse_level<uint8_t>(low, all, m, compact(out.data(), m), BlockRange::all(m / 2));
 }
 
 void WaveletPyramid::decode(std::span<uint8_t> voxels) const {

@@ -2,6 +2,7 @@
 // One brick of the volume: either uniform (one value, O(1) memory) or the
 // lossless Haar pyramid of its voxels (DESIGN.md §4).
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -22,6 +23,12 @@ class Brick {
   /// Encodes `voxels` (edge^3, x fastest): uniform when every voxel is equal.
   /// Reuses this brick's pyramid storage when it has one.
   void encode(std::span<const uint8_t> voxels, int edge, int levels);
+  /// The same result as encode() when `voxels` differ from the brick's
+  /// current voxels only inside [lo, hi) (brick-local voxel coordinates):
+  /// a detailed brick that stays detailed re-encodes only the coefficients
+  /// over that box (WaveletPyramid::encode_region).
+  void encode_region(std::span<const uint8_t> voxels, int edge, int levels, std::array<int, 3> lo,
+                     std::array<int, 3> hi);
   /// Reconstructs level `level` ((edge >> level)^3 values).
   void extract_level(int level, std::span<uint8_t> out) const;
 

@@ -97,6 +97,10 @@ class Volume {
   /// Stores the full-resolution voxels of brick `b` (edge^3, x fastest):
   /// re-encodes it, re-pads its out-of-volume part, and marks it dirty.
   void store_brick(glm::ivec3 b, std::span<uint8_t> voxels);
+  /// store_brick() for voxels that differ from the stored ones only inside
+  /// `changed` (level-0 volume coordinates): re-encodes only the wavelet
+  /// coefficients over that part of the brick. Same stored result.
+  void store_brick(glm::ivec3 b, std::span<uint8_t> voxels, const Box& changed);
   /// Calls `edit(brick_origin, voxels)` on each brick overlapping `region`
   /// with its decoded voxels (edge^3, x fastest; brick_origin is the voxel
   /// index of voxels[0]), then stores it back. The path every sculpting

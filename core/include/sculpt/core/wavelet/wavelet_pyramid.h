@@ -16,6 +16,7 @@
 // high-pass steps lies in [-255 * 2^(k-1), 255 * 2^(k-1)], at most +-1020,
 // so int16 holds every coefficient.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -37,6 +38,14 @@ class WaveletPyramid {
 
   /// Decomposes `voxels` (edge^3, x fastest) into this pyramid.
   void encode(std::span<const uint8_t> voxels);
+  /// Brings the pyramid up to date with `voxels` (edge^3, x fastest) when
+  /// they differ from the ones it holds only inside the box [lo, hi) (voxel
+  /// coordinates, x y z, non-empty): recomputes only the coefficients whose
+  /// support meets the box, level by level (plus the inverse steps that
+  /// recover the unchanged low-pass values around it), so the cost follows
+  /// the box rather than the brick. The result equals encode(voxels)
+  /// coefficient for coefficient.
+  void encode_region(std::span<const uint8_t> voxels, std::array<int, 3> lo, std::array<int, 3> hi);
   /// Reconstructs the voxels exactly (edge^3, x fastest).
   void decode(std::span<uint8_t> voxels) const;
   /// The low-pass cube of `level` (0 = the voxels themselves): (edge >> level)^3
