@@ -21,6 +21,11 @@ int main(int argc, char** argv) {
   cli::add_replay_command(app, action);
   cli::add_session_command(app, action);
   cli::add_record_command(app, action);
+  cli::add_distance_command(app, action);
+  cli::add_voxelize_command(app, action);
+  cli::add_close_command(app, action);
+  cli::add_offset_command(app, action);
+  cli::add_contours_command(app, action);
   cli::add_nurbs_command(app, action);
   try {
     app.parse(argc, argv);

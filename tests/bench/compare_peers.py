@@ -2,7 +2,7 @@
 """Runs the project's benchmarks and the peer libraries in one session and prints the ratios.
 
 Usage: tests/bench/compare_peers.py [--sculpt build/bin/sculpt] [--peers ../shared/bench/peers.py] [WORKLOAD ...]
-Workloads: haar (issue 2), mc (issue 4), rot (issue 3).
+Workloads: haar (issue 2), mc (issue 4), rot (issue 3), edt and sdf (issue 8).
 Needs Debian's python3 peer packages: scripts/install-deps.sh --peers
 """
 import argparse, json, re, statistics, subprocess, sys, time
@@ -91,7 +91,37 @@ def rot(args):
         print(f"| {m_}^3 | {near * 1e6:.1f} us | {tri * 1e6:.1f} us | {100 * (tri / near - 1):+.0f}% | {sp * 1e3:.3f} ms | {sp / tri:.0f}x |")
 
 
-WORKLOADS = {"haar": haar, "mc": mc, "rot": rot}
+def edt(args):
+    ours = sculpt_bench(args.sculpt, "BM_DistanceEdt/n:(128|256)/threads:[01]")
+    text = peers(args.peers, "edt", "128,256")
+    print(text.rstrip())
+    print()
+    print("| workload | sculpt | scipy distance_transform_edt | ratio |")
+    print("|---|---:|---:|---:|")
+    for n in (128, 256):
+        m = re.search(rf"edt   scipy distance_transform_edt {n}\^3: ([0-9.]+) s", text)
+        sp = float(m.group(1))
+        for threads, label in ((1, "1 thread"), (0, "all threads")):
+            o = ours[f"BM_DistanceEdt/n:{n}/threads:{threads}"]
+            print(f"| exact EDT of (sphere > 127) {n}^3 ({label}) | {o * 1e3:.1f} ms | {sp * 1e3:.0f} ms | {sp / o:.0f}x |")
+
+
+def sdf(args):
+    out = subprocess.run([args.sculpt, "bench", "--json", "--filter", "BM_DistanceSdfNarrowBand/"], check=True, capture_output=True, text=True).stdout
+    text = peers(args.peers, "sdf", "128")
+    print(text.rstrip())
+    vdb = float(re.search(r"meshToLevelSet .*: ([0-9.]+) s", text).group(1))
+    print()
+    print("| workload | sculpt | OpenVDB meshToLevelSet | ratio | max error vs brute (voxels) |")
+    print("|---|---:|---:|---:|---:|")
+    for b in json.loads(out)["benchmarks"]:
+        unit = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
+        o = b["real_time"] * unit
+        label = "1 thread" if "/threads:1" in b["name"] else "all threads"
+        print(f"| narrow band 3, {int(b['triangles'])} triangles, 256^3 ({label}) | {o * 1e3:.0f} ms | {vdb * 1e3:.0f} ms | {vdb / o:.2f}x | {b['max_err_vs_brute']:.2g} |")
+
+
+WORKLOADS = {"haar": haar, "mc": mc, "rot": rot, "edt": edt, "sdf": sdf}
 
 
 def main():

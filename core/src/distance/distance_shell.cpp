@@ -9,28 +9,40 @@
 namespace sculpt::core {
 namespace {
 
-// Sets `out` (value v where unset) at every 26-neighbour (and the voxel) of
-// each voxel of `in` equal to `from`. Per z-slice in parallel, reading only
-// `in`, so threads never race: each writes its own slice.
+// Sets `out` to v (where it is 0) at each voxel within the 3x3x3 cube
+// around a voxel of `in` equal to `from`. The cube is separable: a 3-wide
+// running "any" along x, then y, then z, each per z-slice or per row in
+// parallel.
 void dilate26(const DenseGrid<uint8_t>& in, uint8_t from, DenseGrid<uint8_t>& out, uint8_t v,
               int threads) {
   const glm::ivec3 d = in.dims();
+  DenseGrid<uint8_t> a(d, 0), b(d, 0);
+  const size_t sx = 1, sy = size_t(d.x), sz = size_t(d.x) * d.y;
   parallel_for(
       d.z,
-      [&](int64_t zz) {
-        const int z = int(zz);
-        for (int y = 0; y < d.y; ++y)
+      [&](int64_t z) {
+        for (int y = 0; y < d.y; ++y) {
+          const size_t r = size_t(z) * sz + size_t(y) * sy;
           for (int x = 0; x < d.x; ++x) {
-            if (out.at(x, y, z) != 0) continue;
-            bool hit = false;
-            for (int dz = -1; dz <= 1 && !hit; ++dz)
-              for (int dy = -1; dy <= 1 && !hit; ++dy)
-                for (int dx = -1; dx <= 1 && !hit; ++dx) {
-                  const int a = x + dx, b = y + dy, c = z + dz;
-                  hit = in.in_bounds(a, b, c) && in.at(a, b, c) == from;
-                }
-            if (hit) out.at(x, y, z) = v;
+            const bool hit = in[r + x] == from || (x > 0 && in[r + x - sx] == from) ||
+                             (x + 1 < d.x && in[r + x + sx] == from);
+            a[r + x] = hit;
           }
+        }
+        for (int y = 0; y < d.y; ++y) {
+          const size_t r = size_t(z) * sz + size_t(y) * sy;
+          for (int x = 0; x < d.x; ++x)
+            b[r + x] = a[r + x] | (y > 0 ? a[r + x - sy] : 0) | (y + 1 < d.y ? a[r + x + sy] : 0);
+        }
+      },
+      threads);
+  parallel_for(
+      d.z,
+      [&](int64_t z) {
+        for (size_t i = size_t(z) * sz; i < size_t(z + 1) * sz; ++i) {
+          const bool hit = b[i] | (z > 0 ? b[i - sz] : 0) | (z + 1 < d.z ? b[i + sz] : 0);
+          if (hit && out[i] == 0) out[i] = v;
+        }
       },
       threads);
 }

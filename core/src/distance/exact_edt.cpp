@@ -103,13 +103,30 @@ template <bool kFeatures>
 void envelope_block(float* dist, int32_t* feat, size_t base, int width, int n, size_t stride,
                     bool take_sqrt) {
   Scratch& s = scratch(n);
+  // Zeros (seeds) at both ends of a column hide everything beyond them: a
+  // voxel between two zeros is nearer to one of them than to any zero
+  // farther out. So only the span from the zero before the first non-zero
+  // value to the zero after the last one runs the envelope; the ends stay
+  // zero. Columns all zero (most columns outside an object) skip it.
+  int first[kBlock], last[kBlock];
+  for (int j = 0; j < width; ++j)
+    first[j] = n, last[j] = -1;
   for (int i = 0; i < n; ++i) {
     const size_t row = base + size_t(i) * stride;
     for (int j = 0; j < width; ++j) {
-      s.f[size_t(j) * n + i] = dist[row + j];
+      const float v = dist[row + j];
+      s.f[size_t(j) * n + i] = v;
+      if (v != 0.0f) {
+        first[j] = std::min(first[j], i);
+        last[j] = i;
+      }
       if constexpr (kFeatures) s.g[size_t(j) * n + i] = feat[row + j];
     }
   }
+  bool any = false;
+  for (int j = 0; j < width; ++j)
+    any = any || last[j] >= 0;
+  if (!any) return;  // zeros stay zeros (and their square roots), features stay
   int* arg = nullptr;
   thread_local std::vector<int> args;
   if constexpr (kFeatures) {
@@ -118,12 +135,18 @@ void envelope_block(float* dist, int32_t* feat, size_t base, int width, int n, s
   }
   for (int j = 0; j < width; ++j) {
     float* d = &s.d[size_t(j) * n];
-    envelope_1d<kFeatures>(&s.f[size_t(j) * n], n, d, arg, s.v.data(), s.z.data());
+    const float* f = &s.f[size_t(j) * n];
+    std::copy(f, f + n, d);  // zeros (and, for all-zero columns, everything)
+    if constexpr (kFeatures)
+      std::copy(&s.g[size_t(j) * n], &s.g[size_t(j) * n] + n, &s.h[size_t(j) * n]);
+    if (last[j] < 0) continue;
+    const int lo = std::max(0, first[j] - 1), hi = std::min(n - 1, last[j] + 1);
+    envelope_1d<kFeatures>(f + lo, hi - lo + 1, d + lo, arg, s.v.data(), s.z.data());
     if constexpr (kFeatures) {
       const int32_t* g = &s.g[size_t(j) * n];
       int32_t* h = &s.h[size_t(j) * n];
-      for (int i = 0; i < n; ++i)
-        h[i] = arg[i] < 0 ? -1 : g[arg[i]];
+      for (int i = 0; i <= hi - lo; ++i)
+        h[lo + i] = arg[i] < 0 ? -1 : g[lo + arg[i]];
     }
   }
   for (int i = 0; i < n; ++i) {

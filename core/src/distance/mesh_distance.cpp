@@ -17,6 +17,44 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
+// Squared distance from p to triangle (a, a + ab, a + ac): the region tests
+// of closest_point_on_triangle, inlined here because the narrow band calls it
+// tens of millions of times and needs only the distance.
+inline float triangle_distance2(glm::vec3 p, glm::vec3 a, glm::vec3 ab, glm::vec3 ac) {
+  const glm::vec3 ap = p - a;
+  const float d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0.0f && d2 <= 0.0f) return glm::dot(ap, ap);
+  const glm::vec3 bp = ap - ab;
+  const float d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0.0f && d4 <= d3) return glm::dot(bp, bp);
+  const float vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) {
+    const float den = d1 - d3;
+    const glm::vec3 q = ap - (den > 0.0f ? d1 / den : 0.0f) * ab;
+    return glm::dot(q, q);
+  }
+  const glm::vec3 cp = ap - ac;
+  const float d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0.0f && d5 <= d6) return glm::dot(cp, cp);
+  const float vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) {
+    const float den = d2 - d6;
+    const glm::vec3 q = ap - (den > 0.0f ? d2 / den : 0.0f) * ac;
+    return glm::dot(q, q);
+  }
+  const float va = d3 * d6 - d5 * d4;
+  if (va <= 0.0f && (d4 - d3) >= 0.0f && (d5 - d6) >= 0.0f) {
+    const float den = (d4 - d3) + (d5 - d6);
+    const glm::vec3 q = bp - (den > 0.0f ? (d4 - d3) / den : 0.0f) * (ac - ab);
+    return glm::dot(q, q);
+  }
+  const float sum = va + vb + vc;
+  if (!(sum > 0.0f)) return point_triangle_distance_squared(p, a, a + ab, a + ac);
+  const float inv = 1.0f / sum;
+  const glm::vec3 q = ap - ab * (vb * inv) - ac * (vc * inv);
+  return glm::dot(q, q);
+}
+
 float corner_angle(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
   const glm::vec3 u = b - a, v = c - a;
   const float lu = glm::length(u), lv = glm::length(v);
@@ -142,20 +180,32 @@ NarrowBand mesh_narrow_band(const MeshDistance& md, glm::ivec3 dims,
           const glm::ivec3 ilo = glm::max(glm::ivec3(glm::ceil(lo)), glm::ivec3(0, 0, z0));
           const glm::ivec3 ihi =
               glm::min(glm::ivec3(glm::floor(hi)), glm::ivec3(dims.x - 1, dims.y - 1, z1 - 1));
-          // Plane test first: most voxels of the box are off the plane by
-          // more than the band and are rejected with one dot product.
-          const glm::vec3 n = glm::cross(b - a, c - a);
+          // Only voxels within band of the triangle's bounding ball can be
+          // in its band: per row, the x-range where the row meets that
+          // ball; then the plane test rejects with one dot product.
+          const glm::vec3 centre = (a + b + c) / 3.0f;
+          const float ball = band + std::sqrt(std::max({glm::dot(a - centre, a - centre),
+                                                        glm::dot(b - centre, b - centre),
+                                                        glm::dot(c - centre, c - centre)}));
+          const glm::vec3 ab = b - a, ac = c - a;
+          const glm::vec3 n = glm::cross(ab, ac);
           const float nlen = glm::length(n);
           const glm::vec3 un = nlen > 0.0f ? n / nlen : glm::vec3(0.0f);
           for (int z = ilo.z; z <= ihi.z; ++z)
             for (int y = ilo.y; y <= ihi.y; ++y) {
+              const float dy = float(y) - centre.y, dz = float(z) - centre.z;
+              const float rest = ball * ball - dy * dy - dz * dz;
+              if (rest < 0.0f) continue;
+              const float half = std::sqrt(rest);
+              const int x0 = std::max(ilo.x, int(std::ceil(centre.x - half)));
+              const int x1 = std::min(ihi.x, int(std::floor(centre.x + half)));
               const size_t row = dist.index(0, y, z);
-              for (int x = ilo.x; x <= ihi.x; ++x) {
+              for (int x = x0; x <= x1; ++x) {
                 const glm::vec3 p{float(x), float(y), float(z)};
                 const float h = glm::dot(p - a, un);
                 const float cur = std::min(dist[row + x], band2);
-                if (h * h > cur) continue;
-                const float d2 = point_triangle_distance_squared(p, a, b, c);
+                if (h * h >= cur) continue;
+                const float d2 = triangle_distance2(p, a, ab, ac);
                 // Strictly nearer only: ties keep the first triangle in
                 // bucket order, the same for any thread count.
                 if (d2 < cur) {

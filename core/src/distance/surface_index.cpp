@@ -1,9 +1,11 @@
 #include "sculpt/core/distance/surface_index.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include "sculpt/core/distance/point_triangle.h"
 #include "sculpt/core/util/parallel_for.h"
@@ -35,9 +37,16 @@ SurfaceIndex::SurfaceIndex(const DenseGrid<float>& phi, int threads) {
   for (const auto& s : slabs)
     total += s.size();
   triangles_.reserve(total);
+  bounds_.reserve(total);
   int32_t next = 0;
   for (int z = 0; z < cell_dims_.z; ++z) {
     triangles_.insert(triangles_.end(), slabs[z].begin(), slabs[z].end());
+    for (const Triangle3& t : slabs[z]) {
+      const glm::vec3 c = (t.a + t.b + t.c) / 3.0f;
+      const float r = std::sqrt(std::max(
+          {glm::dot(t.a - c, t.a - c), glm::dot(t.b - c, t.b - c), glm::dot(t.c - c, t.c - c)}));
+      bounds_.emplace_back(c, r);
+    }
     for (int y = 0; y < cell_dims_.y; ++y)
       for (int x = 0; x < cell_dims_.x; ++x) {
         const size_t i = first_.index(x, y, z);
@@ -50,6 +59,7 @@ SurfaceIndex::SurfaceIndex(const DenseGrid<float>& phi, int threads) {
 SurfaceIndex::Nearest SurfaceIndex::nearest(glm::ivec3 p, int max_radius) const {
   Nearest best{glm::vec3(0.0f), std::numeric_limits<float>::infinity()};
   const glm::vec3 pf(p);
+  float best_dist = std::numeric_limits<float>::infinity();
   // Ring r: cells with lower corner in [p - r, p + r - 1] but not in ring
   // r - 1. Every point of such a cell is at least r - 1 voxels from p.
   for (int r = 1; r <= max_radius; ++r) {
@@ -70,12 +80,22 @@ SurfaceIndex::Nearest SurfaceIndex::nearest(glm::ivec3 p, int max_radius) const 
           }
           const size_t i = first_.index(x, y, z);
           const uint8_t n = count_[i];
+          if (n == 0) continue;
+          // A cell's box farther than the best point so far cannot help;
+          // this keeps the search to the ball of the answer's radius.
+          const glm::vec3 lo{float(x), float(y), float(z)};
+          if (point_box_distance_squared(pf, lo, lo + 1.0f) >= best.distance_squared) continue;
           const Triangle3* t = triangles_.data() + first_[i];
+          const glm::vec4* ball = bounds_.data() + first_[i];
           for (uint8_t k = 0; k < n; ++k) {
+            const glm::vec3 dc = pf - glm::vec3(ball[k]);
+            const float reach = best_dist + ball[k].w;
+            if (glm::dot(dc, dc) >= reach * reach) continue;
             const ClosestPoint c = closest_point_on_triangle(pf, t[k].a, t[k].b, t[k].c);
             if (c.distance_squared < best.distance_squared) {
               best.distance_squared = c.distance_squared;
               best.point = c.point;
+              best_dist = std::sqrt(c.distance_squared);
             }
           }
         }

@@ -25,6 +25,11 @@ void add_stamp_command(CLI::App& app, Action& action);
 void add_replay_command(CLI::App& app, Action& action);
 void add_session_command(CLI::App& app, Action& action);
 void add_record_command(CLI::App& app, Action& action);
+void add_distance_command(CLI::App& app, Action& action);
+void add_voxelize_command(CLI::App& app, Action& action);
+void add_close_command(CLI::App& app, Action& action);
+void add_offset_command(CLI::App& app, Action& action);
+void add_contours_command(CLI::App& app, Action& action);
 void add_nurbs_command(CLI::App& app, Action& action);
 
 /// What `sculpt replay` (and the main job, which replays the demo) computes

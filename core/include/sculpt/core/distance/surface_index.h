@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "sculpt/core/distance/iso_triangulation.h"
 #include "sculpt/core/grid/dense_grid.h"
@@ -41,6 +42,8 @@ class SurfaceIndex {
  private:
   glm::ivec3 cell_dims_{0};
   std::vector<Triangle3> triangles_;
+  /// Per triangle: centre and radius of a ball holding it (cheap rejection).
+  std::vector<glm::vec4> bounds_;
   DenseGrid<int32_t> first_;
   DenseGrid<uint8_t> count_;
 };

@@ -1,0 +1,35 @@
+#include "sculpt/core/distance/mesh_reader.h"
+
+#include <gtest/gtest.h>
+
+namespace sculpt::core {
+namespace {
+
+const std::string kData = SCULPT_TEST_DATA_DIR "/distance/";
+
+TEST(MeshReader, ReadsObjPlyAndStlAsTheSameClosedMesh) {
+  for (const char* name : {"octahedron.obj", "octahedron.ply", "octahedron.stl"}) {
+    auto m = read_mesh(kData + name);
+    ASSERT_TRUE(m.ok()) << m.error().message();
+    EXPECT_EQ(m->positions.size(), 6u) << name;
+    EXPECT_EQ(m->triangles.size(), 8u) << name;
+    EXPECT_TRUE(check_topology(*m).manifold()) << name;
+    EXPECT_GT(enclosed_volume(*m), 1.3) << name;  // 4/3, facing outward
+  }
+}
+
+TEST(MeshReader, ErrorsNameTheFileAndWhat) {
+  auto bad = read_mesh(kData + "bad_index.obj");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message().find("bad_index.obj: line 4"), std::string::npos)
+      << bad.error().message();
+  auto ext = read_mesh(kData + "branching.contours");
+  ASSERT_FALSE(ext.ok());
+  EXPECT_NE(ext.error().message().find("unknown mesh extension"), std::string::npos);
+  auto none = read_mesh(kData + "none.obj");
+  ASSERT_FALSE(none.ok());
+  EXPECT_NE(none.error().message().find("cannot open"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sculpt::core
