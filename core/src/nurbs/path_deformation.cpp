@@ -146,6 +146,7 @@ PathStep PathDeformation::rigid_step(int k, glm::dvec3 e, std::optional<glm::dve
     p += e;
     r.moved.push_back(i);
   }
+  r.motion = RigidMotion{turn ? rot : glm::dmat3(1.0), pivot, e};
   ++done_steps_;
   return r;
 }

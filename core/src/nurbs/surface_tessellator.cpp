@@ -1,6 +1,8 @@
-// Patch-wise tessellation with cached basis functions: a deformation step of
-// the path constraint moves a handful of control points, so re-evaluating only
-// the patches they reach keeps a 100-step path well inside a frame.
+// Patch-wise tessellation with cached basis functions. A step of the path
+// constraint moves hundreds of control points of a refined sheet rigidly, so
+// re-evaluating every vertex they reach would cost a 100-step path tens of
+// milliseconds; moving the vertices whose whole support moved by the same
+// rigid motion, and evaluating only the rim, keeps it to a few.
 
 #include "sculpt/core/nurbs/surface_tessellator.h"
 
@@ -17,29 +19,45 @@ SurfaceTessellator::SurfaceTessellator(const NurbsSurface& surface, int samples_
   rebuild(surface);
 }
 
+SurfaceTessellator SurfaceTessellator::with_cells(const NurbsSurface& surface, int cells_u,
+                                                  int cells_v) {
+  SurfaceTessellator t;
+  t.per_span_ = 0;
+  t.cells_u_ = std::max(1, cells_u);
+  t.cells_v_ = std::max(1, cells_v);
+  t.rebuild(surface);
+  return t;
+}
+
 void SurfaceTessellator::build_axis(const std::vector<double>& knots, int degree, int count,
-                                    std::vector<AxisSample>& axis, std::vector<int>& spans) {
+                                    int cells, std::vector<AxisSample>& axis,
+                                    std::vector<int>& spans) {
   axis.clear();
   spans.clear();
   for (int s = degree; s < count; ++s) {
     if (knots[static_cast<size_t>(s)] < knots[static_cast<size_t>(s + 1)]) spans.push_back(s);
   }
   const size_t w = static_cast<size_t>(degree + 1);
-  std::vector<double> nd(2 * w);
+  std::array<double, 2 * (kMaxDegree + 1)> nd{};
   auto add = [&](double t, int span) {
     basis_derivatives(knots, degree, span, t, 1, nd.data());
     AxisSample a;
     a.t = t;
     a.span = span;
-    a.n.assign(nd.begin(), nd.begin() + static_cast<ptrdiff_t>(w));
-    a.dn.assign(nd.begin() + static_cast<ptrdiff_t>(w), nd.end());
-    axis.push_back(std::move(a));
+    std::copy(nd.begin(), nd.begin() + static_cast<ptrdiff_t>(w), a.n.begin());
+    std::copy(nd.begin() + static_cast<ptrdiff_t>(w), nd.begin() + static_cast<ptrdiff_t>(2 * w),
+              a.dn.begin());
+    axis.push_back(a);
   };
+  const double domain = knots[static_cast<size_t>(count)] - knots[static_cast<size_t>(degree)];
   for (int s : spans) {
     const double lo = knots[static_cast<size_t>(s)];
     const double hi = knots[static_cast<size_t>(s + 1)];
-    for (int k = 0; k < per_span_; ++k)
-      add(lo + (hi - lo) * k / per_span_, s);
+    const int n = cells > 0 ? std::max(1, static_cast<int>(std::lround(cells * (hi - lo) / domain)))
+                            : per_span_;
+    for (int k = 0; k < n; ++k) {
+      add(lo + (hi - lo) * k / n, s);
+    }
   }
   // The domain's end is evaluated in the last span (one-sided limit).
   add(knots[static_cast<size_t>(spans.back() + 1)], spans.back());
@@ -55,12 +73,15 @@ void SurfaceTessellator::rebuild(const NurbsSurface& s) {
   pw_.resize(static_cast<size_t>(s.point_count()));
   for (int k = 0; k < s.point_count(); ++k)
     pw_[static_cast<size_t>(k)] = homogeneous(s, k);
-  build_axis(knots_u_, degree_u_, count_u_, axis_u_, spans_u_);
-  build_axis(knots_v_, degree_v_, count_v_, axis_v_, spans_v_);
+  build_axis(knots_u_, degree_u_, count_u_, cells_u_, axis_u_, spans_u_);
+  build_axis(knots_v_, degree_v_, count_v_, cells_v_, axis_v_, spans_v_);
   const int nu = vertices_u();
   const int nv = vertices_v();
-  mesh_.positions.assign(static_cast<size_t>(nu * nv), glm::vec3(0.0f));
-  mesh_.normals.assign(static_cast<size_t>(nu * nv), glm::vec3(0.0f, 0.0f, 1.0f));
+  const size_t n = static_cast<size_t>(nu) * static_cast<size_t>(nv);
+  positions_.assign(n, glm::dvec3(0.0));
+  normals_.assign(n, glm::dvec3(0.0, 0.0, 1.0));
+  mesh_.positions.assign(n, glm::vec3(0.0f));
+  mesh_.normals.assign(n, glm::vec3(0.0f, 0.0f, 1.0f));
   mesh_.triangles.clear();
   mesh_.triangles.reserve(static_cast<size_t>(2 * (nu - 1) * (nv - 1)));
   for (int b = 0; b + 1 < nv; ++b) {
@@ -74,37 +95,51 @@ void SurfaceTessellator::rebuild(const NurbsSurface& s) {
     }
   }
   for (int b = 0; b < nv; ++b) {
-    for (int a = 0; a < nu; ++a)
+    prepare_row(b, 0, count_u_ - 1);
+    for (int a = 0; a < nu; ++a) {
       evaluate_vertex(a, b);
+    }
   }
-  dirty_.assign(static_cast<size_t>(patch_count()), 0);
-  patches_evaluated_ += patch_count();
+  moved_sum_.assign(static_cast<size_t>((count_u_ + 1) * (count_v_ + 1)), 0);
+}
+
+void SurfaceTessellator::prepare_row(int b, int first, int last) {
+  const AxisSample& sv = axis_v_[static_cast<size_t>(b)];
+  const int j0 = sv.span - degree_v_;
+  row_q_.resize(static_cast<size_t>(count_u_));
+  row_dq_.resize(static_cast<size_t>(count_u_));
+  for (int i = first; i <= last; ++i) {
+    glm::dvec4 q(0.0), dq(0.0);
+    for (int y = 0; y <= degree_v_; ++y) {
+      const glm::dvec4& pw = pw_[static_cast<size_t>(i + count_u_ * (j0 + y))];
+      q += sv.n[static_cast<size_t>(y)] * pw;
+      dq += sv.dn[static_cast<size_t>(y)] * pw;
+    }
+    row_q_[static_cast<size_t>(i)] = q;
+    row_dq_[static_cast<size_t>(i)] = dq;
+  }
 }
 
 void SurfaceTessellator::evaluate_vertex(int a, int b) {
+  // Homogeneous S, dS/du, dS/dv from the contracted row (prepare_row).
   const AxisSample& su = axis_u_[static_cast<size_t>(a)];
-  const AxisSample& sv = axis_v_[static_cast<size_t>(b)];
-  glm::dvec4 s(0.0), du(0.0), dv(0.0);
   const int i0 = su.span - degree_u_;
-  const int j0 = sv.span - degree_v_;
-  for (int y = 0; y <= degree_v_; ++y) {
-    const glm::dvec4* row = &pw_[static_cast<size_t>(i0 + count_u_ * (j0 + y))];
-    glm::dvec4 r0(0.0), r1(0.0);
-    for (int x = 0; x <= degree_u_; ++x) {
-      r0 += su.n[static_cast<size_t>(x)] * row[x];
-      r1 += su.dn[static_cast<size_t>(x)] * row[x];
-    }
-    s += sv.n[static_cast<size_t>(y)] * r0;
-    du += sv.n[static_cast<size_t>(y)] * r1;
-    dv += sv.dn[static_cast<size_t>(y)] * r0;
+  glm::dvec4 s(0.0), du(0.0), dv(0.0);
+  for (int x = 0; x <= degree_u_; ++x) {
+    const glm::dvec4& q = row_q_[static_cast<size_t>(i0 + x)];
+    s += su.n[static_cast<size_t>(x)] * q;
+    du += su.dn[static_cast<size_t>(x)] * q;
+    dv += su.n[static_cast<size_t>(x)] * row_dq_[static_cast<size_t>(i0 + x)];
   }
-  const glm::dvec3 p = glm::dvec3(s) / s.w;
-  const glm::dvec3 pu = (glm::dvec3(du) - du.w * p) / s.w;
-  const glm::dvec3 pv = (glm::dvec3(dv) - dv.w * p) / s.w;
+  // One division and one square root per vertex: they dominated the cost.
+  const double inv_w = 1.0 / s.w;
+  const glm::dvec3 p = glm::dvec3(s) * inv_w;
+  const glm::dvec3 pu = (glm::dvec3(du) - du.w * p) * inv_w;
+  const glm::dvec3 pv = (glm::dvec3(dv) - dv.w * p) * inv_w;
   glm::dvec3 n = glm::cross(pu, pv);
-  const double len = glm::length(n);
-  if (len > 1e-12 * glm::length(pu) * glm::length(pv) && len > 0.0) {
-    n /= len;
+  const double len2 = glm::dot(n, n);
+  if (len2 > 1e-24 * glm::dot(pu, pu) * glm::dot(pv, pv) && len2 > 0.0) {
+    n *= 1.0 / std::sqrt(len2);
   } else {
     // A collapsed edge: fall back to the nudged evaluation of normal().
     NurbsSurface view;
@@ -120,58 +155,97 @@ void SurfaceTessellator::evaluate_vertex(int a, int b) {
       view.points[k] = glm::dvec3(pw_[k]) / pw_[k].w;
       view.weights[k] = pw_[k].w;
     }
-    n = normal(view, su.t, sv.t);
+    n = normal(view, su.t, axis_v_[static_cast<size_t>(b)].t);
   }
   const size_t v = static_cast<size_t>(a + vertices_u() * b);
+  positions_[v] = p;
+  normals_[v] = n;
   mesh_.positions[v] = glm::vec3(p);
   mesh_.normals[v] = glm::vec3(n);
+  ++vertices_evaluated_;
 }
 
-void SurfaceTessellator::evaluate_patch(int pu, int pv) {
-  for (int b = pv * per_span_; b <= (pv + 1) * per_span_; ++b) {
-    for (int a = pu * per_span_; a <= (pu + 1) * per_span_; ++a)
-      evaluate_vertex(a, b);
-  }
+int SurfaceTessellator::moved_in_support(int su, int sv) const {
+  // Support of span (su, sv): control points [su-p, su] x [sv-q, sv].
+  const int w = count_u_ + 1;
+  const int i0 = su - degree_u_, i1 = su + 1;
+  const int j0 = sv - degree_v_, j1 = sv + 1;
+  auto at = [&](int i, int j) { return moved_sum_[static_cast<size_t>(i + w * j)]; };
+  return at(i1, j1) - at(i0, j1) - at(i1, j0) + at(i0, j0);
 }
 
-int SurfaceTessellator::update(const NurbsSurface& s, std::span<const int> moved) {
+int SurfaceTessellator::update(const NurbsSurface& s, std::span<const int> moved,
+                               const RigidMotion* motion) {
   if (s.degree_u != degree_u_ || s.degree_v != degree_v_ || s.count_u != count_u_ ||
       s.count_v != count_v_ || s.knots_u != knots_u_ || s.knots_v != knots_v_) {
     rebuild(s);
     return patch_count();
   }
   if (moved.empty()) return 0;
-  // Knot span -> patch column / row (spans of zero length have no patch).
-  auto patch_range = [](const std::vector<int>& spans, int first_span, int last_span) {
-    const auto lo = std::lower_bound(spans.begin(), spans.end(), first_span);
-    const auto hi = std::upper_bound(spans.begin(), spans.end(), last_span);
-    return std::pair<int, int>(static_cast<int>(lo - spans.begin()),
-                               static_cast<int>(hi - spans.begin()));
-  };
-  const int pu_count = patches_u();
+  // Moved flags as 2D prefix sums, and the index box of the moved points.
+  std::vector<uint8_t> flag(static_cast<size_t>(count_u_ * count_v_), 0);
+  int lo_i = count_u_, hi_i = -1, lo_j = count_v_, hi_j = -1;
   for (int k : moved) {
     pw_[static_cast<size_t>(k)] = homogeneous(s, k);
-    const int i = k % count_u_;
-    const int j = k / count_u_;
-    const auto [u0, u1] = patch_range(spans_u_, i, i + degree_u_);
-    const auto [v0, v1] = patch_range(spans_v_, j, j + degree_v_);
-    for (int pv = v0; pv < v1; ++pv) {
-      for (int pu = u0; pu < u1; ++pu)
-        dirty_[static_cast<size_t>(pu + pu_count * pv)] = 1;
+    flag[static_cast<size_t>(k)] = 1;
+    const int i = k % count_u_, j = k / count_u_;
+    lo_i = std::min(lo_i, i);
+    hi_i = std::max(hi_i, i);
+    lo_j = std::min(lo_j, j);
+    hi_j = std::max(hi_j, j);
+  }
+  const int w = count_u_ + 1;
+  for (int j = 0; j < count_v_; ++j) {
+    int row = 0;
+    for (int i = 0; i < count_u_; ++i) {
+      row += flag[static_cast<size_t>(i + count_u_ * j)];
+      moved_sum_[static_cast<size_t>(i + 1 + w * (j + 1))] =
+          moved_sum_[static_cast<size_t>(i + 1 + w * j)] + row;
     }
   }
-  int count = 0;
-  for (int pv = 0; pv < patches_v(); ++pv) {
-    for (int pu = 0; pu < pu_count; ++pu) {
-      uint8_t& d = dirty_[static_cast<size_t>(pu + pu_count * pv)];
-      if (d == 0) continue;
-      d = 0;
-      evaluate_patch(pu, pv);
-      ++count;
+  const int full = (degree_u_ + 1) * (degree_v_ + 1);
+  // Vertices whose span lies in [lo, hi + degree] can see a moved point.
+  auto vertex_range = [](const std::vector<AxisSample>& axis, int first_span, int last_span) {
+    const auto lo = std::partition_point(axis.begin(), axis.end(),
+                                         [&](const AxisSample& a) { return a.span < first_span; });
+    const auto hi = std::partition_point(axis.begin(), axis.end(),
+                                         [&](const AxisSample& a) { return a.span <= last_span; });
+    return std::pair<int, int>(static_cast<int>(lo - axis.begin()),
+                               static_cast<int>(hi - axis.begin()));
+  };
+  const auto [a0, a1] = vertex_range(axis_u_, lo_i, hi_i + degree_u_);
+  const auto [b0, b1] = vertex_range(axis_v_, lo_j, hi_j + degree_v_);
+  const int nu = vertices_u();
+  const int first_column = axis_u_[static_cast<size_t>(a0)].span - degree_u_;
+  const int last_column = axis_u_[static_cast<size_t>(a1 - 1)].span;
+  for (int b = b0; b < b1; ++b) {
+    const int sv = axis_v_[static_cast<size_t>(b)].span;
+    bool prepared = false;
+    for (int a = a0; a < a1; ++a) {
+      const int count = moved_in_support(axis_u_[static_cast<size_t>(a)].span, sv);
+      if (count == 0) continue;
+      if (count == full && motion != nullptr) {
+        const size_t v = static_cast<size_t>(a + nu * b);
+        positions_[v] = motion->apply(positions_[v]);
+        normals_[v] = motion->rotation * normals_[v];
+        mesh_.positions[v] = glm::vec3(positions_[v]);
+        mesh_.normals[v] = glm::vec3(normals_[v]);
+        ++vertices_moved_rigidly_;
+      } else {
+        if (!prepared) prepare_row(b, first_column, last_column);
+        prepared = true;
+        evaluate_vertex(a, b);
+      }
     }
   }
-  patches_evaluated_ += count;
-  return count;
+  int patches = 0;
+  for (int sv : spans_v_) {
+    if (sv < lo_j || sv > hi_j + degree_v_) continue;
+    for (int su : spans_u_) {
+      if (su >= lo_i && su <= hi_i + degree_u_) patches += moved_in_support(su, sv) > 0;
+    }
+  }
+  return patches;
 }
 
 Mesh tessellate(const NurbsSurface& surface, int samples_per_span) {

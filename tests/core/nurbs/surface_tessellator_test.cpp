@@ -5,6 +5,8 @@
 #include <glm/geometric.hpp>
 
 #include "nurbs_fixtures.h"
+#include "sculpt/core/nurbs/influence.h"
+#include "sculpt/core/nurbs/path_deformation.h"
 
 namespace sculpt::core::nurbs {
 namespace {
@@ -61,6 +63,80 @@ TEST(SurfaceTessellator, UpdatingMovedPointsEqualsARebuildAndTouchesOnlyTheirPat
   const NurbsSurface r = refine_u(s, x);
   EXPECT_EQ(t.update(r, moved), 13 * 7);
   EXPECT_EQ(t.mesh(), SurfaceTessellator(r, 4).mesh());
+}
+
+double max_gap(const Mesh& a, const Mesh& b) {
+  double worst = 0.0;
+  for (size_t k = 0; k < a.positions.size(); ++k) {
+    worst = std::max(worst, static_cast<double>(glm::length(a.positions[k] - b.positions[k])));
+    worst = std::max(worst, 1e3 * static_cast<double>(glm::length(a.normals[k] - b.normals[k])));
+  }
+  return worst;
+}
+
+TEST(SurfaceTessellator, RigidMotionsMoveWholeSupportsAndMatchARebuild) {
+  NurbsSurface s = example_sheet();
+  SurfaceTessellator t(s, 4);
+  const int64_t evaluated = t.vertices_evaluated();
+  RigidMotion m{rotation_between({1, 0, 0}, {1, 0.3, 0.2}), {60, 40, 0}, {2, -1, 7}};
+  std::vector<int> moved;
+  for (int j = 2; j <= 7; ++j) {
+    for (int i = 3; i <= 10; ++i) {
+      moved.push_back(s.index(i, j));
+      s.point(i, j) = m.apply(s.point(i, j));
+    }
+  }
+  t.update(s, moved, &m);
+  // Spans whose 4 x 4 support lies inside the 8 x 6 block: u spans 6..10,
+  // v spans 5..7, 4 x 4 vertex samples each.
+  EXPECT_EQ(t.vertices_moved_rigidly(), (5 * 4) * (3 * 4));
+  EXPECT_GT(t.vertices_evaluated(), evaluated);
+  EXPECT_LT(max_gap(t.mesh(), SurfaceTessellator(s, 4).mesh()), 1e-4);
+}
+
+TEST(SurfaceTessellator, FollowsAWholePathStepByStep) {
+  const NurbsSurface sheet = example_sheet();
+  ParameterZone zone;
+  zone.radius = 0.3;
+  const NurbsSurface s = refine_in_zone(sheet, 0.5, 0.5, zone, 60).value();
+  const glm::dvec3 a = evaluate(s, 0.5, 0.5);
+  NurbsCurve path;
+  path.degree = 2;
+  path.knots = {0, 0, 0, 1, 1, 1};
+  path.points = {a, a + glm::dvec3(0, 0, 40), a + glm::dvec3(30, 0, 40)};
+  PathOptions o;
+  o.steps = 30;
+  PathDeformation d =
+      PathDeformation::from_curve(s, 0.5, 0.5, zone_influence(s, 0.5, 0.5, zone).value(), path, o)
+          .value();
+  SurfaceTessellator t(s, 4);
+  while (!d.done()) {
+    const PathStep step = d.step();
+    t.update(d.surface(), step.moved, step.motion ? &*step.motion : nullptr);
+  }
+  EXPECT_GT(t.vertices_moved_rigidly(), 0);
+  EXPECT_LT(max_gap(t.mesh(), SurfaceTessellator(d.surface(), 4).mesh()), 1e-4);
+}
+
+TEST(SurfaceTessellator, CellsOverTheDomainKeepTheMeshSizeThroughRefinement) {
+  const NurbsSurface s = example_sheet();  // 12 x 7 equal spans
+  const SurfaceTessellator before = SurfaceTessellator::with_cells(s, 48, 28);
+  EXPECT_EQ(before.vertices_u(), 49);
+  EXPECT_EQ(before.vertices_v(), 29);
+  EXPECT_EQ(before.mesh(), SurfaceTessellator(s, 4).mesh());
+  // Halving two spans twice: they get 2 and 1 cells, the mesh stays 49 wide.
+  const std::vector<double> x{0.5 + 1.0 / 48, 0.5 + 2.0 / 48, 0.5 + 3.0 / 48,
+                              0.5 + 5.0 / 48, 0.5 + 6.0 / 48, 0.5 + 7.0 / 48};
+  const NurbsSurface r = refine_u(s, x);
+  const SurfaceTessellator after = SurfaceTessellator::with_cells(r, 48, 28);
+  EXPECT_EQ(after.patches_u(), 18);
+  EXPECT_EQ(after.vertices_u(), 49);
+  double worst = 0.0;
+  for (size_t k = 0; k < after.mesh().positions.size(); ++k) {
+    worst = std::max(worst, static_cast<double>(glm::length(after.mesh().positions[k] -
+                                                            before.mesh().positions[k])));
+  }
+  EXPECT_LT(worst, 1e-4);  // the same samples of the same surface
 }
 
 }  // namespace

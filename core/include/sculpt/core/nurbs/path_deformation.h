@@ -33,6 +33,7 @@
 
 #include "sculpt/core/nurbs/nurbs_curve.h"
 #include "sculpt/core/nurbs/nurbs_surface.h"
+#include "sculpt/core/nurbs/rigid_motion.h"
 #include "sculpt/core/util/result.h"
 
 namespace sculpt::core::nurbs {
@@ -53,6 +54,9 @@ struct PathStep {
   double threshold = 0.0;  ///< s(k)
   double angle_rad = 0.0;  ///< alpha_k (0 on the last step)
   std::vector<int> moved;  ///< indices of the control points that moved, increasing
+  /// Steps k < N-1 move every point of `moved` by this one rigid motion
+  /// (SurfaceTessellator::update uses it); empty for the last step.
+  std::optional<RigidMotion> motion;
 };
 
 /// Rotation by `angle_rad` about the unit `axis` (right-handed; Rodrigues).

@@ -11,10 +11,16 @@
 // voxel units), converted to float.
 //
 // The basis functions of every sample are computed once; after control
-// points move, update() re-evaluates only the vertices of patches whose
-// basis reaches a moved point: a control point (i, j) influences the knot
-// spans i..i+p along u and j..j+q along v.
+// points move, update() visits only the vertices whose basis reaches a moved
+// point (a control point (i, j) influences the knot spans i..i+p along u and
+// j..j+q along v). When all moved points underwent one rigid motion (a path
+// step), a vertex whose whole support moved is moved by that motion instead
+// of being re-evaluated (S = sum R_ij P_ij with sum R_ij = 1 commutes with
+// rigid motions; the normal turns with the rotation); only the vertices on
+// the rim of the moved set are evaluated. Positions and normals are kept in
+// double precision inside, so repeated motions do not drift.
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -23,6 +29,7 @@
 
 #include "sculpt/core/mesh/mesh.h"
 #include "sculpt/core/nurbs/nurbs_surface.h"
+#include "sculpt/core/nurbs/rigid_motion.h"
 
 namespace sculpt::core::nurbs {
 
@@ -31,12 +38,20 @@ class SurfaceTessellator {
   /// Tessellates `surface` (which must pass validate()) with
   /// `samples_per_span` >= 1 cells per knot span and direction.
   SurfaceTessellator(const NurbsSurface& surface, int samples_per_span);
+  /// Tessellates with about `cells_u` x `cells_v` cells over the whole
+  /// domain: each knot span gets max(1, round(cells * span length / domain
+  /// length)) cells. Refining the surface (which only splits spans) then
+  /// keeps the mesh about the same size, which is what the station wants
+  /// when the path constraint refines the sheet.
+  static SurfaceTessellator with_cells(const NurbsSurface& surface, int cells_u, int cells_v);
 
-  /// Re-evaluates the patches reached by the control points `moved`
-  /// (indices i + count_u * j) of `surface`. If the surface's knots or
-  /// counts changed (refinement), everything is rebuilt. Returns the number
-  /// of patches re-tessellated.
-  int update(const NurbsSurface& surface, std::span<const int> moved);
+  /// Brings the mesh up to date after the control points `moved` (indices
+  /// i + count_u * j) of `surface` changed; if `motion` is given, they all
+  /// moved by it (PathStep::motion). If the surface's knots or counts
+  /// changed (refinement), everything is rebuilt. Returns the number of
+  /// patches whose vertices changed.
+  int update(const NurbsSurface& surface, std::span<const int> moved,
+             const RigidMotion* motion = nullptr);
   /// Rebuilds everything from `surface`.
   void rebuild(const NurbsSurface& surface);
 
@@ -44,6 +59,7 @@ class SurfaceTessellator {
   int patches_u() const { return static_cast<int>(spans_u_.size()); }
   int patches_v() const { return static_cast<int>(spans_v_.size()); }
   int patch_count() const { return patches_u() * patches_v(); }
+  /// Cells per knot span (0 when built with_cells()).
   int samples_per_span() const { return per_span_; }
   /// Vertices per row (along u) and rows.
   int vertices_u() const { return static_cast<int>(axis_u_.size()); }
@@ -51,32 +67,45 @@ class SurfaceTessellator {
   /// Parameters (u, v) of vertex (a, b) (vertex index a + vertices_u() * b).
   double vertex_u(int a) const { return axis_u_[static_cast<size_t>(a)].t; }
   double vertex_v(int b) const { return axis_v_[static_cast<size_t>(b)].t; }
-  /// Patches re-tessellated by all update() calls so far (rebuilds count all).
-  int64_t patches_evaluated() const { return patches_evaluated_; }
+  /// Vertices evaluated from the basis (rebuilds included) and vertices
+  /// moved rigidly, over all calls so far.
+  int64_t vertices_evaluated() const { return vertices_evaluated_; }
+  int64_t vertices_moved_rigidly() const { return vertices_moved_rigidly_; }
 
  private:
+  SurfaceTessellator() = default;
   // One sample along an axis: its parameter, knot span, and the degree+1
   // basis values and first derivatives there.
   struct AxisSample {
     double t = 0.0;
     int span = 0;
-    std::vector<double> n;
-    std::vector<double> dn;
+    std::array<double, kMaxDegree + 1> n{};
+    std::array<double, kMaxDegree + 1> dn{};
   };
-  void build_axis(const std::vector<double>& knots, int degree, int count,
+  void build_axis(const std::vector<double>& knots, int degree, int count, int cells,
                   std::vector<AxisSample>& axis, std::vector<int>& spans);
+  // Vertex row b: the control net contracted along v with that row's basis
+  // values and derivatives, for control columns [first, last] (row_q_,
+  // row_dq_); then each vertex of the row is a sum of degree_u + 1 terms.
+  void prepare_row(int b, int first, int last);
   void evaluate_vertex(int a, int b);
-  void evaluate_patch(int pu, int pv);
+  // Moved control points in the support of knot span (su, sv), from the
+  // prefix sums of the moved flags.
+  int moved_in_support(int su, int sv) const;
 
-  int per_span_;
+  int per_span_ = 0;
+  int cells_u_ = 0, cells_v_ = 0;  // with_cells() targets, 0 = per_span_ cells per span
   int degree_u_ = 0, degree_v_ = 0, count_u_ = 0, count_v_ = 0;
   std::vector<double> knots_u_, knots_v_;
   std::vector<glm::dvec4> pw_;  // homogeneous control points, u fastest
   std::vector<AxisSample> axis_u_, axis_v_;
-  std::vector<int> spans_u_, spans_v_;  // knot-span index of each patch column / row
-  std::vector<uint8_t> dirty_;
+  std::vector<int> spans_u_, spans_v_;      // knot-span index of each patch column / row
+  std::vector<glm::dvec4> row_q_, row_dq_;  // count_u values, see prepare_row
+  std::vector<int> moved_sum_;              // (count_u+1) x (count_v+1) prefix sums of moved flags
+  std::vector<glm::dvec3> positions_, normals_;  // double copies of the mesh's
   Mesh mesh_;
-  int64_t patches_evaluated_ = 0;
+  int64_t vertices_evaluated_ = 0;
+  int64_t vertices_moved_rigidly_ = 0;
 };
 
 /// One-shot tessellation (see SurfaceTessellator).
