@@ -134,9 +134,20 @@ bool StationController::report(const core::Status& st, const std::string& done) 
   return st.ok();
 }
 
+int64_t StationController::stamp(int64_t now_ns) const {
+  return device_clock_ ? last_raw_t_ns_.load(std::memory_order_relaxed) : now_ns;
+}
+
+void StationController::raw_report(const hal::RawEvent& e) {
+  // One writer (the device's reader thread); the main loop reads.
+  if (e.t_ns > last_raw_t_ns_.load(std::memory_order_relaxed))
+    last_raw_t_ns_.store(e.t_ns, std::memory_order_relaxed);
+  recorder_.raw(e);
+}
+
 void StationController::command(const sim::Command& c, int64_t now_ns) {
   loop_.handle(c);
-  recorder_.command(c, now_ns);
+  recorder_.command(c, stamp(now_ns));
   ++generation_;
 }
 
@@ -482,7 +493,7 @@ core::Status StationController::start_recording(const std::filesystem::path& pat
   // The opening commands rebuild the settings, not the sculpture: the
   // recording replays onto the block the station started with.
   const bool fresh = generation_ == 0;
-  core::Status st = recorder_.start(path, header, opening_commands(), now_ns);
+  core::Status st = recorder_.start(path, header, opening_commands(), stamp(now_ns));
   report(st, "recording to " + path.string() +
                  (fresh ? "" : " (the session starts from a fresh block, not this sculpture)"));
   return st;

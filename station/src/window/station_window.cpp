@@ -62,6 +62,13 @@ struct RunFigures {
   double input_ms = 0, mesh_ms = 0, upload_ms = 0, draw_ms = 0;
 };
 
+int64_t solid_voxels(const core::Volume& v) {
+  const core::DenseGrid<uint8_t> d = v.to_dense();
+  int64_t n = 0;
+  for (size_t i = 0; i < d.size(); ++i) n += d[i] > 127;
+  return n;
+}
+
 core::Status write_stats(const std::string& path, const RunFigures& f,
                          const StationController& c) {
   std::vector<double> sorted = f.frame_ms;
@@ -88,6 +95,7 @@ core::Status write_stats(const std::string& path, const RunFigures& f,
       {"dabs", c.loop().counters().dabs},
       {"strokes", c.loop().counters().strokes},
       {"volume_hash", c.loop().volume().content_hash()},
+      {"solid_voxels", solid_voxels(c.loop().volume())},
       {"triangles", c.loop().mesh().triangle_count()},
       {"dab_latency_us",
        {{"count", l.count}, {"p50", l.p50_us}, {"p90", l.p90_us}, {"p99", l.p99_us},
@@ -129,6 +137,7 @@ int run_window(const WindowOptions& o) {
     auto backend = std::make_unique<sim::SimBackend>(std::move(session).value(), file, o.sim_speed);
     sim_backend = backend.get();
     registry.add_backend(std::move(backend), /*first=*/true);
+    controller.use_device_clock(true);
     auto id = registry.open_device("sim");
     if (!id) return id.error();
     return {};

@@ -11,6 +11,7 @@
 // Thread safety: one thread (the main loop), except raw_report(), which the
 // device reader threads call.
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -124,7 +125,12 @@ class StationController {
   void pointer_down(int64_t now_ns);
   void pointer_up(int64_t now_ns);
   /// A raw device event for the recording (reader threads).
-  void raw_report(const hal::RawEvent& event) { recorder_.raw(event); }
+  void raw_report(const hal::RawEvent& event);
+  /// Stamp commands with the device's own clock (the time of its latest
+  /// report) instead of the monotonic clock: for sim devices, whose reports
+  /// carry the times recorded in their session, so a recording made while
+  /// one plays keeps one time base.
+  void use_device_clock(bool on) { device_clock_ = on; }
   void set_device(const hal::DeviceInfo& info, const std::string& normalizer_text);
 
   // --- after input ------------------------------------------------------
@@ -176,6 +182,9 @@ class StationController {
   std::string normalizer_text_;
   std::string status_;
 
+  int64_t stamp(int64_t now_ns) const;
+  bool device_clock_ = false;
+  std::atomic<int64_t> last_raw_t_ns_{0};
   bool pointer_down_ = false;
   // Dabs not yet meshed: their report times.
   std::vector<int64_t> unmeshed_dab_t_ns_;

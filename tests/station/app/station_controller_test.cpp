@@ -1,0 +1,227 @@
+#include "sculpt/station/app/station_controller.h"
+
+#include <GLFW/glfw3.h>  // key codes
+
+#include <gtest/gtest.h>
+
+#include "scratch_dir.h"
+#include "sculpt/hal/normalizer/normalizer_config.h"
+#include "sculpt/sim/session/session_file.h"
+
+namespace sculpt::station {
+namespace {
+
+constexpr int64_t kMs = 1'000'000;
+
+ControllerOptions small_block(const test::ScratchDir& dir) {
+  ControllerOptions o;
+  o.loop.volume_dims = glm::ivec3(64);
+  o.loop.clay_margin = 12;
+  o.project = dir.path() / "p.sculpt";
+  o.mesh_export = dir.path() / "m.ply";
+  o.recording = dir.path() / "r.scs";
+  o.autosave_seconds = 1.0;
+  o.normalizer_config_path = (dir.path() / "cfg" / "input.conf").string();
+  return o;
+}
+
+// A mouse stroke across the clay's top face.
+void stroke(StationController& c, int64_t& t, float z) {
+  c.pointer_move({20.0f, 52.0f, z}, t += kMs);
+  c.pointer_down(t += kMs);
+  for (int i = 0; i <= 20; ++i) c.pointer_move({20.0f + static_cast<float>(i), 52.0f, z}, t += kMs);
+  c.pointer_up(t += kMs);
+  c.update_mesh(t);
+}
+
+TEST(StationShortcuts, MapKeysToActions) {
+  EXPECT_EQ(shortcut(GLFW_KEY_Z, GLFW_MOD_CONTROL), Action::kUndo);
+  EXPECT_EQ(shortcut(GLFW_KEY_Z, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT), Action::kRedo);
+  EXPECT_EQ(shortcut(GLFW_KEY_Y, GLFW_MOD_CONTROL), Action::kRedo);
+  EXPECT_EQ(shortcut(GLFW_KEY_S, GLFW_MOD_CONTROL), Action::kSave);
+  EXPECT_EQ(shortcut(GLFW_KEY_TAB, 0), Action::kToggleAddSubtract);
+  EXPECT_EQ(shortcut(GLFW_KEY_3, 0), Action::kToolCylinder);
+  EXPECT_EQ(shortcut(GLFW_KEY_Z, 0), std::nullopt);
+  EXPECT_EQ(shortcut(GLFW_KEY_Q, GLFW_MOD_CONTROL), std::nullopt);
+  EXPECT_STREQ(shortcut_label(Action::kUndo), "Ctrl+Z");
+}
+
+TEST(StationController, SwitchesToolsModesAndSizes) {
+  test::ScratchDir dir;
+  StationController c(small_block(dir));
+  int64_t t = 0;
+  EXPECT_TRUE(c.perform(Action::kToolCube, t));
+  EXPECT_EQ(c.loop().settings().shape, sim::ToolShape::kCube);
+  const float size = c.loop().settings().size_a_vox;
+  EXPECT_TRUE(c.perform(Action::kToolBigger, t));
+  EXPECT_FLOAT_EQ(c.loop().settings().size_a_vox, size * 1.25f);
+  EXPECT_GT(c.loop().tool().density.dims().x, 0);
+  EXPECT_TRUE(c.perform(Action::kToggleAddSubtract, t));
+  EXPECT_EQ(c.loop().settings().mode, core::SculptMode::kSubtract);
+  EXPECT_TRUE(c.perform(Action::kToggleAddSubtract, t));
+  EXPECT_EQ(c.loop().settings().mode, core::SculptMode::kAdd);
+  EXPECT_TRUE(c.perform(Action::kSmooth, t));
+  EXPECT_EQ(c.loop().settings().mode, core::SculptMode::kSmooth);
+  for (int i = 0; i < 20; ++i) c.perform(Action::kStronger, t);
+  EXPECT_FLOAT_EQ(c.loop().settings().strength, 1.0f);
+  EXPECT_TRUE(c.perform(Action::kToggleMirror, t));
+  ASSERT_TRUE(c.loop().settings().mirror.has_value());
+  EXPECT_FLOAT_EQ(c.loop().settings().mirror->centre_vox, 31.5f);
+  EXPECT_TRUE(c.perform(Action::kToggleDeviceTarget, t));
+  EXPECT_EQ(c.device_target(), DeviceTarget::kCamera);
+}
+
+TEST(StationController, MouseSculptsAndUndoRedoRestoreTheVolumeBitForBit) {
+  test::ScratchDir dir;
+  StationController c(small_block(dir));
+  int64_t t = 0;
+  const uint64_t before = c.loop().volume().content_hash();
+  c.perform(Action::kToggleAddSubtract, t);  // carve
+  stroke(c, t, 40.0f);
+  const uint64_t after = c.loop().volume().content_hash();
+  EXPECT_NE(after, before);
+  EXPECT_GT(c.loop().counters().dabs, 5);
+  EXPECT_EQ(c.loop().counters().strokes, 1);
+  EXPECT_EQ(c.session_latency().count, c.loop().counters().dabs);
+  c.undo(t += kMs);
+  EXPECT_EQ(c.loop().volume().content_hash(), before);
+  EXPECT_EQ(c.status(), "undone");
+  c.redo(t += kMs);
+  EXPECT_EQ(c.loop().volume().content_hash(), after);
+  c.redo(t += kMs);
+  EXPECT_EQ(c.status(), "nothing to redo");
+}
+
+TEST(StationController, ARecordingReplaysToTheSameVolume) {
+  test::ScratchDir dir;
+  StationController c(small_block(dir));
+  int64_t t = 1000 * kMs;
+  ASSERT_TRUE(c.start_recording(dir.path() / "r.scs", t).ok());
+  c.set_tool(sim::ToolShape::kSphere, 4.0f, 0.0f, t += kMs);
+  stroke(c, t, 40.0f);
+  c.set_mode(core::SculptMode::kSubtract, t += kMs);
+  c.set_mirror(0, t += kMs);
+  stroke(c, t, 30.0f);
+  c.undo(t += kMs);
+  c.redo(t += kMs);
+  ASSERT_TRUE(c.use_sculpture_as_tool(t += kMs)) << c.status();
+  c.set_mode(core::SculptMode::kAdd, t += kMs);
+  c.tick(t);
+  ASSERT_TRUE(c.stop_recording().ok());
+
+  auto session = sim::read_session_file(dir.path() / "r.scs");
+  ASSERT_TRUE(session.ok()) << session.error().message();
+  StationLoop replayed(StationLoop::Options{});
+  auto r = replay_session(*session, "r.scs", replayed);
+  ASSERT_TRUE(r.ok()) << r.error().message();
+  EXPECT_EQ(replayed.volume().content_hash(), c.loop().volume().content_hash());
+  EXPECT_EQ(replayed.counters().dabs, c.loop().counters().dabs);
+  EXPECT_TRUE(replayed.settings().custom_tool);
+}
+
+TEST(StationController, SculptureBecomesAToolOnlyWhenThereIsOneOfToolSize) {
+  test::ScratchDir dir;
+  ControllerOptions o = small_block(dir);
+  o.loop.clay_margin = 0;  // an empty block
+  StationController empty(o);
+  EXPECT_FALSE(empty.use_sculpture_as_tool(0));
+  EXPECT_EQ(empty.status(), "no material to make a tool of");
+
+  StationController c(small_block(dir));
+  ASSERT_TRUE(c.use_sculpture_as_tool(0));
+  EXPECT_TRUE(c.loop().settings().custom_tool);
+  // The clay slab spans voxels 12..51 (its density ramp a voxel beyond).
+  const glm::ivec3 d = c.loop().tool().density.dims();
+  EXPECT_GE(d.x, 40);
+  EXPECT_LE(d.x, 44);
+  EXPECT_FALSE(c.perform(Action::kToolBigger, 0));
+
+  ControllerOptions big = small_block(dir);
+  big.loop.volume_dims = glm::ivec3(128);
+  big.loop.clay_margin = 4;
+  StationController too_big(big);
+  EXPECT_FALSE(too_big.use_sculpture_as_tool(0));
+  EXPECT_NE(too_big.status().find("too big"), std::string::npos);
+}
+
+TEST(StationController, SavesOpensAndAutosavesTheProject) {
+  test::ScratchDir dir;
+  StationController c(small_block(dir));
+  int64_t t = 0;
+  c.tick(t);
+  EXPECT_EQ(c.autosaves(), 0);  // nothing changed yet
+  stroke(c, t, 40.0f);
+  c.tick(t + 100 * kMs);
+  c.finish_autosave();
+  EXPECT_EQ(c.autosaves(), 0);  // not due yet (1 s)
+  c.tick(t + 2000 * kMs);
+  c.finish_autosave();
+  EXPECT_EQ(c.autosaves(), 1);
+  auto autosaved = load_project(c.autosave_path());
+  ASSERT_TRUE(autosaved.ok()) << autosaved.error().message();
+  EXPECT_EQ(autosaved->volume->content_hash(), c.loop().volume().content_hash());
+  c.tick(t + 5000 * kMs);
+  c.finish_autosave();
+  EXPECT_EQ(c.autosaves(), 1);  // nothing new to save
+
+  const uint64_t sculpted = c.loop().volume().content_hash();
+  ASSERT_TRUE(c.perform(Action::kSave, t));
+  c.perform(Action::kToolRing, t);
+  stroke(c, t, 30.0f);
+  EXPECT_NE(c.loop().volume().content_hash(), sculpted);
+  ASSERT_TRUE(c.open(c.options().project).ok());
+  EXPECT_EQ(c.loop().volume().content_hash(), sculpted);
+  EXPECT_EQ(c.loop().settings().shape, sim::ToolShape::kSphere);
+  EXPECT_EQ(c.loop().sculptor().history().undo_depth(), 0u);
+
+  ASSERT_TRUE(c.perform(Action::kExportMesh, t));
+  EXPECT_GT(std::filesystem::file_size(c.options().mesh_export), 1000u);
+  EXPECT_FALSE(c.open(dir.path() / "missing.sculpt").ok());
+  EXPECT_NE(c.status().find("missing.sculpt"), std::string::npos);
+  EXPECT_EQ(c.loop().volume().content_hash(), sculpted);  // a failed open changes nothing
+}
+
+TEST(StationController, SavesInputSettingsToTheConfigFile) {
+  test::ScratchDir dir;
+  StationController c(small_block(dir));
+  ASSERT_TRUE(c.save_input_settings(2.5f, 0.1f).ok()) << c.status();
+  auto config = hal::load_normalizer_config(c.options().normalizer_config_path);
+  ASSERT_TRUE(config.ok()) << config.error().message();
+  EXPECT_FLOAT_EQ(config->sensitivity[3], 2.5f);
+  EXPECT_FLOAT_EQ(config->deadzone[0], 0.1f);
+}
+
+TEST(StationController, TheDeviceMovesTheCameraOrTheTool) {
+  test::ScratchDir dir;
+  StationController c(small_block(dir));
+  hal::InputFrame frame;
+  hal::InputEvent connected;
+  connected.kind = hal::InputKind::kConnected;
+  frame.events.push_back(connected);
+  hal::InputEvent battery;
+  battery.kind = hal::InputKind::kBattery;
+  battery.battery_percent = 80;
+  frame.events.push_back(battery);
+  c.device_frame(frame, 0);
+  EXPECT_TRUE(c.device_status().connected);
+  EXPECT_EQ(c.device_status().battery_percent, 80);
+
+  c.set_device_target(DeviceTarget::kCamera);
+  const float yaw = c.camera().yaw();
+  const glm::vec3 tool = c.loop().pose().position;
+  for (int i = 1; i <= 10; ++i) {
+    hal::InputFrame f;
+    hal::InputEvent m;
+    m.t_ns = i * 10 * kMs;
+    m.axes[hal::kRy] = 0.8f;
+    m.integral[hal::kRy] = 0.008 * i;
+    f.motion.push_back(m);
+    c.device_frame(f, m.t_ns);
+  }
+  EXPECT_NE(c.camera().yaw(), yaw);
+  EXPECT_EQ(c.loop().pose().position, tool);
+  EXPECT_EQ(c.device_status().report_rate_hz, 10.0);
+}
+
+}  // namespace
+}  // namespace sculpt::station

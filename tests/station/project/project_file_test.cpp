@@ -1,0 +1,145 @@
+#include "sculpt/station/project/project_file.h"
+
+#include <fstream>
+#include <iterator>
+
+#include <gtest/gtest.h>
+
+#include "scratch_dir.h"
+#include "sculpt/core/shapes/analytic_shapes.h"
+
+namespace sculpt::station {
+namespace {
+
+std::vector<char> bytes_of(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const std::filesystem::path& p, const std::vector<char>& b) {
+  std::ofstream(p, std::ios::binary).write(b.data(), static_cast<std::streamsize>(b.size()));
+}
+
+class ProjectFile : public ::testing::Test {
+ protected:
+  test::ScratchDir dir_;
+  // A sculpture with uniform and detailed bricks, odd dims (padding) included.
+  core::Volume volume_ = core::Volume::from_dense(core::sphere_density(70));
+  StationSettings settings() const {
+    StationSettings s;
+    s.shape = sim::ToolShape::kRing;
+    s.size_a_vox = 9.5f;
+    s.size_b_vox = 2.25f;
+    s.mode = core::SculptMode::kSmooth;
+    s.strength = 0.625f;
+    s.spacing = 0.3f;
+    s.mirror = core::MirrorPlane{2, 34.5f};
+    return s;
+  }
+};
+
+TEST_F(ProjectFile, RoundTripsVolumeSettingsToolAndView) {
+  StationSettings s = settings();
+  s.custom_tool = true;
+  s.custom_region = core::Box{{10, 11, 12}, {30, 31, 33}};
+  const core::Tool tool = core::tool_from_volume(volume_, s.custom_region);
+  ProjectView view;
+  view.camera_target = {1.5f, 2.5f, 3.5f};
+  view.camera_yaw = -0.75f;
+  view.camera_distance = 321.0f;
+  view.lod.fixed_level = 1;
+  const auto path = dir_.path() / "a.sculpt";
+  ASSERT_TRUE(save_project(path, volume_, s, &tool, view).ok());
+
+  auto p = load_project(path);
+  ASSERT_TRUE(p.ok()) << p.error().message();
+  EXPECT_EQ(p->volume->dims(), volume_.dims());
+  EXPECT_EQ(p->volume->content_hash(), volume_.content_hash());
+  EXPECT_EQ(p->volume->to_dense().data()[12345], volume_.to_dense().data()[12345]);
+  EXPECT_EQ(p->settings.shape, s.shape);
+  EXPECT_EQ(p->settings.size_a_vox, s.size_a_vox);
+  EXPECT_EQ(p->settings.size_b_vox, s.size_b_vox);
+  EXPECT_EQ(p->settings.mode, s.mode);
+  EXPECT_EQ(p->settings.strength, s.strength);
+  EXPECT_EQ(p->settings.spacing, s.spacing);
+  ASSERT_TRUE(p->settings.mirror.has_value());
+  EXPECT_EQ(p->settings.mirror->axis, 2);
+  EXPECT_EQ(p->settings.mirror->centre_vox, 34.5f);
+  EXPECT_TRUE(p->settings.custom_tool);
+  EXPECT_EQ(p->settings.custom_region.lo, s.custom_region.lo);
+  ASSERT_TRUE(p->custom_tool.has_value());
+  EXPECT_EQ(p->custom_tool->pivot, tool.pivot);
+  EXPECT_EQ(p->custom_tool->density.dims(), tool.density.dims());
+  EXPECT_TRUE(std::equal(tool.density.data(), tool.density.data() + tool.density.size(),
+                         p->custom_tool->density.data()));
+  EXPECT_EQ(p->view.camera_target, view.camera_target);
+  EXPECT_EQ(p->view.camera_yaw, view.camera_yaw);
+  EXPECT_EQ(p->view.camera_distance, view.camera_distance);
+  EXPECT_EQ(p->view.lod.fixed_level, 1);
+  // Nothing is left dirty: the station re-meshes from scratch anyway.
+  EXPECT_TRUE(p->volume->take_dirty_bricks().empty());
+}
+
+TEST_F(ProjectFile, StoresTheWaveletBricksCompressed) {
+  const auto path = dir_.path() / "b.sculpt";
+  ASSERT_TRUE(save_project(path, volume_, settings(), nullptr, {}).ok());
+  const auto size = std::filesystem::file_size(path);
+  // 70^3 voxels = 343,000 bytes raw; the bricks' coefficients deflate far below.
+  EXPECT_LT(size, 343000u / 3);
+  auto p = load_project(path);
+  ASSERT_TRUE(p.ok());
+  EXPECT_FALSE(p->custom_tool.has_value());
+  EXPECT_FALSE(p->settings.custom_tool);
+}
+
+TEST_F(ProjectFile, RefusesDamagedFilesWithOneClearError) {
+  const auto path = dir_.path() / "c.sculpt";
+  ASSERT_TRUE(save_project(path, volume_, settings(), nullptr, {}).ok());
+  const std::vector<char> good = bytes_of(path);
+  struct Case {
+    const char* what;
+    std::vector<char> bytes;
+    const char* message;
+  };
+  std::vector<Case> cases;
+  cases.push_back({"empty", {}, "not a sculpt project file"});
+  cases.push_back({"truncated", {good.begin(), good.begin() + static_cast<long>(good.size() / 2)},
+                   "checksum"});
+  std::vector<char> flipped = good;
+  flipped[flipped.size() / 2] ^= 0x10;
+  cases.push_back({"flipped byte", flipped, "checksum"});
+  std::vector<char> magic = good;
+  magic[0] = 'X';
+  cases.push_back({"magic", magic, "not a sculpt project file"});
+  std::vector<char> version = good;
+  version[8] = 9;
+  cases.push_back({"version", version, "version 9"});
+  for (const Case& c : cases) {
+    write_bytes(path, c.bytes);
+    auto p = load_project(path);
+    ASSERT_FALSE(p.ok()) << c.what;
+    EXPECT_NE(p.error().message().find(path.string()), std::string::npos) << c.what;
+    EXPECT_NE(p.error().message().find(c.message), std::string::npos)
+        << c.what << ": " << p.error().message();
+    EXPECT_EQ(p.error().message().find('\n'), std::string::npos);
+  }
+  auto missing = load_project(dir_.path() / "none.sculpt");
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.error().message().find("cannot open"), std::string::npos);
+}
+
+TEST_F(ProjectFile, AFailedSaveLeavesTheOldFileWhole) {
+  const auto path = dir_.path() / "d.sculpt";
+  ASSERT_TRUE(save_project(path, volume_, settings(), nullptr, {}).ok());
+  const std::vector<char> before = bytes_of(path);
+  EXPECT_FALSE(save_project(dir_.path() / "no" / "such" / "dir.sculpt", volume_, settings(),
+                            nullptr, {})
+                   .ok());
+  EXPECT_EQ(bytes_of(path), before);
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir_.path())) files.push_back(e.path());
+  EXPECT_EQ(files.size(), 1u);  // no temporary left behind
+}
+
+}  // namespace
+}  // namespace sculpt::station
