@@ -16,6 +16,7 @@
 #include <glm/geometric.hpp>
 
 #include "sculpt/core/mesh/mesh_cache.h"
+#include "sculpt/core/mesh/mixed_level_mesh.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 #include "sculpt/core/util/parallel_for.h"
 #include "sculpt/core/volume/volume.h"
@@ -57,6 +58,35 @@ BENCHMARK(BM_MeshExtract)
     ->ArgNames({"n", "threads", "weld"})
     ->Unit(benchmark::kMillisecond);
 
+// A ball of radius 14 (its density ramp fills a 32^3 box) added or carved
+// at a random point of the surface of the peers.py sphere that fills
+// `volume`, not aligned with the bricks, so it touches up to 8 bricks.
+template <class Random>
+void dab_on_surface(Volume& volume, Random& next, bool carve) {
+  const glm::vec3 centre(static_cast<float>(volume.dims().x - 1) / 2.0f);
+  const float radius = 0.35f * static_cast<float>(volume.dims().x);
+  const float dab_radius = 14.0f;
+  glm::vec3 dir;
+  do
+    dir = glm::vec3(next(), next(), next());
+  while (glm::dot(dir, dir) < 0.01f || glm::dot(dir, dir) > 1.0f);
+  const glm::vec3 at = centre + radius * glm::normalize(dir);
+  const Box box{glm::ivec3(glm::floor(at)) - 16, glm::ivec3(glm::floor(at)) + 16};
+  const int e = volume.brick_edge();
+  volume.edit(box, [&](glm::ivec3 origin, std::span<uint8_t> voxels) {
+    const Box local = intersect(box, Box{origin, origin + e});
+    for (int z = local.lo.z; z < local.hi.z; ++z)
+      for (int y = local.lo.y; y < local.hi.y; ++y)
+        for (int x = local.lo.x; x < local.hi.x; ++x) {
+          const glm::vec3 p = glm::vec3(x, y, z) - at;
+          const uint8_t ball = density_from_distance(std::sqrt(glm::dot(p, p)) - dab_radius);
+          uint8_t& v =
+              voxels[(static_cast<size_t>(z - origin.z) * e + (y - origin.y)) * e + (x - origin.x)];
+          v = carve ? std::min<uint8_t>(v, static_cast<uint8_t>(255 - ball)) : std::max(v, ball);
+        }
+  });
+}
+
 // Re-meshing after one dab: a ball of radius 14 (its density ramp fills a
 // 32^3 box) added or carved at a point of the surface, not aligned with the
 // bricks, so it touches up to 8 bricks. Only the update is timed; the edit
@@ -66,9 +96,6 @@ void BM_MeshRemeshAfterDab(benchmark::State& state) {
   Volume volume = sphere_volume(n);
   MeshCache cache(0);
   cache.update(volume);
-  const glm::vec3 centre(static_cast<float>(n - 1) / 2.0f);
-  const float radius = 0.35f * static_cast<float>(n);
-  const float dab_radius = 14.0f;
   std::vector<double> samples;
   int64_t meshed = 0;
   uint32_t seed = 12345;
@@ -78,25 +105,7 @@ void BM_MeshRemeshAfterDab(benchmark::State& state) {
   };
   bool carve = false;
   for (auto _ : state) {
-    glm::vec3 dir;
-    do
-      dir = glm::vec3(next(), next(), next());
-    while (glm::dot(dir, dir) < 0.01f || glm::dot(dir, dir) > 1.0f);
-    const glm::vec3 at = centre + radius * glm::normalize(dir);
-    const Box box{glm::ivec3(glm::floor(at)) - 16, glm::ivec3(glm::floor(at)) + 16};
-    const int e = volume.brick_edge();
-    volume.edit(box, [&](glm::ivec3 origin, std::span<uint8_t> voxels) {
-      const Box local = intersect(box, Box{origin, origin + e});
-      for (int z = local.lo.z; z < local.hi.z; ++z)
-        for (int y = local.lo.y; y < local.hi.y; ++y)
-          for (int x = local.lo.x; x < local.hi.x; ++x) {
-            const glm::vec3 p = glm::vec3(x, y, z) - at;
-            const uint8_t ball = density_from_distance(std::sqrt(glm::dot(p, p)) - dab_radius);
-            uint8_t& v = voxels[(static_cast<size_t>(z - origin.z) * e + (y - origin.y)) * e +
-                                (x - origin.x)];
-            v = carve ? std::min<uint8_t>(v, static_cast<uint8_t>(255 - ball)) : std::max(v, ball);
-          }
-    });
+    dab_on_surface(volume, next, carve);
     carve = !carve;
     const auto t0 = std::chrono::steady_clock::now();
     const MeshUpdate u = cache.update(volume);
@@ -139,6 +148,75 @@ void BM_MeshLevel(benchmark::State& state) {
   state.counters["threads"] = hardware_threads();
 }
 BENCHMARK(BM_MeshLevel)->Args({512, 2})->ArgNames({"n", "level"})->Unit(benchmark::kMillisecond);
+
+// Per-brick levels as a view-distance LOD gives them: level 0 within 64
+// voxels of a camera point on the +x side, one level coarser per 64 voxels
+// beyond, at most 3.
+std::vector<int> camera_levels(const Volume& volume) {
+  const glm::ivec3 g = volume.brick_grid();
+  const glm::vec3 eye(static_cast<float>(volume.dims().x), volume.dims().y / 2.0f,
+                      volume.dims().z / 2.0f);
+  std::vector<int> levels;
+  for (int z = 0; z < g.z; ++z)
+    for (int y = 0; y < g.y; ++y)
+      for (int x = 0; x < g.x; ++x) {
+        const glm::vec3 c = (glm::vec3(x, y, z) + 0.5f) * static_cast<float>(volume.brick_edge());
+        levels.push_back(std::min(3, static_cast<int>(glm::length(c - eye) / 64.0f)));
+      }
+  return levels;
+}
+
+// Mixed levels from scratch (every brick meshed at its level and stitched).
+void BM_MeshMixedLevel(benchmark::State& state) {
+  const Volume& volume = sphere(static_cast<int>(state.range(0)));
+  const std::vector<int> levels = camera_levels(volume);
+  int64_t triangles = 0;
+  for (auto _ : state) {
+    MixedLevelMeshCache cache;
+    cache.update(volume, levels);
+    triangles = cache.triangle_count();
+  }
+  state.counters["triangles"] = static_cast<double>(triangles);
+}
+BENCHMARK(BM_MeshMixedLevel)->Arg(256)->ArgName("n")->Unit(benchmark::kMillisecond);
+
+// The mixed-level cache after one dab (same dabs as BM_MeshRemeshAfterDab).
+void BM_MeshMixedLevelAfterDab(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  Volume volume = sphere_volume(n);
+  const std::vector<int> levels = camera_levels(volume);
+  MixedLevelMeshCache cache;
+  cache.update(volume, levels);
+  std::vector<double> samples;
+  int64_t meshed = 0;
+  uint32_t seed = 12345;
+  auto next = [&] {
+    seed = seed * 1664525u + 1013904223u;
+    return static_cast<float>(seed >> 8) / static_cast<float>(1u << 24) * 2.0f - 1.0f;
+  };
+  bool carve = false;
+  for (auto _ : state) {
+    dab_on_surface(volume, next, carve);
+    carve = !carve;
+    const auto t0 = std::chrono::steady_clock::now();
+    const MeshUpdate u = cache.update(volume, levels);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    state.SetIterationTime(s);
+    samples.push_back(s);
+    meshed += u.bricks_changed;
+  }
+  std::sort(samples.begin(), samples.end());
+  state.counters["median_us"] = samples[samples.size() / 2] * 1e6;
+  state.counters["p99_us"] = samples[std::min(samples.size() - 1, samples.size() * 99 / 100)] * 1e6;
+  state.counters["bricks_remeshed"] =
+      static_cast<double>(meshed) / static_cast<double>(samples.size());
+}
+BENCHMARK(BM_MeshMixedLevelAfterDab)
+    ->Arg(256)
+    ->ArgName("n")
+    ->UseManualTime()
+    ->Iterations(100)
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace sculpt::core

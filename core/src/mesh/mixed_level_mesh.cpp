@@ -328,6 +328,14 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
     grid_ = volume.brick_grid();
     edge_ = volume.brick_edge();
     bricks_.assign(static_cast<size_t>(volume.brick_count()), CachedBrick{});
+    seen_versions_.assign(static_cast<size_t>(volume.brick_count()), 0);
+    for (size_t i = 0; i < seen_versions_.size(); ++i) {
+      const glm::ivec3 b(
+          static_cast<int>(i % static_cast<size_t>(grid_.x)),
+          static_cast<int>((i / static_cast<size_t>(grid_.x)) % static_cast<size_t>(grid_.y)),
+          static_cast<int>(i / (static_cast<size_t>(grid_.x) * grid_.y)));
+      seen_versions_[i] = volume.brick_version(b);
+    }
     decoded_.clear();
   }
   levels_.assign(brick_levels.begin(), brick_levels.end());
@@ -335,7 +343,38 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
     assert(l >= 0 && l <= volume.levels());
   decodes_ = 0;
   MeshUpdate stats;
-  std::vector<uint64_t> versions;
+  // Where stored bricks changed (level-0 boxes), at every level some brick
+  // reads them: their kept decoded voxels before and after. A brick no one
+  // read (nothing kept) affects no mesh.
+  std::vector<Box> changed;
+  std::vector<uint8_t> old;
+  for (int z = 0; z < grid_.z; ++z)
+    for (int y = 0; y < grid_.y; ++y)
+      for (int x = 0; x < grid_.x; ++x) {
+        const glm::ivec3 n(x, y, z);
+        uint64_t& seen = seen_versions_[index(n)];
+        if (seen == volume.brick_version(n)) continue;
+        seen = volume.brick_version(n);
+        for (int k = 0; k <= volume.levels(); ++k) {
+          auto it = decoded_.find(static_cast<uint64_t>(index(n)) * 8 + static_cast<uint64_t>(k));
+          if (it == decoded_.end()) continue;
+          old.swap(it->second.voxels);
+          const std::vector<uint8_t>& now = decoded(n, k).voxels;
+          const int m = edge_ >> k;
+          glm::ivec3 lo(m), hi(-1);
+          for (int vz = 0; vz < m; ++vz)
+            for (int vy = 0; vy < m; ++vy) {
+              const size_t row = (static_cast<size_t>(vz) * m + vy) * m;
+              if (std::equal(&now[row], &now[row] + m, &old[row])) continue;
+              for (int vx = 0; vx < m; ++vx)
+                if (now[row + static_cast<size_t>(vx)] != old[row + static_cast<size_t>(vx)]) {
+                  lo = glm::min(lo, glm::ivec3(vx, vy, vz));
+                  hi = glm::max(hi, glm::ivec3(vx, vy, vz));
+                }
+            }
+          if (hi.x >= 0) changed.push_back(Box{(n * m + lo) << k, (n * m + hi + 1) << k});
+        }
+      }
   std::vector<int8_t> levels;
   for (int z = 0; z < grid_.z; ++z)
     for (int y = 0; y < grid_.y; ++y)
@@ -344,20 +383,23 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         CachedBrick& cb = bricks_[index(b)];
         const int k = level_of(b);
         const int r = reach(k);
-        versions.clear();
         levels.clear();
         for (int dz = -r; dz <= r; ++dz)
           for (int dy = -r; dy <= r; ++dy)
             for (int dx = -r; dx <= r; ++dx) {
               const glm::ivec3 nb = b + glm::ivec3(dx, dy, dz);
-              const bool in = in_grid(nb);
-              versions.push_back(in ? volume.brick_version(nb) : 0);
-              levels.push_back(static_cast<int8_t>(in ? level_of(nb) : -1));
+              levels.push_back(static_cast<int8_t>(in_grid(nb) ? level_of(nb) : -1));
             }
-        if (cb.level == k && cb.versions == versions && cb.levels == levels) continue;
+        // The voxels this brick reads: its box, one level-k voxel below and
+        // two above (normals), face samples from voxels on its boundary.
+        const int margin = 2 << k;
+        const Box reads{b * edge_ - margin, (b + 1) * edge_ + margin};
+        bool stale = cb.level != k || cb.levels != levels;
+        for (size_t i = 0; i < changed.size() && !stale; ++i)
+          stale = !intersect(changed[i], reads).empty();
+        if (!stale) continue;
         ++stats.bricks_changed;
         cb.level = k;
-        cb.versions.swap(versions);
         cb.levels.swap(levels);
         mesh_brick(b, cb);
         stats.bricks_meshed += cb.mesh.empty() ? 0 : 1;

@@ -60,9 +60,10 @@ struct MixedLevelStats {
 /// the stitch toward coarser face neighbours, so drawing every brick's mesh
 /// shows a closed surface; welded_mesh() joins them into one indexed mesh.
 ///
-/// update() re-meshes a brick only when a brick its mesh reads changed
-/// (Volume::brick_version of itself and its 26 neighbours; 124 at one-voxel
-/// bricks) or when its own or one of those neighbours' levels changed;
+/// update() re-meshes a brick only when voxels its mesh reads changed (a
+/// brick whose Volume::brick_version moved is decoded again at the levels
+/// kept for it and compared, giving the box that changed) or when its own or
+/// a neighbour's level changed (26 neighbours; 124 at one-voxel bricks);
 /// everything else is kept. Decoded level voxels are kept per brick and
 /// level, checked against brick versions.
 ///
@@ -96,9 +97,8 @@ class MixedLevelMeshCache {
  private:
   struct CachedBrick {
     int level = -1;
-    // Versions and levels of the bricks read, in neighbourhood order;
-    // empty before the first meshing.
-    std::vector<uint64_t> versions;
+    // Levels of the bricks around, in neighbourhood order; empty before the
+    // first meshing.
     std::vector<int8_t> levels;
     BrickMesh mesh;
     MixedLevelStats stats;
@@ -134,6 +134,7 @@ class MixedLevelMeshCache {
   int edge_ = 0;
   std::vector<int> levels_;
   std::vector<CachedBrick> bricks_;
+  std::vector<uint64_t> seen_versions_;            // brick versions as of the last update
   std::unordered_map<uint64_t, Decoded> decoded_;  // key: brick index * 8 + level
   int64_t decodes_ = 0;
   std::vector<float> block_;
