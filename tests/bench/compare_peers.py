@@ -2,7 +2,8 @@
 """Runs the project's benchmarks and the peer libraries in one session and prints the ratios.
 
 Usage: tests/bench/compare_peers.py [--sculpt build/bin/sculpt] [--peers ../shared/bench/peers.py] [WORKLOAD ...]
-Workloads: haar (issue 2), mc (issue 4), rot (issue 3), edt and sdf (issue 8).
+Workloads: haar (issue 2), mc (issue 4), rot (issue 3), edt and sdf (issue 8), nurbs (issue 9,
+against the paper's own figures: no peer library does this).
 Needs Debian's python3 peer packages: scripts/install-deps.sh --peers
 """
 import argparse, json, re, statistics, subprocess, sys, time
@@ -121,7 +122,22 @@ def sdf(args):
         print(f"| narrow band 3, {int(b['triangles'])} triangles, 256^3 ({label}) | {o * 1e3:.0f} ms | {vdb * 1e3:.0f} ms | {vdb / o:.2f}x | {b['max_err_vs_brute']:.2g} |")
 
 
-WORKLOADS = {"haar": haar, "mc": mc, "rot": rot, "edt": edt, "sdf": sdf}
+def nurbs(args):
+    # No peer library implements the paper's path constraint: the reference is
+    # the paper itself (PowerPC 1.33 GHz, 2007): Figure 14 80 steps 240 ms,
+    # Figure 15 100 steps 420 ms, for the whole path.
+    ours = sculpt_bench(args.sculpt, "BM_NurbsPath/")
+    paper = {80: 0.240, 100: 0.420}
+    print("| workload | sculpt | paper | ratio |")
+    print("|---|---:|---:|---:|")
+    for name, t in sorted(ours.items()):
+        m = re.search(r"steps:(\d+)/star:(\d)/dense:(\d)", name)
+        steps, star, dense = int(m.group(1)), m.group(2) == "1", m.group(3) == "1"
+        label = f"{steps} steps, {'star' if star else 'circle'} zone, {'4 cells/refined span' if dense else '48x28 cells'}"
+        print(f"| {label} | {t * 1e3:.2f} ms | {paper[steps] * 1e3:.0f} ms | {paper[steps] / t:.0f}x |")
+
+
+WORKLOADS = {"haar": haar, "mc": mc, "rot": rot, "edt": edt, "sdf": sdf, "nurbs": nurbs}
 
 
 def main():
