@@ -9,6 +9,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "sculpt/core/io/atomic_file.h"
+#include "sculpt/core/mesh/marching_cubes.h"
 #include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/sim/synth/session_script.h"
@@ -449,8 +450,10 @@ core::Status StationController::export_mesh(const std::filesystem::path& path) {
     report(format.error(), "");
     return format.error();
   }
-  loop_.update_mesh();
-  core::Status st = core::write_mesh(path, loop_.mesh().welded_mesh(), *format);
+  // Full resolution, whatever the view draws.
+  const core::Mesh mesh = options_.loop.mesh ? (loop_.update_mesh(), loop_.mesh().welded_mesh())
+                                             : core::marching_cubes(loop_.volume());
+  core::Status st = core::write_mesh(path, mesh, *format);
   report(st, "exported " + path.string());
   return st;
 }

@@ -20,7 +20,6 @@
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/station_controller.h"
 #include "sculpt/station/render/software_renderer.h"
-#include "sculpt/station/view/surface_lod.h"
 #include "sculpt/station/view/volume_raycast.h"
 #include "window/gl_context.h"
 #include "window/station_panel.h"
@@ -31,6 +30,7 @@ namespace {
 constexpr int64_t kScanIntervalNs = 1'000'000'000;  // hot-plug: look for new devices each second
 constexpr float kOrbitRadPerPixel = 0.008f;
 constexpr float kKeyMoveVoxPerSecond = 60.0f;
+constexpr int kMaxDrawnLevel = 2;  // coarser than 1/4 resolution looks like a blob
 
 int fail(const core::Error& e) {
   std::fprintf(stderr, "sculpt run: %s\n", e.message().c_str());
@@ -58,6 +58,7 @@ extern "C" void on_scroll(GLFWwindow* w, double dx, double dy) {
 struct RunFigures {
   std::vector<double> frame_ms;
   int64_t uploads = 0;
+  int64_t triangles = 0;  // drawn in the last frame
   // Where the frames' time went, milliseconds summed over all frames.
   double input_ms = 0, mesh_ms = 0, upload_ms = 0, draw_ms = 0;
 };
@@ -96,7 +97,7 @@ core::Status write_stats(const std::string& path, const RunFigures& f,
       {"strokes", c.loop().counters().strokes},
       {"volume_hash", c.loop().volume().content_hash()},
       {"solid_voxels", solid_voxels(c.loop().volume())},
-      {"triangles", c.loop().mesh().triangle_count()},
+      {"triangles", f.triangles},
       {"dab_latency_us",
        {{"count", l.count}, {"p50", l.p50_us}, {"p90", l.p90_us}, {"p99", l.p99_us},
         {"max", l.max_us}}}};
@@ -117,6 +118,7 @@ int run_window(const WindowOptions& o) {
   if (!renderer) return fail(renderer.error());
 
   ControllerOptions co;
+  co.loop.mesh = false;  // the window meshes what it draws (below), at its levels
   co.loop.clay_margin = 64;  // a slab of clay to carve, 128 voxels a side
   co.normalizer_config_path = hal::default_normalizer_config_path();
   StationController controller(co);
@@ -180,8 +182,9 @@ int run_window(const WindowOptions& o) {
   glfwSetScrollCallback(w, on_scroll);
   StationPanel panel(controller);
 
-  const core::Volume* meshed_volume = nullptr;
-  std::unique_ptr<SurfaceLod> coarse = std::make_unique<SurfaceLod>(2);
+  // The surface drawn: each brick at the level its distance calls for,
+  // crack-free where levels meet, cached per brick and level.
+  core::MixedLevelMeshCache surface;
   RunFigures figures;
   FrameFigures frame_figures;
   hal::InputFrame input;
@@ -262,22 +265,19 @@ int run_window(const WindowOptions& o) {
     // Sculpt results to the GPU.
     const int64_t t_mesh = hal::monotonic_ns();
     figures.input_ms += static_cast<double>(t_mesh - now) * 1e-6;
-    controller.update_mesh(t_mesh);
     const core::Volume& volume = controller.loop().volume();
-    if (meshed_volume != &volume) {
-      coarse = std::make_unique<SurfaceLod>(std::min(2, volume.levels()));
-      meshed_volume = &volume;
-    }
     LodPolicy policy = controller.lod().policy();
-    policy.max_level = coarse->max_level();
+    policy.max_level = std::min(kMaxDrawnLevel, volume.levels());
+    if (frame == 0 && o.lod >= 0) policy.fixed_level = o.lod;
     controller.lod().set_policy(policy);
     const std::vector<int> levels =
         controller.lod().select(volume.brick_grid(), volume.brick_edge(), camera.eye());
-    coarse->update(volume, levels);
+    surface.update(volume, levels);
+    // Latency: from each dab's report to its surface ready to draw.
+    controller.update_mesh(hal::monotonic_ns());
     const int64_t t_upload = hal::monotonic_ns();
     figures.mesh_ms += static_cast<double>(t_upload - t_mesh) * 1e-6;
-    const gl::SurfaceSync sync =
-        (*renderer)->sync_surface(volume, controller.loop().mesh(), *coarse, levels);
+    const gl::SurfaceSync sync = (*renderer)->sync_surface(volume, surface);
     (*renderer)->set_tool(controller.loop().tool());
 
     // Draw.
@@ -316,6 +316,7 @@ int run_window(const WindowOptions& o) {
     const double ms = static_cast<double>(end - now) * 1e-6;
     figures.frame_ms.push_back(ms);
     figures.uploads += sync.uploaded;
+    figures.triangles = sync.triangles;
     controller.lod().frame_done(ms);
     frame_figures.frame_ms = 0.9 * frame_figures.frame_ms + 0.1 * ms;
     frame_figures.fps = frame_figures.frame_ms > 0 ? 1000.0 / frame_figures.frame_ms : 0;

@@ -76,6 +76,25 @@ glm::vec3 mode_colour(core::SculptMode mode) {
   return {0.8f, 0.8f, 0.8f};
 }
 
+// Changes whenever brick b's mesh may have: its cells read b and its 26
+// neighbours, at their levels (versions only grow, so the sum moves on every
+// edit; the levels are mixed in with a multiplier no version sum reaches).
+uint64_t mesh_inputs_stamp(const core::Volume& volume, const core::MixedLevelMeshCache& surface,
+                           glm::ivec3 b) {
+  const glm::ivec3 g = volume.brick_grid();
+  uint64_t versions = 0, levels = 0;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const glm::ivec3 n = b + glm::ivec3(dx, dy, dz);
+        if (glm::any(glm::lessThan(n, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(n, g)))
+          continue;
+        versions += volume.brick_version(n);
+        levels = levels * 7 + static_cast<uint64_t>(surface.brick_level(n));
+      }
+  return versions ^ (levels << 40) ^ (levels >> 24);
+}
+
 }  // namespace
 
 core::Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create() {
@@ -96,8 +115,8 @@ core::Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create() {
   return r;
 }
 
-SurfaceSync SceneRenderer::sync_surface(const core::Volume& volume, const core::MeshCache& level0,
-                                        const SurfaceLod& coarse, std::span<const int> levels) {
+SurfaceSync SceneRenderer::sync_surface(const core::Volume& volume,
+                                        const core::MixedLevelMeshCache& surface) {
   SurfaceSync sync;
   visible_.clear();
   const glm::ivec3 g = volume.brick_grid();
@@ -106,15 +125,13 @@ SurfaceSync SceneRenderer::sync_surface(const core::Volume& volume, const core::
     for (int y = 0; y < g.y; ++y)
       for (int x = 0; x < g.x; ++x, ++i) {
         const glm::ivec3 b(x, y, z);
-        const int level = i < levels.size() ? std::clamp(levels[i], 0, coarse.max_level()) : 0;
-        const core::BrickMesh& m = level == 0 ? level0.brick_mesh(b) : coarse.brick_mesh(b, level);
-        const uint64_t key = static_cast<uint64_t>(i) * 8 + static_cast<uint64_t>(level);
+        const core::BrickMesh& m = surface.brick_mesh(b);
         if (m.empty()) {
-          if (auto it = slots_.find(key); it != slots_.end()) slots_.erase(it);
+          if (auto it = slots_.find(i); it != slots_.end()) slots_.erase(it);
           continue;
         }
-        Slot& slot = slots_[key];
-        const uint64_t stamp = SurfaceLod::neighbourhood_stamp(volume, b);
+        Slot& slot = slots_[i];
+        const uint64_t stamp = mesh_inputs_stamp(volume, surface, b);
         if (slot.stamp != stamp) {
           slot.mesh.upload(m.mesh);
           slot.stamp = stamp;

@@ -20,7 +20,7 @@
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/sculpt/sculptor.h"
 #include "sculpt/core/tool/tool.h"
-#include "sculpt/station/view/surface_lod.h"
+#include "sculpt/core/mesh/mixed_level_mesh.h"
 
 namespace sculpt::station::gl {
 
@@ -49,10 +49,9 @@ class SceneRenderer {
  public:
   static core::Result<std::unique_ptr<SceneRenderer>> create();
 
-  /// Sends the brick meshes whose neighbourhood changed (at the level each
-  /// brick is drawn at) to the GPU.
-  SurfaceSync sync_surface(const core::Volume& volume, const core::MeshCache& level0,
-                           const SurfaceLod& coarse, std::span<const int> levels);
+  /// Sends the brick meshes whose inputs changed (the versions or levels of
+  /// the bricks they read) to the GPU.
+  SurfaceSync sync_surface(const core::Volume& volume, const core::MixedLevelMeshCache& surface);
   /// Draws this one mesh as the surface instead (pictures of a result).
   void show_mesh(const core::Mesh& mesh);
   /// Remakes the tool's mesh when the tool changed.
@@ -69,7 +68,7 @@ class SceneRenderer {
 
   ShaderProgram lit_;
   ShaderProgram flat_;
-  std::unordered_map<uint64_t, Slot> slots_;  // key: brick index * 8 + level
+  std::unordered_map<uint64_t, Slot> slots_;  // key: brick index
   std::vector<const GpuMesh*> visible_;
   core::Tool tool_;
   GpuMesh tool_mesh_;

@@ -23,6 +23,7 @@ struct WindowOptions {
   std::string screenshot;      ///< PNG of the last frame, at exit
   int frames = 0;              ///< stop after this many frames (0: when closed)
   bool exit_when_replayed = false;  ///< stop when the sim device's session ends
+  int lod = -1;                ///< a fixed level of detail for every brick (-1: automatic)
   bool vsync = true;
   bool visible = true;
   int width = 1280;
