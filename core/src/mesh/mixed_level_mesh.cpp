@@ -327,7 +327,14 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
     dims_ = volume.dims();
     grid_ = volume.brick_grid();
     edge_ = volume.brick_edge();
+    // Mesh versions keep counting across a reset, so a renderer's stamps
+    // never match a mesh of the previous volume.
+    uint64_t versions = 0;
+    for (const CachedBrick& cb : bricks_)
+      versions = std::max(versions, cb.mesh_version);
     bricks_.assign(static_cast<size_t>(volume.brick_count()), CachedBrick{});
+    for (CachedBrick& cb : bricks_)
+      cb.mesh_version = versions;
     seen_versions_.assign(static_cast<size_t>(volume.brick_count()), 0);
     for (size_t i = 0; i < seen_versions_.size(); ++i) {
       const glm::ivec3 b(
@@ -402,6 +409,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         cb.level = k;
         cb.levels.swap(levels);
         mesh_brick(b, cb);
+        ++cb.mesh_version;
         stats.bricks_meshed += cb.mesh.empty() ? 0 : 1;
       }
   // Forget decoded bricks at levels no brick around them uses any more.

@@ -3,6 +3,7 @@
 
 #include "sculpt/core/mesh/mixed_level_mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -123,9 +124,20 @@ TEST(MixedLevelMeshCache, KeepsWhatDidNotChange) {
   EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, levels));
 
   // Nothing changed: nothing re-meshed, nothing decoded.
+  auto mesh_versions = [&] {
+    std::vector<uint64_t> out;
+    for (int z = 0; z < 4; ++z)
+      for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x)
+          out.push_back(cache.brick_mesh_version({x, y, z}));
+    return out;
+  };
+  const std::vector<uint64_t> first = mesh_versions();
+  EXPECT_EQ(std::count(first.begin(), first.end(), 1u), v.brick_count());
   u = cache.update(v, levels);
   EXPECT_EQ(u.bricks_changed, 0);
   EXPECT_EQ(u.bricks_decoded, 0);
+  EXPECT_EQ(mesh_versions(), first);
 
   // A dent in the surface inside brick (2, 2, 3): it and its 26 neighbours
   // at most are re-meshed, and the result is what meshing from scratch gives.
@@ -141,6 +153,12 @@ TEST(MixedLevelMeshCache, KeepsWhatDidNotChange) {
   u = cache.update(v, levels);
   EXPECT_GT(u.bricks_changed, 0);
   EXPECT_LE(u.bricks_changed, 27);
+  // Exactly the re-meshed bricks moved their mesh versions.
+  const std::vector<uint64_t> after = mesh_versions();
+  int64_t moved = 0;
+  for (size_t i = 0; i < after.size(); ++i)
+    moved += after[i] != first[i];
+  EXPECT_EQ(moved, u.bricks_changed);
   EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, levels));
   MixedLevelStats st = cache.stats();
   expect_watertight(cache.welded_mesh(), st, 2, "after edit");

@@ -88,6 +88,9 @@ class MixedLevelMeshCache {
   /// Brick b's mesh (level-0 voxel units), stitch included; empty before
   /// the first update().
   const BrickMesh& brick_mesh(glm::ivec3 b) const { return bricks_[index(b)].mesh; }
+  /// Incremented each time update() rebuilds brick b's mesh (0 before the
+  /// first): a renderer re-uploads exactly the bricks whose count moved.
+  uint64_t brick_mesh_version(glm::ivec3 b) const { return bricks_[index(b)].mesh_version; }
   /// Stitching figures of the current meshes, summed over bricks.
   MixedLevelStats stats() const;
   int64_t triangle_count() const;
@@ -100,6 +103,7 @@ class MixedLevelMeshCache {
     // Levels of the bricks around, in neighbourhood order; empty before the
     // first meshing.
     std::vector<int8_t> levels;
+    uint64_t mesh_version = 0;
     BrickMesh mesh;
     MixedLevelStats stats;
   };
