@@ -184,9 +184,10 @@ NarrowBand mesh_narrow_band(const MeshDistance& md, glm::ivec3 dims,
           // in its band: per row, the x-range where the row meets that
           // ball; then the plane test rejects with one dot product.
           const glm::vec3 centre = (a + b + c) / 3.0f;
-          const float ball = band + std::sqrt(std::max({glm::dot(a - centre, a - centre),
-                                                        glm::dot(b - centre, b - centre),
-                                                        glm::dot(c - centre, c - centre)}));
+          const float radius = std::sqrt(
+              std::max({glm::dot(a - centre, a - centre), glm::dot(b - centre, b - centre),
+                        glm::dot(c - centre, c - centre)}));
+          const float ball = band + radius;
           const glm::vec3 ab = b - a, ac = c - a;
           const glm::vec3 n = glm::cross(ab, ac);
           const float nlen = glm::length(n);
@@ -205,6 +206,13 @@ NarrowBand mesh_narrow_band(const MeshDistance& md, glm::ivec3 dims,
                 const float h = glm::dot(p - a, un);
                 const float cur = std::min(dist[row + x], band2);
                 if (h * h >= cur) continue;
+                // Ball test: the triangle lies within `radius` of its centre,
+                // so it cannot beat the current best when the centre is
+                // farther than best + radius. Near a surface most of the
+                // neighbouring triangles fail here, not in the plane test.
+                const glm::vec3 pc = p - centre;
+                const float reach = std::sqrt(cur) + radius;
+                if (glm::dot(pc, pc) >= reach * reach) continue;
                 const float d2 = triangle_distance2(p, a, ab, ac);
                 // Strictly nearer only: ties keep the first triangle in
                 // bucket order, the same for any thread count.
