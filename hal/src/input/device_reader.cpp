@@ -93,6 +93,7 @@ void DeviceReader::poll(InputFrame& frame, int64_t now_ns) {
   bool have_motion = false;
   size_t newest_at = 0;
   while (ring_.try_pop(e)) {
+    frame.sequence.push_back(e);
     if (e.kind == InputKind::kMotion) {
       if (e.t_ns + options_.late_after_ns < now_ns) ++late_;
       if (have_motion) {

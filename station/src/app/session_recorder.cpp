@@ -15,7 +15,7 @@ core::Status SessionRecorder::start(const std::filesystem::path& path,
   writer_.emplace(std::move(writer).value());
   path_ = path;
   last_t_ns_ = now_ns;
-  {
+  if (!armed_.exchange(false)) {
     std::lock_guard lock(raw_mutex_);
     raw_.clear();
   }
@@ -30,6 +30,7 @@ void SessionRecorder::command(const sim::Command& c, int64_t t_ns) {
 
 void SessionRecorder::raw(const hal::RawEvent& e) {
   std::lock_guard lock(raw_mutex_);
+  // Not recording and not armed: nothing to keep (flush() drops the rest).
   raw_.push_back(e);
 }
 
@@ -37,9 +38,20 @@ core::Status SessionRecorder::flush() {
   std::vector<hal::RawEvent> raw;
   {
     std::lock_guard lock(raw_mutex_);
-    raw.swap(raw_);
+    // Events are tapped in time order: the released ones are a prefix.
+    const auto held = std::find_if(raw_.begin(), raw_.end(), [&](const hal::RawEvent& e) {
+      return e.t_ns > released_t_ns_;
+    });
+    raw.assign(raw_.begin(), held);
+    raw_.erase(raw_.begin(), held);
   }
-  if (!writer_) return {};
+  if (!writer_) {
+    if (armed_.load()) {  // not started yet: keep them for start()
+      std::lock_guard lock(raw_mutex_);
+      raw_.insert(raw_.begin(), raw.begin(), raw.end());
+    }
+    return {};
+  }
   // Commands first, so a command and a report of the same time keep the order
   // the station saw them in; then a stable merge by time. A report that took
   // longer through its queue than a command issued after it is written at
@@ -72,6 +84,7 @@ core::Status SessionRecorder::flush() {
 
 core::Result<int64_t> SessionRecorder::stop() {
   if (!writer_) return int64_t{0};
+  released_t_ns_ = std::numeric_limits<int64_t>::max();
   if (core::Status st = flush(); !st) return st.error();
   const int64_t records = writer_->records();
   core::Status st = writer_->close();

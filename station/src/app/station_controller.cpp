@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -136,19 +137,21 @@ bool StationController::report(const core::Status& st, const std::string& done) 
 }
 
 int64_t StationController::stamp(int64_t now_ns) const {
-  return device_clock_ ? last_raw_t_ns_.load(std::memory_order_relaxed) : now_ns;
+  if (processed_t_ns_ != std::numeric_limits<int64_t>::min()) return processed_t_ns_ + 1;
+  return has_device_ ? 0 : now_ns;
 }
 
 void StationController::raw_report(const hal::RawEvent& e) {
-  // One writer (the device's reader thread); the main loop reads.
-  if (e.t_ns > last_raw_t_ns_.load(std::memory_order_relaxed))
-    last_raw_t_ns_.store(e.t_ns, std::memory_order_relaxed);
   recorder_.raw(e);
 }
 
 void StationController::command(const sim::Command& c, int64_t now_ns) {
+  command_at(c, stamp(now_ns));
+}
+
+void StationController::command_at(const sim::Command& c, int64_t t_ns) {
   loop_.handle(c);
-  recorder_.command(c, stamp(now_ns));
+  recorder_.command(c, t_ns);
   ++generation_;
 }
 
@@ -296,6 +299,7 @@ bool StationController::perform(Action action, int64_t now_ns) {
 
 void StationController::set_device(const hal::DeviceInfo& info, const std::string& normalizer) {
   device_info_ = info;
+  has_device_ = true;
   normalizer_text_ = normalizer;
   device_.name = info.name;
   device_.backend = info.backend;
@@ -326,8 +330,27 @@ void StationController::note_dabs(int64_t dabs_before, int64_t t_ns) {
                             static_cast<size_t>(loop_.counters().dabs - dabs_before), t_ns);
 }
 
-void StationController::device_frame(const hal::InputFrame& frame, int64_t now_ns) {
-  for (const hal::InputEvent& e : frame.events) {
+void StationController::device_frame(
+    const hal::InputFrame& frame, int64_t now_ns,
+    std::span<const std::pair<int64_t, sim::Command>> device_commands) {
+  // In order, every sample: a button acts at the pose of the motion before
+  // it, a command between the reports it came between.
+  size_t next_command = 0;
+  auto commands_until = [&](int64_t t_ns) {
+    for (; next_command < device_commands.size() && device_commands[next_command].first <= t_ns;
+         ++next_command) {
+      command_at(device_commands[next_command].second, device_commands[next_command].first);
+    }
+  };
+  for (const hal::InputEvent& e : frame.sequence) {
+    // Connect events carry the reader's clock, not the device's: only
+    // reports place commands.
+    const bool report = e.kind == hal::InputKind::kMotion || e.kind == hal::InputKind::kButton ||
+                        e.kind == hal::InputKind::kBattery;
+    if (report) {
+      commands_until(e.t_ns);
+      processed_t_ns_ = std::max(processed_t_ns_, e.t_ns);
+    }
     switch (e.kind) {
       case hal::InputKind::kConnected:
         device_.connected = true;
@@ -335,33 +358,45 @@ void StationController::device_frame(const hal::InputFrame& frame, int64_t now_n
       case hal::InputKind::kDisconnected:
         device_.connected = false;
         device_.report_rate_hz = 0;
-        motion_t_ns_.clear();
+        rate_since_ns_ = 0;
         break;
       case hal::InputKind::kBattery:
         device_.battery_percent = e.battery_percent;
         device_.charging = e.charging;
         break;
-      default:
+      case hal::InputKind::kMotion:
+        if (device_target_ == DeviceTarget::kCamera) {
+          camera_motion(e);
+          continue;
+        }
+        last_camera_t_ns_ = 0;
+        break;
+      case hal::InputKind::kButton:
         break;
     }
     const int64_t dabs = loop_.counters().dabs;
     loop_.handle(e);
     note_dabs(dabs, report_time(e.t_ns, now_ns));
   }
-  for (const hal::InputEvent& e : frame.motion) {
-    motion_t_ns_.push_back(e.t_ns);
-    if (device_target_ == DeviceTarget::kCamera) {
-      camera_motion(e);
-      continue;
-    }
-    last_camera_t_ns_ = 0;
-    const int64_t dabs = loop_.counters().dabs;
-    loop_.handle(e);
-    note_dabs(dabs, report_time(e.t_ns, now_ns));
+  commands_until(std::numeric_limits<int64_t>::max());
+  // Every report up to here has been applied: the recording may have them.
+  recorder_.release_until(processed_t_ns_);
+}
+
+void StationController::reader_samples(int64_t motion_samples, int64_t now_ns) {
+  // Motion samples the reader decoded (superseded ones included: the device
+  // sent them), averaged over about a second.
+  if (rate_since_ns_ == 0 || motion_samples < rate_samples_) {
+    rate_since_ns_ = now_ns;
+    rate_samples_ = motion_samples;
+    return;
   }
-  while (!motion_t_ns_.empty() && motion_t_ns_.front() < now_ns - kSecondNs)
-    motion_t_ns_.pop_front();
-  device_.report_rate_hz = static_cast<double>(motion_t_ns_.size());
+  const int64_t dt = now_ns - rate_since_ns_;
+  if (dt < kSecondNs) return;
+  device_.report_rate_hz =
+      static_cast<double>(motion_samples - rate_samples_) * 1e9 / static_cast<double>(dt);
+  rate_since_ns_ = now_ns;
+  rate_samples_ = motion_samples;
 }
 
 void StationController::pointer_move(glm::vec3 position, int64_t now_ns) {

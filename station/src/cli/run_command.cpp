@@ -86,7 +86,7 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_option("--frames", w.frames, "window: stop after this many frames")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--until-replayed", w.exit_when_replayed,
-                "window: stop when the sim device's session has been played");
+                "window: stop when the sim device goes (its session played, or unplugged in it)");
   cmd->add_option("--stats", w.stats, "window: write frame times and dab latency (JSON) at exit");
   cmd->add_option("--screenshot", w.screenshot, "window: PNG of the last frame (with --frames)");
   cmd->add_option("--lod", w.lod, "window: draw every brick at this level (default: by distance)")

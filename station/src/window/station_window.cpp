@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -126,7 +127,9 @@ int run_window(const WindowOptions& o) {
     if (core::Status st = controller.open(o.project); !st) return fail(st.error());
   }
 
-  // Devices: readers tap their raw reports into the recorder.
+  // Devices: readers tap their raw reports into the recorder, which keeps
+  // them from the first report when --record asks for a recording.
+  if (!o.record.empty()) controller.arm_recording();
   auto config = hal::load_normalizer_config_or_defaults(co.normalizer_config_path);
   if (!config) return fail(config.error());
   hal::ReaderOptions reader_options;
@@ -139,7 +142,6 @@ int run_window(const WindowOptions& o) {
     auto backend = std::make_unique<sim::SimBackend>(std::move(session).value(), file, o.sim_speed);
     sim_backend = backend.get();
     registry.add_backend(std::move(backend), /*first=*/true);
-    controller.use_device_clock(true);
     auto id = registry.open_device("sim");
     if (!id) return id.error();
     return {};
@@ -157,10 +159,12 @@ int run_window(const WindowOptions& o) {
     auto id = registry.open_device(o.device);
     if (!id) return fail(id.error());
   }
+  uint32_t device_id = 0;  // the device the panel reports on
   auto note_devices = [&] {
     for (uint32_t id = 0; id < 64; ++id) {
       if (const hal::DeviceReader* r = registry.reader(id); r != nullptr) {
         controller.set_device(r->info(), hal::to_text(*config));
+        device_id = id;
         return;
       }
     }
@@ -191,6 +195,8 @@ int run_window(const WindowOptions& o) {
   int64_t last_scan = hal::monotonic_ns();
   int64_t last_frame = last_scan;
   bool replay_done = false;
+  std::vector<std::pair<int64_t, sim::Command>> pending_commands;
+  int64_t newest_report_t = std::numeric_limits<int64_t>::min();
   for (int frame = 0; !glfwWindowShouldClose(w) && (o.frames <= 0 || frame < o.frames) &&
                       !(o.exit_when_replayed && replay_done);
        ++frame) {
@@ -201,14 +207,31 @@ int run_window(const WindowOptions& o) {
       if (!registry.scan().opened.empty()) note_devices();
       last_scan = now;
     }
-    if (sim_backend != nullptr) {
-      for (const auto& [t, c] : sim_backend->take_commands()) controller.command(c, t);
-    }
     input.clear();
     registry.poll(input, now);
     for (const hal::InputEvent& e : input.events)
       replay_done |= sim_backend != nullptr && e.kind == hal::InputKind::kDisconnected;
-    controller.device_frame(input, now);
+    // A sim device hands over a command before it reads the report after it,
+    // so once the reports are polled, every command older than the newest of
+    // them is here; younger ones wait for the reports before them (frame
+    // timing must not change where a command falls among the reports).
+    std::vector<std::pair<int64_t, sim::Command>> commands;
+    if (sim_backend != nullptr) {
+      for (auto& c : sim_backend->take_commands()) pending_commands.push_back(std::move(c));
+      for (const hal::InputEvent& e : input.sequence) {
+        if (e.kind == hal::InputKind::kMotion || e.kind == hal::InputKind::kButton)
+          newest_report_t = std::max(newest_report_t, e.t_ns);  // the device's clock
+      }
+      const bool device_gone = registry.open_count() == 0;
+      auto ready = std::stable_partition(
+          pending_commands.begin(), pending_commands.end(),
+          [&](const auto& c) { return device_gone || c.first <= newest_report_t; });
+      commands.assign(pending_commands.begin(), ready);
+      pending_commands.erase(pending_commands.begin(), ready);
+    }
+    controller.device_frame(input, now, commands);
+    if (const hal::DeviceReader* reader = registry.reader(device_id); reader != nullptr)
+      controller.reader_samples(reader->counters().motion_samples, now);
 
     // The ordinary mouse and keyboard.
     ImGuiIO& io = ImGui::GetIO();

@@ -197,11 +197,11 @@ TEST(StationController, TheDeviceMovesTheCameraOrTheTool) {
   hal::InputFrame frame;
   hal::InputEvent connected;
   connected.kind = hal::InputKind::kConnected;
-  frame.events.push_back(connected);
+  frame.sequence.push_back(connected);
   hal::InputEvent battery;
   battery.kind = hal::InputKind::kBattery;
   battery.battery_percent = 80;
-  frame.events.push_back(battery);
+  frame.sequence.push_back(battery);
   c.device_frame(frame, 0);
   EXPECT_TRUE(c.device_status().connected);
   EXPECT_EQ(c.device_status().battery_percent, 80);
@@ -215,12 +215,16 @@ TEST(StationController, TheDeviceMovesTheCameraOrTheTool) {
     m.t_ns = i * 10 * kMs;
     m.axes[hal::kRy] = 0.8f;
     m.integral[hal::kRy] = 0.008 * i;
-    f.motion.push_back(m);
+    f.sequence.push_back(m);
     c.device_frame(f, m.t_ns);
   }
   EXPECT_NE(c.camera().yaw(), yaw);
   EXPECT_EQ(c.loop().pose().position, tool);
-  EXPECT_EQ(c.device_status().report_rate_hz, 10.0);
+  c.reader_samples(100, 1000 * kMs);
+  c.reader_samples(150, 1500 * kMs);  // under a second: not yet
+  EXPECT_EQ(c.device_status().report_rate_hz, 0.0);
+  c.reader_samples(350, 2000 * kMs);
+  EXPECT_DOUBLE_EQ(c.device_status().report_rate_hz, 250.0);
 }
 
 }  // namespace

@@ -76,25 +76,6 @@ glm::vec3 mode_colour(core::SculptMode mode) {
   return {0.8f, 0.8f, 0.8f};
 }
 
-// Changes whenever brick b's mesh may have: its cells read b and its 26
-// neighbours, at their levels (versions only grow, so the sum moves on every
-// edit; the levels are mixed in with a multiplier no version sum reaches).
-uint64_t mesh_inputs_stamp(const core::Volume& volume, const core::MixedLevelMeshCache& surface,
-                           glm::ivec3 b) {
-  const glm::ivec3 g = volume.brick_grid();
-  uint64_t versions = 0, levels = 0;
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const glm::ivec3 n = b + glm::ivec3(dx, dy, dz);
-        if (glm::any(glm::lessThan(n, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(n, g)))
-          continue;
-        versions += volume.brick_version(n);
-        levels = levels * 7 + static_cast<uint64_t>(surface.brick_level(n));
-      }
-  return versions ^ (levels << 40) ^ (levels >> 24);
-}
-
 }  // namespace
 
 core::Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create() {
@@ -131,7 +112,7 @@ SurfaceSync SceneRenderer::sync_surface(const core::Volume& volume,
           continue;
         }
         Slot& slot = slots_[i];
-        const uint64_t stamp = mesh_inputs_stamp(volume, surface, b);
+        const uint64_t stamp = surface.brick_mesh_version(b);
         if (slot.stamp != stamp) {
           slot.mesh.upload(m.mesh);
           slot.stamp = stamp;

@@ -49,8 +49,7 @@ class SceneRenderer {
  public:
   static core::Result<std::unique_ptr<SceneRenderer>> create();
 
-  /// Sends the brick meshes whose inputs changed (the versions or levels of
-  /// the bricks they read) to the GPU.
+  /// Sends the brick meshes re-made since the last call to the GPU.
   SurfaceSync sync_surface(const core::Volume& volume, const core::MixedLevelMeshCache& surface);
   /// Draws this one mesh as the surface instead (pictures of a result).
   void show_mesh(const core::Mesh& mesh);

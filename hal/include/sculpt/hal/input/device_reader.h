@@ -48,9 +48,15 @@ struct ReaderCounters {
 struct InputFrame {
   std::vector<InputEvent> motion;  ///< newest kMotion per device, at most one each
   std::vector<InputEvent> events;  ///< buttons, battery, connect, disconnect, in order
+  /// Every event, motion included, in the order the device sent them: what
+  /// the station's loop consumes, so a button acts at the pose it was pressed
+  /// at and a stroke follows the device's path sample by sample (a live
+  /// session then sculpts exactly what its recording replays to).
+  std::vector<InputEvent> sequence;
   void clear() {
     motion.clear();
     events.clear();
+    sequence.clear();
   }
 };
 

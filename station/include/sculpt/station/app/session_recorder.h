@@ -7,7 +7,9 @@
 // Thread safety: raw() may be called from any thread (the reader's raw tap);
 // everything else from the main loop.
 
+#include <atomic>
 #include <cstdint>
+#include <limits>
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -26,14 +28,22 @@ class SessionRecorder {
   core::Status start(const std::filesystem::path& path, const sim::SessionHeader& header,
                      const std::vector<sim::Command>& opening, int64_t now_ns);
   bool recording() const { return writer_.has_value(); }
+  /// Keeps raw events from now on for a start() to come: so a recording asked
+  /// for before the devices open misses none of their first reports.
+  void arm() { armed_.store(true); }
   const std::filesystem::path& path() const { return path_; }
 
   /// A station command, at `t_ns` (monotonic).
   void command(const sim::Command& command, int64_t t_ns);
   /// A raw device event (any thread).
   void raw(const hal::RawEvent& event);
-  /// Writes what arrived, in time order; syncs when due. An error stops the
-  /// recording (what was written stays readable).
+  /// Raw events up to `t_ns` may be written: the station has applied them.
+  /// (The reader thread taps events before the main loop takes them from
+  /// its ring; writing one early could put it before a command the station
+  /// applied first.) Until the first call, every event may be written.
+  void release_until(int64_t t_ns) { released_t_ns_ = t_ns; }
+  /// Writes the commands and the released raw events, in time order; syncs
+  /// when due. An error stops the recording (what was written stays readable).
   core::Status flush();
   /// Flushes and closes; returns the records written.
   core::Result<int64_t> stop();
@@ -44,7 +54,9 @@ class SessionRecorder {
   std::vector<sim::SessionRecord> pending_;  // main thread's commands
   std::mutex raw_mutex_;
   std::vector<hal::RawEvent> raw_;  // from the reader thread
+  std::atomic<bool> armed_{false};  // keep raw events while not yet recording
   int64_t last_t_ns_ = 0;
+  int64_t released_t_ns_ = std::numeric_limits<int64_t>::max();
 };
 
 }  // namespace sculpt::station

@@ -17,7 +17,10 @@
 #include <deque>
 #include <filesystem>
 #include <future>
+#include <limits>
 #include <optional>
+#include <span>
+#include <utility>
 #include <string>
 
 #include "sculpt/hal/device/device_info.h"
@@ -99,6 +102,8 @@ class StationController {
 
   // --- settings and actions (each a command, recorded) -----------------
   void command(const sim::Command& command, int64_t now_ns);
+  /// A command stamped with `t_ns` in the recording as it is.
+  void command_at(const sim::Command& command, int64_t t_ns);
   void set_tool(sim::ToolShape shape, float size_a_vox, float size_b_vox, int64_t now_ns);
   void set_mode(core::SculptMode mode, int64_t now_ns);
   void set_strength(float strength, int64_t now_ns);
@@ -117,20 +122,24 @@ class StationController {
   void set_device_target(DeviceTarget target) { device_target_ = target; }
 
   // --- input -------------------------------------------------------------
-  /// Everything the device readers delivered since the last frame.
-  void device_frame(const hal::InputFrame& frame, int64_t now_ns);
+  /// Everything the device readers delivered since the last frame, with the
+  /// station commands a sim device played meanwhile (their times in its
+  /// clock), applied in time order among its events.
+  void device_frame(const hal::InputFrame& frame, int64_t now_ns,
+                    std::span<const std::pair<int64_t, sim::Command>> device_commands = {});
+  /// Keeps the devices' raw reports for a recording about to start.
+  void arm_recording() { recorder_.arm(); }
   /// The ordinary mouse moved the tool to `position` (voxels); while the
   /// pointer is down, the move sculpts.
   void pointer_move(glm::vec3 position, int64_t now_ns);
   void pointer_down(int64_t now_ns);
   void pointer_up(int64_t now_ns);
+  /// The device reader's count of motion samples so far (for the report
+  /// rate the panel shows).
+  void reader_samples(int64_t motion_samples, int64_t now_ns);
   /// A raw device event for the recording (reader threads).
   void raw_report(const hal::RawEvent& event);
-  /// Stamp commands with the device's own clock (the time of its latest
-  /// report) instead of the monotonic clock: for sim devices, whose reports
-  /// carry the times recorded in their session, so a recording made while
-  /// one plays keeps one time base.
-  void use_device_clock(bool on) { device_clock_ = on; }
+
   void set_device(const hal::DeviceInfo& info, const std::string& normalizer_text);
 
   // --- after input ------------------------------------------------------
@@ -182,16 +191,21 @@ class StationController {
   std::string normalizer_text_;
   std::string status_;
 
+  // A command's time in a recording: just after the newest report processed
+  // before it, so the recording orders it among the reports as the station
+  // applied it (and in the device's own clock, which for a sim device is its
+  // session's). Before any report: 0 with a device, else `now_ns`.
   int64_t stamp(int64_t now_ns) const;
-  bool device_clock_ = false;
-  std::atomic<int64_t> last_raw_t_ns_{0};
+  bool has_device_ = false;
+  int64_t processed_t_ns_ = std::numeric_limits<int64_t>::min();
   bool pointer_down_ = false;
   // Dabs not yet meshed: their report times.
   std::vector<int64_t> unmeshed_dab_t_ns_;
   std::deque<double> recent_latency_us_;
   std::vector<double> all_latency_us_;
-  // Report rate: motion sample times of the last second.
-  std::deque<int64_t> motion_t_ns_;
+  // Report rate: the reader's sample count when the current second began.
+  int64_t rate_since_ns_ = 0;
+  int64_t rate_samples_ = 0;
   int64_t last_camera_t_ns_ = 0;
 
   // Autosave: what the volume was at the last save, and the save in flight.
