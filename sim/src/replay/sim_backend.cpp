@@ -1,5 +1,7 @@
 #include "sculpt/sim/replay/sim_backend.h"
 
+#include <atomic>
+
 #include "sculpt/sim/replay/session_player.h"
 
 namespace sculpt::sim {
@@ -10,6 +12,7 @@ struct SimBackend::Shared {
   std::mutex mutex;
   std::vector<std::pair<int64_t, Command>> commands;
   bool opened = false;
+  std::atomic<bool> played{false};  // every record handed out
 };
 
 namespace {
@@ -51,6 +54,7 @@ class SimDevice final : public hal::Device {
       return hal::ReadResult::kEvent;
     }
     // The recording is over: the device stays connected and quiet.
+    shared_->played.store(true);
     player_.clock().sleep_until_ns(deadline);
     return hal::ReadResult::kTimeout;
   }
@@ -88,6 +92,10 @@ core::Result<std::unique_ptr<hal::Device>> SimBackend::open(const hal::DeviceInf
 
 bool SimBackend::changed() {
   return std::exchange(changed_, false);
+}
+
+bool SimBackend::played() const {
+  return shared_->played.load();
 }
 
 std::vector<std::pair<int64_t, Command>> SimBackend::take_commands() {

@@ -134,35 +134,44 @@ int run_window(const WindowOptions& o) {
   if (!config) return fail(config.error());
   hal::ReaderOptions reader_options;
   reader_options.on_raw = [&controller](const hal::RawEvent& e) { controller.raw_report(e); };
-  hal::DeviceRegistry registry(hal::DeviceRegistry::default_backends(), *config, reader_options);
+  auto registry = std::make_unique<hal::DeviceRegistry>(hal::DeviceRegistry::default_backends(),
+                                                        *config, reader_options);
   sim::SimBackend* sim_backend = nullptr;
   auto add_sim = [&](const std::string& file) -> core::Status {
     auto session = load_session(file);
     if (!session) return session.error();
+    // A session plays through the normaliser settings it was recorded with
+    // (its header), as its replay does: the live result is then the same.
+    auto recorded = hal::parse_normalizer_config(session->header.normalizer_config,
+                                                 file + " (normaliser settings)");
+    if (!recorded) return recorded.error();
+    *config = *recorded;
+    registry = std::make_unique<hal::DeviceRegistry>(
+        std::vector<std::unique_ptr<hal::Backend>>{}, *config, reader_options);
     auto backend = std::make_unique<sim::SimBackend>(std::move(session).value(), file, o.sim_speed);
     sim_backend = backend.get();
-    registry.add_backend(std::move(backend), /*first=*/true);
-    auto id = registry.open_device("sim");
+    registry->add_backend(std::move(backend), /*first=*/true);
+    auto id = registry->open_device("sim");
     if (!id) return id.error();
     return {};
   };
   if (o.device.rfind("sim:", 0) == 0) {
     if (core::Status st = add_sim(o.device.substr(4)); !st) return fail(st.error());
   } else if (o.device == "auto") {
-    registry.scan();
-    if (registry.open_count() == 0 && o.project.empty()) {
+    registry->scan();
+    if (registry->open_count() == 0 && o.project.empty()) {
       std::printf("no 3D mouse found: playing the demo session as a live device\n");
       if (core::Status st = add_sim(sim::bundled_session_path("demo")); !st)
         return fail(st.error());
     }
   } else {
-    auto id = registry.open_device(o.device);
+    auto id = registry->open_device(o.device);
     if (!id) return fail(id.error());
   }
   uint32_t device_id = 0;  // the device the panel reports on
   auto note_devices = [&] {
     for (uint32_t id = 0; id < 64; ++id) {
-      if (const hal::DeviceReader* r = registry.reader(id); r != nullptr) {
+      if (const hal::DeviceReader* r = registry->reader(id); r != nullptr) {
         controller.set_device(r->info(), hal::to_text(*config));
         device_id = id;
         return;
@@ -204,11 +213,14 @@ int run_window(const WindowOptions& o) {
     const int64_t now = hal::monotonic_ns();
     // Device input: what the reader threads delivered since the last frame.
     if (now - last_scan > kScanIntervalNs) {
-      if (!registry.scan().opened.empty()) note_devices();
+      if (!registry->scan().opened.empty()) note_devices();
       last_scan = now;
     }
+    // Checked before polling: once true, this poll gets the session's last reports.
+    const bool session_played = sim_backend != nullptr && sim_backend->played();
     input.clear();
-    registry.poll(input, now);
+    registry->poll(input, now);
+    replay_done |= session_played;
     for (const hal::InputEvent& e : input.events)
       replay_done |= sim_backend != nullptr && e.kind == hal::InputKind::kDisconnected;
     // A sim device hands over a command before it reads the report after it,
@@ -222,7 +234,7 @@ int run_window(const WindowOptions& o) {
         if (e.kind == hal::InputKind::kMotion || e.kind == hal::InputKind::kButton)
           newest_report_t = std::max(newest_report_t, e.t_ns);  // the device's clock
       }
-      const bool device_gone = registry.open_count() == 0;
+      const bool device_gone = registry->open_count() == 0 || session_played;
       auto ready = std::stable_partition(
           pending_commands.begin(), pending_commands.end(),
           [&](const auto& c) { return device_gone || c.first <= newest_report_t; });
@@ -230,7 +242,7 @@ int run_window(const WindowOptions& o) {
       pending_commands.erase(pending_commands.begin(), ready);
     }
     controller.device_frame(input, now, commands);
-    if (const hal::DeviceReader* reader = registry.reader(device_id); reader != nullptr)
+    if (const hal::DeviceReader* reader = registry->reader(device_id); reader != nullptr)
       controller.reader_samples(reader->counters().motion_samples, now);
 
     // The ordinary mouse and keyboard.

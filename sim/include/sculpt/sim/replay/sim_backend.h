@@ -30,6 +30,9 @@ class SimBackend final : public hal::Backend {
   core::Result<std::unique_ptr<hal::Device>> open(const hal::DeviceInfo& info) override;
   bool changed() override;
 
+  /// Whether the device has handed out every record of the session (its
+  /// reader has pushed them all by the time this is true). Thread-safe.
+  bool played() const;
   /// Station commands whose time has come (thread-safe), in order.
   std::vector<std::pair<int64_t, Command>> take_commands();
 
