@@ -117,6 +117,12 @@ ordered record_json(const SessionRecord& r) {
       j["lo"] = floats(c.values, 3);
       j["hi"] = floats(c.values + 3, 3);
       break;
+    case CommandKind::kHypertexture:
+      j["centre"] = floats(c.values, 3);
+      j["radius"] = c.values[3];
+      j["width"] = c.values[4];
+      j["seed"] = c.values[5];
+      break;
     default:
       break;
   }
@@ -228,6 +234,12 @@ SessionRecord parse_command(const json& j, int64_t t) {
     case CommandKind::kToolFromRegion:
       read_numbers(j, "lo", c.values, 3);
       read_numbers(j, "hi", c.values + 3, 3);
+      break;
+    case CommandKind::kHypertexture:
+      read_numbers(j, "centre", c.values, 3);
+      read_number(j, "radius", c.values + 3);
+      read_number(j, "width", c.values + 4);
+      read_number(j, "seed", c.values + 5);
       break;
     default:
       break;

@@ -53,6 +53,8 @@ std::optional<Action> shortcut(int key, int mods) {
         return Action::kExportMesh;
       case GLFW_KEY_T:
         return Action::kUseSculptureAsTool;
+      case GLFW_KEY_H:
+        return Action::kHypertexture;
       default:
         return std::nullopt;
     }
@@ -114,6 +116,7 @@ const char* shortcut_label(Action action) {
     case Action::kSave: return "Ctrl+S";
     case Action::kExportMesh: return "Ctrl+E";
     case Action::kUseSculptureAsTool: return "Ctrl+T";
+    case Action::kHypertexture: return "Ctrl+H";
     case Action::kFrameView: return "F";
   }
   return "";
@@ -232,6 +235,19 @@ bool StationController::use_sculpture_as_tool(int64_t now_ns) {
   return true;
 }
 
+void StationController::hypertexture(int64_t now_ns) {
+  constexpr float kSkinWidthVox = 4.0f;
+  const glm::vec3 p = loop_.pose().position;
+  const uint64_t before = loop_.volume().content_hash();
+  command(make(sim::CommandKind::kHypertexture, 0,
+               {p.x, p.y, p.z, 0.5f * loop_.tool_size(), kSkinWidthVox,
+                static_cast<float>(++hypertextures_)}),
+          now_ns);
+  status_ = loop_.volume().content_hash() != before
+                ? "hypertexture baked around the tool"
+                : "no surface near the tool for a hypertexture";
+}
+
 bool StationController::perform(Action action, int64_t now_ns) {
   const StationSettings& s = loop_.settings();
   auto tool = [&](sim::ToolShape shape) {
@@ -290,6 +306,9 @@ bool StationController::perform(Action action, int64_t now_ns) {
       return export_mesh(options_.mesh_export).ok();
     case Action::kUseSculptureAsTool:
       return use_sculpture_as_tool(now_ns);
+    case Action::kHypertexture:
+      hypertexture(now_ns);
+      return true;
     case Action::kFrameView:
       camera_.frame(glm::vec3(0.0f), glm::vec3(loop_.volume().dims()));
       return true;

@@ -2,6 +2,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "sculpt/core/distance/hypertexture.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 
 #include <algorithm>
@@ -203,6 +204,22 @@ void StationLoop::handle(const sim::Command& c) {
     case K::kPointer:
       move_tool(c.values, /*keep_stroke=*/true);
       break;
+    case K::kHypertexture: {
+      if (pressed_) release();
+      const glm::vec3 centre(c.values[0], c.values[1], c.values[2]);
+      const float radius = std::clamp(c.values[3], 1.0f, 128.0f);
+      core::HypertextureOptions h;
+      h.width_vox = std::clamp(c.values[4], 0.5f, 32.0f);
+      h.seed = static_cast<uint32_t>(std::clamp(c.values[5], 0.0f, 1.0e6f));
+      h.threads = 1;  // the same result on every machine
+      if (!std::isfinite(centre.x) || !std::isfinite(centre.y) || !std::isfinite(centre.z)) break;
+      const float reach = radius + h.width_vox;
+      core::Box box{glm::ivec3(glm::floor(centre - reach)), glm::ivec3(glm::ceil(centre + reach)) + 1};
+      box = core::intersect(box, core::Box{glm::ivec3(0), volume_->dims()});
+      if (box.empty()) break;
+      sculptor_->external_edit(box, [&] { core::bake_hypertexture(*volume_, box, h); });
+      break;
+    }
     case K::kToolFromRegion: {
       // Clamped to the block; a region with no voxel in it changes nothing.
       core::Box region;

@@ -73,6 +73,8 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     }
     if (ImGui::Button("Use this sculpture as a tool")) c_.use_sculpture_as_tool(now);
     tip(Action::kUseSculptureAsTool);
+    if (ImGui::Button("Hypertexture around the tool")) c_.hypertexture(now);
+    tip(Action::kHypertexture);
 
     int mode = s.mode == core::SculptMode::kSubtract ? 1
                : s.mode == core::SculptMode::kSmooth ? 2

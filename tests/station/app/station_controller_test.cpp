@@ -41,6 +41,7 @@ TEST(StationShortcuts, MapKeysToActions) {
   EXPECT_EQ(shortcut(GLFW_KEY_S, GLFW_MOD_CONTROL), Action::kSave);
   EXPECT_EQ(shortcut(GLFW_KEY_TAB, 0), Action::kToggleAddSubtract);
   EXPECT_EQ(shortcut(GLFW_KEY_3, 0), Action::kToolCylinder);
+  EXPECT_EQ(shortcut(GLFW_KEY_H, GLFW_MOD_CONTROL), Action::kHypertexture);
   EXPECT_EQ(shortcut(GLFW_KEY_Z, 0), std::nullopt);
   EXPECT_EQ(shortcut(GLFW_KEY_Q, GLFW_MOD_CONTROL), std::nullopt);
   EXPECT_STREQ(shortcut_label(Action::kUndo), "Ctrl+Z");
@@ -103,6 +104,14 @@ TEST(StationController, ARecordingReplaysToTheSameVolume) {
   c.set_mirror(0, t += kMs);
   stroke(c, t, 30.0f);
   c.undo(t += kMs);
+  c.redo(t += kMs);
+  c.pointer_move({30.0f, 52.0f, 40.0f}, t += kMs);
+  const uint64_t plain = c.loop().volume().content_hash();
+  c.hypertexture(t += kMs);
+  EXPECT_EQ(c.status(), "hypertexture baked around the tool");
+  EXPECT_NE(c.loop().volume().content_hash(), plain);
+  c.undo(t += kMs);
+  EXPECT_EQ(c.loop().volume().content_hash(), plain);  // a stroke of its own
   c.redo(t += kMs);
   ASSERT_TRUE(c.use_sculpture_as_tool(t += kMs)) << c.status();
   c.set_mode(core::SculptMode::kAdd, t += kMs);

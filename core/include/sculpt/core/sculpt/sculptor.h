@@ -19,6 +19,7 @@
 // operation applies twice.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <unordered_map>
@@ -106,6 +107,10 @@ class Sculptor {
   void end_stroke() { history_.end_stroke(); }
   /// Applies one dab (and its mirror image). Asserts a tool is set.
   DabStats dab(const Dab& dab);
+  /// An edit of `region` made outside the sculptor (a station brush such as
+  /// the hypertexture): `edit` runs as a stroke of its own, so undo and redo
+  /// cover it like any other (a stroke in progress is closed first).
+  void external_edit(const Box& region, const std::function<void()>& edit);
   bool undo() { return history_.undo(volume_); }
   bool redo() { return history_.redo(volume_); }
 

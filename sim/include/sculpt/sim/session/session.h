@@ -38,8 +38,12 @@ enum class CommandKind : uint8_t {
   /// The material in a box becomes the tool (pivot at the box's centre):
   /// values[0..2] low corner, values[3..5] high corner (voxels, half-open).
   kToolFromRegion,
+  /// A hypertexture skin (Jones & Satherley §4.3) baked around the surface:
+  /// values[0..2] centre, values[3] radius of the region, values[4] width of
+  /// the soft region (voxels), values[5] noise seed.
+  kHypertexture,
 };
-inline constexpr uint8_t kCommandKindCount = 13;
+inline constexpr uint8_t kCommandKindCount = 14;
 inline constexpr uint8_t kVolumeFill = 0;
 inline constexpr uint8_t kVolumeClay = 1;
 

@@ -26,6 +26,7 @@
 //   {"t": ..., "cmd": "tool_pose", "position": [X, Y, Z], "orientation": [W, X, Y, Z]}
 //   {"t": ..., "cmd": "pointer", "position": [X, Y, Z], "orientation": [W, X, Y, Z]}
 //   {"t": ..., "cmd": "tool_from_region", "lo": [X, Y, Z], "hi": [X, Y, Z]}
+//   {"t": ..., "cmd": "hypertexture", "centre": [X, Y, Z], "radius": R, "width": W, "seed": S}
 // Empty lines and lines starting with # are skipped.
 
 #include <string>

@@ -58,6 +58,7 @@ enum class Action {
   kSave,
   kExportMesh,
   kUseSculptureAsTool,
+  kHypertexture,
   kFrameView,
 };
 
@@ -115,6 +116,9 @@ class StationController {
   /// The material's bounding box becomes the tool (false, with the reason
   /// in status(), when there is no material or it is too big for a tool).
   bool use_sculpture_as_tool(int64_t now_ns);
+  /// Bakes a hypertexture skin (distance-field noise, Jones & Satherley
+  /// §4.3) into the surface around the tool, over the tool's size.
+  void hypertexture(int64_t now_ns);
   /// Runs a shortcut's action; false when it failed (see status()).
   bool perform(Action action, int64_t now_ns);
 
@@ -213,6 +217,7 @@ class StationController {
   uint64_t generation_ = 0;
   int64_t last_autosave_ns_ = 0;
   int64_t autosaves_ = 0;
+  int hypertextures_ = 0;  // each gets its own noise
   std::future<core::Status> autosave_;
 };
 
