@@ -23,16 +23,24 @@ namespace sculpt::station::test {
 namespace {
 
 // `sculpt ARGS` with a display: the current one, else a private Xvfb.
+// Under AddressSanitizer the child runs without leak detection: Mesa's
+// driver is unloaded at exit, so its process-lifetime allocations show as
+// leaks from an unknown module that no suppression can name. (The station's
+// own code is leak-checked in-process by the GL-free tests.)
 std::optional<CommandResult> run_with_display(const std::string& args) {
-  if (display_available()) return run_sculpt(args);
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) return std::nullopt;
-  // xvfb-run starts an X server just for this command (-a: a free number).
+  std::string launcher;
+  if (!display_available()) {
+    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) return std::nullopt;
+    // xvfb-run starts an X server just for this command (-a: a free number).
+    launcher = "xvfb-run -a -s '-screen 0 1280x1024x24' ";
+  }
   const std::string sculpt = std::string(SCULPT_BINARY_DIR) + "/bin/sculpt";
-  const std::string prefix = "-a -s '-screen 0 1280x1024x24' " + sculpt + " ";
-  CommandResult r;
   const auto err = std::filesystem::temp_directory_path() /
                    ("sculpt_xvfb_err_" + std::to_string(::getpid()));
-  std::FILE* pipe = ::popen(("xvfb-run " + prefix + args + " 2>" + err.string()).c_str(), "r");
+  const std::string command = "ASAN_OPTIONS=\"${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0\" " +
+                              launcher + sculpt + " " + args + " 2>" + err.string();
+  CommandResult r;
+  std::FILE* pipe = ::popen(command.c_str(), "r");
   if (pipe == nullptr) return std::nullopt;
   char buffer[4096];
   for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) r.out.append(buffer, n);
