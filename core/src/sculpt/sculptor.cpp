@@ -376,7 +376,8 @@ void Sculptor::external_edit(const Box& region, const std::function<void()>& edi
   const Box bricks = volume_.bricks_overlapping(region);
   for (int z = bricks.lo.z; z < bricks.hi.z; ++z)
     for (int y = bricks.lo.y; y < bricks.hi.y; ++y)
-      for (int x = bricks.lo.x; x < bricks.hi.x; ++x) history_.before_change(volume_, {x, y, z});
+      for (int x = bricks.lo.x; x < bricks.hi.x; ++x)
+        history_.before_change(volume_, {x, y, z});
   edit();
   history_.end_stroke();
 }

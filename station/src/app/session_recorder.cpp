@@ -20,7 +20,8 @@ core::Status SessionRecorder::start(const std::filesystem::path& path,
     raw_.clear();
   }
   pending_.clear();
-  for (const sim::Command& c : opening) command(c, now_ns);
+  for (const sim::Command& c : opening)
+    command(c, now_ns);
   return flush();
 }
 
@@ -39,9 +40,8 @@ core::Status SessionRecorder::flush() {
   {
     std::lock_guard lock(raw_mutex_);
     // Events are tapped in time order: the released ones are a prefix.
-    const auto held = std::find_if(raw_.begin(), raw_.end(), [&](const hal::RawEvent& e) {
-      return e.t_ns > released_t_ns_;
-    });
+    const auto held = std::find_if(raw_.begin(), raw_.end(),
+                                   [&](const hal::RawEvent& e) { return e.t_ns > released_t_ns_; });
     raw.assign(raw_.begin(), held);
     raw_.erase(raw_.begin(), held);
   }
@@ -58,11 +58,11 @@ core::Status SessionRecorder::flush() {
   // the command's time (times never go back in a session file).
   std::vector<sim::SessionRecord> batch = std::move(pending_);
   pending_.clear();
-  for (const hal::RawEvent& e : raw) batch.push_back(sim::SessionRecord::of(e));
-  std::stable_sort(batch.begin(), batch.end(),
-                   [](const sim::SessionRecord& a, const sim::SessionRecord& b) {
-                     return a.t_ns() < b.t_ns();
-                   });
+  for (const hal::RawEvent& e : raw)
+    batch.push_back(sim::SessionRecord::of(e));
+  std::stable_sort(
+      batch.begin(), batch.end(),
+      [](const sim::SessionRecord& a, const sim::SessionRecord& b) { return a.t_ns() < b.t_ns(); });
   for (sim::SessionRecord& r : batch) {
     if (r.t_ns() < last_t_ns_) {
       if (r.kind == sim::SessionRecord::Kind::kEvent) {

@@ -97,27 +97,48 @@ std::optional<Action> shortcut(int key, int mods) {
 
 const char* shortcut_label(Action action) {
   switch (action) {
-    case Action::kUndo: return "Ctrl+Z";
-    case Action::kRedo: return "Ctrl+Y, Ctrl+Shift+Z";
-    case Action::kToggleAddSubtract: return "Tab";
-    case Action::kSmooth: return "M";
-    case Action::kToolSphere: return "1";
-    case Action::kToolCube: return "2";
-    case Action::kToolCylinder: return "3";
-    case Action::kToolRing: return "4";
-    case Action::kToolCone: return "5";
-    case Action::kToolBigger: return "]";
-    case Action::kToolSmaller: return "[";
-    case Action::kStronger: return "=";
-    case Action::kWeaker: return "-";
-    case Action::kToggleMirror: return "X";
-    case Action::kToggleDeviceTarget: return "C";
-    case Action::kToggleRecording: return "R";
-    case Action::kSave: return "Ctrl+S";
-    case Action::kExportMesh: return "Ctrl+E";
-    case Action::kUseSculptureAsTool: return "Ctrl+T";
-    case Action::kHypertexture: return "Ctrl+H";
-    case Action::kFrameView: return "F";
+    case Action::kUndo:
+      return "Ctrl+Z";
+    case Action::kRedo:
+      return "Ctrl+Y, Ctrl+Shift+Z";
+    case Action::kToggleAddSubtract:
+      return "Tab";
+    case Action::kSmooth:
+      return "M";
+    case Action::kToolSphere:
+      return "1";
+    case Action::kToolCube:
+      return "2";
+    case Action::kToolCylinder:
+      return "3";
+    case Action::kToolRing:
+      return "4";
+    case Action::kToolCone:
+      return "5";
+    case Action::kToolBigger:
+      return "]";
+    case Action::kToolSmaller:
+      return "[";
+    case Action::kStronger:
+      return "=";
+    case Action::kWeaker:
+      return "-";
+    case Action::kToggleMirror:
+      return "X";
+    case Action::kToggleDeviceTarget:
+      return "C";
+    case Action::kToggleRecording:
+      return "R";
+    case Action::kSave:
+      return "Ctrl+S";
+    case Action::kExportMesh:
+      return "Ctrl+E";
+    case Action::kUseSculptureAsTool:
+      return "Ctrl+T";
+    case Action::kHypertexture:
+      return "Ctrl+H";
+    case Action::kFrameView:
+      return "F";
   }
   return "";
 }
@@ -243,9 +264,8 @@ void StationController::hypertexture(int64_t now_ns) {
                {p.x, p.y, p.z, 0.5f * loop_.tool_size(), kSkinWidthVox,
                 static_cast<float>(++hypertextures_)}),
           now_ns);
-  status_ = loop_.volume().content_hash() != before
-                ? "hypertexture baked around the tool"
-                : "no surface near the tool for a hypertexture";
+  status_ = loop_.volume().content_hash() != before ? "hypertexture baked around the tool"
+                                                    : "no surface near the tool for a hypertexture";
 }
 
 bool StationController::perform(Action action, int64_t now_ns) {
@@ -262,18 +282,23 @@ bool StationController::perform(Action action, int64_t now_ns) {
       redo(now_ns);
       return true;
     case Action::kToggleAddSubtract:
-      set_mode(s.mode == core::SculptMode::kAdd ? core::SculptMode::kSubtract
-                                                : core::SculptMode::kAdd,
-               now_ns);
+      set_mode(
+          s.mode == core::SculptMode::kAdd ? core::SculptMode::kSubtract : core::SculptMode::kAdd,
+          now_ns);
       return true;
     case Action::kSmooth:
       set_mode(core::SculptMode::kSmooth, now_ns);
       return true;
-    case Action::kToolSphere: return tool(sim::ToolShape::kSphere);
-    case Action::kToolCube: return tool(sim::ToolShape::kCube);
-    case Action::kToolCylinder: return tool(sim::ToolShape::kCylinder);
-    case Action::kToolRing: return tool(sim::ToolShape::kRing);
-    case Action::kToolCone: return tool(sim::ToolShape::kCone);
+    case Action::kToolSphere:
+      return tool(sim::ToolShape::kSphere);
+    case Action::kToolCube:
+      return tool(sim::ToolShape::kCube);
+    case Action::kToolCylinder:
+      return tool(sim::ToolShape::kCylinder);
+    case Action::kToolRing:
+      return tool(sim::ToolShape::kRing);
+    case Action::kToolCone:
+      return tool(sim::ToolShape::kCone);
     case Action::kToolBigger:
     case Action::kToolSmaller: {
       if (s.custom_tool) {
@@ -326,8 +351,9 @@ void StationController::set_device(const hal::DeviceInfo& info, const std::strin
 
 void StationController::camera_motion(const hal::InputEvent& e) {
   const double dt =
-      last_camera_t_ns_ == 0 ? 0.0
-                             : std::clamp(static_cast<double>(e.t_ns - last_camera_t_ns_) * 1e-9, 0.0, 0.1);
+      last_camera_t_ns_ == 0
+          ? 0.0
+          : std::clamp(static_cast<double>(e.t_ns - last_camera_t_ns_) * 1e-9, 0.0, 0.1);
   last_camera_t_ns_ = e.t_ns;
   const float k = static_cast<float>(dt);
   // Turning the cap turns the object under it: the camera goes the other way.
@@ -421,9 +447,9 @@ void StationController::reader_samples(int64_t motion_samples, int64_t now_ns) {
 void StationController::pointer_move(glm::vec3 position, int64_t now_ns) {
   const glm::quat q = loop_.pose().orientation;
   const int64_t dabs = loop_.counters().dabs;
-  command(make(sim::CommandKind::kPointer, 0,
-               {position.x, position.y, position.z, q.w, q.x, q.y, q.z}),
-          now_ns);
+  command(
+      make(sim::CommandKind::kPointer, 0, {position.x, position.y, position.z, q.w, q.x, q.y, q.z}),
+      now_ns);
   note_dabs(dabs, now_ns);
 }
 
@@ -473,8 +499,8 @@ ProjectView StationController::view() const {
 
 core::Status StationController::save(const std::filesystem::path& path) {
   const StationSettings& s = loop_.settings();
-  core::Status st = save_project(path, loop_.volume(), s, s.custom_tool ? &loop_.tool() : nullptr,
-                                 view());
+  core::Status st =
+      save_project(path, loop_.volume(), s, s.custom_tool ? &loop_.tool() : nullptr, view());
   if (st) saved_generation_ = generation_;
   report(st, "saved " + path.string());
   return st;
@@ -520,13 +546,12 @@ std::vector<sim::Command> StationController::opening_commands() const {
   const StationLoop::Options& o = options_.loop;
   // The recording starts from the block the station started with; work done
   // before it (or an opened project) is not in the session (README).
-  c.push_back(o.clay_margin > 0
-                  ? make(sim::CommandKind::kVolume, sim::kVolumeClay,
-                         {d.x, d.y, d.z, static_cast<float>(o.clay_margin)})
-                  : make(sim::CommandKind::kVolume, sim::kVolumeFill,
-                         {d.x, d.y, d.z, static_cast<float>(o.volume_fill)}));
-  c.push_back(make(sim::CommandKind::kTool, static_cast<uint8_t>(s.shape),
-                   {s.size_a_vox, s.size_b_vox}));
+  c.push_back(o.clay_margin > 0 ? make(sim::CommandKind::kVolume, sim::kVolumeClay,
+                                       {d.x, d.y, d.z, static_cast<float>(o.clay_margin)})
+                                : make(sim::CommandKind::kVolume, sim::kVolumeFill,
+                                       {d.x, d.y, d.z, static_cast<float>(o.volume_fill)}));
+  c.push_back(
+      make(sim::CommandKind::kTool, static_cast<uint8_t>(s.shape), {s.size_a_vox, s.size_b_vox}));
   c.push_back(make(sim::CommandKind::kMode, static_cast<uint8_t>(s.mode)));
   c.push_back(make(sim::CommandKind::kStrength, 0, {s.strength}));
   c.push_back(make(sim::CommandKind::kSpacing, 0, {s.spacing}));
@@ -539,8 +564,7 @@ std::vector<sim::Command> StationController::opening_commands() const {
   return c;
 }
 
-core::Status StationController::start_recording(const std::filesystem::path& path,
-                                                int64_t now_ns) {
+core::Status StationController::start_recording(const std::filesystem::path& path, int64_t now_ns) {
   sim::SessionHeader header;
   header.device = device_info_;
   header.normalizer_config = normalizer_text_;
@@ -585,8 +609,7 @@ void StationController::tick(int64_t now_ns) {
       status_ = "recording stopped: " + st.error().message();
   }
   if (options_.autosave_seconds <= 0 || generation_ == saved_generation_) return;
-  if (autosave_.valid() &&
-      autosave_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+  if (autosave_.valid() && autosave_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
     return;
   if (now_ns - last_autosave_ns_ < static_cast<int64_t>(options_.autosave_seconds * 1e9)) return;
   finish_autosave();

@@ -214,7 +214,8 @@ void StationLoop::handle(const sim::Command& c) {
       h.threads = 1;  // the same result on every machine
       if (!std::isfinite(centre.x) || !std::isfinite(centre.y) || !std::isfinite(centre.z)) break;
       const float reach = radius + h.width_vox;
-      core::Box box{glm::ivec3(glm::floor(centre - reach)), glm::ivec3(glm::ceil(centre + reach)) + 1};
+      core::Box box{glm::ivec3(glm::floor(centre - reach)),
+                    glm::ivec3(glm::ceil(centre + reach)) + 1};
       box = core::intersect(box, core::Box{glm::ivec3(0), volume_->dims()});
       if (box.empty()) break;
       sculptor_->external_edit(box, [&] { core::bake_hypertexture(*volume_, box, h); });

@@ -91,10 +91,12 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_option("--screenshot", w.screenshot, "window: PNG of the last frame (with --frames)");
   cmd->add_option("--lod", w.lod, "window: draw every brick at this level (default: by distance)")
       ->check(CLI::Range(0, 2));
-  cmd->add_flag("--no-vsync", [&w = *o](int64_t) { w.window.vsync = false; },
-                "window: draw as fast as possible (to measure frame rates)");
-  cmd->add_flag("--hidden", [&w = *o](int64_t) { w.window.visible = false; },
-                "window: do not show it (tests, benchmarks)");
+  cmd->add_flag(
+      "--no-vsync", [&w = *o](int64_t) { w.window.vsync = false; },
+      "window: draw as fast as possible (to measure frame rates)");
+  cmd->add_flag(
+      "--hidden", [&w = *o](int64_t) { w.window.visible = false; },
+      "window: do not show it (tests, benchmarks)");
   cmd->callback([o, &action] { action = [o] { return run_station(*o); }; });
 }
 

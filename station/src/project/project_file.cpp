@@ -24,7 +24,8 @@ constexpr uint32_t kMaxJsonBytes = 1u << 20;
 
 template <typename T>
 void put(std::vector<uint8_t>& out, T v) {
-  for (size_t i = 0; i < sizeof(T); ++i) out.push_back(static_cast<uint8_t>(v >> (8 * i)));
+  for (size_t i = 0; i < sizeof(T); ++i)
+    out.push_back(static_cast<uint8_t>(v >> (8 * i)));
 }
 
 json vec_json(glm::vec3 v) {
@@ -41,8 +42,8 @@ json settings_json(const StationSettings& s) {
             {"custom_region",
              {s.custom_region.lo.x, s.custom_region.lo.y, s.custom_region.lo.z,
               s.custom_region.hi.x, s.custom_region.hi.y, s.custom_region.hi.z}}};
-  j["mirror"] = s.mirror ? json{{"axis", s.mirror->axis}, {"at", s.mirror->centre_vox}}
-                         : json(nullptr);
+  j["mirror"] =
+      s.mirror ? json{{"axis", s.mirror->axis}, {"at", s.mirror->centre_vox}} : json(nullptr);
   return j;
 }
 
@@ -151,7 +152,8 @@ core::Status save_project(const std::filesystem::path& path, const core::Volume&
       const std::span<const int16_t> c = brick.pyramid()->coefficients();
       le.clear();
       le.push_back(kPyramidBrick);
-      for (int16_t v : c) put(le, static_cast<uint16_t>(v));
+      for (int16_t v : c)
+        put(le, static_cast<uint16_t>(v));
       deflater.add(le.data(), le.size());
     }
     if (custom_tool != nullptr)
@@ -178,7 +180,8 @@ namespace {
 template <typename T>
 T get(const uint8_t* p) {
   T v = 0;
-  for (size_t i = 0; i < sizeof(T); ++i) v |= static_cast<T>(static_cast<T>(p[i]) << (8 * i));
+  for (size_t i = 0; i < sizeof(T); ++i)
+    v |= static_cast<T>(static_cast<T>(p[i]) << (8 * i));
   return v;
 }
 
@@ -306,7 +309,8 @@ core::Result<Project> load_project(const std::filesystem::path& path) {
     } else if (tag == kPyramidBrick) {
       if (!inflater.read(raw.data(), raw.size())) return fail("damaged (volume data cut short)");
       std::span<int16_t> c = pyramid.coefficients();
-      for (size_t k = 0; k < cube; ++k) c[k] = static_cast<int16_t>(get<uint16_t>(&raw[2 * k]));
+      for (size_t k = 0; k < cube; ++k)
+        c[k] = static_cast<int16_t>(get<uint16_t>(&raw[2 * k]));
       pyramid.decode(voxels);
     } else {
       return fail("damaged (unknown brick record)");

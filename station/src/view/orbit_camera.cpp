@@ -81,8 +81,7 @@ Ray OrbitCamera::ray(glm::vec2 ndc, float aspect) const {
   const float t = std::tan(0.5f * kFovY);
   Ray r;
   r.origin = eye();
-  r.direction =
-      glm::normalize(forward() + right() * (ndc.x * t * aspect) + up() * (ndc.y * t));
+  r.direction = glm::normalize(forward() + right() * (ndc.x * t * aspect) + up() * (ndc.y * t));
   return r;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // A GLFW window with an OpenGL 3.3 core context, visible or not.
 
-#include <memory>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 

@@ -140,8 +140,8 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     bool automatic = lod.fixed_level < 0;
     bool changed = ImGui::Checkbox("automatic level of detail", &automatic);
     if (automatic) {
-      changed |= ImGui::SliderFloat("full detail within", &lod.full_detail_distance, 50.0f,
-                                    2000.0f, "%.0f vox");
+      changed |= ImGui::SliderFloat("full detail within", &lod.full_detail_distance, 50.0f, 2000.0f,
+                                    "%.0f vox");
       float budget = static_cast<float>(lod.frame_budget_ms);
       if (ImGui::SliderFloat("frame budget", &budget, 5.0f, 50.0f, "%.0f ms")) {
         lod.frame_budget_ms = budget;

@@ -1,8 +1,8 @@
 #include "sculpt/station/window/station_window.h"
 
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
 
 #include <chrono>
 #include <cstdio>
@@ -67,21 +67,23 @@ struct RunFigures {
 int64_t solid_voxels(const core::Volume& v) {
   const core::DenseGrid<uint8_t> d = v.to_dense();
   int64_t n = 0;
-  for (size_t i = 0; i < d.size(); ++i) n += d[i] > 127;
+  for (size_t i = 0; i < d.size(); ++i)
+    n += d[i] > 127;
   return n;
 }
 
-core::Status write_stats(const std::string& path, const RunFigures& f,
-                         const StationController& c) {
+core::Status write_stats(const std::string& path, const RunFigures& f, const StationController& c) {
   std::vector<double> sorted = f.frame_ms;
   std::sort(sorted.begin(), sorted.end());
   auto at = [&](double q) {
-    return sorted.empty() ? 0.0
-                          : sorted[std::min(sorted.size() - 1,
-                                            static_cast<size_t>(q * static_cast<double>(sorted.size())))];
+    return sorted.empty()
+               ? 0.0
+               : sorted[std::min(sorted.size() - 1,
+                                 static_cast<size_t>(q * static_cast<double>(sorted.size())))];
   };
   double total = 0;
-  for (double ms : f.frame_ms) total += ms;
+  for (double ms : f.frame_ms)
+    total += ms;
   const double n = std::max<double>(1.0, static_cast<double>(f.frame_ms.size()));
   const LatencyStats l = c.session_latency();
   const nlohmann::ordered_json j = {
@@ -92,7 +94,9 @@ core::Status write_stats(const std::string& path, const RunFigures& f,
       {"frame_ms_p99", at(0.99)},
       {"brick_uploads", f.uploads},
       {"mean_ms",
-       {{"input_and_sculpt", f.input_ms / n}, {"mesh", f.mesh_ms / n}, {"upload", f.upload_ms / n},
+       {{"input_and_sculpt", f.input_ms / n},
+        {"mesh", f.mesh_ms / n},
+        {"upload", f.upload_ms / n},
         {"draw", f.draw_ms / n}}},
       {"dabs", c.loop().counters().dabs},
       {"strokes", c.loop().counters().strokes},
@@ -100,7 +104,10 @@ core::Status write_stats(const std::string& path, const RunFigures& f,
       {"solid_voxels", solid_voxels(c.loop().volume())},
       {"triangles", f.triangles},
       {"dab_latency_us",
-       {{"count", l.count}, {"p50", l.p50_us}, {"p90", l.p90_us}, {"p99", l.p99_us},
+       {{"count", l.count},
+        {"p50", l.p50_us},
+        {"p90", l.p90_us},
+        {"p99", l.p99_us},
         {"max", l.max_us}}}};
   core::AtomicFileWriter w(path);
   if (!w.ok()) return w.error();
@@ -119,7 +126,7 @@ int run_window(const WindowOptions& o) {
   if (!renderer) return fail(renderer.error());
 
   ControllerOptions co;
-  co.loop.mesh = false;  // the window meshes what it draws (below), at its levels
+  co.loop.mesh = false;      // the window meshes what it draws (below), at its levels
   co.loop.clay_margin = 64;  // a slab of clay to carve, 128 voxels a side
   co.normalizer_config_path = hal::default_normalizer_config_path();
   StationController controller(co);
@@ -146,8 +153,8 @@ int run_window(const WindowOptions& o) {
                                                  file + " (normaliser settings)");
     if (!recorded) return recorded.error();
     *config = *recorded;
-    registry = std::make_unique<hal::DeviceRegistry>(
-        std::vector<std::unique_ptr<hal::Backend>>{}, *config, reader_options);
+    registry = std::make_unique<hal::DeviceRegistry>(std::vector<std::unique_ptr<hal::Backend>>{},
+                                                     *config, reader_options);
     auto backend = std::make_unique<sim::SimBackend>(std::move(session).value(), file, o.sim_speed);
     sim_backend = backend.get();
     registry->add_backend(std::move(backend), /*first=*/true);
@@ -229,7 +236,8 @@ int run_window(const WindowOptions& o) {
     // timing must not change where a command falls among the reports).
     std::vector<std::pair<int64_t, sim::Command>> commands;
     if (sim_backend != nullptr) {
-      for (auto& c : sim_backend->take_commands()) pending_commands.push_back(std::move(c));
+      for (auto& c : sim_backend->take_commands())
+        pending_commands.push_back(std::move(c));
       for (const hal::InputEvent& e : input.sequence) {
         if (e.kind == hal::InputKind::kMotion || e.kind == hal::InputKind::kButton)
           newest_report_t = std::max(newest_report_t, e.t_ns);  // the device's clock
@@ -250,7 +258,8 @@ int run_window(const WindowOptions& o) {
     int fb_w = 1, fb_h = 1, win_w = 1, win_h = 1;
     glfwGetFramebufferSize(w, &fb_w, &fb_h);
     glfwGetWindowSize(w, &win_w, &win_h);
-    const float aspect = static_cast<float>(std::max(fb_w, 1)) / static_cast<float>(std::max(fb_h, 1));
+    const float aspect =
+        static_cast<float>(std::max(fb_w, 1)) / static_cast<float>(std::max(fb_h, 1));
     double mx, my;
     glfwGetCursorPos(w, &mx, &my);
     OrbitCamera& camera = controller.camera();

@@ -29,7 +29,8 @@ ControllerOptions small_block(const test::ScratchDir& dir) {
 void stroke(StationController& c, int64_t& t, float z) {
   c.pointer_move({20.0f, 52.0f, z}, t += kMs);
   c.pointer_down(t += kMs);
-  for (int i = 0; i <= 20; ++i) c.pointer_move({20.0f + static_cast<float>(i), 52.0f, z}, t += kMs);
+  for (int i = 0; i <= 20; ++i)
+    c.pointer_move({20.0f + static_cast<float>(i), 52.0f, z}, t += kMs);
   c.pointer_up(t += kMs);
   c.update_mesh(t);
 }
@@ -63,7 +64,8 @@ TEST(StationController, SwitchesToolsModesAndSizes) {
   EXPECT_EQ(c.loop().settings().mode, core::SculptMode::kAdd);
   EXPECT_TRUE(c.perform(Action::kSmooth, t));
   EXPECT_EQ(c.loop().settings().mode, core::SculptMode::kSmooth);
-  for (int i = 0; i < 20; ++i) c.perform(Action::kStronger, t);
+  for (int i = 0; i < 20; ++i)
+    c.perform(Action::kStronger, t);
   EXPECT_FLOAT_EQ(c.loop().settings().strength, 1.0f);
   EXPECT_TRUE(c.perform(Action::kToggleMirror, t));
   ASSERT_TRUE(c.loop().settings().mirror.has_value());

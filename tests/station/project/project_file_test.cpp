@@ -103,8 +103,8 @@ TEST_F(ProjectFile, RefusesDamagedFilesWithOneClearError) {
   };
   std::vector<Case> cases;
   cases.push_back({"empty", {}, "not a sculpt project file"});
-  cases.push_back({"truncated", {good.begin(), good.begin() + static_cast<long>(good.size() / 2)},
-                   "checksum"});
+  cases.push_back(
+      {"truncated", {good.begin(), good.begin() + static_cast<long>(good.size() / 2)}, "checksum"});
   std::vector<char> flipped = good;
   flipped[flipped.size() / 2] ^= 0x10;
   cases.push_back({"flipped byte", flipped, "checksum"});
@@ -132,12 +132,13 @@ TEST_F(ProjectFile, AFailedSaveLeavesTheOldFileWhole) {
   const auto path = dir_.path() / "d.sculpt";
   ASSERT_TRUE(save_project(path, volume_, settings(), nullptr, {}).ok());
   const std::vector<char> before = bytes_of(path);
-  EXPECT_FALSE(save_project(dir_.path() / "no" / "such" / "dir.sculpt", volume_, settings(),
-                            nullptr, {})
-                   .ok());
+  EXPECT_FALSE(
+      save_project(dir_.path() / "no" / "such" / "dir.sculpt", volume_, settings(), nullptr, {})
+          .ok());
   EXPECT_EQ(bytes_of(path), before);
   std::vector<std::filesystem::path> files;
-  for (const auto& e : std::filesystem::directory_iterator(dir_.path())) files.push_back(e.path());
+  for (const auto& e : std::filesystem::directory_iterator(dir_.path()))
+    files.push_back(e.path());
   EXPECT_EQ(files.size(), 1u);  // no temporary left behind
 }
 

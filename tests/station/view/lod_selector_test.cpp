@@ -29,7 +29,8 @@ TEST(LodSelector, FixedLevelAndMaxLevelAreHonoured) {
   p.max_level = 2;
   const std::vector<int> levels = LodSelector(p).select({4, 4, 4}, 32, glm::vec3(0.0f));
   EXPECT_EQ(levels.size(), 64u);
-  for (int l : levels) EXPECT_EQ(l, 2);
+  for (int l : levels)
+    EXPECT_EQ(l, 2);
 }
 
 TEST(LodSelector, SlowFramesCoarsenAndFastFramesRefineWithHysteresis) {
@@ -41,17 +42,22 @@ TEST(LodSelector, SlowFramesCoarsenAndFastFramesRefineWithHysteresis) {
   EXPECT_FALSE(lod.frame_done(40.0));
   EXPECT_EQ(lod.bias(), 0.0f);
   int changes = 0;
-  for (int i = 0; i < 100; ++i) changes += lod.frame_done(40.0);
+  for (int i = 0; i < 100; ++i)
+    changes += lod.frame_done(40.0);
   EXPECT_FLOAT_EQ(lod.bias(), 2.0f);  // capped at max_level
   EXPECT_EQ(changes, 8);              // 0.25 a step
-  for (int i = 0; i < 100; ++i) lod.frame_done(12.0);  // within budget, not well under
+  for (int i = 0; i < 100; ++i)
+    lod.frame_done(12.0);  // within budget, not well under
   EXPECT_FLOAT_EQ(lod.bias(), 2.0f);
-  for (int i = 0; i < 200; ++i) lod.frame_done(2.0);
+  for (int i = 0; i < 200; ++i)
+    lod.frame_done(2.0);
   EXPECT_FLOAT_EQ(lod.bias(), 0.0f);
   // The bias shows in the levels chosen.
-  for (int i = 0; i < 8; ++i) lod.frame_done(40.0);
+  for (int i = 0; i < 8; ++i)
+    lod.frame_done(40.0);
   EXPECT_FLOAT_EQ(lod.bias(), 0.25f);
-  for (int i = 0; i < 24; ++i) lod.frame_done(40.0);
+  for (int i = 0; i < 24; ++i)
+    lod.frame_done(40.0);
   EXPECT_FLOAT_EQ(lod.bias(), 1.0f);
   const std::vector<int> levels = lod.select({1, 1, 1}, 32, glm::vec3(16.0f));
   EXPECT_EQ(levels[0], 1);

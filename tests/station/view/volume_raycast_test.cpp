@@ -1,7 +1,7 @@
 #include "sculpt/station/view/volume_raycast.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "sculpt/core/shapes/analytic_shapes.h"
 

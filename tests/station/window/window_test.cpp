@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <fstream>
 
-#include <glm/mat4x4.hpp>
 #include <gtest/gtest.h>
+#include <glm/mat4x4.hpp>
 #include <nlohmann/json.hpp>
 
 #include "../cli/run_sculpt.h"
@@ -35,15 +35,16 @@ std::optional<CommandResult> run_with_display(const std::string& args) {
     launcher = "xvfb-run -a -s '-screen 0 1280x1024x24' ";
   }
   const std::string sculpt = std::string(SCULPT_BINARY_DIR) + "/bin/sculpt";
-  const auto err = std::filesystem::temp_directory_path() /
-                   ("sculpt_xvfb_err_" + std::to_string(::getpid()));
+  const auto err =
+      std::filesystem::temp_directory_path() / ("sculpt_xvfb_err_" + std::to_string(::getpid()));
   const std::string command = "ASAN_OPTIONS=\"${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0\" " +
                               launcher + sculpt + " " + args + " 2>" + err.string();
   CommandResult r;
   std::FILE* pipe = ::popen(command.c_str(), "r");
   if (pipe == nullptr) return std::nullopt;
   char buffer[4096];
-  for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) r.out.append(buffer, n);
+  for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
+    r.out.append(buffer, n);
   const int status = ::pclose(pipe);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.err = read_text(err);
@@ -162,7 +163,8 @@ TEST(StationWindow, RunsTheLiveLoopOnASimDeviceAndTakesAScreenshot) {
   ASSERT_GT(p.width, 0);
   int64_t clay = 0;
   for (int y = 0; y < p.height; ++y)
-    for (int x = 0; x < p.width; ++x) clay += p.clay(x, y);
+    for (int x = 0; x < p.width; ++x)
+      clay += p.clay(x, y);
   EXPECT_GT(clay, 500);
 }
 

@@ -169,8 +169,10 @@ void SceneRenderer::draw(const SceneView& view, const ToolDraw& tool, glm::vec3 
   const float reach = std::max(block.x, block.z) * 1.5f;
   const glm::vec3 c = 0.5f * block;
   for (float t = -reach; t <= reach + 0.5f; t += step) {
-    grid.insert(grid.end(), {{c.x + t, 0, c.z - reach}, {c.x + t, 0, c.z + reach},
-                             {c.x - reach, 0, c.z + t}, {c.x + reach, 0, c.z + t}});
+    grid.insert(grid.end(), {{c.x + t, 0, c.z - reach},
+                             {c.x + t, 0, c.z + reach},
+                             {c.x - reach, 0, c.z + t},
+                             {c.x + reach, 0, c.z + t}});
   }
   draw_lines(grid, {0.32f, 0.33f, 0.36f, 1.0f}, vp);
   std::vector<glm::vec3> edges;
@@ -190,7 +192,8 @@ void SceneRenderer::draw(const SceneView& view, const ToolDraw& tool, glm::vec3 
   lit_.set("eye", view.eye);
   lit_.set("model", glm::mat4(1.0f));
   lit_.set("colour", glm::vec4(kClay, 1.0f));
-  for (const GpuMesh* m : visible_) m->draw();
+  for (const GpuMesh* m : visible_)
+    m->draw();
 
   if (!tool.visible || tool_mesh_.empty()) return;
   // The GPU turns the tool's own mesh: the pivot goes to the tool position.

@@ -18,9 +18,9 @@
 #include "render/gl/gpu_mesh.h"
 #include "render/gl/shader_program.h"
 #include "sculpt/core/mesh/mesh_cache.h"
+#include "sculpt/core/mesh/mixed_level_mesh.h"
 #include "sculpt/core/sculpt/sculptor.h"
 #include "sculpt/core/tool/tool.h"
-#include "sculpt/core/mesh/mixed_level_mesh.h"
 
 namespace sculpt::station::gl {
 

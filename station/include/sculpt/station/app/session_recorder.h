@@ -9,8 +9,8 @@
 
 #include <atomic>
 #include <cstdint>
-#include <limits>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>

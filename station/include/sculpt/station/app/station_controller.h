@@ -20,8 +20,8 @@
 #include <limits>
 #include <optional>
 #include <span>
-#include <utility>
 #include <string>
+#include <utility>
 
 #include "sculpt/hal/device/device_info.h"
 #include "sculpt/hal/input/device_reader.h"

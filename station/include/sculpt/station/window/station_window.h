@@ -16,14 +16,14 @@ struct WindowOptions {
   /// auto (a device if one is attached, else the demo session), sim:FILE,
   /// or a device id as `sculpt devices` prints it.
   std::string device = "auto";
-  double sim_speed = 1.0;      ///< sim devices: play this much faster
-  std::string project;         ///< open this project first
-  std::string record;          ///< start recording to this session file
-  std::string stats;           ///< write frame and latency figures here at exit (JSON)
-  std::string screenshot;      ///< PNG of the last frame, at exit
-  int frames = 0;              ///< stop after this many frames (0: when closed)
+  double sim_speed = 1.0;           ///< sim devices: play this much faster
+  std::string project;              ///< open this project first
+  std::string record;               ///< start recording to this session file
+  std::string stats;                ///< write frame and latency figures here at exit (JSON)
+  std::string screenshot;           ///< PNG of the last frame, at exit
+  int frames = 0;                   ///< stop after this many frames (0: when closed)
   bool exit_when_replayed = false;  ///< stop when the sim device's session ends
-  int lod = -1;                ///< a fixed level of detail for every brick (-1: automatic)
+  int lod = -1;                     ///< a fixed level of detail for every brick (-1: automatic)
   bool vsync = true;
   bool visible = true;
   int width = 1280;
