@@ -13,6 +13,7 @@ core::Status SessionRecorder::start(const std::filesystem::path& path,
   auto writer = sim::SessionWriter::create(path, header);
   if (!writer) return writer.error();
   writer_.emplace(std::move(writer).value());
+  accepting_.store(true);
   path_ = path;
   last_t_ns_ = now_ns;
   if (!armed_.exchange(false)) {
@@ -29,9 +30,16 @@ void SessionRecorder::command(const sim::Command& c, int64_t t_ns) {
   if (writer_) pending_.push_back(sim::SessionRecord::of(t_ns, c));
 }
 
-void SessionRecorder::raw(const hal::RawEvent& e) {
+void SessionRecorder::stop_accepting() {
+  writer_.reset();
+  accepting_.store(false);
   std::lock_guard lock(raw_mutex_);
-  // Not recording and not armed: nothing to keep (flush() drops the rest).
+  raw_.clear();
+}
+
+void SessionRecorder::raw(const hal::RawEvent& e) {
+  if (!accepting_.load(std::memory_order_relaxed)) return;
+  std::lock_guard lock(raw_mutex_);
   raw_.push_back(e);
 }
 
@@ -73,12 +81,12 @@ core::Status SessionRecorder::flush() {
     }
     last_t_ns_ = r.t_ns();
     if (core::Status st = writer_->append(r); !st) {
-      writer_.reset();
+      stop_accepting();
       return st;
     }
   }
   core::Status st = writer_->sync_if_due();
-  if (!st) writer_.reset();
+  if (!st) stop_accepting();
   return st;
 }
 
@@ -88,7 +96,7 @@ core::Result<int64_t> SessionRecorder::stop() {
   if (core::Status st = flush(); !st) return st.error();
   const int64_t records = writer_->records();
   core::Status st = writer_->close();
-  writer_.reset();
+  stop_accepting();
   if (!st) return st.error();
   return records;
 }

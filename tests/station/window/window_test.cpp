@@ -22,12 +22,14 @@
 namespace sculpt::station::test {
 namespace {
 
-// `sculpt ARGS` with a display: the current one, else a private Xvfb.
+// `sculpt ARGS` with a display: the current one, else a private Xvfb, run
+// in `dir` (the window autosaves its default project there).
 // Under AddressSanitizer the child runs without leak detection: Mesa's
 // driver is unloaded at exit, so its process-lifetime allocations show as
 // leaks from an unknown module that no suppression can name. (The station's
 // own code is leak-checked in-process by the GL-free tests.)
-std::optional<CommandResult> run_with_display(const std::string& args) {
+std::optional<CommandResult> run_with_display(const std::string& args,
+                                              const std::filesystem::path& dir) {
   std::string launcher;
   if (!display_available()) {
     if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) return std::nullopt;
@@ -37,8 +39,10 @@ std::optional<CommandResult> run_with_display(const std::string& args) {
   const std::string sculpt = std::string(SCULPT_BINARY_DIR) + "/bin/sculpt";
   const auto err =
       std::filesystem::temp_directory_path() / ("sculpt_xvfb_err_" + std::to_string(::getpid()));
-  const std::string command = "ASAN_OPTIONS=\"${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0\" " +
-                              launcher + sculpt + " " + args + " 2>" + err.string();
+  const std::string command =
+      "cd '" + dir.string() +
+      "' && ASAN_OPTIONS=\"${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0\" " + launcher + sculpt +
+      " " + args + " 2>" + err.string();
   CommandResult r;
   std::FILE* pipe = ::popen(command.c_str(), "r");
   if (pipe == nullptr) return std::nullopt;
@@ -87,7 +91,8 @@ TEST(StationWindow, ReplayRendersTheDemoThroughAnInvisibleGlWindow) {
   sculpt::test::ScratchDir dir;
   const std::string demo = sim::bundled_session_path("demo");
   auto r = run_with_display("replay " + demo + " --fast --renderer gl --png " +
-                            dir.file("demo.png") + " --stats " + dir.file("s.json"));
+                                dir.file("demo.png") + " --stats " + dir.file("s.json"),
+                            dir.path());
   if (!r) GTEST_SKIP() << "no display and no xvfb-run";
   ASSERT_EQ(r->exit_code, 0) << r->err;
   const auto stats = nlohmann::json::parse(read_text(dir.file("s.json")));
@@ -132,8 +137,9 @@ TEST(StationWindow, ReplayRendersTheDemoThroughAnInvisibleGlWindow) {
 TEST(StationWindow, RunsTheLiveLoopOnASimDeviceAndTakesAScreenshot) {
   sculpt::test::ScratchDir dir;
   auto r = run_with_display("run --device sim:" + sim::bundled_session_path("short") +
-                            " --speed 4 --until-replayed --hidden --no-vsync --lod 0 --stats " +
-                            dir.file("s.json") + " --record " + dir.file("again.scs"));
+                                " --speed 4 --until-replayed --hidden --no-vsync --lod 0 --stats " +
+                                dir.file("s.json") + " --record " + dir.file("again.scs"),
+                            dir.path());
   if (!r) GTEST_SKIP() << "no display and no xvfb-run";
   ASSERT_EQ(r->exit_code, 0) << r->err;
   const auto stats = nlohmann::json::parse(read_text(dir.file("s.json")));
@@ -157,7 +163,8 @@ TEST(StationWindow, RunsTheLiveLoopOnASimDeviceAndTakesAScreenshot) {
                           dir.file("short.sculpt"));
   ASSERT_EQ(saved.exit_code, 0) << saved.err;
   r = run_with_display("run --open " + dir.file("short.sculpt") +
-                       " --frames 5 --hidden --screenshot " + dir.file("shot.png"));
+                           " --frames 5 --hidden --screenshot " + dir.file("shot.png"),
+                       dir.path());
   ASSERT_EQ(r->exit_code, 0) << r->err;
   const Picture p = read_png(dir.file("shot.png"));
   ASSERT_GT(p.width, 0);
@@ -173,8 +180,9 @@ TEST(StationWindow, RunsTheLiveLoopOnASimDeviceAndTakesAScreenshot) {
 TEST(StationWindow, PlayingTheDemoLiveSculptsWhatItsReplaySculpts) {
   sculpt::test::ScratchDir dir;
   auto r = run_with_display("run --device sim:" + sim::bundled_session_path("demo") +
-                            " --speed 4 --until-replayed --hidden --no-vsync --stats " +
-                            dir.file("s.json"));
+                                " --speed 4 --until-replayed --hidden --no-vsync --stats " +
+                                dir.file("s.json"),
+                            dir.path());
   if (!r) GTEST_SKIP() << "no display and no xvfb-run";
   ASSERT_EQ(r->exit_code, 0) << r->err;
   const auto stats = nlohmann::json::parse(read_text(dir.file("s.json")));
@@ -188,12 +196,13 @@ TEST(StationWindow, PlayingTheDemoLiveSculptsWhatItsReplaySculpts) {
 
 TEST(StationWindow, BadInputGetsOneClearError) {
   sculpt::test::ScratchDir dir;
-  auto r = run_with_display("run --open " + dir.file("missing.sculpt") + " --frames 1 --hidden");
+  auto r = run_with_display("run --open " + dir.file("missing.sculpt") + " --frames 1 --hidden",
+                            dir.path());
   if (!r) GTEST_SKIP() << "no display and no xvfb-run";
   EXPECT_EQ(r->exit_code, 1);
   EXPECT_NE(r->err.find("missing.sculpt"), std::string::npos) << r->err;
   EXPECT_EQ(line_count(r->err), 1) << r->err;
-  r = run_with_display("run --device nosuch:device --frames 1 --hidden");
+  r = run_with_display("run --device nosuch:device --frames 1 --hidden", dir.path());
   EXPECT_EQ(r->exit_code, 1);
   EXPECT_EQ(line_count(r->err), 1) << r->err;
 }

@@ -30,7 +30,10 @@ class SessionRecorder {
   bool recording() const { return writer_.has_value(); }
   /// Keeps raw events from now on for a start() to come: so a recording asked
   /// for before the devices open misses none of their first reports.
-  void arm() { armed_.store(true); }
+  void arm() {
+    armed_.store(true);
+    accepting_.store(true);
+  }
   const std::filesystem::path& path() const { return path_; }
 
   /// A station command, at `t_ns` (monotonic).
@@ -49,12 +52,17 @@ class SessionRecorder {
   core::Result<int64_t> stop();
 
  private:
+  // Closes the writer (if any) and drops the raw events waiting.
+  void stop_accepting();
   std::optional<sim::SessionWriter> writer_;
   std::filesystem::path path_;
   std::vector<sim::SessionRecord> pending_;  // main thread's commands
   std::mutex raw_mutex_;
   std::vector<hal::RawEvent> raw_;  // from the reader thread
   std::atomic<bool> armed_{false};  // keep raw events while not yet recording
+  // Whether raw() keeps events at all (recording or armed): a device read
+  // while nothing records must not pile its events up here.
+  std::atomic<bool> accepting_{false};
   int64_t last_t_ns_ = 0;
   int64_t released_t_ns_ = std::numeric_limits<int64_t>::max();
 };
