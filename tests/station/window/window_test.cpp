@@ -143,7 +143,10 @@ TEST(StationWindow, RunsTheLiveLoopOnASimDeviceAndTakesAScreenshot) {
   if (!r) GTEST_SKIP() << "no display and no xvfb-run";
   ASSERT_EQ(r->exit_code, 0) << r->err;
   const auto stats = nlohmann::json::parse(read_text(dir.file("s.json")));
-  EXPECT_GT(stats["frames"].get<int>(), 10);
+  // How many frames the session took depends on the machine's speed (under
+  // a sanitizer on a loaded machine a frame can take seconds): only that the
+  // window drew.
+  EXPECT_GE(stats["frames"].get<int>(), 1);
   EXPECT_GT(stats["dabs"].get<int>(), 10);
   EXPECT_EQ(stats["dab_latency_us"]["count"], stats["dabs"]);
   EXPECT_GT(stats["triangles"].get<int>(), 1000);
