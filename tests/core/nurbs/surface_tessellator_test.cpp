@@ -118,6 +118,43 @@ TEST(SurfaceTessellator, FollowsAWholePathStepByStep) {
   EXPECT_LT(max_gap(t.mesh(), SurfaceTessellator(d.surface(), 4).mesh()), 1e-4);
 }
 
+// Without the rigid shortcut every touched vertex is re-evaluated, so after
+// each step of a whole path the incremental mesh must be the from-scratch
+// one bit for bit, whatever the number of cells per patch (runs of 1 to 6
+// vertices per patch row with these cell counts).
+TEST(SurfaceTessellator, IncrementalUpdatesEqualAFromScratchTessellationAtEveryStep) {
+  const NurbsSurface sheet = example_sheet();
+  ParameterZone zone;
+  zone.radius = 0.3;
+  const NurbsSurface s = refine_in_zone(sheet, 0.5, 0.5, zone, 60).value();
+  const glm::dvec3 a = evaluate(s, 0.5, 0.5);
+  NurbsCurve path;
+  path.degree = 2;
+  path.knots = {0, 0, 0, 1, 1, 1};
+  path.points = {a, a + glm::dvec3(0, 0, 40), a + glm::dvec3(30, 0, 40)};
+  PathOptions o;
+  o.steps = 12;
+  PathDeformation d =
+      PathDeformation::from_curve(s, 0.5, 0.5, zone_influence(s, 0.5, 0.5, zone).value(), path, o)
+          .value();
+  SurfaceTessellator per_span(s, 3);
+  SurfaceTessellator cells = SurfaceTessellator::with_cells(s, 70, 41);
+  int touched = 0;
+  while (!d.done()) {
+    const PathStep step = d.step();
+    touched += per_span.update(d.surface(), step.moved);
+    cells.update(d.surface(), step.moved);
+    ASSERT_EQ(per_span.mesh(), SurfaceTessellator(d.surface(), 3).mesh()) << "step " << step.step;
+    ASSERT_EQ(cells.mesh(), SurfaceTessellator::with_cells(d.surface(), 70, 41).mesh())
+        << "step " << step.step;
+  }
+  EXPECT_GT(touched, 0);
+  EXPECT_EQ(per_span.vertices_moved_rigidly(), 0);
+  // Only touched patches were evaluated: fewer than a rebuild per step.
+  EXPECT_LT(per_span.vertices_evaluated(),
+            int64_t(o.steps + 1) * per_span.vertices_u() * per_span.vertices_v());
+}
+
 TEST(SurfaceTessellator, CellsOverTheDomainKeepTheMeshSizeThroughRefinement) {
   const NurbsSurface s = example_sheet();  // 12 x 7 equal spans
   const SurfaceTessellator before = SurfaceTessellator::with_cells(s, 48, 28);

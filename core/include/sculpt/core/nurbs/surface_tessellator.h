@@ -10,15 +10,16 @@
 // are unit Su x Sv. Positions are in the surface's units (the station's are
 // voxel units), converted to float.
 //
-// The basis functions of every sample are computed once; after control
-// points move, update() visits only the vertices whose basis reaches a moved
-// point (a control point (i, j) influences the knot spans i..i+p along u and
-// j..j+q along v). When all moved points underwent one rigid motion (a path
-// step), a vertex whose whole support moved is moved by that motion instead
-// of being re-evaluated (S = sum R_ij P_ij with sum R_ij = 1 commutes with
-// rigid motions; the normal turns with the rotation); only the vertices on
-// the rim of the moved set are evaluated. Positions and normals are kept in
-// double precision inside, so repeated motions do not drift.
+// The basis functions of every sample are computed once (again only when
+// the knots change); after control points move, update() visits only the
+// patches whose support holds a moved point (a control point (i, j)
+// influences the knot spans i..i+p along u and j..j+q along v), and
+// evaluates their vertices exactly as a rebuild does (bit-identical). When all moved points
+// underwent one rigid motion (a path step), a vertex whose whole support moved is moved by that
+// motion instead of being re-evaluated (S = sum R_ij P_ij with sum R_ij = 1 commutes with rigid
+// motions; the normal turns with the rotation); only the vertices on the rim of the moved set are
+// evaluated. Positions and normals are kept in double precision inside, so repeated motions do not
+// drift.
 
 #include <array>
 #include <cstdint>
@@ -83,12 +84,19 @@ class SurfaceTessellator {
     std::array<double, kMaxDegree + 1> dn{};
   };
   void build_axis(const std::vector<double>& knots, int degree, int count, int cells,
-                  std::vector<AxisSample>& axis, std::vector<int>& spans);
+                  std::vector<AxisSample>& axis, std::vector<int>& spans, std::vector<int>& first);
   // Vertex row b: the control net contracted along v with that row's basis
   // values and derivatives, for control columns [first, last] (row_q_,
   // row_dq_); then each vertex of the row is a sum of degree_u + 1 terms.
   void prepare_row(int b, int first, int last);
+  void contract_column(int b, int i);
+  // The same contraction for the columns [first, last] of vertex row b that
+  // this row has not contracted yet (column_stamp_ != row_stamp_); update()
+  // bumps row_stamp_ per row, so a rim vertex costs only its own columns.
+  void prepare_columns(int b, int first, int last);
   void evaluate_vertex(int a, int b);
+  // evaluate_vertex for the vertices [a0, a1) of row b, all in one knot span.
+  void evaluate_run(int a0, int a1, int b);
   // Moved control points in the support of knot span (su, sv), from the
   // prefix sums of the moved flags.
   int moved_in_support(int su, int sv) const;
@@ -99,9 +107,17 @@ class SurfaceTessellator {
   std::vector<double> knots_u_, knots_v_;
   std::vector<glm::dvec4> pw_;  // homogeneous control points, u fastest
   std::vector<AxisSample> axis_u_, axis_v_;
-  std::vector<int> spans_u_, spans_v_;      // knot-span index of each patch column / row
+  std::vector<int> spans_u_, spans_v_;  // knot-span index of each patch column / row
+  // First vertex of each patch column / row, plus the vertex count: the
+  // vertices of patch column p are [first_u_[p], first_u_[p + 1]).
+  std::vector<int> first_u_, first_v_;
   std::vector<glm::dvec4> row_q_, row_dq_;  // count_u values, see prepare_row
   std::vector<int> moved_sum_;              // (count_u+1) x (count_v+1) prefix sums of moved flags
+  // Scratch kept between update() calls so a step allocates nothing.
+  std::vector<uint8_t> moved_flag_;  // count_u x count_v, all 0 between calls
+  std::vector<int> patch_moved_;     // per patch column of one patch row
+  std::vector<uint32_t> column_stamp_;
+  uint32_t row_stamp_ = 0;
   std::vector<glm::dvec3> positions_, normals_;  // double copies of the mesh's
   Mesh mesh_;
   int64_t vertices_evaluated_ = 0;
