@@ -92,6 +92,7 @@ DistanceShell distance_shell(const DenseGrid<float>& phi, const SurfaceIndex& su
   }
   shell.closest.resize(shell.voxels.size());
   shell.distance.resize(shell.voxels.size());
+  shell.triangle.resize(shell.voxels.size());
   const int64_t n = int64_t(shell.voxels.size());
   const int64_t chunk = 1024;
   parallel_for((n + chunk - 1) / chunk,
@@ -102,6 +103,7 @@ DistanceShell distance_shell(const DenseGrid<float>& phi, const SurfaceIndex& su
                    const SurfaceIndex::Nearest near = surface.nearest({x, y, z});
                    const float dist = std::sqrt(near.distance_squared);
                    shell.closest[k] = near.point;
+                   shell.triangle[k] = near.triangle;
                    shell.distance[k] = inside[i] ? -dist : dist;
                  }
                },

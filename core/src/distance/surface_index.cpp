@@ -83,8 +83,9 @@ SurfaceIndex::Nearest SurfaceIndex::nearest(glm::ivec3 p, int max_radius) const 
           if (n == 0) continue;
           // A cell's box farther than the best point so far cannot help;
           // this keeps the search to the ball of the answer's radius.
-          const glm::vec3 lo{float(x), float(y), float(z)};
-          if (point_box_distance_squared(pf, lo, lo + 1.0f) >= best.distance_squared) continue;
+          const glm::vec3 corner{float(x), float(y), float(z)};
+          if (point_box_distance_squared(pf, corner, corner + 1.0f) >= best.distance_squared)
+            continue;
           const Triangle3* t = triangles_.data() + first_[i];
           const glm::vec4* ball = bounds_.data() + first_[i];
           for (uint8_t k = 0; k < n; ++k) {
@@ -95,11 +96,43 @@ SurfaceIndex::Nearest SurfaceIndex::nearest(glm::ivec3 p, int max_radius) const 
             if (c.distance_squared < best.distance_squared) {
               best.distance_squared = c.distance_squared;
               best.point = c.point;
+              best.triangle = int32_t(first_[i] + k);
               best_dist = std::sqrt(c.distance_squared);
             }
           }
         }
   }
+  return best;
+}
+
+SurfaceIndex::Nearest SurfaceIndex::nearest_in_cells(glm::vec3 p, glm::ivec3 lo, glm::ivec3 hi,
+                                                     Nearest best) const {
+  lo = glm::max(lo, glm::ivec3(0));
+  hi = glm::min(hi, cell_dims_ - 1);
+  float best_dist = std::sqrt(best.distance_squared);
+  for (int z = lo.z; z <= hi.z; ++z)
+    for (int y = lo.y; y <= hi.y; ++y)
+      for (int x = lo.x; x <= hi.x; ++x) {
+        const size_t i = first_.index(x, y, z);
+        const uint8_t n = count_[i];
+        if (n == 0) continue;
+        const glm::vec3 corner{float(x), float(y), float(z)};
+        if (point_box_distance_squared(p, corner, corner + 1.0f) >= best.distance_squared) continue;
+        const Triangle3* t = triangles_.data() + first_[i];
+        const glm::vec4* ball = bounds_.data() + first_[i];
+        for (uint8_t k = 0; k < n; ++k) {
+          const glm::vec3 dc = p - glm::vec3(ball[k]);
+          const float reach = best_dist + ball[k].w;
+          if (glm::dot(dc, dc) >= reach * reach) continue;
+          const ClosestPoint c = closest_point_on_triangle(p, t[k].a, t[k].b, t[k].c);
+          if (c.distance_squared < best.distance_squared) {
+            best.distance_squared = c.distance_squared;
+            best.point = c.point;
+            best.triangle = int32_t(first_[i] + k);
+            best_dist = std::sqrt(c.distance_squared);
+          }
+        }
+      }
   return best;
 }
 

@@ -36,6 +36,9 @@ struct DistanceShell {
   std::vector<glm::vec3> closest;
   /// Per S_n voxel: signed distance to the surface, voxel units.
   std::vector<float> distance;
+  /// Per S_n voxel: the index (SurfaceIndex::triangles()) of the triangle
+  /// holding `closest`.
+  std::vector<int32_t> triangle;
 };
 
 /// The shell of phi's zero level; `surface` must be SurfaceIndex(phi).

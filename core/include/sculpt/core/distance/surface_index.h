@@ -33,11 +33,17 @@ class SurfaceIndex {
     glm::vec3 point{0.0f};
     /// Squared distance to it (+inf when no surface lies within max_radius).
     float distance_squared = 0.0f;
+    /// Index of its triangle in triangles() (-1 when none was found).
+    int32_t triangle = -1;
   };
   /// The nearest point of the surface to voxel p, searching cells in rings
   /// of growing Chebyshev radius until no nearer cell can exist; exact
   /// whenever the nearest point is within max_radius voxels.
   Nearest nearest(glm::ivec3 p, int max_radius = 8) const;
+  /// The nearest point to p among `best` and the triangles of the cells
+  /// with lower corner in [lo, hi] (clamped to the grid of cells). p may be
+  /// anywhere; only those cells are searched.
+  Nearest nearest_in_cells(glm::vec3 p, glm::ivec3 lo, glm::ivec3 hi, Nearest best) const;
 
  private:
   glm::ivec3 cell_dims_{0};
