@@ -69,6 +69,9 @@ struct Tables {
   // Per entry: the cell edges whose vertices it uses.
   std::vector<uint16_t> entry_edges;
   std::vector<uint16_t> centre_masks;
+  // Most triangles and centre vertices of any entry, to size a row's output.
+  uint32_t max_triangles = 0;
+  uint32_t max_centres = 0;
 };
 
 bool edges_share_face(const Tables& t, int e1, int e2) {
@@ -197,6 +200,10 @@ Tables build_tables() {
       for (size_t k = t.centre_begin.back(); k < t.centre_masks.size(); ++k)
         edges |= t.centre_masks[k];
       t.entry_edges.push_back(edges);
+      t.max_triangles = std::max(
+          t.max_triangles, static_cast<uint32_t>((t.tri_edges.size() - t.entry_begin.back()) / 3));
+      t.max_centres = std::max(
+          t.max_centres, static_cast<uint32_t>(t.centre_masks.size() - t.centre_begin.back()));
       t.entry_begin.push_back(static_cast<uint32_t>(t.tri_edges.size()));
       t.centre_begin.push_back(static_cast<uint32_t>(t.centre_masks.size()));
     }
@@ -209,6 +216,10 @@ const Tables& tables() {
   return t;
 }
 
+// The slot table holding edge e's vertex: x edges of the cell's lower and
+// upper z plane (0, 1), y edges likewise (2, 3), z edges (4).
+constexpr std::array<uint8_t, 12> kEdgeSlotTable = {0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4, 4};
+
 // A cache slot of one cell edge: valid while `stamp` matches the plane's.
 struct Slot {
   uint32_t stamp = 0;
@@ -220,7 +231,40 @@ struct Slot {
 constexpr std::array<uint8_t, 16> kSpread = {0,  1,  4,  5,  16, 17, 20, 21,
                                              64, 65, 68, 69, 80, 81, 84, 85};
 
+// A vector whose resize() leaves new elements uninitialised: the march sizes
+// its output buffers ahead of each row of cells and writes them by index.
+template <class T>
+struct UninitAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UninitAllocator<U>;
+  };
+  UninitAllocator() = default;
+  template <class U>
+  UninitAllocator(const UninitAllocator<U>&) {}
+  template <class U>
+  void construct(U* p) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template <class T>
+using UninitVector = std::vector<T, UninitAllocator<T>>;
+
+// Grows `v` to at least `n` elements (doubling, so rows amortise).
+template <class T>
+void ensure_size(UninitVector<T>& v, size_t n) {
+  if (v.size() < n) v.resize(std::max(n, 2 * v.size()));
+}
+
 struct Scratch {
+  // The brick's mesh as it is marched; copied into the caller's BrickMesh.
+  UninitVector<glm::vec3> positions, normals;
+  UninitVector<uint64_t> keys;
+  UninitVector<glm::uvec3> triangles;
   std::vector<uint8_t> columns;
   std::vector<uint8_t> inside;
   std::vector<uint8_t> row_any, row_all;
@@ -307,10 +351,20 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
 
   const float scale = static_cast<float>(1 << level);
   const int64_t step[3] = {1, sx, sxy};
+  size_t vertex_count = 0, triangle_count = 0;
+  // A cell adds at most its 12 edges' vertices and its centres.
+  const size_t row_vertices = static_cast<size_t>(n.x) * (12 + tab.max_centres);
+  const size_t row_triangles = static_cast<size_t>(n.x) * tab.max_triangles;
 
   auto gradient = [&](int64_t i) {
-    return glm::vec3(float(g[i + 1]) - float(g[i - 1]), float(g[i + sx]) - float(g[i - sx]),
-                     float(g[i + sxy]) - float(g[i - sxy]));
+    if constexpr (std::is_same_v<T, uint8_t>) {
+      // Integer differences are exact: the same values, fewer conversions.
+      return glm::vec3(static_cast<float>(int{g[i + 1]} - int{g[i - 1]}),
+                       static_cast<float>(int{g[i + sx]} - int{g[i - sx]}),
+                       static_cast<float>(int{g[i + sxy]} - int{g[i - sxy]}));
+    } else {
+      return glm::vec3(g[i + 1] - g[i - 1], g[i + sx] - g[i - sx], g[i + sxy] - g[i - sxy]);
+    }
   };
   auto make_vertex = [&](glm::ivec3 p, int axis) -> uint32_t {
     const int64_t i0 = at(p.x, p.y, p.z);
@@ -323,14 +377,14 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
     const float len = glm::length(grad);
     glm::vec3 normal(0.0f);
     if (len > 0.0f) {
-      normal = -grad / len;
+      normal = grad * (-1.0f / len);  // one division instead of three
     } else {
       normal[axis] = v1 > v0 ? -1.0f : 1.0f;  // flat gradient: face down the edge
     }
-    const auto index = static_cast<uint32_t>(out.mesh.positions.size());
-    out.mesh.positions.push_back(pos * scale);
-    out.mesh.normals.push_back(normal);
-    out.seam_keys.push_back(seam_key(p, axis));
+    const auto index = static_cast<uint32_t>(vertex_count++);
+    s.positions[index] = pos * scale;
+    s.normals[index] = normal;
+    s.keys[index] = seam_key(p, axis);
     return index;
   };
 
@@ -341,16 +395,15 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
     int count = 0;
     for (int e = 0; e < 12; ++e) {
       if (!((mask >> e) & 1)) continue;
-      pos += out.mesh.positions[vertices[e]];
-      normal += out.mesh.normals[vertices[e]];
+      pos += s.positions[vertices[e]];
+      normal += s.normals[vertices[e]];
       ++count;
     }
     const float len = glm::length(normal);
-    const auto index = static_cast<uint32_t>(out.mesh.positions.size());
-    out.mesh.positions.push_back(pos / static_cast<float>(count));
-    out.mesh.normals.push_back(len > 0.0f ? normal / len
-                                          : out.mesh.normals[vertices[std::countr_zero(mask)]]);
-    out.seam_keys.push_back(BrickMesh::kNotSeam);
+    const auto index = static_cast<uint32_t>(vertex_count++);
+    s.positions[index] = pos / static_cast<float>(count);
+    s.normals[index] = len > 0.0f ? normal / len : s.normals[vertices[std::countr_zero(mask)]];
+    s.keys[index] = BrickMesh::kNotSeam;
     return index;
   };
   int64_t corner_delta[8];
@@ -358,13 +411,19 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
     const glm::ivec3 o = corner_offset(k);
     corner_delta[k] = o.x + o.y * sx + o.z * sxy;
   }
+  // Where the slot of a cell's edge e lies relative to the cell's own slot.
+  size_t edge_slot_delta[12];
+  for (int e = 0; e < 12; ++e)
+    edge_slot_delta[e] =
+        static_cast<size_t>(kEdgeOrigin[e].y) * (n.x + 1) + static_cast<size_t>(kEdgeOrigin[e].x);
   uint32_t edge_vertex[16];
   for (int z = 0; z < n.z; ++z) {
-    Slot* xy_lo[2] = {s.xy[z & 1][0].data(), s.xy[z & 1][1].data()};
-    Slot* xy_hi[2] = {s.xy[(z + 1) & 1][0].data(), s.xy[(z + 1) & 1][1].data()};
-    Slot* zs = s.z.data();
+    // The slot tables of this layer of cells, as kEdgeSlotTable numbers them.
     const uint32_t stamp_lo = base + static_cast<uint32_t>(z);
     const uint32_t stamp_hi = stamp_lo + 1;
+    Slot* const slot_tables[5] = {s.xy[z & 1][0].data(), s.xy[(z + 1) & 1][0].data(),
+                                  s.xy[z & 1][1].data(), s.xy[(z + 1) & 1][1].data(), s.z.data()};
+    const uint32_t slot_stamps[5] = {stamp_lo, stamp_hi, stamp_lo, stamp_hi, stamp_lo};
     for (int y = 0; y < n.y; ++y) {
       const size_t r = static_cast<size_t>(z) * (n.y + 1) + y;
       const size_t rows4[4] = {r, r + 1, r + static_cast<size_t>(n.y + 1),
@@ -375,7 +434,12 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
         all_in = all_in && s.row_all[q];
       }
       if (all_out || all_in) continue;
+      ensure_size(s.positions, vertex_count + row_vertices);
+      ensure_size(s.normals, vertex_count + row_vertices);
+      ensure_size(s.keys, vertex_count + row_vertices);
+      ensure_size(s.triangles, triangle_count + row_triangles);
       const int64_t row0 = at(0, y, z);
+      const size_t row_slot = static_cast<size_t>(y) * (n.x + 1);
       const uint8_t* in = s.inside.data() + row0;
       // Column bits of the four rows around this row of cells: a cell's case
       // interleaves the columns at its x and x + 1.
@@ -418,41 +482,35 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
         }
         const uint32_t entry = tab.first_entry[c] + decision;
         const uint32_t e_begin = tab.entry_begin[entry], e_end = tab.entry_begin[entry + 1];
+        const size_t cell_slot = row_slot + static_cast<size_t>(x);
         for (uint32_t needed = tab.entry_edges[entry]; needed != 0; needed &= needed - 1) {
           const int e = std::countr_zero(needed);
-          const glm::ivec3 p = glm::ivec3(x, y, z) + kEdgeOrigin[e];
-          const int axis = e >> 2;
-          const size_t slot = static_cast<size_t>(p.y) * (n.x + 1) + p.x;
-          Slot* sl;
-          uint32_t stamp;
-          if (axis == 2) {
-            sl = &zs[slot];
-            stamp = stamp_lo;
-          } else if (p.z == z) {
-            sl = &xy_lo[axis][slot];
-            stamp = stamp_lo;
-          } else {
-            sl = &xy_hi[axis][slot];
-            stamp = stamp_hi;
+          const int table = kEdgeSlotTable[e];
+          Slot& sl = slot_tables[table][cell_slot + edge_slot_delta[e]];
+          if (sl.stamp != slot_stamps[table]) {
+            sl.stamp = slot_stamps[table];
+            sl.vertex = make_vertex(glm::ivec3(x, y, z) + kEdgeOrigin[e], e >> 2);
           }
-          if (sl->stamp != stamp) {
-            sl->stamp = stamp;
-            sl->vertex = make_vertex(p, axis);
-          }
-          edge_vertex[e] = sl->vertex;
+          edge_vertex[e] = sl.vertex;
         }
         for (uint32_t k = tab.centre_begin[entry]; k < tab.centre_begin[entry + 1]; ++k) {
           edge_vertex[12 + k - tab.centre_begin[entry]] =
               make_centre(tab.centre_masks[k], edge_vertex);
         }
         for (uint32_t k = e_begin; k < e_end; k += 3) {
-          out.mesh.triangles.emplace_back(edge_vertex[tab.tri_edges[k]],
-                                          edge_vertex[tab.tri_edges[k + 1]],
-                                          edge_vertex[tab.tri_edges[k + 2]]);
+          s.triangles[triangle_count++] =
+              glm::uvec3(edge_vertex[tab.tri_edges[k]], edge_vertex[tab.tri_edges[k + 1]],
+                         edge_vertex[tab.tri_edges[k + 2]]);
         }
       }
     }
   }
+  // One exact-size copy into the caller's mesh (whose capacity a cache
+  // reuses from the brick's previous mesh).
+  out.mesh.positions.assign(s.positions.begin(), s.positions.begin() + vertex_count);
+  out.mesh.normals.assign(s.normals.begin(), s.normals.begin() + vertex_count);
+  out.seam_keys.assign(s.keys.begin(), s.keys.begin() + vertex_count);
+  out.mesh.triangles.assign(s.triangles.begin(), s.triangles.begin() + triangle_count);
 }
 
 void march_block(const MarchBlock& block, BrickMesh& out) {
@@ -472,14 +530,7 @@ void march_block(const MarchBlock& block, BrickMesh& out) {
                3 +
            static_cast<uint64_t>(axis);
   };
-  // March into warm per-thread buffers, then copy once: growing fresh
-  // vectors vertex by vertex costs a dozen reallocations and page faults.
-  thread_local BrickMesh scratch;
-  march_cells(block.voxels, n, block.origin, block.level, block.iso, key, scratch);
-  out.mesh.positions.assign(scratch.mesh.positions.begin(), scratch.mesh.positions.end());
-  out.mesh.normals.assign(scratch.mesh.normals.begin(), scratch.mesh.normals.end());
-  out.mesh.triangles.assign(scratch.mesh.triangles.begin(), scratch.mesh.triangles.end());
-  out.seam_keys.assign(scratch.seam_keys.begin(), scratch.seam_keys.end());
+  march_cells(block.voxels, n, block.origin, block.level, block.iso, key, out);
 }
 
 Mesh weld_brick_meshes(const std::vector<const BrickMesh*>& bricks) {

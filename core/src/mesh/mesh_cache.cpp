@@ -1,6 +1,7 @@
 #include "sculpt/core/mesh/mesh_cache.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cassert>
 #include <cmath>
@@ -36,6 +37,42 @@ constexpr int64_t kParallelMinBricks = 16;
 
 int threads_for(int64_t items, int threads) {
   return items < kParallelMinBricks ? 1 : threads;
+}
+
+// Largest brick edge (VolumeOptions::brick_edge).
+constexpr int kMaxBrickEdge = 128;
+
+// Copies rows_z x rows_y rows of `run` bytes. Bricks copy into a re-mesh's
+// block in runs of the brick edge (its own rows) and of one or two voxels
+// (its neighbours'): fixed-size copies compile to a few moves, where a
+// memcpy call per row cost as much as marching the brick.
+template <int kRun>
+void copy_rows_fixed(uint8_t* dst, size_t dst_row, size_t dst_plane, const uint8_t* src,
+                     size_t src_row, size_t src_plane, int rows_y, int rows_z) {
+  for (int z = 0; z < rows_z; ++z)
+    for (int y = 0; y < rows_y; ++y)
+      std::memcpy(dst + z * dst_plane + y * dst_row, src + z * src_plane + y * src_row, kRun);
+}
+
+void copy_rows(uint8_t* dst, size_t dst_row, size_t dst_plane, const uint8_t* src, size_t src_row,
+               size_t src_plane, int run, int rows_y, int rows_z) {
+  switch (run) {
+    case 1:
+      return copy_rows_fixed<1>(dst, dst_row, dst_plane, src, src_row, src_plane, rows_y, rows_z);
+    case 2:
+      return copy_rows_fixed<2>(dst, dst_row, dst_plane, src, src_row, src_plane, rows_y, rows_z);
+    case 8:
+      return copy_rows_fixed<8>(dst, dst_row, dst_plane, src, src_row, src_plane, rows_y, rows_z);
+    case 16:
+      return copy_rows_fixed<16>(dst, dst_row, dst_plane, src, src_row, src_plane, rows_y, rows_z);
+    case 32:
+      return copy_rows_fixed<32>(dst, dst_row, dst_plane, src, src_row, src_plane, rows_y, rows_z);
+    default:
+      for (int z = 0; z < rows_z; ++z)
+        for (int y = 0; y < rows_y; ++y)
+          std::memcpy(dst + z * dst_plane + y * dst_row, src + z * src_plane + y * src_row,
+                      static_cast<size_t>(run));
+  }
 }
 
 }  // namespace
@@ -166,21 +203,27 @@ uint32_t MeshCache::refresh(const Volume& volume, glm::ivec3 b, bool first) {
   return mask;
 }
 
-bool MeshCache::remesh(glm::ivec3 b, std::vector<uint8_t>& scratch) {
-  CachedBrick& cb = bricks_[index(b)];
+MeshCache::MarchRegion MeshCache::march_region(glm::ivec3 b) const {
   glm::ivec3 c0, c1;
   for (int a = 0; a < 3; ++a) {
     c0[a] = b[a] * m_ - (b[a] == 0 ? 1 : 0);
     c1[a] = std::min((b[a] + 1) * m_, level_dims_[a]);
   }
-  const Box region{c0 - 1, c1 + 2};
-  const Box level_box{glm::ivec3(0), level_dims_};
-  const Box inside = intersect(region, level_box);
-  const Box nbs{inside.lo / m_, (inside.hi - 1) / m_ + 1};
+  MarchRegion r;
+  r.cells_lo = c0;
+  r.cells_hi = c1;
+  r.voxels = Box{c0 - 1, c1 + 2};
+  r.inside = intersect(r.voxels, Box{glm::ivec3(0), level_dims_});
+  r.bricks = Box{r.inside.lo / m_, (r.inside.hi - 1) / m_ + 1};
+  return r;
+}
 
+bool MeshCache::has_surface(glm::ivec3 b) const {
+  const MarchRegion r = march_region(b);
+  const Box& nbs = r.bricks;
   // No surface unless the voxels this brick reads (the sub-boxes of its
   // neighbours, and the empty outside) hold both sides of the iso-level.
-  bool any_in = false, any_out = inside != region;
+  bool any_in = false, any_out = r.inside != r.voxels;
   for (int z = nbs.lo.z; z < nbs.hi.z; ++z)
     for (int y = nbs.lo.y; y < nbs.hi.y; ++y)
       for (int x = nbs.lo.x; x < nbs.hi.x; ++x) {
@@ -196,11 +239,15 @@ bool MeshCache::remesh(glm::ivec3 b, std::vector<uint8_t>& scratch) {
         any_in = any_in || (nb.any_inside & bit) != 0;
         any_out = any_out || (nb.any_outside & bit) != 0;
       }
-  if (!any_in || !any_out) {
-    cb.mesh.clear();
-    return false;
-  }
+  return any_in && any_out;
+}
 
+void MeshCache::remesh(glm::ivec3 b, std::vector<uint8_t>& scratch) {
+  CachedBrick& cb = bricks_[index(b)];
+  const MarchRegion r = march_region(b);
+  const Box& region = r.voxels;
+  const Box& inside = r.inside;
+  const Box& nbs = r.bricks;
   const glm::ivec3 size = region.size();
   scratch.resize(static_cast<size_t>(region.voxel_count()));
   if (inside != region) std::fill(scratch.begin(), scratch.end(), uint8_t{0});
@@ -212,30 +259,34 @@ bool MeshCache::remesh(glm::ivec3 b, std::vector<uint8_t>& scratch) {
         const glm::ivec3 nb_lo = nb_coord * m_;
         const Box part = intersect(inside, Box{nb_lo, nb_lo + m_});
         const int run = part.hi.x - part.lo.x;
-        for (int z = part.lo.z; z < part.hi.z; ++z)
-          for (int y = part.lo.y; y < part.hi.y; ++y) {
-            uint8_t* dst =
-                &scratch[(static_cast<size_t>(z - region.lo.z) * size.y + (y - region.lo.y)) *
-                             size.x +
-                         (part.lo.x - region.lo.x)];
-            if (nb.voxels.empty()) {
-              std::memset(dst, nb.uniform, static_cast<size_t>(run));
-            } else {
-              const glm::ivec3 l = glm::ivec3(part.lo.x, y, z) - nb_lo;
-              std::memcpy(dst, &nb.voxels[(static_cast<size_t>(l.z) * m_ + l.y) * m_ + l.x],
-                          static_cast<size_t>(run));
-            }
-          }
+        const size_t dst_row = static_cast<size_t>(size.x);
+        const size_t dst_plane = dst_row * static_cast<size_t>(size.y);
+        uint8_t* dst_first = &scratch[(static_cast<size_t>(part.lo.z - region.lo.z) * size.y +
+                                       (part.lo.y - region.lo.y)) *
+                                          size.x +
+                                      (part.lo.x - region.lo.x)];
+        const int rows_y = part.hi.y - part.lo.y, rows_z = part.hi.z - part.lo.z;
+        if (nb.voxels.empty()) {
+          // A uniform brick: every row copies one row of its value.
+          std::array<uint8_t, kMaxBrickEdge> row;
+          std::memset(row.data(), nb.uniform, static_cast<size_t>(run));
+          copy_rows(dst_first, dst_row, dst_plane, row.data(), 0, 0, run, rows_y, rows_z);
+          continue;
+        }
+        const glm::ivec3 l = part.lo - nb_lo;
+        const size_t src_row = static_cast<size_t>(m_), src_plane = src_row * src_row;
+        const uint8_t* src_first = &nb.voxels[(static_cast<size_t>(l.z) * m_ + l.y) * m_ + l.x];
+        copy_rows(dst_first, dst_row, dst_plane, src_first, src_row, src_plane, run, rows_y,
+                  rows_z);
       }
   MarchBlock block;
   block.voxels = scratch.data();
-  block.cells = c1 - c0;
-  block.origin = c0;
+  block.cells = r.cells_hi - r.cells_lo;
+  block.origin = r.cells_lo;
   block.level_dims = level_dims_;
   block.level = level_;
   block.iso = options_.iso;
   march_block(block, cb.mesh);
-  return true;
 }
 
 MeshUpdate MeshCache::update(const Volume& volume) {
@@ -302,17 +353,25 @@ MeshUpdate MeshCache::update(const Volume& volume) {
     for (int64_t i = 0; i < count; ++i)
       if (flag[static_cast<size_t>(i)]) dirty.push_back(i);
   }
-  std::atomic<int64_t> marched{0};
+  // Bricks whose neighbourhood is uniform lose their mesh here; only the
+  // rest decide whether threads are worth starting (a dab marches a few
+  // bricks among dozens of dirty ones).
+  std::vector<int64_t> to_march;
+  for (const int64_t i : dirty) {
+    if (has_surface(coord(i))) {
+      to_march.push_back(i);
+    } else {
+      bricks_[static_cast<size_t>(i)].mesh.clear();
+    }
+  }
   parallel_for(
-      static_cast<int64_t>(dirty.size()),
+      static_cast<int64_t>(to_march.size()),
       [&](int64_t k) {
         thread_local std::vector<uint8_t> scratch;
-        if (remesh(coord(dirty[static_cast<size_t>(k)]), scratch)) {
-          marched.fetch_add(1, std::memory_order_relaxed);
-        }
+        remesh(coord(to_march[static_cast<size_t>(k)]), scratch);
       },
-      threads_for(static_cast<int64_t>(dirty.size()), options_.threads));
-  stats.bricks_meshed = marched.load();
+      threads_for(static_cast<int64_t>(to_march.size()), options_.threads));
+  stats.bricks_meshed = static_cast<int64_t>(to_march.size());
   return stats;
 }
 

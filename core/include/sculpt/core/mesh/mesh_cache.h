@@ -78,9 +78,18 @@ class MeshCache {
   // Decodes brick b; returns the bit (dz+1)*9 + (dy+1)*3 + (dx+1) for each
   // brick b + d whose mesh reads voxels of b that changed.
   uint32_t refresh(const Volume& volume, glm::ivec3 b, bool first);
-  // Re-marches brick b from the cached voxels; false when its neighbourhood
-  // is uniform and the mesh was simply cleared.
-  bool remesh(glm::ivec3 b, std::vector<uint8_t>& scratch);
+  // The cells brick b owns, the voxels its march reads (cells plus one below
+  // and two above), their part inside the level, and the bricks holding it.
+  struct MarchRegion {
+    glm::ivec3 cells_lo{0}, cells_hi{0};
+    Box voxels, inside, bricks;
+  };
+  MarchRegion march_region(glm::ivec3 b) const;
+  // Whether the voxels brick b's march reads hold both sides of the
+  // iso-level (from the neighbours' summaries, without reading voxels).
+  bool has_surface(glm::ivec3 b) const;
+  // Re-marches brick b from the cached voxels.
+  void remesh(glm::ivec3 b, std::vector<uint8_t>& scratch);
 
   int level_;
   MarchingCubesOptions options_;
