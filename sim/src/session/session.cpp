@@ -9,13 +9,16 @@ namespace {
 
 constexpr std::array<std::string_view, kCommandKindCount> kCommandNames = {
     "press", "release", "tool",   "mode",      "strength", "spacing",          "mirror",
-    "undo",  "redo",    "volume", "tool_pose", "pointer",  "tool_from_region", "hypertexture"};
-constexpr std::array<int, kCommandKindCount> kValueCounts = {0, 0, 2, 0, 1, 1, 1,
-                                                             0, 0, 4, 7, 7, 6, 6};
+    "undo",  "redo",    "volume", "tool_pose", "pointer",  "tool_from_region", "hypertexture",
+    "sheet"};
+constexpr std::array<int, kCommandKindCount> kValueCounts = {0, 0, 2, 0, 1, 1, 1, 0,
+                                                             0, 4, 7, 7, 6, 6, 6};
 constexpr std::array<std::string_view, kToolShapeCount> kShapeNames = {"sphere", "cube", "cylinder",
                                                                        "ring", "cone"};
 constexpr std::array<std::string_view, kSculptModeCount> kModeNames = {"add", "subtract", "union",
                                                                        "difference", "smooth"};
+constexpr std::array<std::string_view, kSheetActionCount> kSheetActionNames = {
+    "place", "remove", "edit", "add", "subtract", "tool"};
 
 template <size_t N>
 std::optional<uint8_t> find_name(const std::array<std::string_view, N>& names,
@@ -64,6 +67,15 @@ std::string_view sculpt_mode_name(SculptModeId mode) {
 std::optional<SculptModeId> parse_sculpt_mode_id(std::string_view name) {
   const auto i = find_name(kModeNames, name);
   return i ? std::optional(static_cast<SculptModeId>(*i)) : std::nullopt;
+}
+
+std::string_view sheet_action_name(SheetAction action) {
+  const auto i = static_cast<size_t>(action);
+  return i < kSheetActionNames.size() ? kSheetActionNames[i] : "unknown";
+}
+std::optional<SheetAction> parse_sheet_action(std::string_view name) {
+  const auto i = find_name(kSheetActionNames, name);
+  return i ? std::optional(static_cast<SheetAction>(*i)) : std::nullopt;
 }
 
 SessionRecord SessionRecord::of(const hal::RawEvent& e) {

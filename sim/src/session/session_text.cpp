@@ -1,5 +1,7 @@
 #include "sculpt/sim/session/session_text.h"
 
+#include <algorithm>
+#include <array>
 #include <charconv>
 #include <cstdio>
 
@@ -58,6 +60,36 @@ ordered floats(const float* v, int n) {
   for (int i = 0; i < n; ++i)
     a.push_back(v[i]);
   return a;
+}
+
+constexpr std::array<const char*, 3> kInfluenceNames = {"natural", "gaussian", "zone"};
+
+void sheet_json(const Command& c, ordered& j) {
+  const auto action = static_cast<SheetAction>(c.choice);
+  j["action"] = sheet_action_name(action);
+  switch (action) {
+    case SheetAction::kPlace:
+      j["centre"] = floats(c.values, 3);
+      j["size"] = c.values[3];
+      j["points"] = c.values[4];
+      j["axis"] =
+          std::string(1, static_cast<char>('x' + std::clamp(static_cast<int>(c.values[5]), 0, 2)));
+      break;
+    case SheetAction::kEdit: {
+      j["on"] = c.values[0] != 0.0f;
+      const auto i = static_cast<size_t>(std::clamp(static_cast<int>(c.values[1]), 0, 2));
+      j["influence"] = kInfluenceNames[i];
+      j["radius"] = c.values[2];
+      break;
+    }
+    case SheetAction::kAdd:
+    case SheetAction::kSubtract:
+    case SheetAction::kTool:
+      j["thickness"] = c.values[0];
+      break;
+    case SheetAction::kRemove:
+      break;
+  }
 }
 
 ordered record_json(const SessionRecord& r) {
@@ -123,6 +155,9 @@ ordered record_json(const SessionRecord& r) {
       j["width"] = c.values[4];
       j["seed"] = c.values[5];
       break;
+    case CommandKind::kSheet:
+      sheet_json(c, j);
+      break;
     default:
       break;
   }
@@ -150,6 +185,46 @@ void read_number(const json& j, const char* key, float* out) {
   const json& v = need(j, key);
   if (!v.is_number()) throw std::string(key) + ": expected a number";
   *out = v.get<float>();
+}
+
+// The fields of a sheet command (sheet_json's inverse); throws like the others.
+void read_sheet(const json& j, Command& c) {
+  const json& a = need(j, "action");
+  const auto action = a.is_string() ? parse_sheet_action(a.get<std::string>()) : std::nullopt;
+  if (!action) throw std::string("action: unknown value ") + a.dump();
+  c.choice = static_cast<uint8_t>(*action);
+  switch (*action) {
+    case SheetAction::kPlace: {
+      read_numbers(j, "centre", c.values, 3);
+      read_number(j, "size", c.values + 3);
+      read_number(j, "points", c.values + 4);
+      const json& axis = need(j, "axis");
+      const std::string s = axis.is_string() ? axis.get<std::string>() : "";
+      if (s.size() != 1 || s[0] < 'x' || s[0] > 'z') throw std::string("axis: expected x, y or z");
+      c.values[5] = static_cast<float>(s[0] - 'x');
+      break;
+    }
+    case SheetAction::kEdit: {
+      const json& on = need(j, "on");
+      if (!on.is_boolean()) throw std::string("on: expected true or false");
+      c.values[0] = on.get<bool>() ? 1.0f : 0.0f;
+      const json& inf = need(j, "influence");
+      const std::string s = inf.is_string() ? inf.get<std::string>() : "";
+      const auto it = std::find(kInfluenceNames.begin(), kInfluenceNames.end(), s);
+      if (it == kInfluenceNames.end())
+        throw std::string("influence: expected natural, gaussian or zone");
+      c.values[1] = static_cast<float>(it - kInfluenceNames.begin());
+      read_number(j, "radius", c.values + 2);
+      break;
+    }
+    case SheetAction::kAdd:
+    case SheetAction::kSubtract:
+    case SheetAction::kTool:
+      read_number(j, "thickness", c.values);
+      break;
+    case SheetAction::kRemove:
+      break;
+  }
 }
 
 SessionRecord parse_command(const json& j, int64_t t);
@@ -240,6 +315,9 @@ SessionRecord parse_command(const json& j, int64_t t) {
       read_number(j, "radius", c.values + 3);
       read_number(j, "width", c.values + 4);
       read_number(j, "seed", c.values + 5);
+      break;
+    case CommandKind::kSheet:
+      read_sheet(j, c);
       break;
     default:
       break;

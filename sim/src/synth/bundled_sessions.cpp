@@ -158,13 +158,50 @@ Session demo_session() {
   return s.finish();
 }
 
+Session sheet_session() {
+  SessionScript s(scripted_device(0x256f, 0xc635), scripted_normalizer(), 250);
+  s.volume(glm::ivec3(96), 0);
+  auto sheet = [&](SheetAction action, std::initializer_list<float> values) {
+    Command c{CommandKind::kSheet, static_cast<uint8_t>(action), {}};
+    std::copy(values.begin(), values.end(), c.values);
+    s.command(c);
+  };
+  // A flat 8 x 8 bicubic sheet, 56 voxels square, facing +z.
+  const glm::vec3 centre(48, 48, 36);
+  sheet(SheetAction::kPlace, {centre.x, centre.y, centre.z, 56, 8, 2});
+  sheet(SheetAction::kEdit, {1, 1, 2.5f});  // gaussian, 2.5 control points
+  // Pull its middle up along an arc, then push a corner down.
+  s.place(centre);
+  s.rest(0.1f);
+  s.press();
+  s.follow(arc_path(centre + glm::vec3(-14, 0, 0), kX, kZ, 14, 0, kPi / 2), 1.0f);
+  s.release();
+  s.move_to(centre + glm::vec3(14, 14, 0), 0.4f);
+  s.press();
+  s.follow(line_path(s.pose().position, s.pose().position + glm::vec3(0, 0, -10)), 0.5f);
+  s.release();
+  // Its shell into the material, the sheet put away, and a groove cut across.
+  sheet(SheetAction::kAdd, {4});
+  sheet(SheetAction::kRemove, {});
+  s.tool(ToolShape::kSphere, 2.5f);
+  s.spacing(0.15f);
+  s.mode(SculptModeId::kSubtract);
+  s.move_to(glm::vec3(22, 28, 36), 0.4f);
+  s.press();
+  s.follow(zigzag_path(glm::vec3(22, 28, 36), kX, kY, 52, 6, 3), 1.2f);
+  s.release();
+  s.rest(0.2f);
+  return s.finish();
+}
+
 std::vector<std::string_view> bundled_session_names() {
-  return {"short", "demo"};
+  return {"short", "demo", "sheet"};
 }
 
 Session bundled_session(std::string_view name) {
   if (name == "short") return short_session();
   if (name == "demo") return demo_session();
+  if (name == "sheet") return sheet_session();
   return {};
 }
 

@@ -9,6 +9,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "make_command.h"
 #include "sculpt/core/io/atomic_file.h"
 #include "sculpt/core/mesh/marching_cubes.h"
 #include "sculpt/core/mesh/mesh_io.h"
@@ -27,14 +28,10 @@ constexpr int kMaxToolEdge = 96;
 constexpr float kCameraTurnRate = 2.0f;
 constexpr float kCameraMoveRate = 0.8f;
 constexpr int64_t kSecondNs = 1'000'000'000;
+// One press of a tool-turning key: 15 degrees.
+constexpr float kKeyTurnRad = 0.2617994f;
 constexpr uint16_t kSpaceMouseVendor = 0x256f;
 constexpr uint16_t kSpaceMouseProduct = 0xc635;
-
-sim::Command make(sim::CommandKind kind, uint8_t choice = 0, std::initializer_list<float> v = {}) {
-  sim::Command c{kind, choice, {}};
-  std::copy(v.begin(), v.end(), c.values);
-  return c;
-}
 
 }  // namespace
 
@@ -50,9 +47,11 @@ std::optional<Action> shortcut(int key, int mods) {
       case GLFW_KEY_S:
         return Action::kSave;
       case GLFW_KEY_E:
-        return Action::kExportMesh;
+        return shift ? Action::kExportSheet : Action::kExportMesh;
       case GLFW_KEY_T:
-        return Action::kUseSculptureAsTool;
+        return shift ? Action::kSheetAsTool : Action::kUseSculptureAsTool;
+      case GLFW_KEY_B:
+        return shift ? Action::kSheetSubtractFromMaterial : Action::kSheetAddToMaterial;
       case GLFW_KEY_H:
         return Action::kHypertexture;
       default:
@@ -90,6 +89,14 @@ std::optional<Action> shortcut(int key, int mods) {
       return Action::kToggleRecording;
     case GLFW_KEY_F:
       return Action::kFrameView;
+    case GLFW_KEY_Q:
+      return shift ? Action::kTiltToolUp : Action::kTurnToolLeft;
+    case GLFW_KEY_E:
+      return shift ? Action::kTiltToolDown : Action::kTurnToolRight;
+    case GLFW_KEY_N:
+      return shift ? Action::kRemoveSheet : Action::kNewSheet;
+    case GLFW_KEY_G:
+      return Action::kToggleSheetEditing;
     default:
       return std::nullopt;
   }
@@ -139,6 +146,28 @@ const char* shortcut_label(Action action) {
       return "Ctrl+H";
     case Action::kFrameView:
       return "F";
+    case Action::kTurnToolLeft:
+      return "Q";
+    case Action::kTurnToolRight:
+      return "E";
+    case Action::kTiltToolUp:
+      return "Shift+Q";
+    case Action::kTiltToolDown:
+      return "Shift+E";
+    case Action::kNewSheet:
+      return "N";
+    case Action::kRemoveSheet:
+      return "Shift+N";
+    case Action::kToggleSheetEditing:
+      return "G";
+    case Action::kSheetAddToMaterial:
+      return "Ctrl+B";
+    case Action::kSheetSubtractFromMaterial:
+      return "Ctrl+Shift+B";
+    case Action::kSheetAsTool:
+      return "Ctrl+Shift+T";
+    case Action::kExportSheet:
+      return "Ctrl+Shift+E";
   }
   return "";
 }
@@ -174,40 +203,44 @@ void StationController::command(const sim::Command& c, int64_t now_ns) {
 }
 
 void StationController::command_at(const sim::Command& c, int64_t t_ns) {
+  const glm::ivec3 dims = loop_.volume().dims();
   loop_.handle(c);
+  // A new block of another size: look at all of it.
+  if (loop_.volume().dims() != dims)
+    camera_.frame(glm::vec3(0.0f), glm::vec3(loop_.volume().dims()));
   recorder_.command(c, t_ns);
   ++generation_;
 }
 
 void StationController::set_tool(sim::ToolShape shape, float a, float b, int64_t now_ns) {
-  command(make(sim::CommandKind::kTool, static_cast<uint8_t>(shape), {a, b}), now_ns);
+  command(make_command(sim::CommandKind::kTool, static_cast<uint8_t>(shape), {a, b}), now_ns);
 }
 void StationController::set_mode(core::SculptMode mode, int64_t now_ns) {
-  command(make(sim::CommandKind::kMode, static_cast<uint8_t>(mode)), now_ns);
+  command(make_command(sim::CommandKind::kMode, static_cast<uint8_t>(mode)), now_ns);
 }
 void StationController::set_strength(float s, int64_t now_ns) {
-  command(make(sim::CommandKind::kStrength, 0, {std::clamp(s, 0.0f, 1.0f)}), now_ns);
+  command(make_command(sim::CommandKind::kStrength, 0, {std::clamp(s, 0.0f, 1.0f)}), now_ns);
 }
 void StationController::set_spacing(float s, int64_t now_ns) {
-  command(make(sim::CommandKind::kSpacing, 0, {std::max(s, 0.01f)}), now_ns);
+  command(make_command(sim::CommandKind::kSpacing, 0, {std::max(s, 0.01f)}), now_ns);
 }
 void StationController::set_mirror(std::optional<int> axis, int64_t now_ns) {
   if (!axis) {
-    command(make(sim::CommandKind::kMirror, sim::kMirrorOff, {0.0f}), now_ns);
+    command(make_command(sim::CommandKind::kMirror, sim::kMirrorOff, {0.0f}), now_ns);
     return;
   }
   // The block's middle plane: voxel centres 0..n-1 mirror about (n-1)/2.
   const float at = 0.5f * static_cast<float>(loop_.volume().dims()[*axis] - 1);
-  command(make(sim::CommandKind::kMirror, static_cast<uint8_t>(*axis), {at}), now_ns);
+  command(make_command(sim::CommandKind::kMirror, static_cast<uint8_t>(*axis), {at}), now_ns);
 }
 void StationController::undo(int64_t now_ns) {
   const int64_t before = loop_.counters().undos;
-  command(make(sim::CommandKind::kUndo), now_ns);
+  command(make_command(sim::CommandKind::kUndo), now_ns);
   status_ = loop_.counters().undos > before ? "undone" : "nothing to undo";
 }
 void StationController::redo(int64_t now_ns) {
   const int64_t before = loop_.counters().redos;
-  command(make(sim::CommandKind::kRedo), now_ns);
+  command(make_command(sim::CommandKind::kRedo), now_ns);
   status_ = loop_.counters().redos > before ? "redone" : "nothing to redo";
 }
 
@@ -247,10 +280,10 @@ bool StationController::use_sculpture_as_tool(int64_t now_ns) {
               std::to_string(kMaxToolEdge) + " voxels a side";
     return false;
   }
-  command(make(sim::CommandKind::kToolFromRegion, 0,
-               {static_cast<float>(tight.lo.x), static_cast<float>(tight.lo.y),
-                static_cast<float>(tight.lo.z), static_cast<float>(tight.hi.x),
-                static_cast<float>(tight.hi.y), static_cast<float>(tight.hi.z)}),
+  command(make_command(sim::CommandKind::kToolFromRegion, 0,
+                       {static_cast<float>(tight.lo.x), static_cast<float>(tight.lo.y),
+                        static_cast<float>(tight.lo.z), static_cast<float>(tight.hi.x),
+                        static_cast<float>(tight.hi.y), static_cast<float>(tight.hi.z)}),
           now_ns);
   status_ = "the sculpture is the tool now";
   return true;
@@ -260,9 +293,9 @@ void StationController::hypertexture(int64_t now_ns) {
   constexpr float kSkinWidthVox = 4.0f;
   const glm::vec3 p = loop_.pose().position;
   const uint64_t before = loop_.volume().content_hash();
-  command(make(sim::CommandKind::kHypertexture, 0,
-               {p.x, p.y, p.z, 0.5f * loop_.tool_size(), kSkinWidthVox,
-                static_cast<float>(++hypertextures_)}),
+  command(make_command(sim::CommandKind::kHypertexture, 0,
+                       {p.x, p.y, p.z, 0.5f * loop_.tool_size(), kSkinWidthVox,
+                        static_cast<float>(++hypertextures_)}),
           now_ns);
   status_ = loop_.volume().content_hash() != before ? "hypertexture baked around the tool"
                                                     : "no surface near the tool for a hypertexture";
@@ -337,6 +370,32 @@ bool StationController::perform(Action action, int64_t now_ns) {
     case Action::kFrameView:
       camera_.frame(glm::vec3(0.0f), glm::vec3(loop_.volume().dims()));
       return true;
+    case Action::kTurnToolLeft:
+    case Action::kTurnToolRight:
+    case Action::kTiltToolUp:
+    case Action::kTiltToolDown: {
+      const bool turn = action == Action::kTurnToolLeft || action == Action::kTurnToolRight;
+      const bool positive = action == Action::kTurnToolLeft || action == Action::kTiltToolUp;
+      turn_tool(turn ? camera_.up() : camera_.right(), positive ? kKeyTurnRad : -kKeyTurnRad,
+                now_ns);
+      return true;
+    }
+    case Action::kNewSheet:
+      new_sheet(now_ns);
+      return true;
+    case Action::kRemoveSheet:
+      remove_sheet(now_ns);
+      return loop_.sheet_problem().empty();
+    case Action::kToggleSheetEditing:
+      set_sheet_editing(!s.sheet_editing, now_ns);
+      return true;
+    case Action::kSheetAddToMaterial:
+    case Action::kSheetSubtractFromMaterial:
+      return sheet_into_material(action == Action::kSheetAddToMaterial, now_ns);
+    case Action::kSheetAsTool:
+      return sheet_as_tool(now_ns);
+    case Action::kExportSheet:
+      return export_sheet(options_.sheet_export).ok();
   }
   return false;
 }
@@ -447,9 +506,9 @@ void StationController::reader_samples(int64_t motion_samples, int64_t now_ns) {
 void StationController::pointer_move(glm::vec3 position, int64_t now_ns) {
   const glm::quat q = loop_.pose().orientation;
   const int64_t dabs = loop_.counters().dabs;
-  command(
-      make(sim::CommandKind::kPointer, 0, {position.x, position.y, position.z, q.w, q.x, q.y, q.z}),
-      now_ns);
+  command(make_command(sim::CommandKind::kPointer, 0,
+                       {position.x, position.y, position.z, q.w, q.x, q.y, q.z}),
+          now_ns);
   note_dabs(dabs, now_ns);
 }
 
@@ -457,19 +516,21 @@ void StationController::pointer_down(int64_t now_ns) {
   if (pointer_down_) return;
   pointer_down_ = true;
   const int64_t dabs = loop_.counters().dabs;
-  command(make(sim::CommandKind::kPress), now_ns);
+  command(make_command(sim::CommandKind::kPress), now_ns);
   note_dabs(dabs, now_ns);
 }
 
 void StationController::pointer_up(int64_t now_ns) {
   if (!pointer_down_) return;
   pointer_down_ = false;
-  command(make(sim::CommandKind::kRelease), now_ns);
+  command(make_command(sim::CommandKind::kRelease), now_ns);
 }
 
 int64_t StationController::update_mesh(int64_t now_ns) {
   const int64_t meshed = loop_.update_mesh();
-  if (!unmeshed_dab_t_ns_.empty()) ++generation_;
+  // Something to autosave: new dabs, or the sheet moved under the device.
+  if (!unmeshed_dab_t_ns_.empty() || loop_.sheet().version() != sheet_version_) ++generation_;
+  sheet_version_ = loop_.sheet().version();
   for (int64_t t : unmeshed_dab_t_ns_) {
     const double us = static_cast<double>(now_ns - t) * 1e-3;
     recent_latency_us_.push_back(us);
@@ -500,7 +561,8 @@ ProjectView StationController::view() const {
 core::Status StationController::save(const std::filesystem::path& path) {
   const StationSettings& s = loop_.settings();
   core::Status st =
-      save_project(path, loop_.volume(), s, s.custom_tool ? &loop_.tool() : nullptr, view());
+      save_project(path, loop_.volume(), s, s.custom_tool ? &loop_.tool() : nullptr, view(),
+                   loop_.sheet().has_sheet() ? &loop_.sheet().surface() : nullptr);
   if (st) saved_generation_ = generation_;
   report(st, "saved " + path.string());
   return st;
@@ -513,7 +575,8 @@ core::Status StationController::open(const std::filesystem::path& path) {
     return project.error();
   }
   finish_autosave();
-  loop_.restore(std::move(project->volume), project->settings, std::move(project->custom_tool));
+  loop_.restore(std::move(project->volume), project->settings, std::move(project->custom_tool),
+                std::move(project->sheet));
   const ProjectView& v = project->view;
   camera_.set(v.camera_target, v.camera_yaw, v.camera_pitch, v.camera_distance);
   lod_.set_policy(v.lod);
@@ -546,21 +609,21 @@ std::vector<sim::Command> StationController::opening_commands() const {
   const StationLoop::Options& o = options_.loop;
   // The recording starts from the block the station started with; work done
   // before it (or an opened project) is not in the session (README).
-  c.push_back(o.clay_margin > 0 ? make(sim::CommandKind::kVolume, sim::kVolumeClay,
-                                       {d.x, d.y, d.z, static_cast<float>(o.clay_margin)})
-                                : make(sim::CommandKind::kVolume, sim::kVolumeFill,
-                                       {d.x, d.y, d.z, static_cast<float>(o.volume_fill)}));
-  c.push_back(
-      make(sim::CommandKind::kTool, static_cast<uint8_t>(s.shape), {s.size_a_vox, s.size_b_vox}));
-  c.push_back(make(sim::CommandKind::kMode, static_cast<uint8_t>(s.mode)));
-  c.push_back(make(sim::CommandKind::kStrength, 0, {s.strength}));
-  c.push_back(make(sim::CommandKind::kSpacing, 0, {s.spacing}));
-  c.push_back(s.mirror ? make(sim::CommandKind::kMirror, static_cast<uint8_t>(s.mirror->axis),
-                              {s.mirror->centre_vox})
-                       : make(sim::CommandKind::kMirror, sim::kMirrorOff, {0.0f}));
-  c.push_back(make(sim::CommandKind::kToolPose, 0,
-                   {p.position.x, p.position.y, p.position.z, p.orientation.w, p.orientation.x,
-                    p.orientation.y, p.orientation.z}));
+  c.push_back(o.clay_margin > 0 ? make_command(sim::CommandKind::kVolume, sim::kVolumeClay,
+                                               {d.x, d.y, d.z, static_cast<float>(o.clay_margin)})
+                                : make_command(sim::CommandKind::kVolume, sim::kVolumeFill,
+                                               {d.x, d.y, d.z, static_cast<float>(o.volume_fill)}));
+  c.push_back(make_command(sim::CommandKind::kTool, static_cast<uint8_t>(s.shape),
+                           {s.size_a_vox, s.size_b_vox}));
+  c.push_back(make_command(sim::CommandKind::kMode, static_cast<uint8_t>(s.mode)));
+  c.push_back(make_command(sim::CommandKind::kStrength, 0, {s.strength}));
+  c.push_back(make_command(sim::CommandKind::kSpacing, 0, {s.spacing}));
+  c.push_back(s.mirror ? make_command(sim::CommandKind::kMirror,
+                                      static_cast<uint8_t>(s.mirror->axis), {s.mirror->centre_vox})
+                       : make_command(sim::CommandKind::kMirror, sim::kMirrorOff, {0.0f}));
+  c.push_back(make_command(sim::CommandKind::kToolPose, 0,
+                           {p.position.x, p.position.y, p.position.z, p.orientation.w,
+                            p.orientation.x, p.orientation.y, p.orientation.z}));
   return c;
 }
 
@@ -621,10 +684,13 @@ void StationController::tick(int64_t now_ns) {
   auto volume = std::make_shared<core::Volume>(loop_.volume());
   const StationSettings settings = loop_.settings();
   auto tool = settings.custom_tool ? std::make_shared<core::Tool>(loop_.tool()) : nullptr;
-  autosave_ = std::async(std::launch::async,
-                         [path = autosave_path(), volume, settings, tool, view = view()] {
-                           return save_project(path, *volume, settings, tool.get(), view);
-                         });
+  auto sheet = loop_.sheet().has_sheet()
+                   ? std::make_shared<core::nurbs::NurbsSurface>(loop_.sheet().surface())
+                   : nullptr;
+  autosave_ = std::async(
+      std::launch::async, [path = autosave_path(), volume, settings, tool, sheet, view = view()] {
+        return save_project(path, *volume, settings, tool.get(), view, sheet.get());
+      });
 }
 
 core::Status StationController::save_input_settings(float sensitivity, float deadzone) {

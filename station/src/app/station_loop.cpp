@@ -92,25 +92,28 @@ void StationLoop::new_volume(glm::ivec3 dims, uint8_t fill, int clay_margin) {
 }
 
 void StationLoop::restore(std::unique_ptr<core::Volume> volume, const StationSettings& settings,
-                          std::optional<core::Tool> custom_tool) {
+                          std::optional<core::Tool> custom_tool,
+                          std::optional<core::nurbs::NurbsSurface> sheet) {
   if (pressed_) release();
   sculptor_.reset();
   volume_ = std::move(volume);
   sculptor_ = std::make_unique<core::Sculptor>(*volume_);
   settings_ = settings;
   settings_.custom_tool = custom_tool.has_value();
-  tool_ = custom_tool ? std::move(*custom_tool)
-                      : make_tool(settings_.shape, settings_.size_a_vox, settings_.size_b_vox);
-  sculptor_->set_tool(tool_);
+  if (custom_tool) tool_ = std::move(*custom_tool);
+  sheet_ = SheetEditor();
+  sheet_.reset(std::move(sheet));
+  sheet_held_ = false;
+  apply_tool();
   sculptor_->set_mirror(settings_.mirror);
-  reset_sampler();
   mesh_ = core::MeshCache(0);
 }
 
 void StationLoop::apply_tool() {
-  tool_ = settings_.custom_tool
-              ? core::tool_from_volume(*volume_, settings_.custom_region)
-              : make_tool(settings_.shape, settings_.size_a_vox, settings_.size_b_vox);
+  // A custom tool (tool_ already holds it) outlives the material it came from.
+  if (!settings_.custom_tool) {
+    tool_ = make_tool(settings_.shape, settings_.size_a_vox, settings_.size_b_vox);
+  }
   sculptor_->set_tool(tool_);
   reset_sampler();
 }
@@ -118,7 +121,7 @@ void StationLoop::apply_tool() {
 float StationLoop::tool_size() const {
   if (!settings_.custom_tool)
     return tool_size_vox(settings_.shape, settings_.size_a_vox, settings_.size_b_vox);
-  const glm::ivec3 d = settings_.custom_region.size();
+  const glm::ivec3 d = tool_.density.dims();
   return static_cast<float>(std::max({d.x, d.y, d.z, 1}));
 }
 
@@ -133,11 +136,18 @@ void StationLoop::move_tool(const float* v, bool keep_stroke) {
   const glm::quat q(v[3], v[4], v[5], v[6]);
   p.orientation = glm::dot(q, q) > 0 ? glm::normalize(q) : glm::quat(1, 0, 0, 0);
   integrator_.reset(p);
-  if (pressed_) {
-    dabs_.clear();
-    sampler_.add(integrator_.pose(), dabs_);
-    sculpt(dabs_);
+  tool_moved();
+}
+
+void StationLoop::tool_moved() {
+  if (!pressed_) return;
+  if (sheet_held_) {
+    sheet_.drag(glm::dvec3(integrator_.pose().position));
+    return;
   }
+  dabs_.clear();
+  sampler_.add(integrator_.pose(), dabs_);
+  sculpt(dabs_);
 }
 
 void StationLoop::handle(const sim::Command& c) {
@@ -179,11 +189,14 @@ void StationLoop::handle(const sim::Command& c) {
       break;
     case K::kUndo:
       if (pressed_) release();
-      counters_.undos += sculptor_->undo() ? 1 : 0;
+      counters_.undos += (settings_.sheet_editing ? sheet_.undo() : sculptor_->undo()) ? 1 : 0;
       break;
     case K::kRedo:
       if (pressed_) release();
-      counters_.redos += sculptor_->redo() ? 1 : 0;
+      counters_.redos += (settings_.sheet_editing ? sheet_.redo() : sculptor_->redo()) ? 1 : 0;
+      break;
+    case K::kSheet:
+      sheet_command(c);
       break;
     case K::kVolume: {
       const glm::ivec3 dims(static_cast<int>(c.values[0]), static_cast<int>(c.values[1]),
@@ -233,6 +246,7 @@ void StationLoop::handle(const sim::Command& c) {
       if (pressed_) release();
       settings_.custom_tool = true;
       settings_.custom_region = region;
+      tool_ = core::tool_from_volume(*volume_, region);
       apply_tool();
       break;
     }
@@ -242,6 +256,14 @@ void StationLoop::handle(const sim::Command& c) {
 void StationLoop::press() {
   if (pressed_) return;
   pressed_ = true;
+  if (settings_.sheet_editing) {
+    const core::Status grabbed =
+        sheet_.grab(glm::dvec3(integrator_.pose().position), settings_.sheet_drag);
+    sheet_held_ = grabbed.ok();
+    sheet_problem_ = grabbed.ok() ? std::string() : grabbed.error().message();
+    ++(sheet_held_ ? counters_.sheet_grabs : counters_.sheet_misses);
+    return;
+  }
   ++counters_.strokes;
   sculptor_->begin_stroke();
   dabs_.clear();
@@ -252,6 +274,11 @@ void StationLoop::press() {
 void StationLoop::release() {
   if (!pressed_) return;
   pressed_ = false;
+  if (settings_.sheet_editing) {
+    if (sheet_held_) sheet_.release();
+    sheet_held_ = false;
+    return;
+  }
   sampler_.end();
   sculptor_->end_stroke();
 }
@@ -272,12 +299,8 @@ void StationLoop::handle(const hal::InputEvent& e) {
   switch (e.kind) {
     case hal::InputKind::kMotion: {
       ++counters_.motion_samples;
-      const hal::ToolPose& pose = integrator_.update(e);
-      if (pressed_) {
-        dabs_.clear();
-        sampler_.add(pose, dabs_);
-        sculpt(dabs_);
-      }
+      integrator_.update(e);
+      tool_moved();
       break;
     }
     case hal::InputKind::kButton:

@@ -42,7 +42,7 @@ int from_text(const SessionOptions& o) {
 int generate(const SessionOptions& o) {
   const sim::Session session = sim::bundled_session(o.input);
   if (session.records.empty())
-    return report(core::Error("no bundled session named '" + o.input + "' (short, demo)"));
+    return report(core::Error("no bundled session named '" + o.input + "' (short, demo, sheet)"));
   if (core::Status st = sim::write_session_file(o.output, session); !st) return report(st.error());
   std::printf("wrote %s: %zu records, %.1f s\n", o.output.c_str(), session.records.size(),
               static_cast<double>(session.end_t_ns() - session.start_t_ns()) * 1e-9);
@@ -65,7 +65,7 @@ void add_session_command(CLI::App& app, Action& action) {
        {Sub{"to-text", "binary session to JSON Lines", "binary session (.scs)", to_text},
         Sub{"from-text", "JSON Lines (or binary) session to binary", "session text (.jsonl)",
             from_text},
-        Sub{"generate", "write a bundled scripted session", "short or demo", generate}}) {
+        Sub{"generate", "write a bundled scripted session", "short, demo or sheet", generate}}) {
     auto o = std::make_shared<SessionOptions>();
     CLI::App* sub = cmd->add_subcommand(s.name, s.help);
     sub->add_option("input", o->input, s.in_help)->required();

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sculpt/core/io/atomic_file.h"
+#include "sculpt/core/nurbs/nurbs_json.h"
 #include "sculpt/core/wavelet/wavelet_pyramid.h"
 
 namespace sculpt::station {
@@ -44,6 +45,9 @@ json settings_json(const StationSettings& s) {
               s.custom_region.hi.x, s.custom_region.hi.y, s.custom_region.hi.z}}};
   j["mirror"] =
       s.mirror ? json{{"axis", s.mirror->axis}, {"at", s.mirror->centre_vox}} : json(nullptr);
+  j["sheet_editing"] = s.sheet_editing;
+  j["sheet_influence"] = static_cast<int>(s.sheet_drag.influence);
+  j["sheet_radius"] = s.sheet_drag.radius;
   return j;
 }
 
@@ -119,16 +123,18 @@ class Inflater {
 
 core::Status save_project(const std::filesystem::path& path, const core::Volume& volume,
                           const StationSettings& settings, const core::Tool* custom_tool,
-                          const ProjectView& view) {
+                          const ProjectView& view, const core::nurbs::NurbsSurface* sheet) {
   const glm::ivec3 d = volume.dims();
-  json j = {{"volume",
-             {{"dims", {d.x, d.y, d.z}},
-              {"brick_edge", volume.brick_edge()},
-              {"levels", volume.levels()},
-              {"content_hash", volume.content_hash()}}},
-            {"settings", settings_json(settings)},
-            {"view", view_json(view)},
-            {"tool", nullptr}};
+  json j = {
+      {"volume",
+       {{"dims", {d.x, d.y, d.z}},
+        {"brick_edge", volume.brick_edge()},
+        {"levels", volume.levels()},
+        {"content_hash", volume.content_hash()}}},
+      {"settings", settings_json(settings)},
+      {"view", view_json(view)},
+      {"tool", nullptr},
+      {"sheet", sheet != nullptr ? json::parse(core::nurbs::to_json(*sheet)) : json(nullptr)}};
   if (custom_tool != nullptr) {
     const glm::ivec3 t = custom_tool->density.dims();
     j["tool"] = {{"dims", {t.x, t.y, t.z}}, {"pivot", vec_json(custom_tool->pivot)}};
@@ -212,6 +218,13 @@ StationSettings settings_of(const json& j) {
     if (axis < 0 || axis > 2) throw std::string("settings.mirror.axis: not 0, 1 or 2");
     s.mirror = core::MirrorPlane{axis, m.at("at").get<float>()};
   }
+  s.sheet_editing = j.value("sheet_editing", false);
+  const int influence = j.value("sheet_influence", static_cast<int>(s.sheet_drag.influence));
+  if (influence < 0 || influence > 2) throw std::string("settings.sheet_influence: not 0, 1 or 2");
+  s.sheet_drag.influence = static_cast<SheetInfluence>(influence);
+  s.sheet_drag.radius = j.value("sheet_radius", s.sheet_drag.radius);
+  if (!(s.sheet_drag.radius >= 0 && s.sheet_drag.radius <= 64))
+    throw std::string("settings.sheet_radius: out of range");
   if (!(s.spacing > 0) || !(s.strength >= 0 && s.strength <= 1))
     throw std::string("settings: strength or spacing out of range");
   return s;
@@ -278,6 +291,12 @@ core::Result<Project> load_project(const std::filesystem::path& path) {
       core::Tool tool;
       tool.pivot = vec_of(t.at("pivot"));
       project.custom_tool = std::move(tool);
+    }
+    // Projects written before the sheet existed have no "sheet".
+    if (const auto s = j.find("sheet"); s != j.end() && !s->is_null()) {
+      auto sheet = core::nurbs::parse_surface_json(s->dump());
+      if (!sheet) throw "sheet: " + sheet.error().message();
+      project.sheet = std::move(sheet).value();
     }
   } catch (const std::string& what) {
     return fail(what);

@@ -19,6 +19,7 @@ void tip(Action action) {
 
 constexpr const char* kShapes[] = {"sphere", "cube", "cylinder", "ring", "cone"};
 constexpr const char* kMirror[] = {"off", "x", "y", "z"};
+constexpr const char* kInfluence[] = {"natural (smallest change)", "gaussian", "zone (refined)"};
 
 }  // namespace
 
@@ -58,7 +59,9 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
 
   if (ImGui::CollapsingHeader("Tool", ImGuiTreeNodeFlags_DefaultOpen)) {
     int shape = static_cast<int>(s.shape);
-    if (s.custom_tool) ImGui::TextUnformatted("tool: the sculpture");
+    if (s.custom_tool)
+      ImGui::TextUnformatted(s.custom_region.empty() ? "tool: the sheet's shell"
+                                                     : "tool: the sculpture");
     if (ImGui::Combo("shape", &shape, kShapes, IM_ARRAYSIZE(kShapes)) &&
         (shape != static_cast<int>(s.shape) || s.custom_tool)) {
       c_.set_tool(static_cast<sim::ToolShape>(shape), s.size_a_vox, s.size_b_vox, now);
@@ -102,6 +105,8 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
       c_.set_mirror(mirror == 0 ? std::nullopt : std::optional<int>(mirror - 1), now);
     }
   }
+
+  if (ImGui::CollapsingHeader("NURBS sheet", ImGuiTreeNodeFlags_DefaultOpen)) draw_sheet(now);
 
   if (ImGui::CollapsingHeader("Edit and files", ImGuiTreeNodeFlags_DefaultOpen)) {
     if (ImGui::Button("Undo")) c_.undo(now);
@@ -169,6 +174,50 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
   }
   if (!c_.status().empty()) ImGui::TextWrapped("%s", c_.status().c_str());
   ImGui::End();
+}
+
+void StationPanel::draw_sheet(int64_t now) {
+  const StationSettings& s = c_.loop().settings();
+  const SheetEditor& sheet = c_.loop().sheet();
+  if (!sheet.has_sheet()) {
+    if (ImGui::Button("New sheet through the tool")) c_.new_sheet(now);
+    tip(Action::kNewSheet);
+    return;
+  }
+  const core::nurbs::NurbsSurface& surface = sheet.surface();
+  ImGui::Text("bicubic, %d x %d control points", surface.count_u, surface.count_v);
+  bool editing = s.sheet_editing;
+  if (ImGui::Checkbox("presses drag the sheet", &editing)) c_.set_sheet_editing(editing, now);
+  tip(Action::kToggleSheetEditing);
+  int influence = static_cast<int>(s.sheet_drag.influence);
+  float radius = static_cast<float>(s.sheet_drag.radius);
+  bool changed = ImGui::Combo("influence", &influence, kInfluence, IM_ARRAYSIZE(kInfluence));
+  if (influence == static_cast<int>(SheetInfluence::kGaussian)) {
+    ImGui::SliderFloat("reach", &radius, 0.0f, 8.0f, "%.1f control points");
+    changed |= ImGui::IsItemDeactivatedAfterEdit();
+  } else if (influence == static_cast<int>(SheetInfluence::kZone)) {
+    ImGui::SliderFloat("zone radius", &radius, 0.02f, 0.5f, "%.2f of the domain");
+    changed |= ImGui::IsItemDeactivatedAfterEdit();
+  }
+  if (changed) c_.set_sheet_influence(static_cast<SheetInfluence>(influence), radius, now);
+  if (sheet.last_residual() > 0)
+    ImGui::Text("last drag: residual %.1e voxel", sheet.last_residual());
+  float thickness = c_.sheet_thickness();
+  if (ImGui::SliderFloat("shell", &thickness, 0.5f, 16.0f, "%.1f vox thick"))
+    c_.set_sheet_thickness(thickness);
+  if (ImGui::Button("Add to material")) c_.sheet_into_material(true, now);
+  tip(Action::kSheetAddToMaterial);
+  ImGui::SameLine();
+  if (ImGui::Button("Cut from material")) c_.sheet_into_material(false, now);
+  tip(Action::kSheetSubtractFromMaterial);
+  if (ImGui::Button("Make it the tool")) c_.sheet_as_tool(now);
+  tip(Action::kSheetAsTool);
+  ImGui::SameLine();
+  if (ImGui::Button("Export")) (void)c_.export_sheet(c_.options().sheet_export);
+  tip(Action::kExportSheet);
+  ImGui::SameLine();
+  if (ImGui::Button("Remove")) c_.remove_sheet(now);
+  tip(Action::kRemoveSheet);
 }
 
 }  // namespace sculpt::station

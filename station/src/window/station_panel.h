@@ -22,6 +22,8 @@ class StationPanel {
   void draw(const FrameFigures& figures, int64_t now_ns);
 
  private:
+  void draw_sheet(int64_t now_ns);
+
   StationController& c_;
   char project_[512] = {};
   char mesh_[512] = {};

@@ -21,6 +21,7 @@
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/station_controller.h"
 #include "sculpt/station/render/software_renderer.h"
+#include "sculpt/station/view/mesh_raycast.h"
 #include "sculpt/station/view/volume_raycast.h"
 #include "window/gl_context.h"
 #include "window/station_panel.h"
@@ -113,6 +114,19 @@ core::Status write_stats(const std::string& path, const RunFigures& f, const Sta
   if (!w.ok()) return w.error();
   w.write(j.dump(2) + "\n");
   return w.commit();
+}
+
+// Where the mouse puts the tool: on the material under the cursor; in sheet
+// editing, on the sheet under it, and while dragging the sheet, in the plane
+// facing the view at the tool's depth.
+std::optional<glm::vec3> pointer_target(const StationController& c, const Ray& ray) {
+  const StationLoop& loop = c.loop();
+  if (!loop.settings().sheet_editing || !loop.sheet().has_sheet())
+    return raycast_surface(loop.volume(), ray);
+  if (loop.sheet().dragging()) {
+    return raycast_plane(ray, loop.pose().position, c.camera().forward());
+  }
+  return raycast_mesh(loop.sheet().mesh(), ray);
 }
 
 }  // namespace
@@ -281,8 +295,8 @@ int run_window(const WindowOptions& o) {
       const glm::vec2 ndc(static_cast<float>(2.0 * mx / std::max(win_w, 1) - 1.0),
                           static_cast<float>(1.0 - 2.0 * my / std::max(win_h, 1)));
       if (left || delta != glm::vec2(0.0f)) {
-        if (auto hit = raycast_surface(controller.loop().volume(), camera.ray(ndc, aspect)))
-          controller.pointer_move(*hit, now);
+        if (auto p = pointer_target(controller, camera.ray(ndc, aspect)))
+          controller.pointer_move(*p, now);
       }
       if (left && !pointer.sculpting) controller.pointer_down(now);
       if (!left && pointer.sculpting) controller.pointer_up(now);
@@ -323,6 +337,9 @@ int run_window(const WindowOptions& o) {
     figures.mesh_ms += static_cast<double>(t_upload - t_mesh) * 1e-6;
     const gl::SurfaceSync sync = (*renderer)->sync_surface(volume, surface);
     (*renderer)->set_tool(controller.loop().tool());
+    const SheetEditor& sheet = controller.loop().sheet();
+    (*renderer)->set_sheet(sheet.mesh(), sheet.version(),
+                           controller.loop().settings().sheet_editing);
 
     // Draw.
     const int64_t t_draw = hal::monotonic_ns();

@@ -8,16 +8,6 @@
 namespace sculpt::core::nurbs {
 namespace {
 
-TEST(SheetVoxelizer, PointTriangleDistanceInEachRegion) {
-  const glm::dvec3 a(0, 0, 0), b(4, 0, 0), c(0, 4, 0);
-  EXPECT_DOUBLE_EQ(point_triangle_distance({1, 1, 3}, a, b, c), 3.0);               // face
-  EXPECT_DOUBLE_EQ(point_triangle_distance({-3, -4, 0}, a, b, c), 5.0);             // vertex a
-  EXPECT_DOUBLE_EQ(point_triangle_distance({2, -2, 0}, a, b, c), 2.0);              // edge ab
-  EXPECT_DOUBLE_EQ(point_triangle_distance({7, 0, 4}, a, b, c), 5.0);               // vertex b
-  EXPECT_NEAR(point_triangle_distance({3, 3, 0}, a, b, c), std::sqrt(2.0), 1e-15);  // edge bc
-  EXPECT_DOUBLE_EQ(point_triangle_distance({0, 0, 2}, a, a, a), 2.0);               // degenerate
-}
-
 TEST(SheetVoxelizer, FlatSheetBecomesASlabOfTheGivenThickness) {
   // A flat 20 x 20 sheet at z = 16: a 6-voxel shell is the slab |z - 16| <= 3.
   NurbsSurface s = flat_sheet(5, 5, 3, 3, 20.0, 20.0);
@@ -26,11 +16,11 @@ TEST(SheetVoxelizer, FlatSheetBecomesASlabOfTheGivenThickness) {
   const Mesh mesh = tessellate(s, 4);
   Volume volume(glm::ivec3(32), 0, VolumeOptions{16, 4, 1});
   const Box region = voxelize_shell(mesh, 6.0, ShellMode::kAdd, volume);
-  EXPECT_EQ(region.lo, glm::ivec3(3, 3, 13));
-  EXPECT_EQ(region.hi, glm::ivec3(30, 30, 20));
+  EXPECT_EQ(region.lo, glm::ivec3(2, 2, 12));
+  EXPECT_EQ(region.hi, glm::ivec3(31, 31, 21));
   EXPECT_EQ(volume.voxel({16, 16, 16}), 255);
-  EXPECT_EQ(volume.voxel({16, 16, 19}), 128);  // d = 3: on the iso-surface
-  EXPECT_EQ(volume.voxel({16, 16, 20}), 0);
+  EXPECT_EQ(volume.voxel({16, 16, 19}), 127);  // d = 3: on the iso-surface (127.5 rounded down)
+  EXPECT_EQ(volume.voxel({16, 16, 20}), 0);    // a voxel out: the ramp's foot
   EXPECT_EQ(volume.voxel({16, 16, 12}), 0);
   EXPECT_EQ(volume.voxel({2, 16, 16}), 0);
   int64_t full = 0;
@@ -41,7 +31,8 @@ TEST(SheetVoxelizer, FlatSheetBecomesASlabOfTheGivenThickness) {
         full += dense.at(x, y, z) == 255;
     }
   }
-  // 21 x 21 columns over the sheet (x, y in 6..26) x 5 full layers (14..18),
+  // 21 x 21 columns over the sheet (x, y in 6..26) x 5 full layers (14..18:
+  // d <= 2, a voxel inside the iso-surface),
   // plus the rounded rim around the sheet's border.
   EXPECT_GE(full, 21 * 21 * 5);
   EXPECT_LT(full, 27 * 27 * 5);

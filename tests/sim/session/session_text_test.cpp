@@ -45,6 +45,40 @@ TEST(SessionText, ReadsAHandWrittenSessionWithPastedHex) {
   EXPECT_EQ(s->records[2].command.values[0], 31.5f);
 }
 
+TEST(SessionText, SheetCommandsRoundTripThroughTextAndBinary) {
+  const std::string text =
+      R"({"sculpt_session": 1, "device": {"vendor_product": "046d:c626"}})"
+      "\n"
+      R"({"t": 1, "cmd": "sheet", "action": "place", "centre": [32, 40, 30], "size": 30, "points": 8, "axis": "y"})"
+      "\n"
+      R"({"t": 2, "cmd": "sheet", "action": "edit", "on": true, "influence": "zone", "radius": 0.25})"
+      "\n"
+      R"({"t": 3, "cmd": "sheet", "action": "subtract", "thickness": 2.5})"
+      "\n"
+      R"({"t": 4, "cmd": "sheet", "action": "remove"})"
+      "\n";
+  const auto s = session_from_text(text, "sheet.jsonl");
+  ASSERT_TRUE(s.ok()) << s.error().message();
+  ASSERT_EQ(s->records.size(), 4u);
+  const Command& place = s->records[0].command;
+  EXPECT_EQ(place.kind, CommandKind::kSheet);
+  EXPECT_EQ(place.choice, static_cast<uint8_t>(SheetAction::kPlace));
+  EXPECT_EQ(place.values[1], 40.0f);
+  EXPECT_EQ(place.values[5], 1.0f);  // y
+  const Command& edit = s->records[1].command;
+  EXPECT_EQ(edit.choice, static_cast<uint8_t>(SheetAction::kEdit));
+  EXPECT_EQ(edit.values[0], 1.0f);
+  EXPECT_EQ(edit.values[1], 2.0f);  // zone
+  EXPECT_EQ(edit.values[2], 0.25f);
+  EXPECT_EQ(s->records[2].command.values[0], 2.5f);
+  const auto again = session_from_text(session_to_text(*s), "again.jsonl");
+  ASSERT_TRUE(again.ok()) << again.error().message();
+  EXPECT_EQ(*again, *s);
+  const auto binary = parse_session_bytes(serialize_session(*s), "sheet.scs");
+  ASSERT_TRUE(binary.ok()) << binary.error().message();
+  EXPECT_EQ(*binary, *s);
+}
+
 TEST(SessionText, ErrorsNameTheLineAndTheProblem) {
   const std::string header = R"({"sculpt_session": 1, "device": {"vendor_product": "046d:c626"}})"
                              "\n";
@@ -62,6 +96,16 @@ TEST(SessionText, ErrorsNameTheLineAndTheProblem) {
             "bad.jsonl:2: shape: unknown value \"blob\"");
   EXPECT_EQ(error(R"({"t": 1, "cmd": "tool", "shape": "cube", "size": [1]})"),
             "bad.jsonl:2: size: expected 2 numbers");
+  EXPECT_EQ(error(R"({"t": 1, "cmd": "sheet", "action": "fold"})"),
+            "bad.jsonl:2: action: unknown value \"fold\"");
+  EXPECT_EQ(
+      error(
+          R"({"t": 1, "cmd": "sheet", "action": "place", "centre": [1, 2, 3], "size": 9, "points": 8, "axis": "w"})"),
+      "bad.jsonl:2: axis: expected x, y or z");
+  EXPECT_EQ(
+      error(
+          R"({"t": 1, "cmd": "sheet", "action": "edit", "on": 1, "influence": "zone", "radius": 1})"),
+      "bad.jsonl:2: on: expected true or false");
   EXPECT_EQ(error("not json"), "bad.jsonl:2: not a JSON object");
   EXPECT_EQ(error(R"({"report": "01"})"), "bad.jsonl:2: missing \"t\"");
   EXPECT_EQ(error(R"({"t": 1, "report": ")" + std::string(65 * 2, 'a') + "\"}"),

@@ -179,22 +179,26 @@ TEST(StationWindow, RunsTheLiveLoopOnASimDeviceAndTakesAScreenshot) {
 }
 
 // The live path (reader thread, ring, every sample in order, commands among
-// the reports) sculpts exactly what the deterministic replay does.
+// the reports) sculpts exactly what the deterministic replay does: the demo,
+// and the sheet session (the NURBS sheet drawn, dragged by the device and
+// added to the material).
 TEST(StationWindow, PlayingTheDemoLiveSculptsWhatItsReplaySculpts) {
-  sculpt::test::ScratchDir dir;
-  auto r = run_with_display("run --device sim:" + sim::bundled_session_path("demo") +
-                                " --speed 4 --until-replayed --hidden --no-vsync --stats " +
-                                dir.file("s.json"),
-                            dir.path());
-  if (!r) GTEST_SKIP() << "no display and no xvfb-run";
-  ASSERT_EQ(r->exit_code, 0) << r->err;
-  const auto stats = nlohmann::json::parse(read_text(dir.file("s.json")));
-  auto session = load_session(sim::bundled_session_path("demo"));
-  ASSERT_TRUE(session.ok());
-  StationLoop loop(StationLoop::Options{});
-  ASSERT_TRUE(replay_session(*session, "demo", loop).ok());
-  EXPECT_EQ(stats["dabs"].get<int64_t>(), loop.counters().dabs);
-  EXPECT_EQ(stats["volume_hash"].get<uint64_t>(), loop.volume().content_hash());
+  for (const char* name : {"demo", "sheet"}) {
+    sculpt::test::ScratchDir dir;
+    auto r = run_with_display("run --device sim:" + sim::bundled_session_path(name) +
+                                  " --speed 4 --until-replayed --hidden --no-vsync --stats " +
+                                  dir.file("s.json"),
+                              dir.path());
+    if (!r) GTEST_SKIP() << "no display and no xvfb-run";
+    ASSERT_EQ(r->exit_code, 0) << r->err;
+    const auto stats = nlohmann::json::parse(read_text(dir.file("s.json")));
+    auto session = load_session(sim::bundled_session_path(name));
+    ASSERT_TRUE(session.ok());
+    StationLoop loop(StationLoop::Options{});
+    ASSERT_TRUE(replay_session(*session, name, loop).ok());
+    EXPECT_EQ(stats["dabs"].get<int64_t>(), loop.counters().dabs) << name;
+    EXPECT_EQ(stats["volume_hash"].get<uint64_t>(), loop.volume().content_hash()) << name;
+  }
 }
 
 TEST(StationWindow, BadInputGetsOneClearError) {

@@ -129,6 +129,13 @@ void SceneRenderer::show_mesh(const core::Mesh& mesh) {
   visible_.assign(1, &single_mesh_);
 }
 
+void SceneRenderer::set_sheet(const core::Mesh& mesh, uint64_t version, bool editing) {
+  sheet_editing_ = editing;
+  if (version == sheet_version_) return;
+  sheet_version_ = version;
+  sheet_mesh_.upload(mesh);
+}
+
 void SceneRenderer::set_tool(const core::Tool& tool) {
   if (tool.density.dims() == tool_.density.dims() && tool.pivot == tool_.pivot &&
       std::equal(tool.density.data(), tool.density.data() + tool.density.size(),
@@ -194,6 +201,12 @@ void SceneRenderer::draw(const SceneView& view, const ToolDraw& tool, glm::vec3 
   lit_.set("colour", glm::vec4(kClay, 1.0f));
   for (const GpuMesh* m : visible_)
     m->draw();
+  if (!sheet_mesh_.empty()) {
+    // A sheet is not clay: a cool blue, brighter while it is being edited.
+    lit_.set("colour", sheet_editing_ ? glm::vec4(0.35f, 0.62f, 0.95f, 1.0f)
+                                      : glm::vec4(0.42f, 0.55f, 0.70f, 1.0f));
+    sheet_mesh_.draw();
+  }
 
   if (!tool.visible || tool_mesh_.empty()) return;
   // The GPU turns the tool's own mesh: the pivot goes to the tool position.

@@ -3,8 +3,8 @@
 // mesh cache at a level of detail per brick, the tool from its own mesh
 // turned on the GPU (not the discrete rotation the sculpting uses), a ghost
 // of the part of the tool inside the material, the block's bounds and a
-// ground grid, under simple studio lighting (key, fill, rim, sky/ground
-// ambient). Needs a current GL 3.3 context; one thread.
+// ground grid, the NURBS sheet (two-sided), under simple studio lighting (key, fill, rim,
+// sky/ground ambient). Needs a current GL 3.3 context; one thread.
 
 #include <cstdint>
 #include <memory>
@@ -55,6 +55,9 @@ class SceneRenderer {
   void show_mesh(const core::Mesh& mesh);
   /// Remakes the tool's mesh when the tool changed.
   void set_tool(const core::Tool& tool);
+  /// The NURBS sheet's mesh (empty: no sheet), uploaded when `version`
+  /// differs from the last one given; `editing` draws it highlighted.
+  void set_sheet(const core::Mesh& mesh, uint64_t version, bool editing);
   void draw(const SceneView& view, const ToolDraw& tool, glm::vec3 block_dims);
 
  private:
@@ -72,6 +75,9 @@ class SceneRenderer {
   core::Tool tool_;
   GpuMesh tool_mesh_;
   GpuMesh single_mesh_;
+  GpuMesh sheet_mesh_;
+  uint64_t sheet_version_ = ~uint64_t{0};
+  bool sheet_editing_ = false;
   GLuint line_vao_ = 0, line_vbo_ = 0;
 };
 

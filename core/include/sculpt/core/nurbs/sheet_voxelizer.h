@@ -3,9 +3,10 @@
 // the material (the station's "add or subtract the sheet" action).
 //
 // The shell is the set of points within thickness / 2 of the triangles
-// (exact point-to-triangle distance, Ericson, Real-Time Collision Detection
-// §5.1.5). Its density is antialiased over one voxel: 255 * clamp(thickness/2
-// - d + 0.5, 0, 1), so the iso-surface 127.5 lies at distance thickness / 2.
+// (the exact point-to-triangle distance of core/distance). Its density
+// ramps over two voxels as every shape's does (density_from_distance(d -
+// thickness / 2)), so the iso-surface 127.5 lies at distance thickness / 2
+// and gradient normals shade it smoothly.
 // Only bricks meeting the shell's bounding box are decoded and re-encoded.
 // Coordinates are voxel units (voxel (x, y, z) at x, y, z).
 
@@ -21,9 +22,6 @@ enum class ShellMode {
   kAdd,       ///< material = max(material, shell)
   kSubtract,  ///< material = min(material, 255 - shell)
 };
-
-/// Distance from p to the triangle (a, b, c), same units.
-double point_triangle_distance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c);
 
 /// Writes the shell of `mesh` (thickness_vox > 0, voxel units) into
 /// `volume`. Returns the voxel box that was visited (clipped to the volume;

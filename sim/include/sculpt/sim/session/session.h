@@ -42,8 +42,10 @@ enum class CommandKind : uint8_t {
   /// values[0..2] centre, values[3] radius of the region, values[4] width of
   /// the soft region (voxels), values[5] noise seed.
   kHypertexture,
+  /// The NURBS sheet: choice = SheetAction (see there for the values).
+  kSheet,
 };
-inline constexpr uint8_t kCommandKindCount = 14;
+inline constexpr uint8_t kCommandKindCount = 15;
 inline constexpr uint8_t kVolumeFill = 0;
 inline constexpr uint8_t kVolumeClay = 1;
 
@@ -53,6 +55,24 @@ inline constexpr uint8_t kToolShapeCount = 5;
 enum class SculptModeId : uint8_t { kAdd, kSubtract, kUnion, kDifference, kSmooth };
 inline constexpr uint8_t kSculptModeCount = 5;
 inline constexpr uint8_t kMirrorOff = 255;
+
+/// What a kSheet command does, and its values.
+enum class SheetAction : uint8_t {
+  /// A flat bicubic sheet: values[0..2] centre, values[3] size (voxels),
+  /// values[4] control points a side, values[5] normal axis 0..2.
+  kPlace,
+  kRemove,
+  /// Device presses grab the sheet instead of sculpting: values[0] 1 on, 0
+  /// off; values[1] influence (0 natural, 1 gaussian, 2 zone); values[2]
+  /// its radius (control points for gaussian, parameter units for zone).
+  kEdit,
+  /// The sheet's shell of thickness values[0] voxels added to or subtracted
+  /// from the material, or made the tool.
+  kAdd,
+  kSubtract,
+  kTool,
+};
+inline constexpr uint8_t kSheetActionCount = 6;
 
 struct Command {
   CommandKind kind = CommandKind::kPress;
@@ -71,6 +91,8 @@ std::string_view tool_shape_name(ToolShape shape);
 std::optional<ToolShape> parse_tool_shape(std::string_view name);
 std::string_view sculpt_mode_name(SculptModeId mode);
 std::optional<SculptModeId> parse_sculpt_mode_id(std::string_view name);
+std::string_view sheet_action_name(SheetAction action);
+std::optional<SheetAction> parse_sheet_action(std::string_view name);
 
 struct SessionRecord {
   enum class Kind : uint8_t { kEvent, kCommand };

@@ -20,6 +20,9 @@ namespace sculpt::sim {
 
 Session short_session();
 Session demo_session();
+/// The NURBS sheet: placed, dragged twice by the device, its shell added to
+/// the material, then carved through.
+Session sheet_session();
 /// The names above; nullptr-like empty optional for others.
 std::vector<std::string_view> bundled_session_names();
 /// The session `name` ("short", "demo"); an empty session when unknown.

@@ -51,6 +51,8 @@ class SessionScript {
   void mirror(int axis, float at_vox);  ///< axis -1: off
   void undo();
   void redo();
+  /// Any station command (the NURBS sheet's, for instance).
+  void command(const Command& c);
   /// Places the tool (a tool_pose command); the pose integration restarts there.
   void place(glm::vec3 position_vox, glm::quat orientation = glm::quat(1, 0, 0, 0));
 
@@ -75,7 +77,6 @@ class SessionScript {
   Session finish() { return std::move(session_); }
 
  private:
-  void command(const Command& c);
   void emit(std::span<const uint8_t> report);
   void emit_motion(const std::array<float, 6>& axes);
   void emit_buttons(uint32_t mask);

@@ -11,6 +11,7 @@
 // Thread safety: one thread (the main loop), except raw_report(), which the
 // device reader threads call.
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -60,6 +61,17 @@ enum class Action {
   kUseSculptureAsTool,
   kHypertexture,
   kFrameView,
+  kTurnToolLeft,  ///< about the view's vertical axis
+  kTurnToolRight,
+  kTiltToolUp,  ///< about the view's horizontal axis
+  kTiltToolDown,
+  kNewSheet,
+  kRemoveSheet,
+  kToggleSheetEditing,
+  kSheetAddToMaterial,
+  kSheetSubtractFromMaterial,
+  kSheetAsTool,
+  kExportSheet,
 };
 
 /// The action of a key (GLFW key code and modifier bits), if any.
@@ -83,6 +95,9 @@ struct ControllerOptions {
   std::filesystem::path project = "sculpture.sculpt";
   std::filesystem::path mesh_export = "sculpture.ply";
   std::filesystem::path recording = "recording.scs";
+  /// Export sheet writes STEM.json (NURBS), STEM.obj (free-form NURBS) and
+  /// STEM.ply (its mesh).
+  std::filesystem::path sheet_export = "sheet";
   /// Autosave interval, seconds (0: never).
   double autosave_seconds = 5.0;
   /// The input.conf the sensitivity and deadzone settings are saved to.
@@ -97,6 +112,7 @@ class StationController {
   StationLoop& loop() { return loop_; }
   const StationLoop& loop() const { return loop_; }
   OrbitCamera& camera() { return camera_; }
+  const OrbitCamera& camera() const { return camera_; }
   LodSelector& lod() { return lod_; }
   const ControllerOptions& options() const { return options_; }
   ControllerOptions& options() { return options_; }
@@ -119,6 +135,24 @@ class StationController {
   /// Bakes a hypertexture skin (distance-field noise, Jones & Satherley
   /// §4.3) into the surface around the tool, over the tool's size.
   void hypertexture(int64_t now_ns);
+  /// Turns the tool by `angle_rad` about `axis` (world, unit): the keyboard's
+  /// way to turn it; a stroke in progress goes on.
+  void turn_tool(glm::vec3 axis, float angle_rad, int64_t now_ns);
+
+  // --- the NURBS sheet (SheetEditor; each a kSheet command) -------------
+  /// A new flat sheet through the tool, facing the camera.
+  void new_sheet(int64_t now_ns);
+  void remove_sheet(int64_t now_ns);
+  /// Presses of the device or mouse grab the sheet instead of sculpting.
+  void set_sheet_editing(bool on, int64_t now_ns);
+  void set_sheet_influence(SheetInfluence influence, float radius, int64_t now_ns);
+  /// The sheet's shell, `thickness_vox` thick, into the material.
+  bool sheet_into_material(bool add, int64_t now_ns);
+  bool sheet_as_tool(int64_t now_ns);
+  core::Status export_sheet(const std::filesystem::path& stem);
+  float sheet_thickness() const { return sheet_thickness_; }
+  void set_sheet_thickness(float vox) { sheet_thickness_ = std::clamp(vox, 0.5f, 64.0f); }
+
   /// Runs a shortcut's action; false when it failed (see status()).
   bool perform(Action action, int64_t now_ns);
 
@@ -218,6 +252,8 @@ class StationController {
   int64_t last_autosave_ns_ = 0;
   int64_t autosaves_ = 0;
   int hypertextures_ = 0;  // each gets its own noise
+  float sheet_thickness_ = 3.0f;
+  uint64_t sheet_version_ = 0;  // the sheet's version at the last update_mesh()
   std::future<core::Status> autosave_;
 };
 

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "sculpt/core/mesh/mesh_cache.h"
@@ -22,21 +23,27 @@
 #include "sculpt/hal/pose/pose_integrator.h"
 #include "sculpt/hal/stroke/stroke_sampler.h"
 #include "sculpt/sim/session/session.h"
+#include "sculpt/station/app/sheet_editor.h"
 
 namespace sculpt::station {
 
 /// What the user has chosen (the UI panel's state).
 struct StationSettings {
   sim::ToolShape shape = sim::ToolShape::kSphere;
-  /// The tool is a region of the material (tool_from_region), not `shape`.
+  /// The tool is not `shape` but a region of the material (tool_from_region)
+  /// or the NURBS sheet's shell; it stays the tool until another is chosen.
   bool custom_tool = false;
-  core::Box custom_region;  ///< that region, voxels
+  core::Box custom_region;  ///< the material's region it came from, voxels (empty: the sheet)
   float size_a_vox = 8.0f;  ///< sphere radius, cube edge, cylinder/cone radius, ring major radius
   float size_b_vox = 0.0f;  ///< cylinder/cone height, ring minor radius
   core::SculptMode mode = core::SculptMode::kAdd;
   float strength = 1.0f;
   float spacing = 0.25f;  ///< dab spacing, fraction of the tool's size
   std::optional<core::MirrorPlane> mirror;
+  /// Device presses grab the NURBS sheet instead of sculpting, and Undo and
+  /// Redo act on the sheet.
+  bool sheet_editing = false;
+  SheetDragOptions sheet_drag;
 };
 
 /// The tool a shape and sizes describe (sizes are clamped to at least 0.5 voxel).
@@ -54,6 +61,8 @@ struct StationCounters {
   int64_t undos = 0;
   int64_t redos = 0;
   int64_t disconnects = 0;
+  int64_t sheet_grabs = 0;   ///< presses that grabbed the sheet
+  int64_t sheet_misses = 0;  ///< presses in sheet editing that found no sheet near the tool
 };
 
 class StationLoop {
@@ -77,7 +86,8 @@ class StationLoop {
   /// Takes over an opened project's state; the undo history starts empty.
   /// `custom_tool` is the tool when settings.custom_tool.
   void restore(std::unique_ptr<core::Volume> volume, const StationSettings& settings,
-               std::optional<core::Tool> custom_tool);
+               std::optional<core::Tool> custom_tool,
+               std::optional<core::nurbs::NurbsSurface> sheet = std::nullopt);
   /// Stops the stroke in progress (the UI lost the pointer, a device went).
   void release_stroke() { release(); }
   /// The tool in use (its reference, unrotated form).
@@ -94,6 +104,9 @@ class StationLoop {
   const StationCounters& counters() const { return counters_; }
   bool pressed() const { return pressed_; }
   const core::Sculptor& sculptor() const { return *sculptor_; }
+  const SheetEditor& sheet() const { return sheet_; }
+  /// Why the last sheet command or grab did nothing (empty if it worked).
+  const std::string& sheet_problem() const { return sheet_problem_; }
 
  private:
   void new_volume(glm::ivec3 dims, uint8_t fill, int clay_margin);
@@ -103,6 +116,10 @@ class StationLoop {
   void press();
   void release();
   void sculpt(const std::vector<hal::Dab>& dabs);
+  void tool_moved();
+  void sheet_command(const sim::Command& command);
+  void sheet_into_material(float thickness_vox, bool add);
+  void sheet_as_tool(float thickness_vox);
 
   Options options_;
   std::unique_ptr<core::Volume> volume_;
@@ -114,7 +131,10 @@ class StationLoop {
   StationSettings settings_;
   StationCounters counters_;
   bool pressed_ = false;
+  bool sheet_held_ = false;  // pressed_ grabbed the sheet rather than sculpting
   std::vector<hal::Dab> dabs_;
+  SheetEditor sheet_;
+  std::string sheet_problem_;
 };
 
 }  // namespace sculpt::station

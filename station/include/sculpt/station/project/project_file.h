@@ -7,7 +7,8 @@
 //   u32      version (1)
 //   u32      n, then n bytes of JSON: {"volume": {"dims", "brick_edge", "levels",
 //            "content_hash"}, "settings": {...}, "view": {...}, "tool": null |
-//            {"dims", "pivot"}}  (README "File formats" lists every field)
+//            {"dims", "pivot"}, "sheet": null | a NURBS surface (nurbs_json.h)}
+//            (README "File formats" lists every field)
 //   u64      m, then m bytes of zlib (deflate) data holding, for every brick in
 //            index order, u8 0 + u8 value (a uniform brick) or u8 1 + the
 //            brick's edge^3 int16 Haar coefficients (wavelet_pyramid.h layout);
@@ -24,6 +25,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "sculpt/core/nurbs/nurbs_surface.h"
 #include "sculpt/core/tool/tool.h"
 #include "sculpt/core/util/result.h"
 #include "sculpt/core/volume/volume.h"
@@ -47,6 +49,8 @@ struct Project {
   /// The tool when settings.custom_tool (a sculpture made a tool).
   std::optional<core::Tool> custom_tool;
   ProjectView view;
+  /// The NURBS sheet, if there was one.
+  std::optional<core::nurbs::NurbsSurface> sheet;
 };
 
 inline constexpr uint32_t kProjectVersion = 1;
@@ -54,7 +58,8 @@ inline constexpr uint32_t kProjectVersion = 1;
 /// Writes the project atomically (temporary file, fsync, rename).
 core::Status save_project(const std::filesystem::path& path, const core::Volume& volume,
                           const StationSettings& settings, const core::Tool* custom_tool,
-                          const ProjectView& view);
+                          const ProjectView& view,
+                          const core::nurbs::NurbsSurface* sheet = nullptr);
 
 /// Opens a project; errors name the file and what is wrong with it.
 core::Result<Project> load_project(const std::filesystem::path& path);
