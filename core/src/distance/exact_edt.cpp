@@ -22,23 +22,19 @@ namespace {
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr int kBlock = 16;
 
-// One parabola of the lower envelope: its vertex q, g = f[q] + q^2, and the
-// left end of its interval as the fraction zn / zd (zd > 0).
-struct Parabola {
-  double g;
-  double zn, zd;
-  int q;
-};
-
 struct Scratch {
-  std::vector<Parabola> env;
+  std::vector<int> v;
+  std::vector<float> z;
+  std::vector<float> g_env;
   std::vector<float> f;    // kBlock columns of n values
   std::vector<float> d;    // kBlock columns of n values
   std::vector<int32_t> g;  // kBlock columns of features in
   std::vector<int32_t> h;  // kBlock columns of features out
   void size(int n) {
-    if (static_cast<int>(env.size()) < n + 1) {
-      env.resize(size_t(n) + 1);
+    if (static_cast<int>(v.size()) < n + 1) {
+      v.resize(size_t(n) + 1);
+      z.resize(size_t(n) + 2);
+      g_env.resize(size_t(n) + 1);
       f.resize(size_t(n) * kBlock);
       d.resize(size_t(n) * kBlock);
       g.resize(size_t(n) * kBlock);
@@ -54,30 +50,45 @@ Scratch& scratch(int n) {
 }
 
 // Lower envelope of the parabolas (q - i)^2 + f[i] over finite f[i];
-// d[q] = its value at q, arg[q] = the winning i (-1 if none).
-// Felzenszwalb-Huttenlocher's intersections s = (g_q - g_p) / (2 (q - p))
-// are kept as fractions and compared by cross-multiplying in double: the
-// values are integer squared distances, so for any grid under 2^16 voxels a
-// side every product is exact (ties are decided exactly), and no division
-// sits on the chain from one parabola to the next, which is what bounded
-// the float version.
+// d[q] = its value at q, arg[q] = the winning i (-1 if none). v, z, g: the
+// envelope's parabolas, their left ends and their f[v] + v^2 (kept so the
+// intersection test reads one value, not f at a just-loaded index).
 template <bool kFeatures>
-void envelope_1d(const float* f, int n, float* d, int* arg, Parabola* env) {
+void envelope_1d(const float* f, int n, float* d, int* arg, int* v, float* z, float* g) {
   int k = -1;
   for (int q = 0; q < n; ++q) {
     if (f[q] == kInf) continue;
-    const double gq = double(f[q]) + double(q) * double(q);
-    double sn = -1.0, sd = 0.0;  // -infinity
-    while (k >= 0) {
-      const Parabola& p = env[k];
-      sn = gq - p.g;
-      sd = 2.0 * double(q - p.q);
-      // Keep p when the intersection lies right of p's left end.
-      if (k == 0 || sn * p.zd > p.zn * sd) break;
-      --k;
+    const float fq = f[q] + float(q) * float(q);
+    if (k < 0) {
+      k = 0;
+      v[0] = q;
+      g[0] = fq;
+      z[0] = -kInf;
+      z[1] = kInf;
+      continue;
+    }
+    float s;
+    for (;;) {
+      s = (fq - g[k]) / (2.0f * float(q - v[k]));
+      if (s <= z[k] && k > 0) {
+        --k;
+        continue;
+      }
+      break;
+    }
+    if (s <= z[k]) {
+      // k == 0 and the new parabola wins everywhere left of it too.
+      v[0] = q;
+      g[0] = fq;
+      z[0] = -kInf;
+      z[1] = kInf;
+      continue;
     }
     ++k;
-    env[k] = k == 0 ? Parabola{gq, -1.0, 0.0, q} : Parabola{gq, sn, sd, q};
+    v[k] = q;
+    g[k] = fq;
+    z[k] = s;
+    z[k + 1] = kInf;
   }
   if (k < 0) {
     for (int q = 0; q < n; ++q) {
@@ -88,12 +99,11 @@ void envelope_1d(const float* f, int n, float* d, int* arg, Parabola* env) {
   }
   int j = 0;
   for (int q = 0; q < n; ++q) {
-    // Move on while the next parabola's interval starts left of q.
-    while (j < k && env[j + 1].zn < double(q) * env[j + 1].zd)
+    while (z[j + 1] < float(q))
       ++j;
-    const float t = float(q - env[j].q);
-    d[q] = t * t + f[env[j].q];
-    if constexpr (kFeatures) arg[q] = env[j].q;
+    const float t = float(q - v[j]);
+    d[q] = t * t + f[v[j]];
+    if constexpr (kFeatures) arg[q] = v[j];
   }
 }
 
@@ -141,7 +151,8 @@ void envelope_block(float* dist, int32_t* feat, size_t base, int width, int n, s
       std::copy(&s.g[size_t(j) * n], &s.g[size_t(j) * n] + n, &s.h[size_t(j) * n]);
     if (last[j] < 0) continue;
     const int lo = std::max(0, first[j] - 1), hi = std::min(n - 1, last[j] + 1);
-    envelope_1d<kFeatures>(f + lo, hi - lo + 1, d + lo, arg, s.env.data());
+    envelope_1d<kFeatures>(f + lo, hi - lo + 1, d + lo, arg, s.v.data(), s.z.data(),
+                           s.g_env.data());
     if constexpr (kFeatures) {
       const int32_t* g = &s.g[size_t(j) * n];
       int32_t* h = &s.h[size_t(j) * n];
@@ -223,7 +234,7 @@ void envelope_row(float* dist, int32_t* feat, int lo, int hi, bool take_sqrt) {
     arg = args.data();
     std::copy(feat + lo, feat + hi + 1, s.g.data());
   }
-  envelope_1d<kFeatures>(s.f.data(), len, dist + lo, arg, s.env.data());
+  envelope_1d<kFeatures>(s.f.data(), len, dist + lo, arg, s.v.data(), s.z.data(), s.g_env.data());
   if constexpr (kFeatures) {
     for (int i = 0; i < len; ++i)
       feat[lo + i] = arg[i] < 0 ? -1 : s.g[size_t(arg[i])];
