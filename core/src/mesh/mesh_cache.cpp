@@ -157,13 +157,19 @@ uint32_t MeshCache::refresh(const Volume& volume, glm::ivec3 b, bool first) {
             i += static_cast<size_t>(m_);
             continue;
           }
-          for (int x = 0; x < m_; ++x) {
-            const uint8_t va = a ? a[x] : cb.uniform;
-            const uint8_t vf = f ? f[x] : fresh_uniform;
-            if (va != vf) {
-              lo = glm::min(lo, glm::ivec3(x, y, z));
-              hi = glm::max(hi, glm::ivec3(x, y, z));
-            }
+          // Only the row's first and last changed voxels can widen the box.
+          auto differs = [&](int x) {
+            return (a ? a[x] : cb.uniform) != (f ? f[x] : fresh_uniform);
+          };
+          int first_x = 0;
+          while (first_x < m_ && !differs(first_x))
+            ++first_x;
+          if (first_x < m_) {
+            int last_x = m_ - 1;
+            while (!differs(last_x))
+              --last_x;
+            lo = glm::min(lo, glm::ivec3(first_x, y, z));
+            hi = glm::max(hi, glm::ivec3(last_x, y, z));
           }
           i += static_cast<size_t>(m_);
         }
