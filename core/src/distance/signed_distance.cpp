@@ -95,8 +95,8 @@ DenseGrid<float> hybrid_exact(const DistanceInput& in, int threads) {
               best2[i] = shell.distance[k] * shell.distance[k];
             } else if (t >= 0) {
               const Triangle3& tri = tris[size_t(t)];
-              best2[i] = point_triangle_distance_squared(voxel_position(d, int64_t(i)), tri.a,
-                                                         tri.b, tri.c);
+              best2[i] = triangle_distance2(voxel_position(d, int64_t(i)), tri.a, tri.b - tri.a,
+                                            tri.c - tri.a);
             }
           }
         },
@@ -108,7 +108,7 @@ DenseGrid<float> hybrid_exact(const DistanceInput& in, int threads) {
     const int32_t t = cand[q];
     if (t < 0 || t == cand[p] || shell.slot[p] >= 0) return;
     const Triangle3& tri = tris[size_t(t)];
-    const float l = point_triangle_distance_squared(pos, tri.a, tri.b, tri.c);
+    const float l = triangle_distance2(pos, tri.a, tri.b - tri.a, tri.c - tri.a);
     if (l < best2[p]) {
       best2[p] = l;
       cand[p] = t;

@@ -110,6 +110,7 @@ SurfaceIndex::Nearest SurfaceIndex::nearest_in_cells(glm::vec3 p, glm::ivec3 lo,
   lo = glm::max(lo, glm::ivec3(0));
   hi = glm::min(hi, cell_dims_ - 1);
   float best_dist = std::sqrt(best.distance_squared);
+  int32_t found = -1;  // a triangle nearer than `best`
   for (int z = lo.z; z <= hi.z; ++z)
     for (int y = lo.y; y <= hi.y; ++y)
       for (int x = lo.x; x <= hi.x; ++x) {
@@ -124,15 +125,20 @@ SurfaceIndex::Nearest SurfaceIndex::nearest_in_cells(glm::vec3 p, glm::ivec3 lo,
           const glm::vec3 dc = p - glm::vec3(ball[k]);
           const float reach = best_dist + ball[k].w;
           if (glm::dot(dc, dc) >= reach * reach) continue;
-          const ClosestPoint c = closest_point_on_triangle(p, t[k].a, t[k].b, t[k].c);
-          if (c.distance_squared < best.distance_squared) {
-            best.distance_squared = c.distance_squared;
-            best.point = c.point;
-            best.triangle = int32_t(first_[i] + k);
-            best_dist = std::sqrt(c.distance_squared);
+          // Distance only here; the point once, for the winner.
+          const float d2 = triangle_distance2(p, t[k].a, t[k].b - t[k].a, t[k].c - t[k].a);
+          if (d2 < best.distance_squared) {
+            best.distance_squared = d2;
+            best_dist = std::sqrt(d2);
+            found = int32_t(first_[i] + k);
           }
         }
       }
+  if (found >= 0) {
+    const Triangle3& t = triangles_[size_t(found)];
+    best.point = closest_point_on_triangle(p, t.a, t.b, t.c).point;
+    best.triangle = found;
+  }
   return best;
 }
 
