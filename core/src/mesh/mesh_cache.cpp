@@ -75,6 +75,22 @@ void copy_rows(uint8_t* dst, size_t dst_row, size_t dst_plane, const uint8_t* sr
   }
 }
 
+// Whether two rows of `n` bytes are equal; fixed-size compares of the
+// usual brick edges compile inline, where a memcmp call per row of a
+// changed brick was a few percent of a re-mesh after a dab.
+bool rows_equal(const uint8_t* a, const uint8_t* b, int n) {
+  switch (n) {
+    case 8:
+      return std::memcmp(a, b, 8) == 0;
+    case 16:
+      return std::memcmp(a, b, 16) == 0;
+    case 32:
+      return std::memcmp(a, b, 32) == 0;
+    default:
+      return std::memcmp(a, b, static_cast<size_t>(n)) == 0;
+  }
+}
+
 }  // namespace
 
 void MeshCache::classify(std::span<const uint8_t> voxels, CachedBrick& cb) const {
@@ -153,7 +169,7 @@ uint32_t MeshCache::refresh(const Volume& volume, glm::ivec3 b, bool first) {
         for (int y = 0; y < m_; ++y) {
           const uint8_t* a = old_is_uniform ? nullptr : &cb.voxels[i];
           const uint8_t* f = fresh_is_uniform ? nullptr : &fresh[i];
-          if (a && f && std::memcmp(a, f, static_cast<size_t>(m_)) == 0) {
+          if (a && f && rows_equal(a, f, m_)) {
             i += static_cast<size_t>(m_);
             continue;
           }
