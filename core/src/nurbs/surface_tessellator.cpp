@@ -4,9 +4,11 @@
 // milliseconds; moving the vertices whose whole support moved by the same
 // rigid motion, and evaluating only the rim, keeps it to a few. The rim is
 // what costs (about 2000 vertices a step of the Figure 14 path at 4 cells
-// per refined span): update() decides per patch rather than per vertex,
-// contracts only the control columns the rim's patches use, and evaluates a
-// patch row's vertices together (evaluate_run); a step allocates nothing.
+// per refined span): update() decides per patch rather than per vertex and
+// contracts only the control columns the rim's patches use; a step
+// allocates nothing. What remains is the evaluation itself (one rational
+// point, two derivatives and a normalised normal per rim vertex), which a
+// batched, vectorisable version did not make faster without AVX.
 
 #include "sculpt/core/nurbs/surface_tessellator.h"
 
@@ -104,7 +106,8 @@ void SurfaceTessellator::rebuild(const NurbsSurface& s) {
   for (int b = 0; b < nv; ++b) {
     prepare_row(b, 0, count_u_ - 1);
     for (size_t pu = 0; pu < spans_u_.size(); ++pu)
-      evaluate_run(first_u_[pu], first_u_[pu + 1], b);
+      for (int a = first_u_[pu]; a < first_u_[pu + 1]; ++a)
+        evaluate_vertex(a, b);
   }
   moved_sum_.assign(static_cast<size_t>((count_u_ + 1) * (count_v_ + 1)), 0);
   moved_flag_.assign(static_cast<size_t>(count_u_ * count_v_), 0);
@@ -185,78 +188,6 @@ void SurfaceTessellator::evaluate_vertex(int a, int b) {
   mesh_.positions[v] = glm::vec3(p);
   mesh_.normals[v] = glm::vec3(n);
   ++vertices_evaluated_;
-}
-
-void SurfaceTessellator::evaluate_run(int a0, int a1, int b) {
-  // The vertices of one patch along one row share their columns (one knot
-  // span), so the sums run across vertices: independent lanes the compiler
-  // pairs into SIMD and the CPU overlaps, where one vertex at a time is a
-  // chain of dependent divisions and square roots. Each lane does exactly
-  // the arithmetic of evaluate_vertex in the same order (bit-identical).
-  constexpr int kRun = 4;
-  const int i0 = axis_u_[static_cast<size_t>(a0)].span - degree_u_;
-  const int nu = vertices_u();
-  for (int start = a0; start < a1; start += kRun) {
-    const int m = std::min(kRun, a1 - start);
-    double s[4][kRun] = {}, du[4][kRun] = {}, dv[4][kRun] = {};
-    for (int x = 0; x <= degree_u_; ++x) {
-      const glm::dvec4 q = row_q_[static_cast<size_t>(i0 + x)];
-      const glm::dvec4 dq = row_dq_[static_cast<size_t>(i0 + x)];
-      double n[kRun] = {}, dn[kRun] = {};
-      for (int j = 0; j < m; ++j) {
-        const AxisSample& su = axis_u_[static_cast<size_t>(start + j)];
-        n[j] = su.n[static_cast<size_t>(x)];
-        dn[j] = su.dn[static_cast<size_t>(x)];
-      }
-      for (int c = 0; c < 4; ++c) {
-        const double qc = q[c], dqc = dq[c];
-        for (int j = 0; j < kRun; ++j) {
-          s[c][j] += n[j] * qc;
-          du[c][j] += dn[j] * qc;
-          dv[c][j] += n[j] * dqc;
-        }
-      }
-    }
-    double p[3][kRun], nrm[3][kRun], len2[kRun], limit[kRun];
-    for (int j = 0; j < kRun; ++j) {
-      const double inv_w = 1.0 / s[3][j];
-      const double px = s[0][j] * inv_w, py = s[1][j] * inv_w, pz = s[2][j] * inv_w;
-      const double ux = (du[0][j] - du[3][j] * px) * inv_w;
-      const double uy = (du[1][j] - du[3][j] * py) * inv_w;
-      const double uz = (du[2][j] - du[3][j] * pz) * inv_w;
-      const double vx = (dv[0][j] - dv[3][j] * px) * inv_w;
-      const double vy = (dv[1][j] - dv[3][j] * py) * inv_w;
-      const double vz = (dv[2][j] - dv[3][j] * pz) * inv_w;
-      // glm::cross and glm::dot, term for term.
-      const double nx = uy * vz - vy * uz;
-      const double ny = uz * vx - vz * ux;
-      const double nz = ux * vy - vx * uy;
-      p[0][j] = px;
-      p[1][j] = py;
-      p[2][j] = pz;
-      nrm[0][j] = nx;
-      nrm[1][j] = ny;
-      nrm[2][j] = nz;
-      len2[j] = nx * nx + ny * ny + nz * nz;
-      limit[j] = 1e-24 * (ux * ux + uy * uy + uz * uz) * (vx * vx + vy * vy + vz * vz);
-    }
-    for (int j = 0; j < m; ++j) {
-      const int a = start + j;
-      if (!(len2[j] > limit[j] && len2[j] > 0.0)) {
-        evaluate_vertex(a, b);  // a collapsed edge: the nudged normal
-        continue;
-      }
-      const double r = 1.0 / std::sqrt(len2[j]);
-      const glm::dvec3 pos(p[0][j], p[1][j], p[2][j]);
-      const glm::dvec3 n = glm::dvec3(nrm[0][j], nrm[1][j], nrm[2][j]) * r;
-      const size_t v = static_cast<size_t>(a + nu * b);
-      positions_[v] = pos;
-      normals_[v] = n;
-      mesh_.positions[v] = glm::vec3(pos);
-      mesh_.normals[v] = glm::vec3(n);
-      ++vertices_evaluated_;
-    }
-  }
 }
 
 int SurfaceTessellator::moved_in_support(int su, int sv) const {
@@ -343,7 +274,8 @@ int SurfaceTessellator::update(const NurbsSurface& s, std::span<const int> moved
         } else {
           const int su = spans_u_[static_cast<size_t>(pu)];
           prepare_columns(b, su - degree_u_, su);
-          evaluate_run(a0, a1, b);
+          for (int a = a0; a < a1; ++a)
+            evaluate_vertex(a, b);
         }
       }
     }

@@ -95,8 +95,6 @@ class SurfaceTessellator {
   // bumps row_stamp_ per row, so a rim vertex costs only its own columns.
   void prepare_columns(int b, int first, int last);
   void evaluate_vertex(int a, int b);
-  // evaluate_vertex for the vertices [a0, a1) of row b, all in one knot span.
-  void evaluate_run(int a0, int a1, int b);
   // Moved control points in the support of knot span (su, sv), from the
   // prefix sums of the moved flags.
   int moved_in_support(int su, int sv) const;
