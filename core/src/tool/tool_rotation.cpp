@@ -3,10 +3,13 @@
 // Departures from the paper's text, all for speed without changing what is
 // computed: the map runs in 16.16 fixed point (exact integer stepping, so
 // brute force and Algorithm 1 agree bit for bit); each row is clipped to the
-// stretch whose samples can be non-zero; and along a row, runs of equal
-// tool cells are filled without sampling (PreparedTool's cell table), so the
-// cost follows the tool's surface rather than its rotated box. Memory is x
-// fastest, so the innermost step is along x (the paper steps along z).
+// stretch whose samples can be non-zero (the reach ball); the stretch inside
+// the tool's core (a ball round the pivot where every sample reads one
+// value, 255 inside a solid tool) is filled without sampling; and the scalar
+// kernel skips equal-cornered cells (PreparedTool's cell table), so the cost
+// follows the tool's surface rather than its rotated box. Rows are planned
+// first and sampled in batches. Memory is x fastest, so the innermost step
+// is along x (the paper steps along z).
 
 #include "sculpt/core/tool/tool_rotation.h"
 
@@ -15,6 +18,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
@@ -82,106 +86,108 @@ size_t cell_index(const int32_t s[3], glm::ivec3 pd) {
 #define SCULPT_TOOL_AVX2 1
 // Eight samples at a time with AVX2 gathers (chosen at run time, so the
 // library still runs on any x86-64). Same fixed-point arithmetic as the
-// scalar code, so results are identical. Writes all n samples (the last
-// group masked); returns n and advances s past them.
-__attribute__((target("avx2"))) int sample_span_avx2(const uint8_t* padded, const uint32_t* faces,
-                                                     glm::ivec3 pd, int32_t s[3],
-                                                     const int32_t st[3], int n, uint8_t* out,
-                                                     bool nearest) {
+// scalar code, so results are identical. Takes a batch of lines so the
+// constants are set up once: at 16^3 a line is about 12 samples, and the
+// per-line setup cost more than the samples.
+__attribute__((target("avx2"))) void sample_lines_avx2(const uint8_t* padded,
+                                                       const uint64_t* corners, glm::ivec3 pd,
+                                                       const int32_t st[3],
+                                                       const RotationFrame::Line* lines, int count,
+                                                       bool nearest) {
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  __m256i sv[3];
+  __m256i lane_step[3];
   __m256i step8[3];
   for (int i = 0; i < 3; ++i) {
-    sv[i] = _mm256_add_epi32(_mm256_set1_epi32(s[i]),
-                             _mm256_mullo_epi32(lane, _mm256_set1_epi32(st[i])));
+    lane_step[i] = _mm256_mullo_epi32(lane, _mm256_set1_epi32(st[i]));
     step8[i] = _mm256_set1_epi32(8 * st[i]);
   }
-  const __m256i vpx = _mm256_set1_epi32(pd.x), vpy = _mm256_set1_epi32(pd.y);
+  const __m256i vpx = _mm256_set1_epi32(pd.x);
   const __m256i vpxy = _mm256_set1_epi32(pd.x * pd.y);
-  const __m256i m255 = _mm256_set1_epi32(255);
+  const __m256i m255 = _mm256_set1_epi32(255), even = _mm256_set1_epi32(0x00FF00FF);
   const __m256i v256 = _mm256_set1_epi32(256), half = _mm256_set1_epi32(1 << 23);
   const __m256i low_bytes =
       _mm256_setr_epi8(0, 4, 8, 12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 4, 8, 12, -1,
                        -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1);
   const auto* pb = reinterpret_cast<const int*>(padded);
-  const auto* fb = reinterpret_cast<const int*>(faces);
-  const __m256i byte0 = _mm256_setr_epi8(0, 0, 0, 0, 4, 4, 4, 4, 8, 8, 8, 8, 12, 12, 12, 12, 0, 0,
-                                         0, 0, 4, 4, 4, 4, 8, 8, 8, 8, 12, 12, 12, 12);
+  const auto* cb = reinterpret_cast<const long long*>(corners);
   const __m256i all = _mm256_set1_epi32(-1), zero = _mm256_setzero_si256();
-  int done = 0;
-  for (; done < n; done += 8) {
-    // The last group may be partial: its idle lanes gather nothing (masked
-    // off, so no read outside the grid) and are not stored.
-    const int active = std::min(8, n - done);
-    const __m256i on = active == 8 ? all : _mm256_cmpgt_epi32(_mm256_set1_epi32(active), lane);
-    const __m256i ix = _mm256_srai_epi32(sv[0], kFracBits);
-    const __m256i iy = _mm256_srai_epi32(sv[1], kFracBits);
-    const __m256i iz = _mm256_srai_epi32(sv[2], kFracBits);
-    const __m256i idx = _mm256_add_epi32(
-        _mm256_mullo_epi32(_mm256_add_epi32(_mm256_mullo_epi32(iz, vpy), iy), vpx), ix);
-    __m256i v;
-    if (nearest) {
-      v = _mm256_and_si256(_mm256_mask_i32gather_epi32(zero, pb, idx, on, 1), m255);
-    } else {
-      // Two gathers bring a cell's 8 corners: its face at z and at z + 1.
-      const __m256i fa = _mm256_mask_i32gather_epi32(zero, fb, idx, on, 4);
-      const __m256i fc = _mm256_mask_i32gather_epi32(zero, fb, _mm256_add_epi32(idx, vpxy), on, 4);
-      const __m256i first = _mm256_and_si256(fa, m255);
-      const __m256i uniform = _mm256_and_si256(
-          _mm256_cmpeq_epi32(fa, _mm256_shuffle_epi8(fa, byte0)), _mm256_cmpeq_epi32(fc, fa));
-      v = first;
-      if (_mm256_movemask_epi8(uniform) != -1) {
-        const __m256i mixed = _mm256_xor_si256(uniform, _mm256_set1_epi32(-1));
+  for (int l = 0; l < count; ++l) {
+    const RotationFrame::Line& line = lines[l];
+    const int n = line.n;
+    uint8_t* out = line.out;
+    __m256i sv[3];
+    for (int i = 0; i < 3; ++i)
+      sv[i] = _mm256_add_epi32(_mm256_set1_epi32(line.s[i]), lane_step[i]);
+    for (int done = 0; done < n; done += 8) {
+      // The last group may be partial: its idle lanes gather nothing (masked
+      // off, so no read outside the grid) and are not stored.
+      const int active = std::min(8, n - done);
+      const __m256i on = active == 8 ? all : _mm256_cmpgt_epi32(_mm256_set1_epi32(active), lane);
+      const __m256i ix = _mm256_srai_epi32(sv[0], kFracBits);
+      const __m256i iy = _mm256_srai_epi32(sv[1], kFracBits);
+      const __m256i iz = _mm256_srai_epi32(sv[2], kFracBits);
+      // Two independent products (not (z py + y) px): half the latency.
+      const __m256i idx = _mm256_add_epi32(
+          _mm256_add_epi32(_mm256_mullo_epi32(iz, vpxy), _mm256_mullo_epi32(iy, vpx)), ix);
+      __m256i v;
+      if (nearest) {
+        v = _mm256_and_si256(_mm256_mask_i32gather_epi32(zero, pb, idx, on, 1), m255);
+      } else {
+        // A cell's 8 corners are one 64-bit load: two 4-lane gathers load
+        // 8 elements for 8 samples, as nearest does (gathers cost per
+        // element). Then split into the faces at z (low halves) and z + 1.
+        const __m256i a =
+            _mm256_mask_i32gather_epi64(zero, cb, _mm256_castsi256_si128(idx),
+                                        _mm256_cvtepi32_epi64(_mm256_castsi256_si128(on)), 8);
+        const __m256i b =
+            _mm256_mask_i32gather_epi64(zero, cb, _mm256_extracti128_si256(idx, 1),
+                                        _mm256_cvtepi32_epi64(_mm256_extracti128_si256(on, 1)), 8);
+        const __m256 af = _mm256_castsi256_ps(a), bf = _mm256_castsi256_ps(b);
+        const __m256i fa = _mm256_permute4x64_epi64(
+            _mm256_castps_si256(_mm256_shuffle_ps(af, bf, _MM_SHUFFLE(2, 0, 2, 0))),
+            _MM_SHUFFLE(3, 1, 2, 0));
+        const __m256i fc = _mm256_permute4x64_epi64(
+            _mm256_castps_si256(_mm256_shuffle_ps(af, bf, _MM_SHUFFLE(3, 1, 3, 1))),
+            _MM_SHUFFLE(3, 1, 2, 0));
+        // The x step in 16-bit pairs: a face's even bytes are the two x
+        // corners at y, its odd bytes those at y + 1 (see corners()), and
+        // one multiply-add per pair gives p(x) (256 - fx) + p(x+1) fx.
         const __m256i fx = _mm256_and_si256(_mm256_srli_epi32(sv[0], 8), m255);
+        const __m256i wx = _mm256_or_si256(_mm256_sub_epi32(v256, fx), _mm256_slli_epi32(fx, 16));
+        const __m256i c00 = _mm256_madd_epi16(_mm256_and_si256(fa, even), wx);
+        const __m256i c10 = _mm256_madd_epi16(_mm256_and_si256(_mm256_srli_epi32(fa, 8), even), wx);
+        const __m256i c01 = _mm256_madd_epi16(_mm256_and_si256(fc, even), wx);
+        const __m256i c11 = _mm256_madd_epi16(_mm256_and_si256(_mm256_srli_epi32(fc, 8), even), wx);
+        // Along y and z the sums exceed 16 bits: 32-bit products.
         const __m256i fy = _mm256_and_si256(_mm256_srli_epi32(sv[1], 8), m255);
-        const __m256i fz = _mm256_and_si256(_mm256_srli_epi32(sv[2], 8), m255);
-        const __m256i gx = _mm256_sub_epi32(v256, fx);
-        // Along x the products fit 16 bits (255 * 256): the cheaper 16-bit
-        // multiply is exact, the high halves being zero.
-        const __m256i c00 = _mm256_add_epi32(
-            _mm256_mullo_epi16(first, gx),
-            _mm256_mullo_epi16(_mm256_and_si256(_mm256_srli_epi32(fa, 8), m255), fx));
-        const __m256i c10 = _mm256_add_epi32(
-            _mm256_mullo_epi16(_mm256_and_si256(_mm256_srli_epi32(fa, 16), m255), gx),
-            _mm256_mullo_epi16(_mm256_srli_epi32(fa, 24), fx));
-        const __m256i c01 = _mm256_add_epi32(
-            _mm256_mullo_epi16(_mm256_and_si256(fc, m255), gx),
-            _mm256_mullo_epi16(_mm256_and_si256(_mm256_srli_epi32(fc, 8), m255), fx));
-        const __m256i c11 = _mm256_add_epi32(
-            _mm256_mullo_epi16(_mm256_and_si256(_mm256_srli_epi32(fc, 16), m255), gx),
-            _mm256_mullo_epi16(_mm256_srli_epi32(fc, 24), fx));
         const __m256i gy = _mm256_sub_epi32(v256, fy);
         const __m256i c0 =
             _mm256_add_epi32(_mm256_mullo_epi32(c00, gy), _mm256_mullo_epi32(c10, fy));
         const __m256i c1 =
             _mm256_add_epi32(_mm256_mullo_epi32(c01, gy), _mm256_mullo_epi32(c11, fy));
+        const __m256i fz = _mm256_and_si256(_mm256_srli_epi32(sv[2], 8), m255);
         const __m256i gz = _mm256_sub_epi32(v256, fz);
-        const __m256i r = _mm256_srli_epi32(
+        v = _mm256_srli_epi32(
             _mm256_add_epi32(
                 _mm256_add_epi32(_mm256_mullo_epi32(c0, gz), _mm256_mullo_epi32(c1, fz)), half),
             24);
-        v = _mm256_blendv_epi8(v, r, mixed);
       }
+      const __m256i packed = _mm256_shuffle_epi8(v, low_bytes);
+      const uint32_t lo = static_cast<uint32_t>(_mm256_extract_epi32(packed, 0));
+      const uint32_t hi = static_cast<uint32_t>(_mm256_extract_epi32(packed, 4));
+      if (active == 8) {
+        std::memcpy(out + done, &lo, 4);
+        std::memcpy(out + done + 4, &hi, 4);
+      } else {
+        uint8_t bytes[8];
+        std::memcpy(bytes, &lo, 4);
+        std::memcpy(bytes + 4, &hi, 4);
+        std::memcpy(out + done, bytes, static_cast<size_t>(active));
+      }
+      for (int i = 0; i < 3; ++i)
+        sv[i] = _mm256_add_epi32(sv[i], step8[i]);
     }
-    const __m256i packed = _mm256_shuffle_epi8(v, low_bytes);
-    const uint32_t lo = static_cast<uint32_t>(_mm256_extract_epi32(packed, 0));
-    const uint32_t hi = static_cast<uint32_t>(_mm256_extract_epi32(packed, 4));
-    if (active == 8) {
-      std::memcpy(out + done, &lo, 4);
-      std::memcpy(out + done + 4, &hi, 4);
-    } else {
-      uint8_t bytes[8];
-      std::memcpy(bytes, &lo, 4);
-      std::memcpy(bytes + 4, &hi, 4);
-      std::memcpy(out + done, bytes, static_cast<size_t>(active));
-    }
-    for (int i = 0; i < 3; ++i)
-      sv[i] = _mm256_add_epi32(sv[i], step8[i]);
   }
-  done = std::min(done, n);
-  for (int i = 0; i < 3; ++i)
-    s[i] += done * st[i];
-  return done;
 }
 
 bool cpu_has_avx2() {
@@ -223,25 +229,42 @@ PreparedTool::PreparedTool(Tool tool) : tool_(std::move(tool)) {
   padded_.assign(count + 4, 0);
   const size_t px = pd.x;
   const size_t pxy = px * pd.y;
+  // The core value: the voxel nearest the pivot's; no core if that is outside.
+  const glm::ivec3 centre(glm::floor(tool_.pivot + 0.5f));
+  const bool centred = tool_.density.in_bounds(centre.x, centre.y, centre.z);
+  const uint8_t u = centred ? tool_.density.at(centre.x, centre.y, centre.z) : 0;
+  // Squared distance from the pivot to the nearest voxel != u. Outside the
+  // grid reads 0: no closer than the layers at -1 and d on each axis.
+  float other2 = centred ? 1e30f : 0.0f;
+  if (u != 0) {
+    for (int i = 0; i < 3; ++i) {
+      const float gap = std::min(tool_.pivot[i] + 1.0f, static_cast<float>(d[i]) - tool_.pivot[i]);
+      other2 = std::min(other2, gap * gap);
+    }
+  }
   float reach2 = 0.0f;
   for (int z = 0; z < d.z; ++z)
     for (int y = 0; y < d.y; ++y)
       for (int x = 0; x < d.x; ++x) {
         const uint8_t v = tool_.density.at(x, y, z);
         padded_[(z + kPad) * pxy + (y + kPad) * px + (x + kPad)] = v;
-        if (v != 0) {
-          const glm::vec3 r = glm::vec3(x, y, z) - tool_.pivot;
-          reach2 = std::max(reach2, glm::dot(r, r));
-        }
+        const glm::vec3 r = glm::vec3(x, y, z) - tool_.pivot;
+        const float r2 = glm::dot(r, r);
+        if (v != 0) reach2 = std::max(reach2, r2);
+        if (v != u) other2 = std::min(other2, r2);
       }
   // A trilinear sample is non-zero within one voxel (per axis) of a non-zero voxel.
   reach_vox_ = std::sqrt(reach2) + std::sqrt(3.0f);
+  // Every voxel a sample reads (its cell's corners, or its nearest voxel)
+  // lies within sqrt 3 of it: samples closer than this read only u.
+  core_radius_vox_ = centred ? std::sqrt(other2) - std::sqrt(3.0f) : 0.0f;
+  core_value_ = u;
 
   // Cells whose 8 corners are equal: their trilinear sample is that value
   // whatever the weights. The last layer has no +1 neighbours and is never
   // sampled (samples floor to at most dims + 2).
   cells_.assign(count, 0);
-  faces_.assign(count, 0);
+  corners_.assign(count, 0);
   for (int z = 0; z + 1 < pd.z; ++z)
     for (int y = 0; y + 1 < pd.y; ++y)
       for (int x = 0; x + 1 < pd.x; ++x) {
@@ -252,8 +275,12 @@ PreparedTool::PreparedTool(Tool tool) : tool_(std::move(tool)) {
             p[pxy + px] == v && p[pxy + px + 1] == v) {
           cells_[i] = static_cast<uint16_t>(0x100 | v);
         }
-        faces_[i] = static_cast<uint32_t>(p[0]) | static_cast<uint32_t>(p[1]) << 8 |
-                    static_cast<uint32_t>(p[px]) << 16 | static_cast<uint32_t>(p[px + 1]) << 24;
+        uint64_t c = 0;
+        // y varies fastest, then x, then z (see corners()).
+        const size_t offsets[8] = {0, px, 1, px + 1, pxy, pxy + px, pxy + 1, pxy + px + 1};
+        for (int k = 0; k < 8; ++k)
+          c |= static_cast<uint64_t>(p[offsets[k]]) << (8 * k);
+        corners_[i] = c;
       }
 }
 
@@ -301,6 +328,24 @@ RotationFrame::RotationFrame(const PreparedTool& tool, const glm::mat3& rotation
   for (int i = 0; i < 3; ++i)
     centre_[i] = pos[i] - box_.lo[i];
   reach2_ = static_cast<double>(tool.reach_vox()) * tool.reach_vox();
+
+  // The balls are tested at exact target positions, the samples taken at
+  // fixed-point ones: each of the box's steps is off by at most 2^-17 per
+  // component (and a float rotation is orthonormal to about 1e-7), so a
+  // sample is within (1 + steps) * 2^-17 * sqrt 3 + 1e-6 * distance of where
+  // the balls assume. `error` is more than 7 times that bound.
+  const glm::ivec3 size = box_.size();
+  const double error = 0.01 + 1e-4 * (size.x + size.y + size.z);
+  const double core = static_cast<double>(tool.core_radius_vox()) - error;
+  core2_ = core > 0.0 ? core * core : -1.0;
+  core_value_ = tool.core_value();
+  // Samples whose cell floor(s) lies in [0, dims + kPad] per axis read inside
+  // the padded grid (both kernels, both samplings): tool coordinates in
+  // [-kPad, dims + 1).
+  const double reach = tool.reach_vox() + error;
+  clip_support_ = false;
+  for (int i = 0; i < 3; ++i)
+    if (pivot[i] - reach < -kPad || pivot[i] + reach >= d[i] + 1.0) clip_support_ = true;
 }
 
 uint8_t RotationFrame::sample_voxel(const PreparedTool& tool, glm::ivec3 k) const {
@@ -318,17 +363,16 @@ uint8_t RotationFrame::sample_voxel(const PreparedTool& tool, glm::ivec3 k) cons
   return trilinear_at(tool.padded(), i, s, pd.x, static_cast<size_t>(pd.x) * pd.y);
 }
 
-void RotationFrame::sample_line(const PreparedTool& tool, const int32_t s0[3], int len,
-                                uint8_t* out) const {
+bool RotationFrame::clip_line(Line& line) const {
   // The stretch of the line s0 + n * step within the support, widened by
   // half a voxel so rounding of the (double) bounds can only add samples that
   // read zero padding; the padding keeps every sample inside the grid.
-  double lo = 0.0, hi = len;
+  double lo = 0.0, hi = line.n;
   for (int i = 0; i < 3; ++i) {
-    const double a = ((kPad - 1 - 0.5) * kOne - s0[i]);
-    const double b = ((support_hi_[i] + 0.5) * kOne - s0[i]);
+    const double a = ((kPad - 1 - 0.5) * kOne - line.s[i]);
+    const double b = ((support_hi_[i] + 0.5) * kOne - line.s[i]);
     if (step_[0][i] == 0) {
-      if (a > 0.0 || b <= 0.0) return;
+      if (a > 0.0 || b <= 0.0) return false;
       continue;
     }
     double e0 = a * inv_step_x_[i], e1 = b * inv_step_x_[i];
@@ -336,36 +380,49 @@ void RotationFrame::sample_line(const PreparedTool& tool, const int32_t s0[3], i
     lo = std::max(lo, fast_ceil(e0));
     hi = std::min(hi, fast_floor(e1) + 1.0);
   }
-  if (lo >= hi) return;
+  if (lo >= hi) return false;
   const int n0 = static_cast<int>(lo), n1 = static_cast<int>(hi);
-  const int32_t st[3] = {step_[0][0], step_[0][1], step_[0][2]};
-  int32_t s[3] = {s0[0] + n0 * st[0], s0[1] + n0 * st[1], s0[2] + n0 * st[2]};
+  for (int i = 0; i < 3; ++i)
+    line.s[i] += n0 * step_[0][i];
+  line.out += n0;
+  line.n = n1 - n0;
+  return true;
+}
+
+void RotationFrame::sample_lines(const PreparedTool& tool, const Line* lines, int count) const {
   const glm::ivec3 pd = tool.padded_dims();
+  const bool nearest = sampling_ == Sampling::kNearest;
+#ifdef SCULPT_TOOL_AVX2
+  if (g_vector_kernel.load(std::memory_order_relaxed) && cpu_has_avx2()) {
+    sample_lines_avx2(tool.padded(), tool.corners(), pd, step_[0], lines, count, nearest);
+    return;
+  }
+#endif
   const size_t px = pd.x, pxy = px * pd.y;
   const uint8_t* padded = tool.padded();
   const uint16_t* cells = tool.cells();
-  const bool nearest = sampling_ == Sampling::kNearest;
-  int n0v = n0;
-#ifdef SCULPT_TOOL_AVX2
-  if (g_vector_kernel.load(std::memory_order_relaxed) && cpu_has_avx2())
-    n0v += sample_span_avx2(padded, tool.faces(), pd, s, st, n1 - n0, out + n0, nearest);
-#endif
-  if (nearest) {
-    for (int n = n0v; n < n1; ++n) {
-      out[n] = padded[cell_index(s, pd)];
+  const int32_t st[3] = {step_[0][0], step_[0][1], step_[0][2]};
+  for (int l = 0; l < count; ++l) {
+    int32_t s[3] = {lines[l].s[0], lines[l].s[1], lines[l].s[2]};
+    uint8_t* out = lines[l].out;
+    const int n1 = lines[l].n;
+    if (nearest) {
+      for (int n = 0; n < n1; ++n) {
+        out[n] = padded[cell_index(s, pd)];
+        s[0] += st[0];
+        s[1] += st[1];
+        s[2] += st[2];
+      }
+      continue;
+    }
+    for (int n = 0; n < n1; ++n) {
+      const size_t i = cell_index(s, pd);
+      const uint16_t c = cells[i];
+      out[n] = c != 0 ? static_cast<uint8_t>(c) : trilinear_at(padded, i, s, px, pxy);
       s[0] += st[0];
       s[1] += st[1];
       s[2] += st[2];
     }
-    return;
-  }
-  for (int n = n0v; n < n1; ++n) {
-    const size_t i = cell_index(s, pd);
-    const uint16_t c = cells[i];
-    out[n] = c != 0 ? static_cast<uint8_t>(c) : trilinear_at(padded, i, s, px, pxy);
-    s[0] += st[0];
-    s[1] += st[1];
-    s[2] += st[2];
   }
 }
 
@@ -379,22 +436,50 @@ bool RotationFrame::reach_span(int y, int z, int& x0, int& x1) const {
   return x0 < x1;
 }
 
+int RotationFrame::plan_row(int y, int z, int x0, int x1, uint8_t* out, Line* lines) const {
+  const int first = x0;
+  if (!reach_span(y, z, x0, x1)) return 0;
+  // The core stretch [c0, c1) needs no sampling (empty: c0 = c1 = x1).
+  int c0 = x1, c1 = x1;
+  if (core2_ > 0.0) {
+    const double dy = y - centre_[1], dz = z - centre_[2];
+    const double h2 = core2_ - dy * dy - dz * dz;
+    if (h2 > 0.0) {
+      const double h = std::sqrt(h2);
+      c0 = std::clamp(static_cast<int>(fast_ceil(centre_[0] - h)), x0, x1);
+      c1 = std::clamp(static_cast<int>(fast_floor(centre_[0] + h)) + 1, c0, x1);
+      if (core_value_ != 0) std::memset(out + (c0 - first), core_value_, c1 - c0);
+    }
+  }
+  int count = 0;
+  for (const auto& [a, b] : {std::pair{x0, c0}, std::pair{c1, x1}}) {
+    if (a >= b) continue;
+    Line& line = lines[count];
+    for (int i = 0; i < 3; ++i)
+      line.s[i] = origin_[i] + a * step_[0][i] + y * step_[1][i] + z * step_[2][i];
+    line.n = b - a;
+    line.out = out + (a - first);
+    if (!clip_support_ || clip_line(line)) ++count;
+  }
+  return count;
+}
+
 void RotationFrame::sample_row(const PreparedTool& tool, int y, int z, int x0, int x1,
                                uint8_t* out) const {
   assert(x0 <= x1);
-  const int first = x0;
-  const glm::ivec3 n(0, y - box_.lo.y, z - box_.lo.z);
-  x0 -= box_.lo.x;
-  x1 -= box_.lo.x;
-  if (!reach_span(n.y, n.z, x0, x1)) return;
-  int32_t s[3];
-  for (int i = 0; i < 3; ++i)
-    s[i] = origin_[i] + x0 * step_[0][i] + n.y * step_[1][i] + n.z * step_[2][i];
-  sample_line(tool, s, x1 - x0, out + (x0 + box_.lo.x - first));
+  Line lines[2];
+  const int count =
+      plan_row(y - box_.lo.y, z - box_.lo.z, x0 - box_.lo.x, x1 - box_.lo.x, out, lines);
+  sample_lines(tool, lines, count);
 }
 
 void RotationFrame::sample_box(const PreparedTool& tool, uint8_t* out) const {
   const glm::ivec3 size = box_.size();
+  // Lines are planned first and sampled in batches, so the kernel's set-up
+  // is paid once per batch rather than once per row.
+  constexpr int kBatch = 256;
+  Line lines[kBatch];
+  int count = 0;
   for (int z = 0; z < size.z; ++z) {
     // Only the rows of this plane that cross the reach ball.
     const double dz = z - centre_[2];
@@ -403,22 +488,16 @@ void RotationFrame::sample_box(const PreparedTool& tool, uint8_t* out) const {
     const double h = std::sqrt(h2);
     const int y0 = std::max(0, static_cast<int>(fast_ceil(centre_[1] - h)));
     const int y1 = std::min(size.y, static_cast<int>(fast_floor(centre_[1] + h)) + 1);
-    int32_t row[3];
-    for (int i = 0; i < 3; ++i)
-      row[i] = origin_[i] + y0 * step_[1][i] + z * step_[2][i];
     uint8_t* dst = out + (static_cast<size_t>(z) * size.y + y0) * size.x;
-    for (int y = y0; y < y1; ++y) {
-      int x0 = 0, x1 = size.x;
-      if (reach_span(y, z, x0, x1)) {
-        const int32_t s[3] = {row[0] + x0 * step_[0][0], row[1] + x0 * step_[0][1],
-                              row[2] + x0 * step_[0][2]};
-        sample_line(tool, s, x1 - x0, dst + x0);
+    for (int y = y0; y < y1; ++y, dst += size.x) {
+      if (count + 2 > kBatch) {
+        sample_lines(tool, lines, count);
+        count = 0;
       }
-      dst += size.x;
-      for (int i = 0; i < 3; ++i)
-        row[i] += step_[1][i];
+      count += plan_row(y, z, 0, size.x, dst, lines + count);
     }
   }
+  sample_lines(tool, lines, count);
 }
 
 RotatedTool rotate_tool(const PreparedTool& tool, const glm::mat3& rotation, glm::vec3 position,

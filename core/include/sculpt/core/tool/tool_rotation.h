@@ -62,23 +62,31 @@ class PreparedTool {
   /// Largest distance from the pivot at which a sample can be non-zero
   /// (voxel units, trilinear support included).
   float reach_vox() const { return reach_vox_; }
+  /// The tool's core: every sample, nearest or trilinear, taken closer than
+  /// core_radius_vox() to the pivot (voxel units; <= 0: no core) reads
+  /// core_value() (255 inside a solid tool). Rotation fills it without sampling.
+  float core_radius_vox() const { return core_radius_vox_; }
+  uint8_t core_value() const { return core_value_; }
 
   // The kernels' view (RotationFrame): padded grid and cell table.
   glm::ivec3 padded_dims() const { return padded_dims_; }
   const uint8_t* padded() const { return padded_.data(); }
   /// Per cell: 0 when its corners differ, else 0x100 | their value.
   const uint16_t* cells() const { return cells_.data(); }
-  /// Per cell: its 4 corners at its own z, bytes (x, y), (x+1, y), (x, y+1),
-  /// (x+1, y+1) from the lowest; the vector kernel's trilinear source.
-  const uint32_t* faces() const { return faces_.data(); }
+  /// Per cell: its 8 corners, bytes (x, y, z), (x, y+1, z), (x+1, y, z),
+  /// (x+1, y+1, z), then the same at z+1, from the lowest; the vector
+  /// kernel's trilinear source (one load per sample).
+  const uint64_t* corners() const { return corners_.data(); }
 
  private:
   Tool tool_;
   glm::ivec3 padded_dims_;
   std::vector<uint8_t> padded_;
   std::vector<uint16_t> cells_;
-  std::vector<uint32_t> faces_;
+  std::vector<uint64_t> corners_;
   float reach_vox_ = 0.0f;
+  float core_radius_vox_ = 0.0f;
+  uint8_t core_value_ = 0;
 };
 
 /// The inverse map of one placement in fixed point, over the rotated box.
@@ -95,7 +103,8 @@ class RotationFrame {
 
   /// Writes target voxels [x0, x1) of row (y, z) (target coordinates, inside
   /// box()) into out[0 .. x1 - x0), which must hold zeros: only the stretch
-  /// whose samples can be non-zero is written, stepping incrementally along x.
+  /// whose samples can be non-zero is written, the tool's core filled, the
+  /// rest sampled stepping incrementally along x.
   void sample_row(const PreparedTool& tool, int y, int z, int x0, int x1, uint8_t* out) const;
   /// The whole box into out (box().size(), x fastest, zeros on entry) by
   /// Algorithm 1: the basis is inverse-rotated once; each voxel is one step
@@ -105,8 +114,22 @@ class RotationFrame {
   /// and a plain nearest or trilinear sample (no run skipping).
   uint8_t sample_voxel(const PreparedTool& tool, glm::ivec3 k) const;
 
+  /// A stretch of samples along x: the first one's position (16.16, padded
+  /// tool voxels), the count, and where the values go. The kernels' input.
+  struct Line {
+    int32_t s[3];
+    int n;
+    uint8_t* out;
+  };
+
  private:
-  void sample_line(const PreparedTool& tool, const int32_t s0[3], int len, uint8_t* out) const;
+  // Box-relative row (y, z), x offsets [x0, x1) written from out[0]: fills
+  // the core stretch and adds the stretches left to sample (at most 2) to
+  // lines; returns how many.
+  int plan_row(int y, int z, int x0, int x1, uint8_t* out, Line* lines) const;
+  // Narrows a line to its samples within the tool's support; false if none.
+  bool clip_line(Line& line) const;
+  void sample_lines(const PreparedTool& tool, const Line* lines, int count) const;
   // Narrows [x0, x1) (box-relative) to row (y, z)'s stretch within reach;
   // false when empty.
   bool reach_span(int y, int z, int& x0, int& x1) const;
@@ -123,6 +146,13 @@ class RotationFrame {
   // relative to box_.lo (voxel units) and PreparedTool::reach_vox() squared.
   double centre_[3];
   double reach2_;
+  // The core ball (same centre) shrunk by the fixed-point error bound,
+  // squared; negative when there is none.
+  double core2_;
+  uint8_t core_value_;
+  // Whether lines must be clipped to the tool's support: not when the reach
+  // ball lies inside the padded grid, whose zero border then reads 0 anyway.
+  bool clip_support_;
 };
 
 /// A rotated tool: density[0] sits at target voxel `origin`.
