@@ -40,8 +40,9 @@ struct ReplayCliOptions {
   double speed = 1.0;
   int threads = 0;
   std::string volume, mesh, png, stats, samples;
-  std::string renderer = "auto";  ///< for png: auto, gl or software
-  std::string project;            ///< write the final state as a project file
+  std::string renderer = "auto";    ///< for png: auto, gl or software
+  std::string normals = "density";  ///< mesh and png normals: density or distance (gradient)
+  std::string project;              ///< write the final state as a project file
 };
 /// Replays and writes the outputs asked for; returns the exit code.
 int replay_to_outputs(const ReplayCliOptions& options);

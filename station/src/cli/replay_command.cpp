@@ -4,12 +4,14 @@
 // Replays a recorded session (binary or text) through the real parsers,
 // normaliser, pose integration, stroke sampler, sculptor and mesh cache.
 
+#include <chrono>
 #include <cstdio>
 #include <memory>
 
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "sculpt/core/distance/surface_normals.h"
 #include "sculpt/core/io/atomic_file.h"
 #include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/core/util/parallel_for.h"
@@ -110,13 +112,19 @@ int replay_to_outputs(const ReplayCliOptions& o) {
   if (!o.volume.empty()) {
     if (core::Status st = core::write_volume_nrrd(o.volume, volume); !st) return report(st.error());
   }
+  core::Mesh mesh = loop.mesh().welded_mesh();
+  if (o.normals == "distance" && (mesh_format || !o.png.empty())) {
+    const auto t0 = std::chrono::steady_clock::now();
+    core::set_normals_from_surface_distance(volume, mesh);
+    stats["distance_normals_seconds"] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
   if (mesh_format) {
-    if (core::Status st = core::write_mesh(o.mesh, loop.mesh().welded_mesh(), *mesh_format); !st) {
+    if (core::Status st = core::write_mesh(o.mesh, mesh, *mesh_format); !st) {
       return report(st.error());
     }
   }
   if (!o.png.empty()) {
-    const core::Mesh mesh = loop.mesh().welded_mesh();
     // The station's GL renderer through an invisible window when there is a
     // display; the CPU rasteriser otherwise.
     const bool gl = o.renderer == "gl" || (o.renderer == "auto" && display_available());
@@ -177,6 +185,11 @@ void add_replay_command(CLI::App& app, Action& action) {
                   "for --png: gl (an invisible window), software (no display needed), or auto "
                   "(gl when there is a display)")
       ->check(CLI::IsMember({"auto", "gl", "software"}))
+      ->capture_default_str();
+  cmd->add_option("--normals", o->normals,
+                  "normals of --mesh and --png: density (its gradient, as drawn live) or distance "
+                  "(the gradient of the distance to the sub-voxel surface, Jones & Satherley)")
+      ->check(CLI::IsMember({"density", "distance"}))
       ->capture_default_str();
   cmd->add_option("--stats", o->stats,
                   "write statistics (JSON): dabs, volume hash, triangles, latency");

@@ -49,6 +49,7 @@ int run_headless(const RunOptions& o) {
   r.volume = (dir / "volume.nrrd").string();
   r.stats = (dir / "stats.json").string();
   r.renderer = "software";  // no display here, or none wanted
+  r.normals = "distance";   // the smoothest shading for a still picture (~1 s on the demo)
   const int code = replay_to_outputs(r);
   if (code == 0) {
     std::printf("wrote %s/sculpture.png, sculpture.ply, volume.nrrd and stats.json\n",
@@ -89,6 +90,12 @@ void add_run_command(CLI::App& app, Action& action) {
                 "window: stop when the sim device goes (its session played, or unplugged in it)");
   cmd->add_option("--stats", w.stats, "window: write frame times and dab latency (JSON) at exit");
   cmd->add_option("--screenshot", w.screenshot, "window: PNG of the last frame (with --frames)");
+  cmd->add_option_function<std::string>(
+         "--normals",
+         [&w = *o](const std::string& v) { w.window.distance_normals = v == "distance"; },
+         "window: shading normals, density (its gradient, the default) or distance (the distance "
+         "field's gradient; also in the panel's View section)")
+      ->check(CLI::IsMember({"density", "distance"}));
   cmd->add_option("--lod", w.lod, "window: draw every brick at this level (default: by distance)")
       ->check(CLI::Range(0, 2));
   cmd->add_flag(

@@ -160,6 +160,11 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     }
     if (!automatic && changed && lod.fixed_level < 0) lod.fixed_level = 0;
     if (changed) c_.lod().set_policy(lod);
+    bool smooth = c_.distance_normals();
+    if (ImGui::Checkbox("normals from the distance field", &smooth))
+      c_.set_distance_normals(smooth);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("the gradient of the distance to the sub-voxel surface: smoother shading");
     if (ImGui::Button("Frame the block")) c_.perform(Action::kFrameView, now);
     tip(Action::kFrameView);
   }

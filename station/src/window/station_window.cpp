@@ -144,6 +144,7 @@ int run_window(const WindowOptions& o) {
   co.loop.clay_margin = 64;  // a slab of clay to carve, 128 voxels a side
   co.normalizer_config_path = hal::default_normalizer_config_path();
   StationController controller(co);
+  controller.set_distance_normals(o.distance_normals);
   if (!o.project.empty()) {
     if (core::Status st = controller.open(o.project); !st) return fail(st.error());
   }
@@ -335,6 +336,7 @@ int run_window(const WindowOptions& o) {
     controller.update_mesh(hal::monotonic_ns());
     const int64_t t_upload = hal::monotonic_ns();
     figures.mesh_ms += static_cast<double>(t_upload - t_mesh) * 1e-6;
+    (*renderer)->set_distance_normals(controller.distance_normals());
     const gl::SurfaceSync sync = (*renderer)->sync_surface(volume, surface);
     (*renderer)->set_tool(controller.loop().tool());
     const SheetEditor& sheet = controller.loop().sheet();

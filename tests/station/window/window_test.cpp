@@ -161,12 +161,14 @@ TEST(StationWindow, RunsTheLiveLoopOnASimDeviceAndTakesAScreenshot) {
   EXPECT_EQ(loop.volume().content_hash(), stats["volume_hash"].get<uint64_t>());
   EXPECT_GT(stats["solid_voxels"].get<int64_t>(), 500);
 
-  // A project opened in the window and drawn.
+  // A project opened in the window and drawn, shaded with the distance
+  // field's normals.
   auto saved = run_sculpt("replay " + sim::bundled_session_path("short") + " --fast --project " +
                           dir.file("short.sculpt"));
   ASSERT_EQ(saved.exit_code, 0) << saved.err;
   r = run_with_display("run --open " + dir.file("short.sculpt") +
-                           " --frames 5 --hidden --screenshot " + dir.file("shot.png"),
+                           " --frames 5 --hidden --normals distance --screenshot " +
+                           dir.file("shot.png"),
                        dir.path());
   ASSERT_EQ(r->exit_code, 0) << r->err;
   const Picture p = read_png(dir.file("shot.png"));

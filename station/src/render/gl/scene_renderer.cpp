@@ -1,9 +1,11 @@
 #include "render/gl/scene_renderer.h"
 
 #include <algorithm>
+#include <chrono>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "sculpt/core/distance/surface_normals.h"
 #include "sculpt/core/mesh/marching_cubes.h"
 
 namespace sculpt::station::gl {
@@ -60,6 +62,8 @@ out vec4 fragment;
 void main() { fragment = colour; }
 )";
 
+// Distance-field normals: at most this much re-shading per frame.
+constexpr int64_t kRefineBudgetNs = 4'000'000;
 const glm::vec3 kClay(0.80f, 0.70f, 0.60f);
 
 glm::vec3 mode_colour(core::SculptMode mode) {
@@ -115,13 +119,36 @@ SurfaceSync SceneRenderer::sync_surface(const core::Volume& volume,
         const uint64_t stamp = surface.brick_mesh_version(b);
         if (slot.stamp != stamp) {
           slot.mesh.upload(m.mesh);
+          slot.brick = b;
+          slot.distance_normals = false;
           slot.stamp = stamp;
           ++sync.uploaded;
         }
         visible_.push_back(&slot.mesh);
         sync.triangles += slot.mesh.triangles();
       }
+  if (distance_normals_) refine_normals(volume, surface);
   return sync;
+}
+
+void SceneRenderer::refine_normals(const core::Volume& volume,
+                                   const core::MixedLevelMeshCache& surface) {
+  const auto start = std::chrono::steady_clock::now();
+  for (auto& [index, slot] : slots_) {
+    if (slot.distance_normals) continue;
+    core::Mesh smooth = surface.brick_mesh(slot.brick).mesh;
+    core::set_normals_from_surface_distance(volume, smooth);
+    slot.mesh.upload(smooth);
+    slot.distance_normals = true;
+    if (std::chrono::steady_clock::now() - start > std::chrono::nanoseconds(kRefineBudgetNs)) break;
+  }
+}
+
+void SceneRenderer::set_distance_normals(bool on) {
+  if (on == distance_normals_) return;
+  distance_normals_ = on;
+  for (auto& [brick, slot] : slots_)
+    slot.stamp = ~uint64_t{0};  // re-uploaded with the mesher's normals, then refined
 }
 
 void SceneRenderer::show_mesh(const core::Mesh& mesh) {

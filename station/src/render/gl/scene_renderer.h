@@ -51,6 +51,13 @@ class SceneRenderer {
 
   /// Sends the brick meshes re-made since the last call to the GPU.
   SurfaceSync sync_surface(const core::Volume& volume, const core::MixedLevelMeshCache& surface);
+  /// Normals of the brick meshes: the density gradient (false, the mesher's)
+  /// or the gradient of the distance to the sub-voxel surface (true;
+  /// smoother). A changed brick is first drawn with the mesher's normals and
+  /// re-shaded with the distance field's within a few milliseconds of each
+  /// frame (kRefineBudgetNs), so sculpting stays as fast as without.
+  void set_distance_normals(bool on);
+  bool distance_normals() const { return distance_normals_; }
   /// Draws this one mesh as the surface instead (pictures of a result).
   void show_mesh(const core::Mesh& mesh);
   /// Remakes the tool's mesh when the tool changed.
@@ -65,7 +72,12 @@ class SceneRenderer {
   struct Slot {
     uint64_t stamp = ~uint64_t{0};
     GpuMesh mesh;
+    glm::ivec3 brick{0};
+    bool distance_normals = false;  // re-shaded since the last upload
   };
+  // Re-shades slots with the distance field's normals, oldest bricks first,
+  // for at most kRefineBudgetNs.
+  void refine_normals(const core::Volume& volume, const core::MixedLevelMeshCache& surface);
   void draw_lines(const std::vector<glm::vec3>& points, glm::vec4 colour, const glm::mat4& mvp);
 
   ShaderProgram lit_;
@@ -78,6 +90,7 @@ class SceneRenderer {
   GpuMesh sheet_mesh_;
   uint64_t sheet_version_ = ~uint64_t{0};
   bool sheet_editing_ = false;
+  bool distance_normals_ = false;
   GLuint line_vao_ = 0, line_vbo_ = 0;
 };
 

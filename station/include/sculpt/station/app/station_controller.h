@@ -156,6 +156,11 @@ class StationController {
   /// Runs a shortcut's action; false when it failed (see status()).
   bool perform(Action action, int64_t now_ns);
 
+  /// Shade with normals from the distance field's gradient (Jones &
+  /// Satherley) instead of the density's: a view setting, not recorded.
+  bool distance_normals() const { return distance_normals_; }
+  void set_distance_normals(bool on) { distance_normals_ = on; }
+
   DeviceTarget device_target() const { return device_target_; }
   void set_device_target(DeviceTarget target) { device_target_ = target; }
 
@@ -223,6 +228,7 @@ class StationController {
   OrbitCamera camera_;
   LodSelector lod_;
   DeviceTarget device_target_ = DeviceTarget::kTool;
+  bool distance_normals_ = false;
   SessionRecorder recorder_;
   DeviceStatus device_;
   hal::DeviceInfo device_info_;

@@ -24,6 +24,7 @@ struct WindowOptions {
   int frames = 0;                   ///< stop after this many frames (0: when closed)
   bool exit_when_replayed = false;  ///< stop when the sim device's session ends
   int lod = -1;                     ///< a fixed level of detail for every brick (-1: automatic)
+  bool distance_normals = false;    ///< shade with the distance field's gradient
   bool vsync = true;
   bool visible = true;
   int width = 1280;

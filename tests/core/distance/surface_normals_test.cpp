@@ -1,0 +1,63 @@
+#include "sculpt/core/distance/surface_normals.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "sculpt/core/mesh/marching_cubes.h"
+#include "sculpt/core/shapes/analytic_shapes.h"
+
+namespace sculpt::core {
+namespace {
+
+// Mean and worst angle (degrees) between the mesh's normals and a sphere's.
+std::pair<double, double> sphere_normal_error(const Mesh& mesh, glm::vec3 centre) {
+  double sum = 0, worst = 0;
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    const glm::vec3 truth = glm::normalize(mesh.positions[i] - centre);
+    const double c = std::clamp<double>(glm::dot(glm::normalize(mesh.normals[i]), truth), -1, 1);
+    const double deg = std::acos(c) * 180.0 / 3.14159265358979;
+    sum += deg;
+    worst = std::max(worst, deg);
+  }
+  return {sum / static_cast<double>(mesh.positions.size()), worst};
+}
+
+TEST(SurfaceNormals, DistanceGradientNormalsOfASphereAreTrueToAFractionOfADegree) {
+  const int n = 64;
+  const Volume volume = sphere_volume(n, 0.3f);
+  Mesh mesh = marching_cubes(volume);
+  ASSERT_GT(mesh.positions.size(), 1000u);
+  const glm::vec3 centre(0.5f * (n - 1));
+  const auto density = sphere_normal_error(mesh, centre);
+  set_normals_from_surface_distance(volume, mesh);
+  const auto distance = sphere_normal_error(mesh, centre);
+  EXPECT_LT(distance.first, 0.5) << "mean";
+  EXPECT_LT(distance.second, 3.0) << "worst";
+  // Five times truer than the density gradient's (the renderer's default):
+  // 0.25 against 1.2 degrees on average, 1.8 against 5.1 at worst.
+  EXPECT_LT(distance.first, 0.5 * density.first) << density.first;
+  EXPECT_LT(distance.second, density.second) << density.second;
+}
+
+TEST(SurfaceNormals, APieceOfTheMeshGetsTheSameNormalsAsTheWhole) {
+  // Normals depend on the surface around each vertex, not on which mesh
+  // (a brick's or the whole's) the vertex is in.
+  const Volume volume = sphere_volume(48, 0.3f);
+  Mesh whole = marching_cubes(volume);
+  set_normals_from_surface_distance(volume, whole);
+  Mesh piece;
+  for (size_t i = 0; i < whole.positions.size(); i += 7)
+    piece.positions.push_back(whole.positions[i]);
+  piece.normals.assign(piece.positions.size(), glm::vec3(0, 0, 1));
+  set_normals_from_surface_distance(volume, piece);
+  for (size_t k = 0; k < piece.positions.size(); ++k) {
+    const glm::vec3 a = whole.normals[k * 7], b = piece.normals[k];
+    EXPECT_NEAR(glm::dot(a, b), 1.0f, 1e-5f) << k;
+  }
+}
+
+}  // namespace
+}  // namespace sculpt::core
