@@ -15,6 +15,7 @@
 #include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/sim/synth/session_script.h"
+#include "sculpt/station/project/session_start.h"
 
 namespace sculpt::station {
 namespace {
@@ -601,18 +602,21 @@ core::Status StationController::export_mesh(const std::filesystem::path& path) {
   return st;
 }
 
-std::vector<sim::Command> StationController::opening_commands() const {
+std::vector<sim::Command> StationController::opening_commands(bool with_block) const {
   const StationSettings& s = loop_.settings();
   const hal::ToolPose& p = loop_.pose();
   std::vector<sim::Command> c;
   const glm::vec3 d(loop_.volume().dims());
   const StationLoop::Options& o = options_.loop;
-  // The recording starts from the block the station started with; work done
-  // before it (or an opened project) is not in the session (README).
-  c.push_back(o.clay_margin > 0 ? make_command(sim::CommandKind::kVolume, sim::kVolumeClay,
-                                               {d.x, d.y, d.z, static_cast<float>(o.clay_margin)})
-                                : make_command(sim::CommandKind::kVolume, sim::kVolumeFill,
-                                               {d.x, d.y, d.z, static_cast<float>(o.volume_fill)}));
+  // The block the station started with, unless the recording starts from a
+  // saved project (start_recording).
+  if (with_block) {
+    c.push_back(o.clay_margin > 0
+                    ? make_command(sim::CommandKind::kVolume, sim::kVolumeClay,
+                                   {d.x, d.y, d.z, static_cast<float>(o.clay_margin)})
+                    : make_command(sim::CommandKind::kVolume, sim::kVolumeFill,
+                                   {d.x, d.y, d.z, static_cast<float>(o.volume_fill)}));
+  }
   c.push_back(make_command(sim::CommandKind::kTool, static_cast<uint8_t>(s.shape),
                            {s.size_a_vox, s.size_b_vox}));
   c.push_back(make_command(sim::CommandKind::kMode, static_cast<uint8_t>(s.mode)));
@@ -621,6 +625,10 @@ std::vector<sim::Command> StationController::opening_commands() const {
   c.push_back(s.mirror ? make_command(sim::CommandKind::kMirror,
                                       static_cast<uint8_t>(s.mirror->axis), {s.mirror->centre_vox})
                        : make_command(sim::CommandKind::kMirror, sim::kMirrorOff, {0.0f}));
+  const SheetDragOptions& drag = s.sheet_drag;
+  c.push_back(make_command(sim::CommandKind::kSheet, static_cast<uint8_t>(sim::SheetAction::kEdit),
+                           {s.sheet_editing ? 1.0f : 0.0f, static_cast<float>(drag.influence),
+                            static_cast<float>(drag.radius)}));
   c.push_back(make_command(sim::CommandKind::kToolPose, 0,
                            {p.position.x, p.position.y, p.position.z, p.orientation.w,
                             p.orientation.x, p.orientation.y, p.orientation.z}));
@@ -634,12 +642,28 @@ core::Status StationController::start_recording(const std::filesystem::path& pat
   header.created_unix_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
                                std::chrono::system_clock::now().time_since_epoch())
                                .count();
-  // The opening commands rebuild the settings, not the sculpture: the
-  // recording replays onto the block the station started with.
+  // The opening commands rebuild the settings. Unless the station is as it
+  // started, the sculpture (and sheet and tool) is saved beside the session
+  // and replays restore it; a fresh start removes a stale one of that name.
   const bool fresh = generation_ == 0;
-  core::Status st = recorder_.start(path, header, opening_commands(), stamp(now_ns));
+  const std::filesystem::path start = session_start_path(path);
+  std::error_code ec;
+  if (fresh) {
+    std::filesystem::remove(start, ec);
+  } else {
+    const StationSettings& s = loop_.settings();
+    core::Status saved =
+        save_project(start, loop_.volume(), s, s.custom_tool ? &loop_.tool() : nullptr, view(),
+                     loop_.sheet().has_sheet() ? &loop_.sheet().surface() : nullptr);
+    if (!saved) {
+      report(saved, "");
+      return saved;
+    }
+  }
+  core::Status st =
+      recorder_.start(path, header, opening_commands(/*with_block=*/fresh), stamp(now_ns));
   report(st, "recording to " + path.string() +
-                 (fresh ? "" : " (the session starts from a fresh block, not this sculpture)"));
+                 (fresh ? "" : " (starting from this sculpture, saved as " + start.string() + ")"));
   return st;
 }
 

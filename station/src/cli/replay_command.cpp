@@ -19,6 +19,7 @@
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/session_replay.h"
 #include "sculpt/station/project/project_file.h"
+#include "sculpt/station/project/session_start.h"
 #include "sculpt/station/render/software_renderer.h"
 #include "sculpt/station/window/gl_snapshot.h"
 
@@ -78,6 +79,10 @@ int replay_to_outputs(const ReplayCliOptions& o) {
     };
   }
   StationLoop loop(StationLoop::Options{});  // the session's volume command sizes the block
+  // A recording started on a sculpture replays onto it (session_start.h).
+  if (auto started = restore_session_start(o.session, loop); !started) {
+    return report(started.error());
+  }
   auto result = replay_session(*session, o.session, loop, options);
   if (!result) return report(result.error());
 

@@ -20,6 +20,7 @@
 #include "sculpt/sim/synth/bundled_sessions.h"
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/station_controller.h"
+#include "sculpt/station/project/session_start.h"
 #include "sculpt/station/render/software_renderer.h"
 #include "sculpt/station/view/mesh_raycast.h"
 #include "sculpt/station/view/volume_raycast.h"
@@ -167,6 +168,12 @@ int run_window(const WindowOptions& o) {
     auto recorded = hal::parse_normalizer_config(session->header.normalizer_config,
                                                  file + " (normaliser settings)");
     if (!recorded) return recorded.error();
+    // A recording started on a sculpture plays onto it (session_start.h).
+    auto started = restore_session_start(file, controller.loop());
+    if (!started) return started.error();
+    if (*started) {
+      controller.camera().frame(glm::vec3(0.0f), glm::vec3(controller.loop().volume().dims()));
+    }
     *config = *recorded;
     registry = std::make_unique<hal::DeviceRegistry>(std::vector<std::unique_ptr<hal::Backend>>{},
                                                      *config, reader_options);

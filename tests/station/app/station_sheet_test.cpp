@@ -10,10 +10,12 @@
 #include "sculpt/core/nurbs/point_inversion.h"
 #include "sculpt/sim/session/session_file.h"
 #include "sculpt/station/app/station_controller.h"
+#include "sculpt/station/project/session_start.h"
 
 namespace sculpt::station {
 namespace {
 
+namespace fs = std::filesystem;
 constexpr int64_t kMs = 1'000'000;
 
 ControllerOptions small_block(const test::ScratchDir& dir) {
@@ -177,6 +179,46 @@ TEST(StationSheet, TheProjectKeepsTheSheetAndItsSettings) {
   ASSERT_TRUE(d.save(dir.path() / "none.sculpt").ok());
   ASSERT_TRUE(c.open(dir.path() / "none.sculpt").ok());
   EXPECT_FALSE(c.loop().sheet().has_sheet());
+}
+
+// A recording started on a sculpture (and a sheet) replays onto it, both
+// through the library and through `sculpt replay`'s loading path.
+TEST(StationSheet, ARecordingStartedOnASculptureReplaysOntoIt) {
+  test::ScratchDir dir;
+  StationController c(small_block(dir));
+  int64_t t = 1000 * kMs;
+  new_sheet_at(c, t, {32.0f, 32.0f, 30.0f});
+  drag(c, t, {32.0f, 32.0f, 30.0f}, {0.0f, 0.0f, 6.0f});
+  ASSERT_TRUE(c.sheet_into_material(true, t += kMs));  // material before the recording
+  const fs::path rec = dir.path() / "later.scs";
+  ASSERT_TRUE(c.start_recording(rec, t += kMs).ok()) << c.status();
+  EXPECT_NE(c.status().find("starting from this sculpture"), std::string::npos) << c.status();
+  ASSERT_TRUE(fs::exists(session_start_path(rec)));
+  c.set_sheet_editing(true, t += kMs);
+  drag(c, t, {20.0f, 20.0f, 30.0f}, {0.0f, 0.0f, -6.0f});
+  c.set_sheet_editing(false, t += kMs);
+  c.set_tool(sim::ToolShape::kSphere, 3.0f, 0.0f, t += kMs);
+  drag(c, t, {10.0f, 32.0f, 36.0f}, {40.0f, 0.0f, 0.0f});  // carves through the shell
+  c.tick(t);
+  ASSERT_TRUE(c.stop_recording().ok());
+
+  auto session = sim::read_session_file(rec);
+  ASSERT_TRUE(session.ok()) << session.error().message();
+  StationLoop replayed(StationLoop::Options{});
+  auto started = restore_session_start(rec, replayed);
+  ASSERT_TRUE(started.ok()) << started.error().message();
+  EXPECT_TRUE(*started);
+  ASSERT_TRUE(replay_session(*session, "later.scs", replayed).ok());
+  EXPECT_EQ(replayed.volume().content_hash(), c.loop().volume().content_hash());
+  EXPECT_EQ(replayed.sheet().surface().points, c.loop().sheet().surface().points);
+
+  // A recording from a fresh station removes a stale start of that name.
+  StationController fresh(small_block(dir));
+  ASSERT_TRUE(fresh.start_recording(rec, t += kMs).ok());
+  ASSERT_TRUE(fresh.stop_recording().ok());
+  EXPECT_FALSE(fs::exists(session_start_path(rec)));
+  StationLoop none(StationLoop::Options{});
+  EXPECT_FALSE(*restore_session_start(rec, none));
 }
 
 TEST(StationSheet, ARecordingReplaysTheSheetBitForBit) {

@@ -24,6 +24,21 @@ class ReplayCommandTest : public ::testing::Test {
   const std::string short_ = sculpt::sim::bundled_session_path("short");
 };
 
+TEST_F(ReplayCommandTest, ADamagedStartProjectIsOneClearError) {
+  // A session's start project (session_start.h) that is not a project.
+  const std::string session = path("s.scs");
+  fs::copy_file(short_, session);
+  {
+    std::ofstream bad(session + ".start.sculpt");
+    bad << "not a project";
+  }
+  const CommandResult r = run_sculpt("replay " + session + " --fast --stats " + path("s.json"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("s.scs.start.sculpt: not a sculpt project file"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "s.json"));
+}
+
 TEST_F(ReplayCommandTest, WritesVolumeMeshStatsAndSamples) {
   const CommandResult r =
       run_sculpt("replay " + short_ + " --fast --volume " + path("v.nrrd") + " --mesh " +

@@ -221,7 +221,7 @@ class StationController {
   static int64_t report_time(int64_t t_ns, int64_t now_ns);
   void note_dabs(int64_t dabs_before, int64_t t_ns);
   ProjectView view() const;
-  std::vector<sim::Command> opening_commands() const;
+  std::vector<sim::Command> opening_commands(bool with_block) const;
 
   ControllerOptions options_;
   StationLoop loop_;
