@@ -176,7 +176,7 @@ void SheetEditor::release() {
     }
   }
   if (!result) {  // too short to fit: the live steps, finished exactly
-    d.live.finish(d.path.back());
+    d.live.finish();
     last_residual_ = d.live.residual();
     result = d.live.surface();
   }

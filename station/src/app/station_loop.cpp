@@ -101,9 +101,7 @@ void StationLoop::restore(std::unique_ptr<core::Volume> volume, const StationSet
   settings_ = settings;
   settings_.custom_tool = custom_tool.has_value();
   if (custom_tool) tool_ = std::move(*custom_tool);
-  sheet_ = SheetEditor();
   sheet_.reset(std::move(sheet));
-  sheet_held_ = false;
   apply_tool();
   sculptor_->set_mirror(settings_.mirror);
   mesh_ = core::MeshCache(0);
@@ -256,7 +254,8 @@ void StationLoop::handle(const sim::Command& c) {
 void StationLoop::press() {
   if (pressed_) return;
   pressed_ = true;
-  if (settings_.sheet_editing) {
+  sheet_press_ = settings_.sheet_editing;
+  if (sheet_press_) {
     const core::Status grabbed =
         sheet_.grab(glm::dvec3(integrator_.pose().position), settings_.sheet_drag);
     sheet_held_ = grabbed.ok();
@@ -274,9 +273,10 @@ void StationLoop::press() {
 void StationLoop::release() {
   if (!pressed_) return;
   pressed_ = false;
-  if (settings_.sheet_editing) {
+  if (sheet_press_) {  // the press went to the sheet, not to a stroke
     if (sheet_held_) sheet_.release();
     sheet_held_ = false;
+    sheet_press_ = false;
     return;
   }
   sampler_.end();

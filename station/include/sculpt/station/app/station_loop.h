@@ -131,7 +131,8 @@ class StationLoop {
   StationSettings settings_;
   StationCounters counters_;
   bool pressed_ = false;
-  bool sheet_held_ = false;  // pressed_ grabbed the sheet rather than sculpting
+  bool sheet_press_ = false;  // pressed_ went to the sheet (sheet editing), not to a stroke
+  bool sheet_held_ = false;   // and grabbed it
   std::vector<hal::Dab> dabs_;
   SheetEditor sheet_;
   std::string sheet_problem_;
