@@ -246,11 +246,7 @@ DenseGrid<float> mesh_signed_distance(const MeshDistance& md, glm::ivec3 dims, i
 }
 
 VoxelizeMapping fit_mesh_to_grid(const Mesh& mesh, int n, float margin) {
-  glm::vec3 lo(kInf), hi(-kInf);
-  for (const glm::vec3& p : mesh.positions) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
+  const auto [lo, hi] = mesh_bounds(mesh);
   const glm::vec3 size = hi - lo;
   const float longest = std::max({size.x, size.y, size.z});
   VoxelizeMapping m;

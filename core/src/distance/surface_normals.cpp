@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include <glm/common.hpp>
 
@@ -25,11 +24,7 @@ constexpr int kSearchRadius = 4;
 
 void set_normals_from_surface_distance(const Volume& volume, Mesh& mesh) {
   if (mesh.positions.empty()) return;
-  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-  for (const glm::vec3& p : mesh.positions) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
+  const auto [lo, hi] = mesh_bounds(mesh);
   const Box region =
       intersect(Box{glm::ivec3(glm::floor(lo)) - kMargin, glm::ivec3(glm::ceil(hi)) + kMargin + 1},
                 Box{glm::ivec3(0), volume.dims()});

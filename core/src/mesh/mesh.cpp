@@ -1,9 +1,11 @@
 #include "sculpt/core/mesh/mesh.h"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <tuple>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 namespace sculpt::core {
@@ -119,6 +121,16 @@ int64_t component_count(const Mesh& mesh) {
   for (uint32_t v = 0; v < parent.size(); ++v)
     roots += used[v] && find(v) == v;
   return roots;
+}
+
+MeshBounds mesh_bounds(const Mesh& mesh) {
+  MeshBounds b{glm::vec3(std::numeric_limits<float>::max()),
+               glm::vec3(std::numeric_limits<float>::lowest())};
+  for (const glm::vec3& p : mesh.positions) {
+    b.lo = glm::min(b.lo, p);
+    b.hi = glm::max(b.hi, p);
+  }
+  return b;
 }
 
 }  // namespace sculpt::core

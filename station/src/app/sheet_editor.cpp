@@ -191,21 +191,19 @@ std::optional<glm::dvec3> SheetEditor::grabbed_target() const {
 }
 
 bool SheetEditor::undo() {
-  if (drag_) release();
-  if (undo_.empty()) return false;
-  redo_.push_back(std::move(surface_));
-  surface_ = std::move(undo_.back());
-  undo_.pop_back();
-  retessellate();
-  return true;
+  return step(undo_, redo_);
 }
 
 bool SheetEditor::redo() {
+  return step(redo_, undo_);
+}
+
+bool SheetEditor::step(History& from, History& to) {
   if (drag_) release();
-  if (redo_.empty()) return false;
-  undo_.push_back(std::move(surface_));
-  surface_ = std::move(redo_.back());
-  redo_.pop_back();
+  if (from.empty()) return false;
+  to.push_back(std::move(surface_));
+  surface_ = std::move(from.back());
+  from.pop_back();
   retessellate();
   return true;
 }

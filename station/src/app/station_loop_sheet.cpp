@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include <glm/common.hpp>
 
@@ -25,11 +24,7 @@ bool finite(const float* v, int n) {
 
 // The voxel box within `reach` of the mesh's vertices (half-open).
 core::Box mesh_box(const core::Mesh& mesh, float reach) {
-  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-  for (const glm::vec3& p : mesh.positions) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
+  const auto [lo, hi] = core::mesh_bounds(mesh);
   return core::Box{glm::ivec3(glm::floor(lo - reach)), glm::ivec3(glm::ceil(hi + reach)) + 1};
 }
 

@@ -58,7 +58,7 @@ TEST(StationSheet, ShortcutsReachTheSheetAndTurnTheTool) {
   EXPECT_STREQ(shortcut_label(Action::kNewSheet), "N");
 }
 
-TEST(StationSheet, KeysTurnTheToolAndTheTurnedToolSculptsTurned) {
+TEST(StationSheet, KeysTurnAndTiltTheTool) {
   test::ScratchDir dir;
   StationController c(small_block(dir));
   int64_t t = 0;

@@ -147,8 +147,12 @@ void SceneRenderer::refine_normals(const core::Volume& volume,
 void SceneRenderer::set_distance_normals(bool on) {
   if (on == distance_normals_) return;
   distance_normals_ = on;
-  for (auto& [brick, slot] : slots_)
-    slot.stamp = ~uint64_t{0};  // re-uploaded with the mesher's normals, then refined
+  // On: the uploaded meshes (the mesher's normals) are re-shaded by
+  // refine_normals(). Off: the re-shaded ones go back to the mesher's.
+  for (auto& [brick, slot] : slots_) {
+    if (!on && slot.distance_normals) slot.stamp = ~uint64_t{0};
+    slot.distance_normals = false;
+  }
 }
 
 void SceneRenderer::show_mesh(const core::Mesh& mesh) {

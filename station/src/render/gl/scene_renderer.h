@@ -75,7 +75,7 @@ class SceneRenderer {
     glm::ivec3 brick{0};
     bool distance_normals = false;  // re-shaded since the last upload
   };
-  // Re-shades slots with the distance field's normals, oldest bricks first,
+  // Re-shades slots with the distance field's normals, in the slots' order,
   // for at most kRefineBudgetNs.
   void refine_normals(const core::Volume& volume, const core::MixedLevelMeshCache& surface);
   void draw_lines(const std::vector<glm::vec3>& points, glm::vec4 colour, const glm::mat4& mvp);

@@ -47,6 +47,13 @@ struct MeshTopology {
 
 /// Counts edges, boundary and non-manifold elements. O(F log F).
 MeshTopology check_topology(const Mesh& mesh);
+
+/// The axis-aligned box of the positions (lo > hi in every axis when empty).
+struct MeshBounds {
+  glm::vec3 lo{0.0f};
+  glm::vec3 hi{0.0f};
+};
+MeshBounds mesh_bounds(const Mesh& mesh);
 /// Total triangle area, square voxel units.
 double surface_area(const Mesh& mesh);
 /// Signed enclosed volume (divergence theorem), cubic voxel units: positive

@@ -98,14 +98,18 @@ class SheetEditor {
     core::nurbs::PathDeformation live;
     SheetDragOptions options;
   };
+  using History = std::vector<std::optional<core::nurbs::NurbsSurface>>;
   void remember(std::optional<core::nurbs::NurbsSurface> before);
+  // Undo and redo: the newest sheet of `from` becomes the sheet, the sheet
+  // goes to `to`.
+  bool step(History& from, History& to);
   void retessellate();
 
   std::optional<core::nurbs::NurbsSurface> surface_;
   std::optional<core::nurbs::SurfaceTessellator> tessellator_;
   std::optional<Drag> drag_;
   // Undo: the sheet before each edit (nullopt: there was none); redo likewise.
-  std::vector<std::optional<core::nurbs::NurbsSurface>> undo_, redo_;
+  History undo_, redo_;
   uint64_t version_ = 0;
   double last_residual_ = 0.0;
 };
