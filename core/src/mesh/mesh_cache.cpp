@@ -31,9 +31,10 @@ namespace {
 
 constexpr uint32_t kAllOffsets = (1u << 27) - 1;
 
-// Starting threads costs tens of microseconds, and far more when the cores
-// are busy: the few bricks of one dab are done faster on the calling thread.
-constexpr int64_t kParallelMinBricks = 16;
+// parallel_for wakes pooled threads (a few microseconds) rather than
+// starting them, so even the few bricks of one dab (each 50-150 us of
+// decoding or marching) are worth sharing.
+constexpr int64_t kParallelMinBricks = 2;
 
 int threads_for(int64_t items, int threads) {
   return items < kParallelMinBricks ? 1 : threads;

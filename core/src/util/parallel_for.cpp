@@ -2,13 +2,126 @@
 
 #include <algorithm>
 #include <atomic>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
 #include <thread>
 #include <vector>
 
 namespace sculpt::core {
 
 namespace {
+
 std::atomic<int> g_default_threads{0};
+
+// Depth of parallel_for calls on this thread: a body that calls parallel_for
+// again runs the inner loop serially rather than waiting on workers that are
+// busy with the outer one.
+thread_local int t_loop_depth = 0;
+
+// Hands out indices in order until the range is used up.
+void drain(std::atomic<int64_t>& next, int64_t count, const std::function<void(int64_t)>& body) {
+  for (int64_t i = next.fetch_add(1, std::memory_order_relaxed); i < count;
+       i = next.fetch_add(1, std::memory_order_relaxed)) {
+    body(i);
+  }
+}
+
+// Threads kept asleep between loops. Starting threads for every call cost
+// 30-60 us each, as much as re-meshing a brick, and a dab's re-mesh is a few
+// bricks; waking a sleeping worker costs a few microseconds.
+class WorkerPool {
+ public:
+  // Runs the loop with up to `helpers` pool threads beside the caller, or
+  // returns false at once if another thread's loop holds the pool.
+  bool try_run(int64_t count, const std::function<void(int64_t)>& body, int helpers) {
+    bool expected = false;
+    if (!busy_.compare_exchange_strong(expected, true, std::memory_order_acquire)) return false;
+    {
+      std::lock_guard lock(mutex_);
+      while (static_cast<int>(threads_.size()) < helpers)
+        threads_.emplace_back([this] { work(); });
+      body_ = &body;
+      count_ = count;
+      next_.store(0, std::memory_order_relaxed);
+      seats_ = helpers;
+      ++generation_;
+    }
+    wake_.notify_all();
+    std::exception_ptr error;
+    try {
+      drain(next_, count, body);
+    } catch (...) {
+      error = std::current_exception();
+      next_.store(count, std::memory_order_relaxed);  // hand out nothing more
+    }
+    {
+      // Workers that have not taken a seat yet must not start on a body that
+      // is about to go out of scope.
+      std::unique_lock lock(mutex_);
+      seats_ = 0;
+      finished_.wait(lock, [this] { return seated_ == 0; });
+      body_ = nullptr;
+    }
+    busy_.store(false, std::memory_order_release);
+    if (error) std::rethrow_exception(error);
+    return true;
+  }
+
+ private:
+  void work() {
+    t_loop_depth = 1;
+    std::unique_lock lock(mutex_);
+    uint64_t seen = generation_;
+    for (;;) {
+      wake_.wait(lock, [&] { return generation_ != seen && seats_ > 0; });
+      seen = generation_;
+      --seats_;
+      ++seated_;
+      const std::function<void(int64_t)>& body = *body_;
+      const int64_t count = count_;
+      lock.unlock();
+      drain(next_, count, body);
+      lock.lock();
+      if (--seated_ == 0) finished_.notify_one();
+    }
+  }
+
+  std::atomic<bool> busy_{false};
+  std::mutex mutex_;  // guards everything below but next_
+  std::condition_variable wake_;
+  std::condition_variable finished_;
+  std::vector<std::thread> threads_;
+  const std::function<void(int64_t)>* body_ = nullptr;
+  int64_t count_ = 0;
+  std::atomic<int64_t> next_{0};
+  int seats_ = 0;   // workers that may still join the current loop
+  int seated_ = 0;  // workers running the current loop
+  uint64_t generation_ = 0;
+};
+
+// Never destroyed: its threads sleep until the process ends, and a static
+// destructor elsewhere may still run a loop.
+WorkerPool& worker_pool() {
+  static WorkerPool* pool = new WorkerPool;
+  return *pool;
+}
+
+// The pool is in use by another thread: start threads for this loop alone.
+void run_on_fresh_threads(int64_t count, const std::function<void(int64_t)>& body,
+                          int64_t workers) {
+  std::atomic<int64_t> next{0};
+  auto work = [&] {
+    t_loop_depth = 1;
+    drain(next, count, body);
+  };
+  std::vector<std::jthread> pool;
+  pool.reserve(static_cast<size_t>(workers - 1));
+  for (int64_t t = 1; t < workers; ++t)
+    pool.emplace_back(work);
+  drain(next, count, body);
+}
+
 }  // namespace
 
 int hardware_threads() {
@@ -27,23 +140,17 @@ void set_default_threads(int threads) {
 void parallel_for(int64_t count, const std::function<void(int64_t)>& body, int threads) {
   if (threads <= 0) threads = default_threads();
   const int64_t workers = std::min<int64_t>(threads, count);
-  if (workers <= 1) {
+  if (workers <= 1 || t_loop_depth > 0) {
     for (int64_t i = 0; i < count; ++i)
       body(i);
     return;
   }
-  std::atomic<int64_t> next{0};
-  auto work = [&] {
-    for (int64_t i = next.fetch_add(1, std::memory_order_relaxed); i < count;
-         i = next.fetch_add(1, std::memory_order_relaxed)) {
-      body(i);
-    }
-  };
-  std::vector<std::jthread> pool;
-  pool.reserve(static_cast<size_t>(workers - 1));
-  for (int64_t t = 1; t < workers; ++t)
-    pool.emplace_back(work);
-  work();
+  struct Depth {
+    Depth() { ++t_loop_depth; }
+    ~Depth() { --t_loop_depth; }
+  } depth;
+  if (!worker_pool().try_run(count, body, static_cast<int>(workers - 1)))
+    run_on_fresh_threads(count, body, workers);
 }
 
 }  // namespace sculpt::core

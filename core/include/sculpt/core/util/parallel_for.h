@@ -1,6 +1,8 @@
 #pragma once
-// A minimal fork-join loop over an index range, for whole-volume work
-// (encoding every brick, extracting a level). The calling thread takes part.
+// A fork-join loop over an index range, for whole-volume work (encoding
+// every brick, extracting a level) and for the few bricks a dab touches. The
+// calling thread takes part; the others come from a pool of threads that
+// sleep between loops, so a loop costs a wake-up, not a thread start.
 
 #include <cstdint>
 #include <functional>
@@ -20,7 +22,9 @@ void set_default_threads(int threads);
 /// Calls `body(i)` for every i in [0, count), spread over `threads` threads
 /// (0 = default_threads()). Work is handed out in order, one index at a time,
 /// so uneven items (uniform vs detailed bricks) balance themselves. `body` must
-/// be safe to call concurrently for different i.
+/// be safe to call concurrently for different i. A loop started inside
+/// another loop's body runs serially on its thread; loops started by two
+/// threads at once both run in parallel (the second on threads of its own).
 void parallel_for(int64_t count, const std::function<void(int64_t)>& body, int threads = 0);
 
 }  // namespace sculpt::core
