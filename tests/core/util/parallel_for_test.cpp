@@ -70,8 +70,8 @@ TEST(ParallelFor, ALoopInsideALoopRunsAndCompletes) {
     ASSERT_EQ(h.load(), 1);
 }
 
-// Two threads that start loops at once (the station's mesh thread and its
-// main thread) both finish with every index visited.
+// Two threads that start loops at once (say a replay and a distance
+// transform in one process) both finish with every index visited.
 TEST(ParallelFor, LoopsFromTwoThreadsAtOnceBothComplete) {
   std::vector<std::atomic<int>> a(5000), b(5000);
   auto run = [](std::vector<std::atomic<int>>& hits) {
