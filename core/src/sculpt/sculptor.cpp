@@ -7,6 +7,8 @@
 #include <cstring>
 #include <limits>
 
+#include "sculpt/core/sculpt/combine_row.h"
+
 namespace sculpt::core {
 namespace {
 
@@ -64,56 +66,12 @@ int saturated_value(SculptMode mode) {
   return -1;
 }
 
+static_assert(RotatedToolEntry::kRowSlack >= kCombineRowSlack,
+              "combine_row() reads past the rotated tool's rows");
+
 // Filling a of tool value f at strength q/256 (q = 256 keeps f exactly).
 inline uint32_t filling(uint8_t f, uint32_t q) {
   return (f * q + 128) >> 8;
-}
-
-// One kernel per mode so each loop is branch-free and vectorises. Every
-// intermediate fits 16 bits (f q + 128 <= 255 * 256 + 128, sums <= 510), so
-// the loops run on 16-bit lanes, twice as many per vector as 32-bit ones;
-// the results are those of filling() in 32 bits.
-template <class Op>
-[[gnu::always_inline]] inline int combine(uint8_t* __restrict m, const uint8_t* __restrict f, int n,
-                                          uint16_t q, Op op) {
-  int changed = 0;
-  for (int i = 0; i < n; ++i) {
-    const uint16_t v = m[i];
-    const auto a = static_cast<uint16_t>(static_cast<uint16_t>(f[i] * q + 128) >> 8);
-    const uint16_t r = op(v, a);
-    changed += r != v;
-    m[i] = static_cast<uint8_t>(r);
-  }
-  return changed;
-}
-
-// Compiled for AVX2 and the x86-64 baseline, picked at load time (not under
-// sanitizers, whose runtimes start after ifunc resolvers run).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
-    !defined(__SANITIZE_THREAD__) && !defined(__SANITIZE_ADDRESS__)
-#define SCULPT_COMBINE_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define SCULPT_COMBINE_CLONES
-#endif
-
-SCULPT_COMBINE_CLONES int64_t combine_row(SculptMode mode, uint8_t* m, const uint8_t* f, int n,
-                                          uint32_t q32) {
-  const auto q = static_cast<uint16_t>(q32);
-  using U = uint16_t;
-  switch (mode) {
-    case SculptMode::kAdd:
-      return combine(m, f, n, q, [](U v, U a) { return static_cast<U>(std::min<U>(255, v + a)); });
-    case SculptMode::kSubtract:
-      return combine(m, f, n, q, [](U v, U a) { return static_cast<U>(v > a ? v - a : 0); });
-    case SculptMode::kUnion:
-      return combine(m, f, n, q, [](U v, U a) { return std::max(v, a); });
-    case SculptMode::kDifference:
-      return combine(m, f, n, q, [](U v, U a) { return std::min<U>(v, static_cast<U>(255 - a)); });
-    case SculptMode::kSmooth:
-      break;
-  }
-  assert(false && "combine_row(): smoothing has its own kernel");
-  return 0;
 }
 
 // Moves each voxel toward the mean of its 3x3x3 neighbourhood in `before`
@@ -195,14 +153,15 @@ Sculptor::DecodedBrick& Sculptor::decoded_brick(glm::ivec3 b, DabStats& stats) {
     }
     const size_t e = static_cast<size_t>(volume_.brick_edge());
     it = decoded_.emplace(index, DecodedBrick{}).first;
-    it->second.voxels.resize(e * e * e);
+    // combine_row() reads and rewrites up to kCombineRowSlack bytes past a row.
+    it->second.voxels.resize(e * e * e + kCombineRowSlack);
     it->second.version = ~uint64_t{0};
   }
   DecodedBrick& d = it->second;
   d.last_use = ++use_clock_;
   // Any store since (an undo, another writer) bumps the version.
   if (d.version != volume_.brick_version(b)) {
-    volume_.decode_brick(b, d.voxels);
+    volume_.decode_brick(b, std::span<uint8_t>(d.voxels).first(d.voxels.size() - kCombineRowSlack));
     d.version = volume_.brick_version(b);
     ++stats.bricks_decoded;
   } else {
@@ -300,7 +259,8 @@ DabStats Sculptor::apply(RotatedToolCache& cache, const Dab& dab) {
 
         const int64_t t0 = now_ns();
         DecodedBrick& decoded = decoded_brick(b, stats);
-        std::span<uint8_t> voxels = decoded.voxels;
+        std::span<uint8_t> voxels =
+            std::span<uint8_t>(decoded.voxels).first(decoded.voxels.size() - kCombineRowSlack);
         const int64_t t1 = now_ns();
         const glm::ivec3 origin = b * edge;
         int64_t changed = 0;
@@ -317,14 +277,11 @@ DabStats Sculptor::apply(RotatedToolCache& cache, const Dab& dab) {
           const int y_lo = std::max(bb.lo.y, ceil_int(pivot_pos.y - hz));
           const int y_hi = std::min(bb.hi.y, floor_int(pivot_pos.y + hz) + 1);
           for (int y = y_lo; y < y_hi; ++y) {
-            // The row's stretch within the tool's reach (a ball round the pivot).
-            const float dy = static_cast<float>(y) - pivot_pos.y,
-                        dz = static_cast<float>(z) - pivot_pos.z;
-            const float h2 = reach2 - dy * dy - dz * dz;
-            if (h2 < 0.0f) continue;
-            const float h = std::sqrt(h2);
-            const int xa = std::max(bb.lo.x, ceil_int(pivot_pos.x - h));
-            const int xb = std::min(bb.hi.x, floor_int(pivot_pos.x + h) + 1);
+            // The row's stretch within the tool's reach (a ball round the
+            // pivot), kept by the placement.
+            const auto [ra, rb] = entry.reach(y - anchor.y, z - anchor.z);
+            const int xa = std::max(bb.lo.x, ra + anchor.x);
+            const int xb = std::min(bb.hi.x, rb + anchor.x);
             if (xa >= xb) continue;
             uint8_t* m =
                 &voxels[(static_cast<size_t>(z - origin.z) * edge + (y - origin.y)) * edge +

@@ -20,11 +20,21 @@ RotatedToolEntry::RotatedToolEntry(const PreparedTool& tool, const glm::mat3& ro
       offset_(offset),
       frame_(tool, rotation, offset, sampling),
       stats_(stats),
-      values_(frame_.box().size()) {
+      values_(static_cast<size_t>(voxel_count(frame_.box().size())) + kRowSlack, 0) {
   const glm::ivec3 s = frame_.box().size();
   const size_t rows = static_cast<size_t>(s.y) * s.z;
   done_lo_.assign(rows, 0);
   done_hi_.assign(rows, 0);
+  reach_lo_.assign(rows, 0);
+  reach_hi_.assign(rows, 0);
+  for (int z = 0; z < s.z; ++z)
+    for (int y = 0; y < s.y; ++y) {
+      int x0 = 0, x1 = s.x;
+      if (!frame_.reach_span(y, z, x0, x1)) continue;
+      const size_t r = static_cast<size_t>(z) * s.y + y;
+      reach_lo_[r] = static_cast<int16_t>(x0);
+      reach_hi_[r] = static_cast<int16_t>(x1);
+    }
 }
 
 const uint8_t* RotatedToolEntry::row(int y, int z, int x0, int x1) {
@@ -33,7 +43,7 @@ const uint8_t* RotatedToolEntry::row(int y, int z, int x0, int x1) {
          z < b.hi.z);
   const int ly = y - b.lo.y, lz = z - b.lo.z;
   const size_t r = static_cast<size_t>(lz) * b.size().y + ly;
-  uint8_t* values = &values_.at(0, ly, lz);
+  uint8_t* values = &values_[r * b.size().x];
   const int a = x0 - b.lo.x, e = x1 - b.lo.x;
   stats_->voxels_requested += e - a;
   int lo = done_lo_[r], hi = done_hi_[r];
@@ -62,7 +72,9 @@ const uint8_t* RotatedToolEntry::row(int y, int z, int x0, int x1) {
 }
 
 size_t RotatedToolEntry::memory_bytes() const {
-  return sizeof(*this) + values_.size() + (done_lo_.size() + done_hi_.size()) * sizeof(int16_t);
+  return sizeof(*this) + values_.size() +
+         (done_lo_.size() + done_hi_.size() + reach_lo_.size() + reach_hi_.size()) *
+             sizeof(int16_t);
 }
 
 RotatedToolCache::RotatedToolCache(std::shared_ptr<const PreparedTool> tool, Sampling sampling,

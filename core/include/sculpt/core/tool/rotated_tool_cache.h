@@ -21,6 +21,7 @@
 #include <list>
 #include <memory>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -50,6 +51,8 @@ struct RotatedToolCacheStats {
 /// The rotated voxels of one placement, filled lazily row stretch by row stretch.
 class RotatedToolEntry {
  public:
+  static constexpr size_t kRowSlack = 32;
+
   RotatedToolEntry(const PreparedTool& tool, const glm::mat3& rotation, glm::vec3 offset,
                    Sampling sampling, RotatedToolCacheStats* stats);
   /// Voxels that can be non-zero, relative to the placement's anchor.
@@ -59,8 +62,17 @@ class RotatedToolEntry {
   /// The pivot's offset from the anchor, in [0, 1) per axis.
   glm::vec3 offset() const { return offset_; }
   /// Rotated voxels [x0, x1) of row (y, z) (anchor-relative, inside box()),
-  /// rotating those not yet computed. Valid until the next call.
+  /// rotating those not yet computed. Valid until the next call; readable
+  /// for kRowSlack bytes past x1.
   const uint8_t* row(int y, int z, int x0, int x1);
+  /// The stretch [x0, x1) of row (y, z) (anchor-relative, inside box())
+  /// within the tool's reach: outside it the row's voxels are 0. Empty
+  /// (x0 == x1) when the row misses the reach ball.
+  std::pair<int, int> reach(int y, int z) const {
+    const Box& b = frame_.box();
+    const size_t r = static_cast<size_t>(z - b.lo.z) * b.size().y + (y - b.lo.y);
+    return {b.lo.x + reach_lo_[r], b.lo.x + reach_hi_[r]};
+  }
   size_t memory_bytes() const;
 
  private:
@@ -69,9 +81,14 @@ class RotatedToolEntry {
   glm::vec3 offset_;
   RotationFrame frame_;
   RotatedToolCacheStats* stats_;
-  DenseGrid<uint8_t> values_;
+  // The box's voxels, x fastest, then kRowSlack zero bytes: a row's
+  // consumer may read a vector's width past its end (combine_row()).
+  std::vector<uint8_t> values_;
   // Per row (y, z) of the box, the computed stretch [lo, hi) of x offsets.
   std::vector<int16_t> done_lo_, done_hi_;
+  // Per row, the stretch within reach (box-relative x offsets), computed
+  // once per placement: a dab then needs no square root per row.
+  std::vector<int16_t> reach_lo_, reach_hi_;
 };
 
 class RotatedToolCache {

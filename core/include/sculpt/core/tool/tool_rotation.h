@@ -114,6 +114,10 @@ class RotationFrame {
   /// and a plain nearest or trilinear sample (no run skipping).
   uint8_t sample_voxel(const PreparedTool& tool, glm::ivec3 k) const;
 
+  /// Narrows [x0, x1) (box-relative) to box-relative row (y, z)'s stretch
+  /// within the tool's reach (outside it every sample is 0); false when empty.
+  bool reach_span(int y, int z, int& x0, int& x1) const;
+
   /// A stretch of samples along x: the first one's position (16.16, padded
   /// tool voxels), the count, and where the values go. The kernels' input.
   struct Line {
@@ -130,9 +134,6 @@ class RotationFrame {
   // Narrows a line to its samples within the tool's support; false if none.
   bool clip_line(Line& line) const;
   void sample_lines(const PreparedTool& tool, const Line* lines, int count) const;
-  // Narrows [x0, x1) (box-relative) to row (y, z)'s stretch within reach;
-  // false when empty.
-  bool reach_span(int y, int z, int& x0, int& x1) const;
 
   Box box_;
   Sampling sampling_;
