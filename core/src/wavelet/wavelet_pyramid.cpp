@@ -229,10 +229,14 @@ void WaveletPyramid::encode_region(std::span<const uint8_t> voxels, std::array<i
           all.row_ptr(y, z)[x] = voxels[(static_cast<size_t>(z) * e + y) * e + x];
     return;
   }
-  // The level-l blocks holding a changed voxel.
+  // The level-l blocks holding a changed voxel, widened to whole rows along
+  // x: the row kernels are vectorised along x, and a part of a row (a dab
+  // changes about half a brick's width) would run in their scalar remainder
+  // loops. Recomputing unchanged blocks from valid values gives the same
+  // coefficients.
   auto blocks = [&](int l) {
-    return BlockRange{lo[0] >> l, ((hi[0] - 1) >> l) + 1, lo[1] >> l, ((hi[1] - 1) >> l) + 1,
-                      lo[2] >> l, ((hi[2] - 1) >> l) + 1};
+    return BlockRange{
+        0, e >> l, lo[1] >> l, ((hi[1] - 1) >> l) + 1, lo[2] >> l, ((hi[2] - 1) >> l) + 1};
   };
   // Low-pass cubes of levels 1..L (lows[l], (e >> l)^3), filled only where
   // needed.
