@@ -36,9 +36,10 @@ ClosestPoint closest_point_on_triangle(glm::vec3 p, glm::vec3 a, glm::vec3 b, gl
   const float d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
   if (d3 >= 0.0f && d4 <= d3) return make(p, b, TriangleFeature::kVertexB);
   const float vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) {
-    const float den = d1 - d3;
-    const float v = den > 0.0f ? d1 / den : 0.0f;
+  // d1 - d3 = |ab|^2: when a == b every point passes the other tests of this
+  // region, yet the triangle is the segment ac; the later regions find it.
+  if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f && d1 > d3) {
+    const float v = d1 / (d1 - d3);
     return make(p, a + v * ab, TriangleFeature::kEdgeAB);
   }
   const glm::vec3 cp = p - c;

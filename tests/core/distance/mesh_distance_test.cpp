@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 
@@ -60,6 +61,13 @@ TEST(PointTriangle, MatchesDenseSamplingOfTheTriangle) {
   EXPECT_NEAR(
       std::sqrt(point_triangle_distance_squared({0, 1, 0}, {-1, 0, 0}, {1, 0, 0}, {0, 0, 0})), 1.0f,
       1e-6f);
+  // Two corners in one place: the segment from them to the third, whichever
+  // two coincide.
+  const glm::vec3 p(1.0f, 1.0f, 0.0f), q(0.0f, 0.0f, 0.0f), r(2.0f, 0.0f, 0.0f);
+  for (const auto& [a, b, c] : {std::tuple{q, q, r}, std::tuple{q, r, r}, std::tuple{r, q, r}}) {
+    EXPECT_NEAR(std::sqrt(point_triangle_distance_squared(p, a, b, c)), 1.0f, 1e-6f);
+    EXPECT_NEAR(std::sqrt(triangle_distance2(p, a, b - a, c - a)), 1.0f, 1e-6f);
+  }
 }
 
 TEST(MeshDistance, NarrowBandEqualsBruteAndSignIsRight) {

@@ -48,9 +48,8 @@ inline float triangle_distance2(glm::vec3 p, glm::vec3 a, glm::vec3 ab, glm::vec
   const float d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
   if (d3 >= 0.0f && d4 <= d3) return glm::dot(bp, bp);
   const float vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) {
-    const float den = d1 - d3;
-    const glm::vec3 q = ap - (den > 0.0f ? d1 / den : 0.0f) * ab;
+  if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f && d1 > d3) {  // d1 > d3: a != b
+    const glm::vec3 q = ap - (d1 / (d1 - d3)) * ab;
     return glm::dot(q, q);
   }
   const glm::vec3 cp = ap - ac;
