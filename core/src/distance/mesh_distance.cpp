@@ -12,6 +12,20 @@
 #include "sculpt/core/distance/point_triangle.h"
 #include "sculpt/core/util/parallel_for.h"
 
+// The band kernel is compiled twice, for AVX2 and for the x86-64 baseline,
+// and the loader picks the one the CPU runs (as the wavelet kernels). Not
+// under sanitizers: their runtimes start after ifunc resolvers run.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
+    !defined(__SANITIZE_THREAD__) && !defined(__SANITIZE_ADDRESS__)
+#define SCULPT_DISTANCE_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define SCULPT_DISTANCE_CLONES
+#endif
+// The kernel's helpers pass 8-lane rows by value; they are internal and
+// inlined, so GCC's note that AVX changes the calling convention of such
+// functions (reported at the end of the file) does not concern them.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 namespace sculpt::core {
 namespace {
 
@@ -105,114 +119,324 @@ float MeshDistance::signed_distance_brute(glm::vec3 p) const {
   return mesh_.triangles.empty() ? kInf : signed_distance_to(p, best_t);
 }
 
+namespace {
+
+// What the band kernel needs of one triangle, computed once rather than
+// once per brick it reaches.
+struct BandTriangle {
+  glm::vec3 a, ab, ac, bc;
+  glm::vec3 normal;  // unit; zero for a degenerate triangle
+  // The dual basis of (ab, ac) in the triangle's plane: p - a =
+  // u ab + v ac + h normal with u = dot(p - a, dual_ab), v = dot(p - a,
+  // dual_ac). p projects into the face when u, v >= 0 and u + v <= 1.
+  glm::vec3 dual_ab, dual_ac;
+  float uv_limit;  // 1, or -1 when degenerate: no face to project into
+  // Heights of b over line ac, c over ab and a over bc (0 when degenerate):
+  // -u height_b is how far a point's projection lies beyond line ac.
+  float height_b, height_c, height_a;
+  float inv_ab2, inv_ac2, inv_bc2;  // 1 / squared edge length, 0 for a zero-length edge
+  glm::vec3 centre;
+  float radius;       // of the ball about centre that holds the triangle
+  glm::ivec3 lo, hi;  // voxels its band can reach, clipped to the grid
+};
+
+float inverse_or_zero(float v) {
+  return v > 0.0f ? 1.0f / v : 0.0f;
+}
+
+BandTriangle band_triangle(const Mesh& mesh, uint32_t t, float band, glm::ivec3 dims) {
+  const glm::uvec3 f = mesh.triangles[t];
+  const glm::vec3 a = mesh.positions[f.x], b = mesh.positions[f.y], c = mesh.positions[f.z];
+  BandTriangle bt;
+  bt.a = a;
+  bt.ab = b - a;
+  bt.ac = c - a;
+  bt.bc = c - b;
+  const glm::vec3 n = glm::cross(bt.ab, bt.ac);
+  const float n2 = glm::dot(n, n);
+  bt.normal = n2 > 0.0f ? n / std::sqrt(n2) : glm::vec3(0.0f);
+  bt.dual_ab = n2 > 0.0f ? glm::cross(bt.ac, n) / n2 : glm::vec3(0.0f);
+  bt.dual_ac = n2 > 0.0f ? glm::cross(n, bt.ab) / n2 : glm::vec3(0.0f);
+  bt.uv_limit = n2 > 0.0f ? 1.0f : -1.0f;
+  bt.inv_ab2 = inverse_or_zero(glm::dot(bt.ab, bt.ab));
+  bt.inv_ac2 = inverse_or_zero(glm::dot(bt.ac, bt.ac));
+  bt.inv_bc2 = inverse_or_zero(glm::dot(bt.bc, bt.bc));
+  const float area2 = std::sqrt(n2);  // twice the area
+  bt.height_b = area2 * std::sqrt(bt.inv_ac2);
+  bt.height_c = area2 * std::sqrt(bt.inv_ab2);
+  bt.height_a = area2 * std::sqrt(bt.inv_bc2);
+  bt.centre = (a + b + c) / 3.0f;
+  bt.radius = std::sqrt(
+      std::max({glm::dot(a - bt.centre, a - bt.centre), glm::dot(b - bt.centre, b - bt.centre),
+                glm::dot(c - bt.centre, c - bt.centre)}));
+  bt.lo = glm::max(glm::ivec3(glm::ceil(glm::min(a, glm::min(b, c)) - band)), glm::ivec3(0));
+  bt.hi = glm::min(glm::ivec3(glm::floor(glm::max(a, glm::max(b, c)) + band)), dims - 1);
+  return bt;
+}
+
+// The grid voxel of value k of the brick at `brick` (brick coordinates).
+glm::ivec3 voxel_in_brick(glm::ivec3 brick, int k) {
+  constexpr int B = NarrowBand::kBrick;
+  return brick * B + glm::ivec3(k % B, (k / B) % B, k / (B * B));
+}
+
+// Fixed chunks of triangles for the parallel binning: the brick lists come
+// out in ascending triangle order whatever the number of threads.
+constexpr int kBinChunks = 16;
+
+// Calls visit(brick index) for every brick that triangle `bt`'s band can
+// reach: its clipped box, less the bricks farther than band from its ball.
+template <class Visit>
+void for_each_brick(const BandTriangle& bt, float band, glm::ivec3 bricks, Visit&& visit) {
+  constexpr int B = NarrowBand::kBrick;
+  if (bt.lo.x > bt.hi.x || bt.lo.y > bt.hi.y || bt.lo.z > bt.hi.z) return;
+  const glm::ivec3 b0 = bt.lo / B, b1 = bt.hi / B;
+  const float ball = band + bt.radius;
+  for (int bz = b0.z; bz <= b1.z; ++bz)
+    for (int by = b0.y; by <= b1.y; ++by)
+      for (int bx = b0.x; bx <= b1.x; ++bx) {
+        const glm::vec3 lo = glm::vec3(bx, by, bz) * float(B);
+        if (point_box_distance_squared(bt.centre, lo, lo + float(B - 1)) >= ball * ball) continue;
+        visit((int64_t(bz) * bricks.y + by) * bricks.x + bx);
+      }
+}
+
+// One x row of a brick: 8 voxels, one AVX2 register (two SSE ones).
+static_assert(NarrowBand::kBrick == 8);
+using Row = float __attribute__((vector_size(32)));
+using RowMask = int32_t __attribute__((vector_size(32)));
+
+[[gnu::always_inline]] inline Row broadcast(float v) {
+  return Row{v, v, v, v, v, v, v, v};
+}
+
+[[gnu::always_inline]] inline bool any(RowMask m) {
+  using Halves = int64_t __attribute__((vector_size(32)));
+  const Halves h = reinterpret_cast<Halves>(m);
+  return (h[0] | h[1] | h[2] | h[3]) != 0;
+}
+
+[[gnu::always_inline]] inline Row min(Row a, Row b) {
+  return a < b ? a : b;
+}
+
+[[gnu::always_inline]] inline Row max(Row a, Row b) {
+  return a > b ? a : b;
+}
+
+[[gnu::always_inline]] inline Row clamp01(Row v) {
+  return v < 0.0f ? broadcast(0.0f) : (v > 1.0f ? broadcast(1.0f) : v);
+}
+
+// Squared distance from the points a + (dx, dy, dz) to the segment from a
+// along e (inv_e2 = 1 / |e|^2, 0 when the segment is a point).
+[[gnu::always_inline]] inline Row segment_distance2(Row dx, float dy, float dz, glm::vec3 e,
+                                                    float inv_e2) {
+  const Row t = clamp01((dx * e.x + (dy * e.y + dz * e.z)) * inv_e2);
+  const Row qx = dx - t * e.x, qy = dy - t * e.y, qz = dz - t * e.z;
+  return qx * qx + qy * qy + qz * qz;
+}
+
+// The band of one brick from the triangles that may reach it (ascending).
+// Triangle-major, as a rasteriser: each triangle visits the brick rows its
+// ball meets and computes the exact distance of all 8 voxels of a row at
+// once, branch-free (face when the point projects into it, else the nearest
+// of the three edges), once a plane and a ball test say some voxel of the
+// row may get nearer. The brick's arrays stay in L1.
+SCULPT_DISTANCE_CLONES
+void band_brick(const MeshDistance& md, const std::vector<BandTriangle>& tris, const uint32_t* list,
+                size_t count, glm::ivec3 brick, glm::ivec3 dims, float band, float* out_distance,
+                int32_t* out_triangle) {
+  constexpr int B = NarrowBand::kBrick;
+  const glm::ivec3 org = brick * B;
+  const Row lane{0, 1, 2, 3, 4, 5, 6, 7};
+  const Row x = float(org.x) + lane;
+  // Lanes past the grid's end never enter the band.
+  const RowMask in_grid = x < float(dims.x);
+  Row best2[B * B];  // squared distance so far, per row
+  RowMask best_t[B * B];
+  for (int r = 0; r < B * B; ++r) {
+    best2[r] = broadcast(band * band);
+    best_t[r] = RowMask{} - 1;
+  }
+  for (size_t k = 0; k < count; ++k) {
+    const uint32_t t = list[k];
+    const BandTriangle& bt = tris[t];
+    const glm::ivec3 ilo = glm::max(bt.lo, org), ihi = glm::min(bt.hi, org + (B - 1));
+    const float ball = band + bt.radius;
+    // Distance along x from the ball's centre to the voxels the triangle's box holds.
+    const float gap_x = std::max({float(ilo.x) - bt.centre.x, bt.centre.x - float(ihi.x), 0.0f});
+    const Row ax = x - bt.a.x;
+    const Row hx = ax * bt.normal.x, ux = ax * bt.dual_ab.x, vx = ax * bt.dual_ac.x;
+    for (int z = ilo.z; z <= ihi.z; ++z)
+      for (int y = ilo.y; y <= ihi.y; ++y) {
+        const float cy = float(y) - bt.centre.y, cz = float(z) - bt.centre.z;
+        if (cy * cy + cz * cz + gap_x * gap_x >= ball * ball) continue;
+        const int r = (z - org.z) * B + (y - org.y);
+        const float ay = float(y) - bt.a.y, az = float(z) - bt.a.z;
+        const Row h = hx + (ay * bt.normal.y + az * bt.normal.z);
+        const Row u = ux + (ay * bt.dual_ab.y + az * bt.dual_ab.z);
+        const Row v = vx + (ay * bt.dual_ac.y + az * bt.dual_ac.z);
+        // A lower bound of the distance: the plane distance h and, in the
+        // plane, how far the projection lies beyond the farthest edge line.
+        // It is exact unless the nearest point is a corner, so rows that
+        // cannot improve any voxel end here.
+        const Row beyond = max(max(-u * bt.height_b, -v * bt.height_c),
+                               max((u + v - 1.0f) * bt.height_a, broadcast(0.0f)));
+        if (!any(h * h + beyond * beyond < best2[r])) continue;
+        const RowMask face = (u >= 0.0f) & (v >= 0.0f) & (u + v <= bt.uv_limit);
+        const Row edges =
+            min(min(segment_distance2(ax, ay, az, bt.ab, bt.inv_ab2),
+                    segment_distance2(ax, ay, az, bt.ac, bt.inv_ac2)),
+                segment_distance2(ax - bt.ab.x, ay - bt.ab.y, az - bt.ab.z, bt.bc, bt.inv_bc2));
+        const Row d2 = face ? h * h : edges;
+        // Strictly nearer only: ties keep the first triangle in ascending
+        // order, the same for any thread count.
+        const RowMask nearer = (d2 < best2[r]) & in_grid;
+        best2[r] = nearer ? d2 : best2[r];
+        best_t[r] = nearer ? int32_t(t) : best_t[r];
+      }
+  }
+  for (int i = 0; i < NarrowBand::kBrickVoxels; ++i) {
+    const int32_t t = best_t[i / B][i % B];
+    out_triangle[i] = t;
+    out_distance[i] =
+        t < 0 ? kInf : md.signed_distance_to(glm::vec3(voxel_in_brick(brick, i)), uint32_t(t));
+  }
+}
+
+}  // namespace
+
 NarrowBand mesh_narrow_band(const MeshDistance& md, glm::ivec3 dims,
                             const NarrowBandOptions& options) {
+  constexpr int B = NarrowBand::kBrick;
   const Mesh& mesh = md.mesh();
   const float band = options.band;
-  const float band2 = band * band;
-  NarrowBand out{DenseGrid<float>(dims, kInf), DenseGrid<int32_t>(dims, -1)};
-  if (voxel_count(dims) == 0) return out;
-  // Slabs of z: each thread owns the voxels of its slab, so no two threads
-  // write one voxel; a triangle is visited by every slab its band meets.
-  constexpr int kSlab = 4;
-  const int slabs = (dims.z + kSlab - 1) / kSlab;
-  std::vector<std::vector<uint32_t>> bucket(slabs);
-  for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-    const glm::uvec3 f = mesh.triangles[t];
-    const float zlo =
-        std::min({mesh.positions[f.x].z, mesh.positions[f.y].z, mesh.positions[f.z].z});
-    const float zhi =
-        std::max({mesh.positions[f.x].z, mesh.positions[f.y].z, mesh.positions[f.z].z});
-    const int s0 = std::max(0, int(std::ceil(zlo - band)) / kSlab);
-    const int s1 = std::min(slabs - 1, int(std::floor(zhi + band)) / kSlab);
-    for (int s = s0; s <= s1; ++s)
-      bucket[s].push_back(t);
-  }
-  DenseGrid<float>& dist = out.distance;  // squared until the sign pass
-  DenseGrid<int32_t>& tri = out.triangle;
+  NarrowBand out;
+  out.dims = dims;
+  out.bricks = (dims + (B - 1)) / B;
+  const int64_t n_bricks = voxel_count(out.bricks);
+  out.slot.assign(size_t(n_bricks), -1);
+  if (n_bricks == 0 || mesh.triangles.empty()) return out;
+  const int64_t F = int64_t(mesh.triangles.size());
+
+  std::vector<BandTriangle> tris(static_cast<size_t>(F));
   parallel_for(
-      slabs,
+      kBinChunks,
+      [&](int64_t c) {
+        for (int64_t t = F * c / kBinChunks; t < F * (c + 1) / kBinChunks; ++t)
+          tris[size_t(t)] = band_triangle(mesh, uint32_t(t), band, dims);
+      },
+      options.threads);
+
+  // Bin the triangles to the bricks their band reaches (a counting sort:
+  // count per chunk and brick, then every chunk writes its own range).
+  std::vector<uint32_t> counts(size_t(kBinChunks * n_bricks), 0);
+  parallel_for(
+      kBinChunks,
+      [&](int64_t c) {
+        uint32_t* count = counts.data() + c * n_bricks;
+        for (int64_t t = F * c / kBinChunks; t < F * (c + 1) / kBinChunks; ++t)
+          for_each_brick(tris[size_t(t)], band, out.bricks, [&](int64_t b) { ++count[b]; });
+      },
+      options.threads);
+  std::vector<size_t> first(size_t(n_bricks) + 1, 0);  // each brick's range in `lists`
+  for (int64_t b = 0; b < n_bricks; ++b) {
+    size_t sum = first[size_t(b)];
+    for (int c = 0; c < kBinChunks; ++c) {
+      const uint32_t n = counts[size_t(c * n_bricks + b)];
+      counts[size_t(c * n_bricks + b)] = uint32_t(sum - first[size_t(b)]);  // chunk's offset
+      sum += n;
+    }
+    first[size_t(b) + 1] = sum;
+    if (sum > first[size_t(b)]) {
+      out.slot[size_t(b)] = int32_t(out.slot_brick.size());
+      out.slot_brick.push_back(int32_t(b));
+    }
+  }
+  std::vector<uint32_t> lists(first.back());
+  parallel_for(
+      kBinChunks,
+      [&](int64_t c) {
+        uint32_t* offset = counts.data() + c * n_bricks;
+        for (int64_t t = F * c / kBinChunks; t < F * (c + 1) / kBinChunks; ++t)
+          for_each_brick(tris[size_t(t)], band, out.bricks,
+                         [&](int64_t b) { lists[first[size_t(b)] + offset[b]++] = uint32_t(t); });
+      },
+      options.threads);
+
+  const size_t slots = out.slot_brick.size();
+  out.distance.resize(slots * NarrowBand::kBrickVoxels);
+  out.triangle.resize(slots * NarrowBand::kBrickVoxels);
+  parallel_for(
+      int64_t(slots),
       [&](int64_t s) {
-        const int z0 = int(s) * kSlab, z1 = std::min(dims.z, z0 + kSlab);
-        for (uint32_t t : bucket[s]) {
-          const glm::uvec3 f = mesh.triangles[t];
-          const glm::vec3 a = mesh.positions[f.x], b = mesh.positions[f.y], c = mesh.positions[f.z];
-          const glm::vec3 lo = glm::min(a, glm::min(b, c)) - band;
-          const glm::vec3 hi = glm::max(a, glm::max(b, c)) + band;
-          const glm::ivec3 ilo = glm::max(glm::ivec3(glm::ceil(lo)), glm::ivec3(0, 0, z0));
-          const glm::ivec3 ihi =
-              glm::min(glm::ivec3(glm::floor(hi)), glm::ivec3(dims.x - 1, dims.y - 1, z1 - 1));
-          // Only voxels within band of the triangle's bounding ball can be
-          // in its band: per row, the x-range where the row meets that
-          // ball; then the plane test rejects with one dot product.
-          const glm::vec3 centre = (a + b + c) / 3.0f;
-          const float radius = std::sqrt(
-              std::max({glm::dot(a - centre, a - centre), glm::dot(b - centre, b - centre),
-                        glm::dot(c - centre, c - centre)}));
-          const float ball = band + radius;
-          const glm::vec3 ab = b - a, ac = c - a;
-          const glm::vec3 n = glm::cross(ab, ac);
-          const float nlen = glm::length(n);
-          const glm::vec3 un = nlen > 0.0f ? n / nlen : glm::vec3(0.0f);
-          for (int z = ilo.z; z <= ihi.z; ++z)
-            for (int y = ilo.y; y <= ihi.y; ++y) {
-              const float dy = float(y) - centre.y, dz = float(z) - centre.z;
-              const float rest = ball * ball - dy * dy - dz * dz;
-              if (rest < 0.0f) continue;
-              const float half = std::sqrt(rest);
-              const int x0 = std::max(ilo.x, int(std::ceil(centre.x - half)));
-              const int x1 = std::min(ihi.x, int(std::floor(centre.x + half)));
-              const size_t row = dist.index(0, y, z);
-              for (int x = x0; x <= x1; ++x) {
-                const glm::vec3 p{float(x), float(y), float(z)};
-                const float h = glm::dot(p - a, un);
-                const float cur = std::min(dist[row + x], band2);
-                if (h * h >= cur) continue;
-                // Ball test: the triangle lies within `radius` of its centre,
-                // so it cannot beat the current best when the centre is
-                // farther than best + radius. Near a surface most of the
-                // neighbouring triangles fail here, not in the plane test.
-                const glm::vec3 pc = p - centre;
-                const float reach = std::sqrt(cur) + radius;
-                if (glm::dot(pc, pc) >= reach * reach) continue;
-                const float d2 = triangle_distance2(p, a, ab, ac);
-                // Strictly nearer only: ties keep the first triangle in
-                // bucket order, the same for any thread count.
-                if (d2 < cur) {
-                  dist[row + x] = d2;
-                  tri[row + x] = int32_t(t);
-                }
-              }
-            }
-        }
-        // Sign and square root for the slab's voxels.
-        for (size_t i = dist.index(0, 0, z0);
-             i < dist.index(0, 0, z1 - 1) + size_t(dims.x) * dims.y; ++i) {
-          if (tri[i] < 0) continue;
-          const int x = int(i % size_t(dims.x)), y = int((i / size_t(dims.x)) % size_t(dims.y));
-          const int z = int(i / (size_t(dims.x) * dims.y));
-          dist[i] =
-              md.signed_distance_to(glm::vec3(float(x), float(y), float(z)), uint32_t(tri[i]));
-        }
+        const int32_t b = out.slot_brick[size_t(s)];
+        const glm::ivec3 brick(b % out.bricks.x, (b / out.bricks.x) % out.bricks.y,
+                               b / (out.bricks.x * out.bricks.y));
+        band_brick(md, tris, lists.data() + first[size_t(b)],
+                   first[size_t(b) + 1] - first[size_t(b)], brick, dims, band,
+                   out.distance.data() + size_t(s) * NarrowBand::kBrickVoxels,
+                   out.triangle.data() + size_t(s) * NarrowBand::kBrickVoxels);
       },
       options.threads);
   return out;
 }
 
+float NarrowBand::distance_at(int x, int y, int z) const {
+  const int64_t i = value_index(x, y, z);
+  return i < 0 ? kInf : distance[size_t(i)];
+}
+
+int32_t NarrowBand::triangle_at(int x, int y, int z) const {
+  const int64_t i = value_index(x, y, z);
+  return i < 0 ? -1 : triangle[size_t(i)];
+}
+
+namespace {
+
+// Fills a dense grid from the bricks, one z slice per task.
+template <class T>
+DenseGrid<T> densify(const NarrowBand& nb, const std::vector<T>& values, T outside, int threads) {
+  DenseGrid<T> out(nb.dims, outside);
+  parallel_for(
+      nb.dims.z,
+      [&](int64_t z) {
+        for (int y = 0; y < nb.dims.y; ++y)
+          for (int x = 0; x < nb.dims.x; ++x) {
+            const int64_t i = nb.value_index(x, y, int(z));
+            if (i >= 0) out.at(x, y, int(z)) = values[size_t(i)];
+          }
+      },
+      threads);
+  return out;
+}
+
+}  // namespace
+
+DenseGrid<float> NarrowBand::dense_distance(int threads) const {
+  return densify(*this, distance, std::numeric_limits<float>::infinity(), threads);
+}
+
+DenseGrid<int32_t> NarrowBand::dense_triangle(int threads) const {
+  return densify(*this, triangle, int32_t(-1), threads);
+}
+
 DenseGrid<float> mesh_signed_distance(const MeshDistance& md, glm::ivec3 dims, int threads) {
-  NarrowBand nb = mesh_narrow_band(md, dims, NarrowBandOptions{2.0f, threads});
+  const NarrowBand band = mesh_narrow_band(md, dims, NarrowBandOptions{2.0f, threads});
+  const DenseGrid<int32_t> triangle = band.dense_triangle(threads);
   DenseGrid<uint8_t> seeds(dims, 0);
   for (size_t i = 0; i < seeds.size(); ++i)
-    seeds[i] = nb.triangle[i] >= 0;
+    seeds[i] = triangle[i] >= 0;
   const FeatureTransform ft = feature_transform(seeds, 1, threads);
-  DenseGrid<float> out = std::move(nb.distance);
+  DenseGrid<float> out = band.dense_distance(threads);
   const Mesh& mesh = md.mesh();
   parallel_for(
       dims.z,
       [&](int64_t z) {
         const size_t slice = size_t(dims.x) * dims.y;
         for (size_t i = size_t(z) * slice; i < size_t(z + 1) * slice; ++i) {
-          if (nb.triangle[i] >= 0) continue;
+          if (triangle[i] >= 0) continue;
           const int32_t s = ft.nearest[i];
           if (s < 0) continue;  // empty band: +infinity stays
           const int x = int(i % size_t(dims.x)), y = int((i / size_t(dims.x)) % size_t(dims.y));
@@ -228,8 +452,8 @@ DenseGrid<float> mesh_signed_distance(const MeshDistance& md, glm::ivec3 dims, i
             for (int dy = -1; dy <= 1; ++dy)
               for (int dx = -1; dx <= 1; ++dx) {
                 const glm::ivec3 q = sc + glm::ivec3(dx, dy, dz);
-                if (!nb.triangle.in_bounds(q.x, q.y, q.z)) continue;
-                const int32_t t = nb.triangle.at(q.x, q.y, q.z);
+                if (!triangle.in_bounds(q.x, q.y, q.z)) continue;
+                const int32_t t = triangle.at(q.x, q.y, q.z);
                 if (t < 0 || std::find(seen, seen + n_seen, t) != seen + n_seen) continue;
                 seen[n_seen++] = t;
                 const glm::uvec3 f = mesh.triangles[size_t(t)];

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <random>
 #include <tuple>
@@ -51,7 +52,7 @@ TEST(PointTriangle, MatchesDenseSamplingOfTheTriangle) {
     float best = 1e9f;
     for (int i = 0; i <= 60; ++i)
       for (int j = 0; i + j <= 60; ++j) {
-        const float s = i / 60.0f, t = j / 60.0f;
+        const float s = float(i) / 60.0f, t = float(j) / 60.0f;
         best = std::min(best, glm::length(p - (a + s * (b - a) + t * (c - a))));
       }
     ASSERT_LE(d, best + 1e-4f);
@@ -82,7 +83,7 @@ TEST(MeshDistance, NarrowBandEqualsBruteAndSignIsRight) {
         for (int x = 0; x < 25; ++x) {
           const glm::vec3 p(x, y, z);
           const float ref = md.signed_distance_brute(p);
-          const float d = nb.distance.at(x, y, z);
+          const float d = nb.distance_at(x, y, z);
           if (std::abs(ref) < 2.999f) {
             ASSERT_NEAR(d, ref, 1e-4f) << x << " " << y << " " << z;
             ++in_band;
@@ -91,10 +92,118 @@ TEST(MeshDistance, NarrowBandEqualsBruteAndSignIsRight) {
           }
           // The pseudonormal sign agrees with the (almost) sphere.
           const float sphere = glm::length(p - glm::vec3(12.2f, 11.7f, 12.4f)) - 8.3f;
-          if (std::abs(sphere) > 0.5f) ASSERT_EQ(ref < 0, sphere < 0);
+          if (std::abs(sphere) > 0.5f) {
+            ASSERT_EQ(ref < 0, sphere < 0);
+          }
         }
     EXPECT_GT(in_band, 1000);
   }
+}
+
+// A sphere cut by the grid's faces, in a box whose sides are no multiple of
+// the brick size and differ per axis: bricks at the grid's end and triangles
+// whose band leaves the grid.
+TEST(MeshDistance, NarrowBandClippedByTheGridEqualsBrute) {
+  const glm::vec3 centre(3.4f, 15.6f, 9.1f);
+  const Mesh m = icosphere_like(7.7f, centre, 3);
+  const MeshDistance md(m);
+  const glm::ivec3 dims(13, 19, 22);
+  const NarrowBand nb = mesh_narrow_band(md, dims, NarrowBandOptions{2.5f, 2});
+  EXPECT_EQ(nb.bricks, glm::ivec3(2, 3, 3));
+  int in_band = 0;
+  for (int z = 0; z < dims.z; ++z)
+    for (int y = 0; y < dims.y; ++y)
+      for (int x = 0; x < dims.x; ++x) {
+        const float ref = md.signed_distance_brute(glm::vec3(x, y, z));
+        const float d = nb.distance_at(x, y, z);
+        if (std::abs(ref) < 2.499f) {
+          ASSERT_NEAR(d, ref, 1e-4f) << x << " " << y << " " << z;
+          ASSERT_GE(nb.triangle_at(x, y, z), 0);
+          ++in_band;
+        } else if (std::abs(ref) > 2.501f) {
+          ASSERT_TRUE(std::isinf(d)) << x << " " << y << " " << z;
+          ASSERT_EQ(nb.triangle_at(x, y, z), -1);
+        }
+      }
+  EXPECT_GT(in_band, 300);
+  // Voxels past the grid's end in edge bricks stay outside the band.
+  for (size_t s = 0; s < nb.slot_brick.size(); ++s)
+    for (int k = 0; k < NarrowBand::kBrickVoxels; ++k) {
+      const glm::ivec3 v = nb.voxel(int32_t(s), k);
+      if (v.x >= dims.x || v.y >= dims.y || v.z >= dims.z) {
+        ASSERT_EQ(nb.triangle[s * NarrowBand::kBrickVoxels + size_t(k)], -1);
+      }
+    }
+}
+
+TEST(MeshDistance, NarrowBandDoesNotDependOnThreadCount) {
+  const Mesh m = icosphere_like(9.1f, glm::vec3(15.3f, 14.8f, 16.2f), 4);
+  const MeshDistance md(m);
+  const NarrowBand one = mesh_narrow_band(md, glm::ivec3(32), NarrowBandOptions{3.0f, 1});
+  for (int threads : {2, 3, 7}) {
+    const NarrowBand many = mesh_narrow_band(md, glm::ivec3(32), NarrowBandOptions{3.0f, threads});
+    EXPECT_EQ(many.slot, one.slot) << threads;
+    EXPECT_EQ(many.triangle, one.triangle) << threads;
+    // Bitwise: the same triangles tried in the same order.
+    ASSERT_EQ(many.distance.size(), one.distance.size());
+    EXPECT_EQ(0, std::memcmp(many.distance.data(), one.distance.data(),
+                             one.distance.size() * sizeof(float)))
+        << threads;
+  }
+}
+
+TEST(MeshDistance, NarrowBandDenseGridsMatchTheBricks) {
+  const Mesh m = icosphere_like(6.2f, glm::vec3(9.5f, 10.1f, 8.7f), 2);
+  const MeshDistance md(m);
+  const glm::ivec3 dims(20, 17, 19);
+  const NarrowBand nb = mesh_narrow_band(md, dims, NarrowBandOptions{3.0f, 2});
+  const DenseGrid<float> d = nb.dense_distance(2);
+  const DenseGrid<int32_t> t = nb.dense_triangle(2);
+  ASSERT_EQ(d.dims(), dims);
+  int in_band = 0;
+  for (int z = 0; z < dims.z; ++z)
+    for (int y = 0; y < dims.y; ++y)
+      for (int x = 0; x < dims.x; ++x) {
+        ASSERT_EQ(d.at(x, y, z), nb.distance_at(x, y, z));
+        ASSERT_EQ(t.at(x, y, z), nb.triangle_at(x, y, z));
+        in_band += t.at(x, y, z) >= 0;
+      }
+  EXPECT_GT(in_band, 500);
+}
+
+// Zero-area triangles have no face to project into: their distance is the
+// nearest of their edges (a segment, or a point).
+TEST(MeshDistance, NarrowBandOfDegenerateTrianglesMeasuresTheirEdges) {
+  Mesh m;
+  m.positions = {{3.2f, 4.1f, 5.3f}, {9.7f, 6.2f, 4.4f}, {6.45f, 5.15f, 4.85f},  // collinear
+                 {5.5f, 9.3f, 8.2f},                                             // a point
+                 {2.1f, 2.2f, 9.1f}, {2.1f, 2.2f, 9.1f}, {4.9f, 3.3f, 9.6f}};    // repeated corner
+  m.triangles = {{0, 1, 2}, {3, 3, 3}, {4, 5, 6}};
+  const MeshDistance md(m);
+  const glm::ivec3 dims(14, 13, 15);
+  const NarrowBand nb = mesh_narrow_band(md, dims, NarrowBandOptions{2.0f, 1});
+  int in_band = 0;
+  for (int z = 0; z < dims.z; ++z)
+    for (int y = 0; y < dims.y; ++y)
+      for (int x = 0; x < dims.x; ++x) {
+        const float ref = std::abs(md.signed_distance_brute(glm::vec3(x, y, z)));
+        if (ref < 1.999f) {
+          ASSERT_NEAR(std::abs(nb.distance_at(x, y, z)), ref, 1e-4f) << x << " " << y << " " << z;
+          ++in_band;
+        } else if (ref > 2.001f) {
+          ASSERT_TRUE(std::isinf(nb.distance_at(x, y, z))) << x << " " << y << " " << z;
+        }
+      }
+  EXPECT_GT(in_band, 100);
+}
+
+TEST(MeshDistance, NarrowBandOfNoTrianglesIsEmpty) {
+  const Mesh empty;
+  const MeshDistance md(empty);
+  const NarrowBand nb = mesh_narrow_band(md, glm::ivec3(9, 8, 7));
+  EXPECT_TRUE(nb.distance.empty());
+  EXPECT_TRUE(std::isinf(nb.distance_at(8, 7, 6)));
+  EXPECT_EQ(nb.triangle_at(0, 0, 0), -1);
 }
 
 TEST(MeshDistance, FullFieldIsSignedEverywhere) {
