@@ -38,38 +38,97 @@ float corner_angle(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
   return std::acos(std::clamp(glm::dot(u, v) / (lu * lv), -1.0f, 1.0f));
 }
 
+// Fixed chunks of a mesh's triangles or vertices for parallel loops whose
+// results must not depend on the number of threads.
+constexpr int kChunks = 16;
+
+template <class Body>
+void for_chunks(int64_t n, Body&& body, int threads = 0) {
+  parallel_for(
+      kChunks,
+      [&](int64_t c) {
+        for (int64_t i = n * c / kChunks; i < n * (c + 1) / kChunks; ++i)
+          body(i);
+      },
+      threads);
+}
+
+// Items grouped by a key in [0, keys), each group in the order the items
+// were added: start[k] .. start[k + 1] index `items` (a counting sort).
+struct Groups {
+  std::vector<uint32_t> start;
+  std::vector<uint32_t> items;
+};
+
+template <class KeyOf>
+Groups group_by(size_t keys, size_t n, KeyOf&& key_of) {
+  Groups g;
+  g.start.assign(keys + 1, 0);
+  for (size_t i = 0; i < n; ++i)
+    ++g.start[key_of(i) + 1];
+  for (size_t k = 0; k < keys; ++k)
+    g.start[k + 1] += g.start[k];
+  g.items.resize(n);
+  std::vector<uint32_t> next(g.start.begin(), g.start.end() - 1);
+  for (size_t i = 0; i < n; ++i)
+    g.items[next[key_of(i)]++] = uint32_t(i);
+  return g;
+}
+
 }  // namespace
 
+// The sums run per vertex (and per edge, grouped by its lower vertex) over
+// the corners in triangle order, as one pass over the triangles would add
+// them, so the normals do not depend on the number of threads.
 MeshDistance::MeshDistance(const Mesh& mesh) : mesh_(mesh) {
   const auto& P = mesh.positions;
-  const size_t F = mesh.triangles.size();
+  const auto& T = mesh.triangles;
+  const size_t F = T.size();
   face_normal_.resize(F);
-  edge_normal_.assign(3 * F, glm::vec3(0.0f));
-  vertex_normal_.assign(P.size(), glm::vec3(0.0f));
-  std::unordered_map<uint64_t, glm::vec3> edge_sum;
-  edge_sum.reserve(3 * F);
-  auto key = [](uint32_t a, uint32_t b) {
-    return (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
-  };
-  for (size_t t = 0; t < F; ++t) {
-    const glm::uvec3 f = mesh.triangles[t];
+  edge_normal_.resize(3 * F);
+  vertex_normal_.resize(P.size());
+  // Corner k of triangle t is corner 3t + k: vertex T[t][k], edge from
+  // T[t][k] to T[t][(k + 1) % 3].
+  std::vector<float> angle(3 * F);
+  for_chunks(int64_t(F), [&](int64_t t) {
+    const glm::uvec3 f = T[size_t(t)];
     const glm::vec3 a = P[f.x], b = P[f.y], c = P[f.z];
     const glm::vec3 n = glm::cross(b - a, c - a);
     const float len = glm::length(n);
-    face_normal_[t] = len > 0.0f ? n / len : glm::vec3(0.0f);
-    vertex_normal_[f.x] += corner_angle(a, b, c) * face_normal_[t];
-    vertex_normal_[f.y] += corner_angle(b, c, a) * face_normal_[t];
-    vertex_normal_[f.z] += corner_angle(c, a, b) * face_normal_[t];
-    edge_sum[key(f.x, f.y)] += face_normal_[t];
-    edge_sum[key(f.y, f.z)] += face_normal_[t];
-    edge_sum[key(f.z, f.x)] += face_normal_[t];
-  }
-  for (size_t t = 0; t < F; ++t) {
-    const glm::uvec3 f = mesh.triangles[t];
-    edge_normal_[3 * t + 0] = edge_sum[key(f.x, f.y)];
-    edge_normal_[3 * t + 1] = edge_sum[key(f.y, f.z)];
-    edge_normal_[3 * t + 2] = edge_sum[key(f.z, f.x)];
-  }
+    face_normal_[size_t(t)] = len > 0.0f ? n / len : glm::vec3(0.0f);
+    angle[3 * size_t(t) + 0] = corner_angle(a, b, c);
+    angle[3 * size_t(t) + 1] = corner_angle(b, c, a);
+    angle[3 * size_t(t) + 2] = corner_angle(c, a, b);
+  });
+  const auto corner_vertex = [&](size_t i) { return T[i / 3][int(i % 3)]; };
+  const auto edge_end = [&](size_t i) { return T[i / 3][int((i + 1) % 3)]; };
+  const Groups at_vertex = group_by(P.size(), 3 * F, corner_vertex);
+  for_chunks(int64_t(P.size()), [&](int64_t v) {
+    glm::vec3 sum(0.0f);
+    for (uint32_t k = at_vertex.start[size_t(v)]; k < at_vertex.start[size_t(v) + 1]; ++k) {
+      const uint32_t i = at_vertex.items[k];
+      sum += angle[i] * face_normal_[i / 3];
+    }
+    vertex_normal_[size_t(v)] = sum;
+  });
+  const Groups at_lower =
+      group_by(P.size(), 3 * F, [&](size_t i) { return std::min(corner_vertex(i), edge_end(i)); });
+  for_chunks(int64_t(P.size()), [&](int64_t v) {
+    const uint32_t* first = at_lower.items.data() + at_lower.start[size_t(v)];
+    const uint32_t* last = at_lower.items.data() + at_lower.start[size_t(v) + 1];
+    for (const uint32_t* e = first; e != last; ++e) {
+      const uint32_t upper = std::max(corner_vertex(*e), edge_end(*e));
+      if (std::find_if(first, e, [&](uint32_t o) {
+            return std::max(corner_vertex(o), edge_end(o)) == upper;
+          }) != e)
+        continue;  // this edge's sum is done
+      glm::vec3 sum(0.0f);
+      for (const uint32_t* o = e; o != last; ++o)
+        if (std::max(corner_vertex(*o), edge_end(*o)) == upper) sum += face_normal_[*o / 3];
+      for (const uint32_t* o = e; o != last; ++o)
+        if (std::max(corner_vertex(*o), edge_end(*o)) == upper) edge_normal_[*o] = sum;
+    }
+  });
 }
 
 float MeshDistance::signed_distance_to(glm::vec3 p, uint32_t t) const {
@@ -180,10 +239,6 @@ glm::ivec3 voxel_in_brick(glm::ivec3 brick, int k) {
   return brick * B + glm::ivec3(k % B, (k / B) % B, k / (B * B));
 }
 
-// Fixed chunks of triangles for the parallel binning: the brick lists come
-// out in ascending triangle order whatever the number of threads.
-constexpr int kBinChunks = 16;
-
 // Calls visit(brick index) for every brick that triangle `bt`'s band can
 // reach: its clipped box, less the bricks farther than band from its ball.
 template <class Visit>
@@ -255,9 +310,11 @@ void band_brick(const MeshDistance& md, const std::vector<BandTriangle>& tris, c
   const RowMask in_grid = x < float(dims.x);
   Row best2[B * B];  // squared distance so far, per row
   RowMask best_t[B * B];
+  RowMask best_in_face[B * B];  // whether that distance is to the face's interior
   for (int r = 0; r < B * B; ++r) {
     best2[r] = broadcast(band * band);
     best_t[r] = RowMask{} - 1;
+    best_in_face[r] = RowMask{};
   }
   for (size_t k = 0; k < count; ++k) {
     const uint32_t t = list[k];
@@ -295,13 +352,23 @@ void band_brick(const MeshDistance& md, const std::vector<BandTriangle>& tris, c
         const RowMask nearer = (d2 < best2[r]) & in_grid;
         best2[r] = nearer ? d2 : best2[r];
         best_t[r] = nearer ? int32_t(t) : best_t[r];
+        best_in_face[r] = nearer ? face : best_in_face[r];
       }
   }
+  // The sign: of the plane distance when the nearest point is inside a face
+  // (most voxels), else of the edge's or corner's pseudonormal.
   for (int i = 0; i < NarrowBand::kBrickVoxels; ++i) {
     const int32_t t = best_t[i / B][i % B];
     out_triangle[i] = t;
-    out_distance[i] =
-        t < 0 ? kInf : md.signed_distance_to(glm::vec3(voxel_in_brick(brick, i)), uint32_t(t));
+    const glm::vec3 p(voxel_in_brick(brick, i));
+    if (t < 0) {
+      out_distance[i] = kInf;
+    } else if (best_in_face[i / B][i % B]) {
+      const float d = std::sqrt(best2[i / B][i % B]);
+      out_distance[i] = glm::dot(p - tris[size_t(t)].a, tris[size_t(t)].normal) < 0.0f ? -d : d;
+    } else {
+      out_distance[i] = md.signed_distance_to(p, uint32_t(t));
+    }
   }
 }
 
@@ -321,29 +388,27 @@ NarrowBand mesh_narrow_band(const MeshDistance& md, glm::ivec3 dims,
   const int64_t F = int64_t(mesh.triangles.size());
 
   std::vector<BandTriangle> tris(static_cast<size_t>(F));
-  parallel_for(
-      kBinChunks,
-      [&](int64_t c) {
-        for (int64_t t = F * c / kBinChunks; t < F * (c + 1) / kBinChunks; ++t)
-          tris[size_t(t)] = band_triangle(mesh, uint32_t(t), band, dims);
-      },
+  for_chunks(
+      F, [&](int64_t t) { tris[size_t(t)] = band_triangle(mesh, uint32_t(t), band, dims); },
       options.threads);
 
   // Bin the triangles to the bricks their band reaches (a counting sort:
-  // count per chunk and brick, then every chunk writes its own range).
-  std::vector<uint32_t> counts(size_t(kBinChunks * n_bricks), 0);
+  // count per chunk and brick, then every chunk writes its own range), so
+  // every brick's list is in ascending triangle order whatever the number
+  // of threads.
+  std::vector<uint32_t> counts(size_t(kChunks * n_bricks), 0);
   parallel_for(
-      kBinChunks,
+      kChunks,
       [&](int64_t c) {
         uint32_t* count = counts.data() + c * n_bricks;
-        for (int64_t t = F * c / kBinChunks; t < F * (c + 1) / kBinChunks; ++t)
+        for (int64_t t = F * c / kChunks; t < F * (c + 1) / kChunks; ++t)
           for_each_brick(tris[size_t(t)], band, out.bricks, [&](int64_t b) { ++count[b]; });
       },
       options.threads);
   std::vector<size_t> first(size_t(n_bricks) + 1, 0);  // each brick's range in `lists`
   for (int64_t b = 0; b < n_bricks; ++b) {
     size_t sum = first[size_t(b)];
-    for (int c = 0; c < kBinChunks; ++c) {
+    for (int c = 0; c < kChunks; ++c) {
       const uint32_t n = counts[size_t(c * n_bricks + b)];
       counts[size_t(c * n_bricks + b)] = uint32_t(sum - first[size_t(b)]);  // chunk's offset
       sum += n;
@@ -356,10 +421,10 @@ NarrowBand mesh_narrow_band(const MeshDistance& md, glm::ivec3 dims,
   }
   std::vector<uint32_t> lists(first.back());
   parallel_for(
-      kBinChunks,
+      kChunks,
       [&](int64_t c) {
         uint32_t* offset = counts.data() + c * n_bricks;
-        for (int64_t t = F * c / kBinChunks; t < F * (c + 1) / kBinChunks; ++t)
+        for (int64_t t = F * c / kChunks; t < F * (c + 1) / kChunks; ++t)
           for_each_brick(tris[size_t(t)], band, out.bricks,
                          [&](int64_t b) { lists[first[size_t(b)] + offset[b]++] = uint32_t(t); });
       },

@@ -72,9 +72,4 @@ ClosestPoint closest_point_on_triangle(glm::vec3 p, glm::vec3 a, glm::vec3 b, gl
   return make(p, a + ab * v + ac * w, TriangleFeature::kFace);
 }
 
-float point_box_distance_squared(glm::vec3 p, glm::vec3 lo, glm::vec3 hi) {
-  const glm::vec3 d = glm::max(glm::max(lo - p, p - hi), glm::vec3(0.0f));
-  return glm::dot(d, d);
-}
-
 }  // namespace sculpt::core

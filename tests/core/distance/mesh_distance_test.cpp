@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "sculpt/core/distance/point_triangle.h"
+#include "sculpt/core/util/parallel_for.h"
 
 namespace sculpt::core {
 namespace {
@@ -204,6 +205,27 @@ TEST(MeshDistance, NarrowBandOfNoTrianglesIsEmpty) {
   EXPECT_TRUE(nb.distance.empty());
   EXPECT_TRUE(std::isinf(nb.distance_at(8, 7, 6)));
   EXPECT_EQ(nb.triangle_at(0, 0, 0), -1);
+}
+
+// The pseudonormals are sums over the triangles around a vertex or edge,
+// computed in parallel: their order must not depend on the threads.
+TEST(MeshDistance, PseudonormalsDoNotDependOnThreadCount) {
+  Mesh m = icosphere_like(7.3f, glm::vec3(10.2f, 9.9f, 10.4f), 3);
+  m.triangles.push_back({m.triangles[5].x, m.triangles[5].y, 0});  // a fin: a non-manifold edge
+  m.triangles.push_back({3, 3, 9});                                // a repeated corner
+  set_default_threads(1);
+  const MeshDistance one(m);
+  set_default_threads(3);
+  const MeshDistance three(m);
+  set_default_threads(0);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.0f, 20.0f);
+  for (int k = 0; k < 2000; ++k) {
+    const glm::vec3 p(u(rng), u(rng), u(rng));
+    const uint32_t t = uint32_t(rng() % m.triangles.size());
+    const float a = one.signed_distance_to(p, t), b = three.signed_distance_to(p, t);
+    ASSERT_EQ(0, std::memcmp(&a, &b, sizeof a)) << k;
+  }
 }
 
 TEST(MeshDistance, FullFieldIsSignedEverywhere) {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
@@ -75,6 +76,9 @@ inline float triangle_distance2(glm::vec3 p, glm::vec3 a, glm::vec3 ab, glm::vec
 }
 
 /// Squared distance from p to the axis-aligned box [lo, hi] (0 inside).
-float point_box_distance_squared(glm::vec3 p, glm::vec3 lo, glm::vec3 hi);
+inline float point_box_distance_squared(glm::vec3 p, glm::vec3 lo, glm::vec3 hi) {
+  const glm::vec3 d = glm::max(glm::max(lo - p, p - hi), glm::vec3(0.0f));
+  return glm::dot(d, d);
+}
 
 }  // namespace sculpt::core
