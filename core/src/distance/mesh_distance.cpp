@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
+#include <memory>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -299,7 +299,7 @@ using RowMask = int32_t __attribute__((vector_size(32)));
 // of the three edges), once a plane and a ball test say some voxel of the
 // row may get nearer. The brick's arrays stay in L1.
 SCULPT_DISTANCE_CLONES
-void band_brick(const MeshDistance& md, const std::vector<BandTriangle>& tris, const uint32_t* list,
+void band_brick(const MeshDistance& md, const BandTriangle* tris, const uint32_t* list,
                 size_t count, glm::ivec3 brick, glm::ivec3 dims, float band, float* out_distance,
                 int32_t* out_triangle) {
   constexpr int B = NarrowBand::kBrick;
@@ -387,7 +387,8 @@ NarrowBand mesh_narrow_band(const MeshDistance& md, glm::ivec3 dims,
   if (n_bricks == 0 || mesh.triangles.empty()) return out;
   const int64_t F = int64_t(mesh.triangles.size());
 
-  std::vector<BandTriangle> tris(static_cast<size_t>(F));
+  // Not value-initialised: the workers write (and first touch) every entry.
+  const std::unique_ptr<BandTriangle[]> tris(new BandTriangle[size_t(F)]);
   for_chunks(
       F, [&](int64_t t) { tris[size_t(t)] = band_triangle(mesh, uint32_t(t), band, dims); },
       options.threads);
@@ -439,7 +440,7 @@ NarrowBand mesh_narrow_band(const MeshDistance& md, glm::ivec3 dims,
         const int32_t b = out.slot_brick[size_t(s)];
         const glm::ivec3 brick(b % out.bricks.x, (b / out.bricks.x) % out.bricks.y,
                                b / (out.bricks.x * out.bricks.y));
-        band_brick(md, tris, lists.data() + first[size_t(b)],
+        band_brick(md, tris.get(), lists.data() + first[size_t(b)],
                    first[size_t(b) + 1] - first[size_t(b)], brick, dims, band,
                    out.distance.data() + size_t(s) * NarrowBand::kBrickVoxels,
                    out.triangle.data() + size_t(s) * NarrowBand::kBrickVoxels);
