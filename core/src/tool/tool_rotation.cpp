@@ -242,31 +242,47 @@ PreparedTool::PreparedTool(Tool tool) : tool_(std::move(tool)) {
   const glm::ivec3 centre(glm::floor(tool_.pivot + 0.5f));
   const bool centred = tool_.density.in_bounds(centre.x, centre.y, centre.z);
   const uint8_t u = centred ? tool_.density.at(centre.x, centre.y, centre.z) : 0;
-  // Squared distance from the pivot to the nearest voxel != u. Outside the
-  // grid reads 0: no closer than the layers at -1 and d on each axis.
-  float other2 = centred ? 1e30f : 0.0f;
+  // A sample at t reads voxels w with |t_i - w_i| <= m on every axis (m = 0.5
+  // nearest, < 1 trilinear): it can be non-zero only within
+  // |w - pivot| + m per axis of a non-zero voxel w, and reads only u closer
+  // than |w - pivot| - m per axis to every voxel w != u. Per axis, not
+  // sqrt(3) m along the radius: a thinner shell left to sample.
+  constexpr double kMargin[2] = {0.5, 1.0};
+  double reach2[2] = {0.0, 0.0};
+  double other2[2] = {centred ? 1e300 : 0.0, centred ? 1e300 : 0.0};
+  const glm::dvec3 pivot(tool_.pivot);
   if (u != 0) {
+    // Outside the grid reads 0: the layers at -1 and d on each axis.
     for (int i = 0; i < 3; ++i) {
-      const float gap = std::min(tool_.pivot[i] + 1.0f, static_cast<float>(d[i]) - tool_.pivot[i]);
-      other2 = std::min(other2, gap * gap);
+      const double gap = std::min(pivot[i] + 1.0, d[i] - pivot[i]);
+      for (int k = 0; k < 2; ++k) {
+        const double g = std::max(0.0, gap - kMargin[k]);
+        other2[k] = std::min(other2[k], g * g);
+      }
     }
   }
-  float reach2 = 0.0f;
   for (int z = 0; z < d.z; ++z)
     for (int y = 0; y < d.y; ++y)
       for (int x = 0; x < d.x; ++x) {
         const uint8_t v = tool_.density.at(x, y, z);
         padded_[(z + kPad) * pxy + (y + kPad) * px + (x + kPad)] = v;
-        const glm::vec3 r = glm::vec3(x, y, z) - tool_.pivot;
-        const float r2 = glm::dot(r, r);
-        if (v != 0) reach2 = std::max(reach2, r2);
-        if (v != u) other2 = std::min(other2, r2);
+        if (v == 0 && v == u) continue;
+        const glm::dvec3 r = glm::abs(glm::dvec3(x, y, z) - pivot);
+        for (int k = 0; k < 2; ++k) {
+          if (v != 0) {
+            const glm::dvec3 far = r + kMargin[k];
+            reach2[k] = std::max(reach2[k], glm::dot(far, far));
+          }
+          if (v != u) {
+            const glm::dvec3 near = glm::max(r - kMargin[k], 0.0);
+            other2[k] = std::min(other2[k], glm::dot(near, near));
+          }
+        }
       }
-  // A trilinear sample is non-zero within one voxel (per axis) of a non-zero voxel.
-  reach_vox_ = std::sqrt(reach2) + std::sqrt(3.0f);
-  // Every voxel a sample reads (its cell's corners, or its nearest voxel)
-  // lies within sqrt 3 of it: samples closer than this read only u.
-  core_radius_vox_ = centred ? std::sqrt(other2) - std::sqrt(3.0f) : 0.0f;
+  for (int k = 0; k < 2; ++k) {
+    reach_vox_[k] = static_cast<float>(std::sqrt(reach2[k]));
+    core_radius_vox_[k] = centred ? static_cast<float>(std::sqrt(other2[k])) : 0.0f;
+  }
   core_value_ = u;
 
   // Cells whose 8 corners are equal: their trilinear sample is that value
@@ -336,7 +352,7 @@ RotationFrame::RotationFrame(const PreparedTool& tool, const glm::mat3& rotation
     inv_step_x_[i] = step_[0][i] != 0 ? 1.0 / step_[0][i] : 0.0;
   for (int i = 0; i < 3; ++i)
     centre_[i] = pos[i] - box_.lo[i];
-  reach2_ = static_cast<double>(tool.reach_vox()) * tool.reach_vox();
+  reach2_ = static_cast<double>(tool.reach_vox(sampling)) * tool.reach_vox(sampling);
 
   // The balls are tested at exact target positions, the samples taken at
   // fixed-point ones: each of the box's steps is off by at most 2^-17 per
@@ -345,13 +361,13 @@ RotationFrame::RotationFrame(const PreparedTool& tool, const glm::mat3& rotation
   // the balls assume. `error` is more than 7 times that bound.
   const glm::ivec3 size = box_.size();
   const double error = 0.01 + 1e-4 * (size.x + size.y + size.z);
-  const double core = static_cast<double>(tool.core_radius_vox()) - error;
+  const double core = static_cast<double>(tool.core_radius_vox(sampling)) - error;
   core2_ = core > 0.0 ? core * core : -1.0;
   core_value_ = tool.core_value();
   // Samples whose cell floor(s) lies in [0, dims + kPad] per axis read inside
   // the padded grid (both kernels, both samplings): tool coordinates in
   // [-kPad, dims + 1).
-  const double reach = tool.reach_vox() + error;
+  const double reach = tool.reach_vox(sampling) + error;
   clip_support_ = false;
   for (int i = 0; i < 3; ++i)
     if (pivot[i] - reach < -kPad || pivot[i] + reach >= d[i] + 1.0) clip_support_ = true;

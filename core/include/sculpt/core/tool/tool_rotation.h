@@ -61,11 +61,16 @@ class PreparedTool {
   glm::vec3 pivot() const { return tool_.pivot; }
   /// Largest distance from the pivot at which a sample can be non-zero
   /// (voxel units, trilinear support included).
-  float reach_vox() const { return reach_vox_; }
+  float reach_vox() const { return reach_vox_[1]; }
   /// The tool's core: every sample, nearest or trilinear, taken closer than
   /// core_radius_vox() to the pivot (voxel units; <= 0: no core) reads
   /// core_value() (255 inside a solid tool). Rotation fills it without sampling.
-  float core_radius_vox() const { return core_radius_vox_; }
+  float core_radius_vox() const { return core_radius_vox_[1]; }
+  /// The same two radii for one sampling, as tight as it allows: a nearest
+  /// sample reads the voxel within half a voxel of it on every axis, a
+  /// trilinear one the corners within one voxel.
+  float reach_vox(Sampling s) const { return reach_vox_[s == Sampling::kTrilinear]; }
+  float core_radius_vox(Sampling s) const { return core_radius_vox_[s == Sampling::kTrilinear]; }
   uint8_t core_value() const { return core_value_; }
 
   // The kernels' view (RotationFrame): padded grid and cell table.
@@ -84,8 +89,9 @@ class PreparedTool {
   std::vector<uint8_t> padded_;
   std::vector<uint16_t> cells_;
   std::vector<uint64_t> corners_;
-  float reach_vox_ = 0.0f;
-  float core_radius_vox_ = 0.0f;
+  // [0] nearest, [1] trilinear.
+  float reach_vox_[2] = {0.0f, 0.0f};
+  float core_radius_vox_[2] = {0.0f, 0.0f};
   uint8_t core_value_ = 0;
 };
 
@@ -144,7 +150,8 @@ class RotationFrame {
   int32_t support_hi_[3];  // samples can be non-zero when 1 <= s >> 16 < support_hi_
   double inv_step_x_[3];
   // The ball outside which every sample is 0: the pivot's position
-  // relative to box_.lo (voxel units) and PreparedTool::reach_vox() squared.
+  // relative to box_.lo (voxel units) and PreparedTool::reach_vox(sampling)
+  // squared.
   double centre_[3];
   double reach2_;
   // The core ball (same centre) shrunk by the fixed-point error bound,
