@@ -1,6 +1,7 @@
 #include "sculpt/core/distance/mesh_distance.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -12,17 +13,15 @@
 #include "sculpt/core/distance/point_triangle.h"
 #include "sculpt/core/util/parallel_for.h"
 
-// The band kernel is compiled twice, for AVX2 and for the x86-64 baseline,
-// and the loader picks the one the CPU runs (as the wavelet kernels). Not
-// under sanitizers: their runtimes start after ifunc resolvers run.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
-    !defined(__SANITIZE_THREAD__) && !defined(__SANITIZE_ADDRESS__)
-#define SCULPT_DISTANCE_CLONES __attribute__((target_clones("avx2", "default")))
+// The band kernel is compiled twice, for AVX2 (8 voxels at once) and for
+// the baseline (4), and picks the one the CPU runs: one portable binary.
+#if defined(__x86_64__) && defined(__GNUC__)
+#define SCULPT_DISTANCE_AVX2 1
 #else
-#define SCULPT_DISTANCE_CLONES
+#define SCULPT_DISTANCE_AVX2 0
 #endif
-// The kernel's helpers pass 8-lane rows by value; they are internal and
-// inlined, so GCC's note that AVX changes the calling convention of such
+// The AVX2 kernel's helpers pass 8-lane vectors by value; they are internal
+// and inlined, so GCC's note that AVX changes the calling convention of such
 // functions (reported at the end of the file) does not concern them.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
@@ -184,13 +183,16 @@ namespace {
 // once per brick it reaches.
 struct BandTriangle {
   glm::vec3 a, ab, ac, bc;
-  glm::vec3 normal;  // unit; zero for a degenerate triangle
+  // Unit, for the lower bound and the sign; zero for a sliver, whose normal
+  // is mostly rounding (then the bound is 0 and the sign comes from
+  // MeshDistance).
+  glm::vec3 normal;
   // The dual basis of (ab, ac) in the triangle's plane: p - a =
   // u ab + v ac + h normal with u = dot(p - a, dual_ab), v = dot(p - a,
   // dual_ac). p projects into the face when u, v >= 0 and u + v <= 1.
   glm::vec3 dual_ab, dual_ac;
   float uv_limit;  // 1, or -1 when degenerate: no face to project into
-  // Heights of b over line ac, c over ab and a over bc (0 when degenerate):
+  // Heights of b over line ac, c over ab and a over bc (0 for a sliver):
   // -u height_b is how far a point's projection lies beyond line ac.
   float height_b, height_c, height_a;
   float inv_ab2, inv_ac2, inv_bc2;  // 1 / squared edge length, 0 for a zero-length edge
@@ -213,14 +215,19 @@ BandTriangle band_triangle(const Mesh& mesh, uint32_t t, float band, glm::ivec3 
   bt.bc = c - b;
   const glm::vec3 n = glm::cross(bt.ab, bt.ac);
   const float n2 = glm::dot(n, n);
-  bt.normal = n2 > 0.0f ? n / std::sqrt(n2) : glm::vec3(0.0f);
   bt.dual_ab = n2 > 0.0f ? glm::cross(bt.ac, n) / n2 : glm::vec3(0.0f);
   bt.dual_ac = n2 > 0.0f ? glm::cross(n, bt.ab) / n2 : glm::vec3(0.0f);
   bt.uv_limit = n2 > 0.0f ? 1.0f : -1.0f;
   bt.inv_ab2 = inverse_or_zero(glm::dot(bt.ab, bt.ab));
   bt.inv_ac2 = inverse_or_zero(glm::dot(bt.ac, bt.ac));
   bt.inv_bc2 = inverse_or_zero(glm::dot(bt.bc, bt.bc));
-  const float area2 = std::sqrt(n2);  // twice the area
+  // The cross product carries a rounding error of about 1e-7 |ab| |ac|: when
+  // the angle at a is under ~0.6 degrees (sine < 1e-2) its direction may be
+  // off by more than 1e-5 radians, enough to lift the lower bound above
+  // the true distance by 1e-4 voxel a few voxels away.
+  const bool sliver = !(n2 > 1e-4f * glm::dot(bt.ab, bt.ab) * glm::dot(bt.ac, bt.ac));
+  bt.normal = sliver ? glm::vec3(0.0f) : n / std::sqrt(n2);
+  const float area2 = sliver ? 0.0f : std::sqrt(n2);  // twice the area
   bt.height_b = area2 * std::sqrt(bt.inv_ac2);
   bt.height_c = area2 * std::sqrt(bt.inv_ab2);
   bt.height_a = area2 * std::sqrt(bt.inv_bc2);
@@ -256,120 +263,185 @@ void for_each_brick(const BandTriangle& bt, float band, glm::ivec3 bricks, Visit
       }
 }
 
-// One x row of a brick: 8 voxels, one AVX2 register (two SSE ones).
-static_assert(NarrowBand::kBrick == 8);
-using Row = float __attribute__((vector_size(32)));
-using RowMask = int32_t __attribute__((vector_size(32)));
+// W voxels of a brick row at once: GCC vector extensions, 8 lanes (one AVX2
+// register) or 4 (one SSE2 or NEON register; GCC splits 8-lane vectors
+// badly without AVX2, 5x slower than 4 lanes).
+template <int W>
+struct Lanes {
+  typedef float F __attribute__((vector_size(4 * W)));
+  typedef int32_t M __attribute__((vector_size(4 * W)));
+  typedef int64_t Pairs __attribute__((vector_size(4 * W)));
+};
 
-[[gnu::always_inline]] inline Row broadcast(float v) {
-  return Row{v, v, v, v, v, v, v, v};
-}
-
-[[gnu::always_inline]] inline bool any(RowMask m) {
-  using Halves = int64_t __attribute__((vector_size(32)));
-  const Halves h = reinterpret_cast<Halves>(m);
-  return (h[0] | h[1] | h[2] | h[3]) != 0;
-}
-
-[[gnu::always_inline]] inline Row min(Row a, Row b) {
+template <class V>
+[[gnu::always_inline]] inline V vmin(V a, V b) {
   return a < b ? a : b;
 }
 
-[[gnu::always_inline]] inline Row max(Row a, Row b) {
+template <class V>
+[[gnu::always_inline]] inline V vmax(V a, V b) {
   return a > b ? a : b;
 }
 
-[[gnu::always_inline]] inline Row clamp01(Row v) {
-  return v < 0.0f ? broadcast(0.0f) : (v > 1.0f ? broadcast(1.0f) : v);
+template <int W>
+[[gnu::always_inline]] inline bool any(typename Lanes<W>::M m) {
+  const auto pairs = reinterpret_cast<typename Lanes<W>::Pairs>(m);
+  int64_t bits = 0;
+  for (int i = 0; i < W / 2; ++i)
+    bits |= pairs[i];
+  return bits != 0;
 }
 
 // Squared distance from the points a + (dx, dy, dz) to the segment from a
 // along e (inv_e2 = 1 / |e|^2, 0 when the segment is a point).
-[[gnu::always_inline]] inline Row segment_distance2(Row dx, float dy, float dz, glm::vec3 e,
-                                                    float inv_e2) {
-  const Row t = clamp01((dx * e.x + (dy * e.y + dz * e.z)) * inv_e2);
-  const Row qx = dx - t * e.x, qy = dy - t * e.y, qz = dz - t * e.z;
+template <class V>
+[[gnu::always_inline]] inline V segment_distance2(V dx, float dy, float dz, glm::vec3 e,
+                                                  float inv_e2) {
+  const V zero{}, one = zero + 1.0f;
+  const V t = vmin(vmax((dx * e.x + (dy * e.y + dz * e.z)) * inv_e2, zero), one);
+  const V qx = dx - t * e.x, qy = dy - t * e.y, qz = dz - t * e.z;
   return qx * qx + qy * qy + qz * qz;
 }
 
-// The band of one brick from the triangles that may reach it (ascending).
-// Triangle-major, as a rasteriser: each triangle visits the brick rows its
-// ball meets and computes the exact distance of all 8 voxels of a row at
-// once, branch-free (face when the point projects into it, else the nearest
-// of the three edges), once a plane and a ball test say some voxel of the
-// row may get nearer. The brick's arrays stay in L1.
-SCULPT_DISTANCE_CLONES
-void band_brick(const MeshDistance& md, const BandTriangle* tris, const uint32_t* list,
-                size_t count, glm::ivec3 brick, glm::ivec3 dims, float band, float* out_distance,
-                int32_t* out_triangle) {
+struct BrickJob {
+  const MeshDistance* md;
+  const BandTriangle* tris;
+  const uint32_t* list;  // the triangles that may reach the brick, ascending
+  size_t count;
+  glm::ivec3 brick;
+  glm::ivec3 dims;
+  float band;
+  float* out_distance;  // kBrickVoxels each
+  int32_t* out_triangle;
+};
+
+// The band of one brick. Triangle-major, as a rasteriser: each triangle
+// visits the brick rows its ball meets and computes the exact distance of W
+// voxels of a row at once, branch-free (face when the point projects into
+// it, else the nearest of the three edges), once a lower bound says some of
+// them may get nearer. The brick's arrays stay in L1.
+template <int W>
+[[gnu::always_inline]] inline void band_brick_lanes(const BrickJob& job) {
+  using F = typename Lanes<W>::F;
+  using M = typename Lanes<W>::M;
   constexpr int B = NarrowBand::kBrick;
-  const glm::ivec3 org = brick * B;
-  const Row lane{0, 1, 2, 3, 4, 5, 6, 7};
-  const Row x = float(org.x) + lane;
-  // Lanes past the grid's end never enter the band.
-  const RowMask in_grid = x < float(dims.x);
-  Row best2[B * B];  // squared distance so far, per row
-  RowMask best_t[B * B];
-  RowMask best_in_face[B * B];  // whether that distance is to the face's interior
-  for (int r = 0; r < B * B; ++r) {
-    best2[r] = broadcast(band * band);
-    best_t[r] = RowMask{} - 1;
-    best_in_face[r] = RowMask{};
+  constexpr int C = B / W;  // chunks per row
+  static_assert(B % W == 0);
+  const glm::ivec3 org = job.brick * B;
+  F x[C];
+  M in_grid[C];  // lanes past the grid's end never enter the band
+  for (int c = 0; c < C; ++c) {
+    for (int i = 0; i < W; ++i)
+      x[c][i] = float(org.x + c * W + i);
+    in_grid[c] = x[c] < float(job.dims.x);
   }
-  for (size_t k = 0; k < count; ++k) {
-    const uint32_t t = list[k];
-    const BandTriangle& bt = tris[t];
+  F best2[B * B * C];  // squared distance so far
+  M best_t[B * B * C];
+  M best_in_face[B * B * C];  // whether that distance is to the face's interior
+  for (int r = 0; r < B * B * C; ++r) {
+    best2[r] = F{} + job.band * job.band;
+    best_t[r] = M{} - 1;
+    best_in_face[r] = M{};
+  }
+  for (size_t k = 0; k < job.count; ++k) {
+    const uint32_t t = job.list[k];
+    const BandTriangle& bt = job.tris[t];
     const glm::ivec3 ilo = glm::max(bt.lo, org), ihi = glm::min(bt.hi, org + (B - 1));
-    const float ball = band + bt.radius;
+    const float ball = job.band + bt.radius;
     // Distance along x from the ball's centre to the voxels the triangle's box holds.
     const float gap_x = std::max({float(ilo.x) - bt.centre.x, bt.centre.x - float(ihi.x), 0.0f});
-    const Row ax = x - bt.a.x;
-    const Row hx = ax * bt.normal.x, ux = ax * bt.dual_ab.x, vx = ax * bt.dual_ac.x;
+    F ax[C], hx[C], ux[C], vx[C];
+    for (int c = 0; c < C; ++c) {
+      ax[c] = x[c] - bt.a.x;
+      hx[c] = ax[c] * bt.normal.x;
+      ux[c] = ax[c] * bt.dual_ab.x;
+      vx[c] = ax[c] * bt.dual_ac.x;
+    }
     for (int z = ilo.z; z <= ihi.z; ++z)
       for (int y = ilo.y; y <= ihi.y; ++y) {
         const float cy = float(y) - bt.centre.y, cz = float(z) - bt.centre.z;
         if (cy * cy + cz * cz + gap_x * gap_x >= ball * ball) continue;
-        const int r = (z - org.z) * B + (y - org.y);
         const float ay = float(y) - bt.a.y, az = float(z) - bt.a.z;
-        const Row h = hx + (ay * bt.normal.y + az * bt.normal.z);
-        const Row u = ux + (ay * bt.dual_ab.y + az * bt.dual_ab.z);
-        const Row v = vx + (ay * bt.dual_ac.y + az * bt.dual_ac.z);
-        // A lower bound of the distance: the plane distance h and, in the
-        // plane, how far the projection lies beyond the farthest edge line.
-        // It is exact unless the nearest point is a corner, so rows that
-        // cannot improve any voxel end here.
-        const Row beyond = max(max(-u * bt.height_b, -v * bt.height_c),
-                               max((u + v - 1.0f) * bt.height_a, broadcast(0.0f)));
-        if (!any(h * h + beyond * beyond < best2[r])) continue;
-        const RowMask face = (u >= 0.0f) & (v >= 0.0f) & (u + v <= bt.uv_limit);
-        const Row edges =
-            min(min(segment_distance2(ax, ay, az, bt.ab, bt.inv_ab2),
-                    segment_distance2(ax, ay, az, bt.ac, bt.inv_ac2)),
-                segment_distance2(ax - bt.ab.x, ay - bt.ab.y, az - bt.ab.z, bt.bc, bt.inv_bc2));
-        const Row d2 = face ? h * h : edges;
-        // Strictly nearer only: ties keep the first triangle in ascending
-        // order, the same for any thread count.
-        const RowMask nearer = (d2 < best2[r]) & in_grid;
-        best2[r] = nearer ? d2 : best2[r];
-        best_t[r] = nearer ? int32_t(t) : best_t[r];
-        best_in_face[r] = nearer ? face : best_in_face[r];
+        const float hyz = ay * bt.normal.y + az * bt.normal.z;
+        const float uyz = ay * bt.dual_ab.y + az * bt.dual_ab.z;
+        const float vyz = ay * bt.dual_ac.y + az * bt.dual_ac.z;
+        for (int c = 0; c < C; ++c) {
+          const int r = ((z - org.z) * B + (y - org.y)) * C + c;
+          const F h = hx[c] + hyz, u = ux[c] + uyz, v = vx[c] + vyz;
+          // A lower bound of the distance: the plane distance h and, in the
+          // plane, how far the projection lies beyond the farthest edge
+          // line. It is exact unless the nearest point is a corner, so most
+          // chunks that cannot improve any voxel end here.
+          const F beyond = vmax(vmax(-u * bt.height_b, -v * bt.height_c),
+                                vmax((u + v - 1.0f) * bt.height_a, F{}));
+          const M may_improve = h * h + beyond * beyond < best2[r];
+          if (!any<W>(may_improve)) continue;
+          // The exact distance: to the point u ab + v ac of the face when
+          // the projection falls inside it, and to the nearest edge. Both
+          // are distances to points of the triangle, so rounding can only
+          // make them longer, never shorter, and the nearer one is taken.
+          const M inside = (u >= 0.0f) & (v >= 0.0f) & (u + v <= bt.uv_limit);
+          const F qx = ax[c] - u * bt.ab.x - v * bt.ac.x;
+          const F qy = ay - u * bt.ab.y - v * bt.ac.y;
+          const F qz = az - u * bt.ab.z - v * bt.ac.z;
+          const F to_face = qx * qx + qy * qy + qz * qz;
+          const F edges = vmin(
+              vmin(segment_distance2(ax[c], ay, az, bt.ab, bt.inv_ab2),
+                   segment_distance2(ax[c], ay, az, bt.ac, bt.inv_ac2)),
+              segment_distance2(ax[c] - bt.ab.x, ay - bt.ab.y, az - bt.ab.z, bt.bc, bt.inv_bc2));
+          const M face = inside & (to_face <= edges);
+          const F d2 = face ? to_face : edges;
+          // Strictly nearer only: ties keep the first triangle in ascending
+          // order, the same for any thread count. Each lane also heeds its
+          // own bound (which may round above d2 on a near tie), so the
+          // result does not depend on the lanes computed beside it.
+          const M nearer = (d2 < best2[r]) & may_improve & in_grid[c];
+          best2[r] = nearer ? d2 : best2[r];
+          best_t[r] = nearer ? int32_t(t) : best_t[r];
+          best_in_face[r] = nearer ? face : best_in_face[r];
+        }
       }
   }
-  // The sign: of the plane distance when the nearest point is inside a face
-  // (most voxels), else of the edge's or corner's pseudonormal.
+  // The distance is the kernel's; the sign that of the plane distance when
+  // the nearest point is inside a face (most voxels), else of the edge's or
+  // corner's pseudonormal (MeshDistance; also for slivers). The chunks of a
+  // row follow each other, so voxel i is lane i % W of chunk i / W.
   for (int i = 0; i < NarrowBand::kBrickVoxels; ++i) {
-    const int32_t t = best_t[i / B][i % B];
-    out_triangle[i] = t;
-    const glm::vec3 p(voxel_in_brick(brick, i));
+    const int32_t t = best_t[i / W][i % W];
+    job.out_triangle[i] = t;
     if (t < 0) {
-      out_distance[i] = kInf;
-    } else if (best_in_face[i / B][i % B]) {
-      const float d = std::sqrt(best2[i / B][i % B]);
-      out_distance[i] = glm::dot(p - tris[size_t(t)].a, tris[size_t(t)].normal) < 0.0f ? -d : d;
-    } else {
-      out_distance[i] = md.signed_distance_to(p, uint32_t(t));
+      job.out_distance[i] = kInf;
+      continue;
     }
+    const glm::vec3 p(voxel_in_brick(job.brick, i));
+    const BandTriangle& bt = job.tris[size_t(t)];
+    const bool inside = best_in_face[i / W][i % W] && bt.normal != glm::vec3(0.0f);
+    const float side =
+        inside ? glm::dot(p - bt.a, bt.normal) : job.md->signed_distance_to(p, uint32_t(t));
+    const float d = std::sqrt(best2[i / W][i % W]);
+    job.out_distance[i] = side < 0.0f ? -d : d;
   }
+}
+
+#if SCULPT_DISTANCE_AVX2
+__attribute__((target("avx2"))) void band_brick_avx2(const BrickJob& job) {
+  band_brick_lanes<8>(job);
+}
+#endif
+
+void band_brick_baseline(const BrickJob& job) {
+  band_brick_lanes<4>(job);
+}
+
+std::atomic<bool> g_avx2_band_kernel{true};
+
+// The same arithmetic per lane either way, so both give the same band.
+void band_brick(const BrickJob& job) {
+#if SCULPT_DISTANCE_AVX2
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2 && g_avx2_band_kernel.load(std::memory_order_relaxed)) return band_brick_avx2(job);
+#endif
+  band_brick_baseline(job);
 }
 
 }  // namespace
@@ -440,13 +512,17 @@ NarrowBand mesh_narrow_band(const MeshDistance& md, glm::ivec3 dims,
         const int32_t b = out.slot_brick[size_t(s)];
         const glm::ivec3 brick(b % out.bricks.x, (b / out.bricks.x) % out.bricks.y,
                                b / (out.bricks.x * out.bricks.y));
-        band_brick(md, tris.get(), lists.data() + first[size_t(b)],
-                   first[size_t(b) + 1] - first[size_t(b)], brick, dims, band,
-                   out.distance.data() + size_t(s) * NarrowBand::kBrickVoxels,
-                   out.triangle.data() + size_t(s) * NarrowBand::kBrickVoxels);
+        band_brick(BrickJob{&md, tris.get(), lists.data() + first[size_t(b)],
+                            first[size_t(b) + 1] - first[size_t(b)], brick, dims, band,
+                            out.distance.data() + size_t(s) * NarrowBand::kBrickVoxels,
+                            out.triangle.data() + size_t(s) * NarrowBand::kBrickVoxels});
       },
       options.threads);
   return out;
+}
+
+bool use_avx2_band_kernel(bool enabled) {
+  return g_avx2_band_kernel.exchange(enabled, std::memory_order_relaxed);
 }
 
 float NarrowBand::distance_at(int x, int y, int z) const {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -153,6 +154,23 @@ TEST(MeshDistance, NarrowBandDoesNotDependOnThreadCount) {
   }
 }
 
+// The AVX2 kernel (8 voxels at once) and the baseline one (4) do the same
+// arithmetic per voxel: the same band, bit for bit.
+TEST(MeshDistance, NarrowBandKernelsAgree) {
+  const Mesh m = icosphere_like(10.3f, glm::vec3(16.6f, 15.2f, 16.9f), 4);
+  const MeshDistance md(m);
+  const NarrowBand wide = mesh_narrow_band(md, glm::ivec3(35, 33, 34), NarrowBandOptions{3.0f, 2});
+  const bool was = use_avx2_band_kernel(false);
+  const NarrowBand narrow =
+      mesh_narrow_band(md, glm::ivec3(35, 33, 34), NarrowBandOptions{3.0f, 2});
+  use_avx2_band_kernel(was);
+  EXPECT_EQ(wide.slot, narrow.slot);
+  EXPECT_EQ(wide.triangle, narrow.triangle);
+  ASSERT_EQ(wide.distance.size(), narrow.distance.size());
+  EXPECT_EQ(0, std::memcmp(wide.distance.data(), narrow.distance.data(),
+                           wide.distance.size() * sizeof(float)));
+}
+
 TEST(MeshDistance, NarrowBandDenseGridsMatchTheBricks) {
   const Mesh m = icosphere_like(6.2f, glm::vec3(9.5f, 10.1f, 8.7f), 2);
   const MeshDistance md(m);
@@ -172,6 +190,26 @@ TEST(MeshDistance, NarrowBandDenseGridsMatchTheBricks) {
   EXPECT_GT(in_band, 500);
 }
 
+// Point-to-triangle distance in double precision: the nearest of the face
+// (where the point projects into it) and the three edges.
+double distance_in_double(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+  auto segment = [&](glm::dvec3 s, glm::dvec3 e) {
+    const double len2 = glm::dot(e - s, e - s);
+    const double t = len2 > 0.0 ? std::clamp(glm::dot(p - s, e - s) / len2, 0.0, 1.0) : 0.0;
+    return glm::length(p - (s + t * (e - s)));
+  };
+  double best = std::min({segment(a, b), segment(b, c), segment(c, a)});
+  const glm::dvec3 n = glm::cross(b - a, c - a);
+  const double n2 = glm::dot(n, n);
+  if (n2 > 0.0) {
+    const double u = glm::dot(p - a, glm::cross(c - a, n)) / n2;
+    const double v = glm::dot(p - a, glm::cross(n, b - a)) / n2;
+    if (u >= 0.0 && v >= 0.0 && u + v <= 1.0)
+      best = std::min(best, std::abs(glm::dot(p - a, n)) / std::sqrt(n2));
+  }
+  return best;
+}
+
 // Zero-area triangles have no face to project into: their distance is the
 // nearest of their edges (a segment, or a point).
 TEST(MeshDistance, NarrowBandOfDegenerateTrianglesMeasuresTheirEdges) {
@@ -187,15 +225,53 @@ TEST(MeshDistance, NarrowBandOfDegenerateTrianglesMeasuresTheirEdges) {
   for (int z = 0; z < dims.z; ++z)
     for (int y = 0; y < dims.y; ++y)
       for (int x = 0; x < dims.x; ++x) {
-        const float ref = std::abs(md.signed_distance_brute(glm::vec3(x, y, z)));
-        if (ref < 1.999f) {
-          ASSERT_NEAR(std::abs(nb.distance_at(x, y, z)), ref, 1e-4f) << x << " " << y << " " << z;
+        double ref = 1e9;
+        for (const glm::uvec3 t : m.triangles)
+          ref = std::min(ref, distance_in_double(glm::dvec3(x, y, z), m.positions[t.x],
+                                                 m.positions[t.y], m.positions[t.z]));
+        if (ref < 1.999) {
+          ASSERT_NEAR(std::abs(nb.distance_at(x, y, z)), ref, 1e-4) << x << " " << y << " " << z;
           ++in_band;
-        } else if (ref > 2.001f) {
+        } else if (ref > 2.001) {
           ASSERT_TRUE(std::isinf(nb.distance_at(x, y, z))) << x << " " << y << " " << z;
         }
       }
   EXPECT_GT(in_band, 100);
+}
+
+// Slivers: thin triangles whose cross product is mostly rounding must not
+// lift the kernel's lower bound above the true distance.
+TEST(MeshDistance, NarrowBandOfSliversIsExact) {
+  Mesh m;
+  int k = 0;
+  for (float thin : {1e-6f, 3e-4f, 4e-3f, 2e-2f}) {
+    const glm::vec3 a(2.3f, 2.1f + 3.0f * float(k), 2.7f), b(a + glm::vec3(9.1f, 0.3f, 1.7f));
+    const glm::vec3 c = a + 0.5f * (b - a) + glm::vec3(0.0f, thin, -thin * 0.4f);
+    m.positions.insert(m.positions.end(), {a, b, c});
+    const uint32_t base = uint32_t(3 * k);
+    m.triangles.push_back({base, base + 1, base + 2});
+    ++k;
+  }
+  const MeshDistance md(m);
+  const glm::ivec3 dims(16, 16, 9);
+  for (bool avx2 : {true, false}) {
+    const bool was = use_avx2_band_kernel(avx2);
+    const NarrowBand nb = mesh_narrow_band(md, dims, NarrowBandOptions{2.5f, 1});
+    use_avx2_band_kernel(was);
+    for (int z = 0; z < dims.z; ++z)
+      for (int y = 0; y < dims.y; ++y)
+        for (int x = 0; x < dims.x; ++x) {
+          double ref = 1e9;
+          for (const glm::uvec3 t : m.triangles)
+            ref = std::min(ref, distance_in_double(glm::dvec3(x, y, z), m.positions[t.x],
+                                                   m.positions[t.y], m.positions[t.z]));
+          if (ref < 2.499) {
+            ASSERT_NEAR(std::abs(nb.distance_at(x, y, z)), ref, 1e-4) << x << " " << y << " " << z;
+          } else if (ref > 2.501) {
+            ASSERT_TRUE(std::isinf(nb.distance_at(x, y, z))) << x << " " << y << " " << z;
+          }
+        }
+  }
 }
 
 TEST(MeshDistance, NarrowBandOfNoTrianglesIsEmpty) {

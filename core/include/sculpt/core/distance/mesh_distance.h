@@ -96,6 +96,11 @@ struct NarrowBand {
 NarrowBand mesh_narrow_band(const MeshDistance& mesh, glm::ivec3 dims,
                             const NarrowBandOptions& options = {});
 
+/// For tests: false makes mesh_narrow_band use its 4-lane baseline kernel
+/// even where the CPU has AVX2 (both give the same band). Returns the
+/// previous setting.
+bool use_avx2_band_kernel(bool enabled);
+
 /// The signed distance of every voxel: exact in a band of 2 voxels, beyond it
 /// the distance to the closest triangle of the nearest band voxel (found by
 /// an exact feature transform) with that voxel's sign.
