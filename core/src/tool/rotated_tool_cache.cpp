@@ -37,7 +37,7 @@ RotatedToolEntry::RotatedToolEntry(const PreparedTool& tool, const glm::mat3& ro
     }
 }
 
-const uint8_t* RotatedToolEntry::row(int y, int z, int x0, int x1) {
+const uint8_t* RotatedToolEntry::rotate_row(int y, int z, int x0, int x1) {
   const Box& b = frame_.box();
   assert(x0 >= b.lo.x && x1 <= b.hi.x && x0 <= x1 && y >= b.lo.y && y < b.hi.y && z >= b.lo.z &&
          z < b.hi.z);

@@ -16,6 +16,7 @@
 // Memory is bounded: entries are evicted least recently used once their
 // bytes exceed the cap. Not thread-safe: one cache per sculpting thread.
 
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <list>
@@ -64,7 +65,20 @@ class RotatedToolEntry {
   /// Rotated voxels [x0, x1) of row (y, z) (anchor-relative, inside box()),
   /// rotating those not yet computed. Valid until the next call; readable
   /// for kRowSlack bytes past x1.
-  const uint8_t* row(int y, int z, int x0, int x1);
+  const uint8_t* row(int y, int z, int x0, int x1) {
+    // The hit (every voxel of an unchanged orientation's dab) inline.
+    const Box& b = frame_.box();
+    assert(x0 >= b.lo.x && x1 <= b.hi.x && x0 <= x1 && y >= b.lo.y && y < b.hi.y && z >= b.lo.z &&
+           z < b.hi.z);
+    const size_t r = static_cast<size_t>(z - b.lo.z) * b.size().y + (y - b.lo.y);
+    const int a = x0 - b.lo.x, e = x1 - b.lo.x;
+    if (done_lo_[r] <= a && e <= done_hi_[r] && a < e) {
+      stats_->voxels_requested += e - a;
+      stats_->voxels_reused += e - a;
+      return &values_[r * b.size().x + a];
+    }
+    return rotate_row(y, z, x0, x1);
+  }
   /// The stretch [x0, x1) of row (y, z) (anchor-relative, inside box())
   /// within the tool's reach: outside it the row's voxels are 0. Empty
   /// (x0 == x1) when the row misses the reach ball.
@@ -76,6 +90,9 @@ class RotatedToolEntry {
   size_t memory_bytes() const;
 
  private:
+  // row() when some of the voxels are not rotated yet.
+  const uint8_t* rotate_row(int y, int z, int x0, int x1);
+
   const PreparedTool* tool_;
   glm::mat3 rotation_;
   glm::vec3 offset_;
