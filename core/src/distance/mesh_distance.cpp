@@ -317,9 +317,9 @@ struct BrickJob {
 
 // The band of one brick. Triangle-major, as a rasteriser: each triangle
 // visits the brick rows its ball meets and computes the exact distance of W
-// voxels of a row at once, branch-free (face when the point projects into
-// it, else the nearest of the three edges), once a lower bound says some of
-// them may get nearer. The brick's arrays stay in L1.
+// voxels of a row at once, branch-free (the nearer of the face, where the
+// voxel projects into it, and the three edges), once a lower bound says
+// some of them may get nearer. The brick's arrays stay in L1.
 template <int W>
 [[gnu::always_inline]] inline void band_brick_lanes(const BrickJob& job) {
   using F = typename Lanes<W>::F;
