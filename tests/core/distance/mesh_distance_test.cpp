@@ -11,6 +11,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "reference_distance.h"
 #include "sculpt/core/distance/point_triangle.h"
 #include "sculpt/core/util/parallel_for.h"
 
@@ -190,25 +191,7 @@ TEST(MeshDistance, NarrowBandDenseGridsMatchTheBricks) {
   EXPECT_GT(in_band, 500);
 }
 
-// Point-to-triangle distance in double precision: the nearest of the face
-// (where the point projects into it) and the three edges.
-double distance_in_double(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
-  auto segment = [&](glm::dvec3 s, glm::dvec3 e) {
-    const double len2 = glm::dot(e - s, e - s);
-    const double t = len2 > 0.0 ? std::clamp(glm::dot(p - s, e - s) / len2, 0.0, 1.0) : 0.0;
-    return glm::length(p - (s + t * (e - s)));
-  };
-  double best = std::min({segment(a, b), segment(b, c), segment(c, a)});
-  const glm::dvec3 n = glm::cross(b - a, c - a);
-  const double n2 = glm::dot(n, n);
-  if (n2 > 0.0) {
-    const double u = glm::dot(p - a, glm::cross(c - a, n)) / n2;
-    const double v = glm::dot(p - a, glm::cross(n, b - a)) / n2;
-    if (u >= 0.0 && v >= 0.0 && u + v <= 1.0)
-      best = std::min(best, std::abs(glm::dot(p - a, n)) / std::sqrt(n2));
-  }
-  return best;
-}
+using test::distance_in_double;
 
 // Zero-area triangles have no face to project into: their distance is the
 // nearest of their edges (a segment, or a point).

@@ -30,7 +30,8 @@ TEST(ParallelFor, ManyShortLoopsInARowEachVisitEveryIndex) {
   for (int loop = 0; loop < 2000; ++loop) {
     const int64_t count = 1 + loop % 9;
     std::vector<std::atomic<int>> hits(static_cast<size_t>(count));
-    parallel_for(count, [&](int64_t i) { hits[static_cast<size_t>(i)].fetch_add(1); }, 4);
+    parallel_for(
+        count, [&](int64_t i) { hits[static_cast<size_t>(i)].fetch_add(1); }, 4);
     for (const auto& h : hits)
       ASSERT_EQ(h.load(), 1) << "loop " << loop;
   }
@@ -109,7 +110,8 @@ TEST(ParallelFor, AnExceptionOnTheCallingThreadReachesTheCaller) {
                    2),
                std::runtime_error);
   std::vector<std::atomic<int>> hits(100);
-  parallel_for(100, [&](int64_t i) { hits[static_cast<size_t>(i)].fetch_add(1); }, 2);
+  parallel_for(
+      100, [&](int64_t i) { hits[static_cast<size_t>(i)].fetch_add(1); }, 2);
   for (const auto& h : hits)
     ASSERT_EQ(h.load(), 1);
 }

@@ -37,11 +37,24 @@ inline float point_triangle_distance_squared(glm::vec3 p, glm::vec3 a, glm::vec3
   return closest_point_on_triangle(p, a, b, c).distance_squared;
 }
 
+/// Whether triangle (a, a + ab, a + ac) is a sliver: its angle at a is under
+/// about 6 degrees (sin^2 < 0.01), so that the region tests' differences of
+/// products lose most of their float bits (up to 0.28 voxel of error on
+/// marching-cubes slivers). Slivers are measured in double precision.
+inline bool is_sliver(glm::vec3 ab, glm::vec3 ac) {
+  const float ab2 = glm::dot(ab, ab), ac2 = glm::dot(ac, ac), abac = glm::dot(ab, ac);
+  return ab2 * ac2 - abac * abac < 0.01f * ab2 * ac2;
+}
+
+/// triangle_distance2 in double precision, for slivers.
+float sliver_distance2(glm::vec3 p, glm::vec3 a, glm::vec3 ab, glm::vec3 ac);
+
 /// Squared distance from p to triangle (a, a + ab, a + ac): the region tests
 /// of closest_point_on_triangle, inline and without the point, for the loops
 /// that call it tens of millions of times (narrow band, hybrid transform).
 /// May differ from closest_point_on_triangle's distance in the last bits.
 inline float triangle_distance2(glm::vec3 p, glm::vec3 a, glm::vec3 ab, glm::vec3 ac) {
+  if (is_sliver(ab, ac)) return sliver_distance2(p, a, ab, ac);
   const glm::vec3 ap = p - a;
   const float d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
   if (d1 <= 0.0f && d2 <= 0.0f) return glm::dot(ap, ap);
