@@ -68,13 +68,32 @@ def mc(args):
     ours = sculpt_bench(args.sculpt, "BM_MeshExtract/n:(128|256)/threads:0/weld:0")
     text = peers(args.peers, "mc", "128,256")
     print(text.rstrip())
+    # peers.py runs VTK without normals; ours always computes gradient normals.
+    # Time VTK doing the same work too (same data, same session).
+    sys.path.insert(0, str(__import__("pathlib").Path(args.peers).parent))
+    import vtk
+    from vtk.util import numpy_support
+    from peers import sphere_density
+    with_normals = {}
+    for n in (128, 256):
+        img = vtk.vtkImageData()
+        img.SetDimensions(n, n, n)
+        img.GetPointData().SetScalars(numpy_support.numpy_to_vtk(sphere_density(n).ravel(), deep=True))
+        fe = vtk.vtkFlyingEdges3D()
+        fe.SetInputData(img)
+        fe.SetValue(0, 127.5)
+        fe.ComputeNormalsOn(); fe.ComputeGradientsOff(); fe.ComputeScalarsOff()
+        with_normals[n] = med(lambda: (fe.Modified(), fe.Update()))
+        print(f"mc    vtkFlyingEdges3D with normals {n}^3: {with_normals[n]:.4f} s")
     print()
-    print("| workload | sculpt (all threads) | vtkFlyingEdges3D | ratio |")
-    print("|---|---:|---:|---:|")
+    print("| workload | sculpt (all threads, with normals) | vtkFlyingEdges3D (no normals) | ratio | VTK with normals | ratio |")
+    print("|---|---:|---:|---:|---:|---:|")
     for n in (128, 256):
         m = re.search(rf"vtkFlyingEdges3D {n}\^3 \(threads (\d+)\): ([0-9.]+) s", text)
         o = ours[f"BM_MeshExtract/n:{n}/threads:0/weld:0"]
-        print(f"| extraction {n}^3 (VTK threads {m.group(1)}) | {o * 1e3:.1f} ms | {float(m.group(2)) * 1e3:.1f} ms | {float(m.group(2)) / o:.2f}x |")
+        v = float(m.group(2))
+        print(f"| extraction {n}^3 (VTK threads {m.group(1)}) | {o * 1e3:.1f} ms | {v * 1e3:.1f} ms | {v / o:.2f}x "
+              f"| {with_normals[n] * 1e3:.1f} ms | {with_normals[n] / o:.2f}x |")
 
 
 def rot(args):
