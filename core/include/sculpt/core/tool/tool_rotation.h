@@ -133,10 +133,17 @@ class RotationFrame {
   };
 
  private:
+  // Half-chords of a box-relative row through the reach ball (negative: the
+  // row misses it) and the core ball (<= 0: misses it).
+  struct Chords {
+    double reach, core;
+  };
+  // Those of rows y0 .. y0 + n - 1 of plane z.
+  void chords(int y0, int z, int n, Chords* out) const;
   // Box-relative row (y, z), x offsets [x0, x1) written from out[0]: fills
   // the core stretch and adds the stretches left to sample (at most 2) to
   // lines; returns how many.
-  int plan_row(int y, int z, int x0, int x1, uint8_t* out, Line* lines) const;
+  int plan_row(int y, int z, int x0, int x1, Chords c, uint8_t* out, Line* lines) const;
   // Narrows a line to its samples within the tool's support; false if none.
   bool clip_line(Line& line) const;
   void sample_lines(const PreparedTool& tool, const Line* lines, int count) const;
