@@ -28,13 +28,8 @@ RotatedToolEntry::RotatedToolEntry(const PreparedTool& tool, const glm::mat3& ro
   reach_lo_.assign(rows, 0);
   reach_hi_.assign(rows, 0);
   for (int z = 0; z < s.z; ++z)
-    for (int y = 0; y < s.y; ++y) {
-      int x0 = 0, x1 = s.x;
-      if (!frame_.reach_span(y, z, x0, x1)) continue;
-      const size_t r = static_cast<size_t>(z) * s.y + y;
-      reach_lo_[r] = static_cast<int16_t>(x0);
-      reach_hi_[r] = static_cast<int16_t>(x1);
-    }
+    frame_.reach_spans(z, &reach_lo_[static_cast<size_t>(z) * s.y],
+                       &reach_hi_[static_cast<size_t>(z) * s.y]);
 }
 
 const uint8_t* RotatedToolEntry::rotate_row(int y, int z, int x0, int x1) {

@@ -491,6 +491,26 @@ void RotationFrame::chords(int y0, int z, int n, Chords* out) const {
 #endif
 }
 
+void RotationFrame::reach_spans(int z, int16_t* x0, int16_t* x1) const {
+  const glm::ivec3 size = box_.size();
+  constexpr int kRows = 64;
+  Chords c[kRows];
+  for (int ya = 0; ya < size.y; ya += kRows) {
+    const int n = std::min(kRows, size.y - ya);
+    chords(ya, z, n, c);
+    for (int i = 0; i < n; ++i) {
+      int a = 0, b = 0;
+      if (c[i].reach >= 0.0) {
+        a = std::max(0, static_cast<int>(fast_ceil(centre_[0] - c[i].reach)));
+        b = std::min(size.x, static_cast<int>(fast_floor(centre_[0] + c[i].reach)) + 1);
+        if (a >= b) a = b = 0;
+      }
+      x0[ya + i] = static_cast<int16_t>(a);
+      x1[ya + i] = static_cast<int16_t>(b);
+    }
+  }
+}
+
 int RotationFrame::plan_row(int y, int z, int x0, int x1, Chords c, uint8_t* out,
                             Line* lines) const {
   const int first = x0;

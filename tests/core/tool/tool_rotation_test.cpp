@@ -123,6 +123,33 @@ TEST(ToolRotation, VectorAndScalarKernelsAgreeExactly) {
     }
 }
 
+// A placement keeps every row's stretch within reach (RotatedToolEntry), a
+// plane at a time: the same stretches as asking row by row.
+TEST(ToolRotation, PlaneReachSpansMatchRowByRow) {
+  const PreparedTool tool(make_sphere_tool(9.0f));
+  for (glm::vec3 angles : kAngles) {
+    const RotationFrame frame(tool, euler_xyz_deg(angles), {0.3f, -2.6f, 1.0f},
+                              Sampling::kTrilinear);
+    const glm::ivec3 size = frame.box().size();
+    std::vector<int16_t> lo(static_cast<size_t>(size.y)), hi(lo.size());
+    int rows = 0;
+    for (int z = 0; z < size.z; ++z) {
+      frame.reach_spans(z, lo.data(), hi.data());
+      for (int y = 0; y < size.y; ++y) {
+        int x0 = 0, x1 = size.x;
+        if (frame.reach_span(y, z, x0, x1)) {
+          ++rows;
+          ASSERT_EQ(lo[y], x0) << y << " " << z;
+          ASSERT_EQ(hi[y], x1) << y << " " << z;
+        } else {
+          ASSERT_EQ(lo[y], hi[y]) << y << " " << z;
+        }
+      }
+    }
+    EXPECT_GT(rows, size.y * size.z / 4);
+  }
+}
+
 TEST(ToolRotation, QuarterTurnsAreExact) {
   const Tool t = textured_tool({10, 10, 10});
   const PreparedTool tool(t);

@@ -123,6 +123,9 @@ class RotationFrame {
   /// Narrows [x0, x1) (box-relative) to box-relative row (y, z)'s stretch
   /// within the tool's reach (outside it every sample is 0); false when empty.
   bool reach_span(int y, int z, int& x0, int& x1) const;
+  /// reach_span() of every row of box-relative plane z, from [0, box().size().x):
+  /// x0[y], x1[y] (both 0 when the row misses).
+  void reach_spans(int z, int16_t* x0, int16_t* x1) const;
 
   /// A stretch of samples along x: the first one's position (16.16, padded
   /// tool voxels), the count, and where the values go. The kernels' input.
