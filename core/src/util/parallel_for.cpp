@@ -39,8 +39,10 @@ class WorkerPool {
     if (!busy_.compare_exchange_strong(expected, true, std::memory_order_acquire)) return false;
     {
       std::lock_guard lock(mutex_);
+      // A new thread must count this loop as unseen: it takes the lock only
+      // after the generation below has moved on.
       while (static_cast<int>(threads_.size()) < helpers)
-        threads_.emplace_back([this] { work(); });
+        threads_.emplace_back([this, seen = generation_] { work(seen); });
       body_ = &body;
       count_ = count;
       next_.store(0, std::memory_order_relaxed);
@@ -69,10 +71,9 @@ class WorkerPool {
   }
 
  private:
-  void work() {
+  void work(uint64_t seen) {
     t_loop_depth = 1;
     std::unique_lock lock(mutex_);
-    uint64_t seen = generation_;
     for (;;) {
       wake_.wait(lock, [&] { return generation_ != seen && seats_ > 0; });
       seen = generation_;

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
+#include <mutex>
 #include <set>
 #include <stdexcept>
 #include <thread>
@@ -37,9 +39,12 @@ TEST(ParallelFor, ManyShortLoopsInARowEachVisitEveryIndex) {
   }
 }
 
-// The loop really runs on more than one thread when asked to (a body that
-// waits until a second thread has arrived would hang if it did not).
+// The loop really runs on more than one thread when asked to, from the very
+// first loop of the process (ctest runs this test alone): each index waits
+// for the other to arrive. The wait gives up after a minute so that a loop
+// left to one thread fails instead of hanging.
 TEST(ParallelFor, UsesMoreThanTheCallingThread) {
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(1);
   std::atomic<int> arrived{0};
   std::mutex m;
   std::set<std::thread::id> ids;
@@ -51,7 +56,7 @@ TEST(ParallelFor, UsesMoreThanTheCallingThread) {
           ids.insert(std::this_thread::get_id());
         }
         arrived.fetch_add(1);
-        while (arrived.load() < 2)
+        while (arrived.load() < 2 && std::chrono::steady_clock::now() < give_up)
           std::this_thread::yield();
       },
       2);
