@@ -20,6 +20,7 @@
 
 #include "sculpt/core/distance/exact_edt.h"
 #include "sculpt/core/distance/mesh_distance.h"
+#include "sculpt/core/distance/narrow_band.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 #include "sculpt/core/util/parallel_for.h"
 

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "reference_distance.h"
+#include "sculpt/core/distance/narrow_band.h"
 #include "sculpt/core/distance/point_triangle.h"
 #include "sculpt/core/util/parallel_for.h"
 
