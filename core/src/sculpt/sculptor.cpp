@@ -161,7 +161,7 @@ Sculptor::DecodedBrick& Sculptor::decoded_brick(glm::ivec3 b, DabStats& stats) {
   d.last_use = ++use_clock_;
   // Any store since (an undo, another writer) bumps the version.
   if (d.version != volume_.brick_version(b)) {
-    volume_.decode_brick(b, std::span<uint8_t>(d.voxels).first(d.voxels.size() - kCombineRowSlack));
+    volume_.decode_brick(b, d.brick());
     d.version = volume_.brick_version(b);
     ++stats.bricks_decoded;
   } else {
@@ -259,8 +259,7 @@ DabStats Sculptor::apply(RotatedToolCache& cache, const Dab& dab) {
 
         const int64_t t0 = now_ns();
         DecodedBrick& decoded = decoded_brick(b, stats);
-        std::span<uint8_t> voxels =
-            std::span<uint8_t>(decoded.voxels).first(decoded.voxels.size() - kCombineRowSlack);
+        std::span<uint8_t> voxels = decoded.brick();
         const int64_t t1 = now_ns();
         const glm::ivec3 origin = b * edge;
         int64_t changed = 0;

@@ -22,12 +22,14 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <unordered_map>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
+#include "sculpt/core/sculpt/combine_row.h"
 #include "sculpt/core/sculpt/undo_history.h"
 #include "sculpt/core/tool/rotated_tool_cache.h"
 #include "sculpt/core/tool/tool.h"
@@ -139,7 +141,12 @@ class Sculptor {
   struct DecodedBrick {
     uint64_t version = 0;
     uint64_t last_use = 0;
+    // The brick's voxels, then kCombineRowSlack bytes that combine_row()
+    // may read and rewrite past a row.
     std::vector<uint8_t> voxels;
+    std::span<uint8_t> brick() {
+      return std::span<uint8_t>(voxels).first(voxels.size() - kCombineRowSlack);
+    }
   };
   // The brick's current voxels, decoded unless still valid from earlier.
   DecodedBrick& decoded_brick(glm::ivec3 b, DabStats& stats);
