@@ -41,9 +41,10 @@ void BM_MeshExtract(benchmark::State& state) {
   const bool weld = state.range(2) != 0;
   const Volume& volume = sphere(n);
   int64_t triangles = 0;
+  MeshUpdate stats;
   for (auto _ : state) {
     MeshCache cache(0, MarchingCubesOptions{127.5f, threads});
-    cache.update(volume);
+    stats = cache.update(volume);
     triangles = cache.triangle_count();
     if (weld) {
       Mesh mesh = cache.welded_mesh();
@@ -52,6 +53,8 @@ void BM_MeshExtract(benchmark::State& state) {
   }
   state.counters["threads"] = threads == 0 ? hardware_threads() : threads;
   state.counters["triangles"] = static_cast<double>(triangles);
+  state.counters["decoded"] = static_cast<double>(stats.bricks_decoded);
+  state.counters["marched"] = static_cast<double>(stats.bricks_meshed);
 }
 BENCHMARK(BM_MeshExtract)
     ->ArgsProduct({{128, 256}, {1, 0}, {0, 1}})

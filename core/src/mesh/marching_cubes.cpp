@@ -51,6 +51,10 @@ constexpr std::array<glm::ivec3, 12> kEdgeOrigin = {
 // agree on it; chaining the segments gives closed loops, fanned into
 // triangles. Resolving each face by its own data (the asymptotic decider) is
 // what makes the surface free of holes.
+// Most cells of a smooth surface make one to four triangles: the march
+// writes that many before it looks at the count (see build_tables).
+constexpr uint32_t kFixedTriangles = 4;
+
 struct Tables {
   // Per face: corners in counter-clockwise order seen from outside the cell,
   // and the edge from corner i to corner i+1.
@@ -208,6 +212,9 @@ Tables build_tables() {
       t.centre_begin.push_back(static_cast<uint32_t>(t.centre_masks.size()));
     }
   }
+  // The march writes kFixedTriangles triangles of every entry before it
+  // counts them; the last entry's may read past its end.
+  t.tri_edges.resize(t.tri_edges.size() + 3 * kFixedTriangles, 0);
   return t;
 }
 
@@ -220,11 +227,25 @@ const Tables& tables() {
 // upper z plane (0, 1), y edges likewise (2, 3), z edges (4).
 constexpr std::array<uint8_t, 12> kEdgeSlotTable = {0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4, 4};
 
-// A cache slot of one cell edge: valid while `stamp` matches the plane's.
-struct Slot {
-  uint32_t stamp = 0;
-  uint32_t vertex = 0;
-};
+// Which of a cell's edges the cell makes the vertex of, by whether it lies
+// on the block's low x, y and z face (bits 0, 1, 2). Cells are marched z,
+// then y, then x ascending, and a crossed edge is needed by every cell
+// around it; the first of those to be marched makes its vertex and the
+// others read it from the slot tables. Inside the block that is the cell
+// below and behind the edge, so a cell makes the three edges at its upper
+// corner (3, 7, 11); on a low face there is no cell before it.
+constexpr std::array<uint16_t, 8> kOwnedEdges = [] {
+  std::array<uint16_t, 8> owned{};
+  for (int face = 0; face < 8; ++face)
+    for (int e = 0; e < 12; ++e) {
+      const int axis = e >> 2;
+      bool first = true;
+      for (int b = 0; b < 3; ++b)
+        if (b != axis) first = first && (kEdgeOrigin[e][b] == 1 || ((face >> b) & 1) != 0);
+      if (first) owned[face] |= static_cast<uint16_t>(1u << e);
+    }
+  return owned;
+}();
 
 // Bit i of a column (corner rows (y,z), (y+1,z), (y,z+1), (y+1,z+1)) moved
 // to bit 2i, the corner it is at the cell's lower x.
@@ -260,17 +281,32 @@ void ensure_size(UninitVector<T>& v, size_t n) {
   if (v.size() < n) v.resize(std::max(n, 2 * v.size()));
 }
 
+// A vertex the march asked for: the crossing on the edge from grid point p
+// along `axis`, or (axis kCentre) the centre of a loop, kept in `centres`.
+struct PendingVertex {
+  uint8_t x, y, z, axis;
+};
+constexpr uint8_t kCentre = 3;
+struct PendingCentre {
+  uint32_t vertex;
+  uint16_t edges;            // the loop's cell edges
+  uint32_t edge_vertex[12];  // their vertices
+};
+
 struct Scratch {
   // The brick's mesh as it is marched; copied into the caller's BrickMesh.
+  // Cells only number their vertices; one pass after the march computes
+  // them, a tight loop free of the march's unpredictable branches.
+  UninitVector<PendingVertex> pending;
+  std::vector<PendingCentre> centres;
   UninitVector<glm::vec3> positions, normals;
-  UninitVector<uint64_t> keys;
   UninitVector<glm::uvec3> triangles;
   std::vector<uint8_t> columns;
   std::vector<uint8_t> inside;
   std::vector<uint8_t> row_any, row_all;
-  std::vector<Slot> xy[2][2];  // [plane parity][axis x or y]
-  std::vector<Slot> z;
-  uint32_t stamp = 0;
+  // Vertex of each cell edge's crossing, written by the cell that makes it.
+  std::vector<uint32_t> xy[2][2];  // [plane parity][axis x or y]
+  std::vector<uint32_t> z;
 };
 
 }  // namespace
@@ -288,7 +324,9 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
   const glm::ivec3 dims = n + 3;
   const int64_t sx = dims.x, sxy = int64_t{dims.x} * dims.y;
 
+  assert(n.x < 255 && n.y < 255 && n.z < 255);  // grid points fit PendingVertex
   thread_local Scratch s;
+  s.centres.clear();
   const size_t total = static_cast<size_t>(sxy) * dims.z;
   if (s.inside.size() < total) s.inside.resize(total);
   if (s.columns.size() < static_cast<size_t>(dims.x)) s.columns.resize(static_cast<size_t>(dims.x));
@@ -300,17 +338,8 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
   const size_t plane = static_cast<size_t>(n.x + 1) * (n.y + 1);
   for (auto& p : s.xy)
     for (auto& a : p)
-      if (a.size() < plane) a.assign(plane, Slot{});
-  if (s.z.size() < plane) s.z.assign(plane, Slot{});
-  if (s.stamp > 0xFFFF0000u) {  // wrap: forget every slot
-    for (auto& p : s.xy)
-      for (auto& a : p)
-        std::fill(a.begin(), a.end(), Slot{});
-    std::fill(s.z.begin(), s.z.end(), Slot{});
-    s.stamp = 0;
-  }
-  const uint32_t base = s.stamp + 1;
-  s.stamp += static_cast<uint32_t>(n.z + 2);
+      if (a.size() < plane) a.resize(plane);
+  if (s.z.size() < plane) s.z.resize(plane);
 
   // Grid point (x, y, z) of the cells (0..n) is voxel (x+1, y+1, z+1).
   auto at = [&](int x, int y, int z) { return ((z + 1) * sxy + (y + 1) * sx) + (x + 1); };
@@ -354,7 +383,7 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
   size_t vertex_count = 0, triangle_count = 0;
   // A cell adds at most its 12 edges' vertices and its centres.
   const size_t row_vertices = static_cast<size_t>(n.x) * (12 + tab.max_centres);
-  const size_t row_triangles = static_cast<size_t>(n.x) * tab.max_triangles;
+  const size_t row_triangles = static_cast<size_t>(n.x) * tab.max_triangles + kFixedTriangles;
 
   auto gradient = [&](int64_t i) {
     if constexpr (std::is_same_v<T, uint8_t>) {
@@ -366,45 +395,61 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
       return glm::vec3(g[i + 1] - g[i - 1], g[i + sx] - g[i - sx], g[i + sxy] - g[i - sxy]);
     }
   };
+  // Cells number their vertices as they need them; compute_vertices()
+  // fills them in after the march.
   auto make_vertex = [&](glm::ivec3 p, int axis) -> uint32_t {
-    const int64_t i0 = at(p.x, p.y, p.z);
-    const int64_t i1 = i0 + step[axis];
-    const float v0 = g[i0], v1 = g[i1];
-    const float t = (iso - v0) / (v1 - v0);
-    glm::vec3 pos = glm::vec3(origin + p);
-    pos[axis] += t;
-    glm::vec3 grad = gradient(i0) * (1.0f - t) + gradient(i1) * t;
-    const float len = glm::length(grad);
-    glm::vec3 normal(0.0f);
-    if (len > 0.0f) {
-      normal = grad * (-1.0f / len);  // one division instead of three
-    } else {
-      normal[axis] = v1 > v0 ? -1.0f : 1.0f;  // flat gradient: face down the edge
-    }
     const auto index = static_cast<uint32_t>(vertex_count++);
-    s.positions[index] = pos * scale;
-    s.normals[index] = normal;
-    s.keys[index] = seam_key(p, axis);
+    s.pending[index] = {static_cast<uint8_t>(p.x), static_cast<uint8_t>(p.y),
+                        static_cast<uint8_t>(p.z), static_cast<uint8_t>(axis)};
     return index;
   };
-
   // A vertex inside the cell, at the mean of a loop's vertices; no other
   // cell uses it.
   auto make_centre = [&](uint16_t mask, const uint32_t* vertices) -> uint32_t {
-    glm::vec3 pos(0.0f), normal(0.0f);
-    int count = 0;
-    for (int e = 0; e < 12; ++e) {
-      if (!((mask >> e) & 1)) continue;
-      pos += s.positions[vertices[e]];
-      normal += s.normals[vertices[e]];
-      ++count;
-    }
-    const float len = glm::length(normal);
     const auto index = static_cast<uint32_t>(vertex_count++);
-    s.positions[index] = pos / static_cast<float>(count);
-    s.normals[index] = len > 0.0f ? normal / len : s.normals[vertices[std::countr_zero(mask)]];
-    s.keys[index] = BrickMesh::kNotSeam;
+    s.pending[index] = {0, 0, 0, kCentre};
+    PendingCentre& c = s.centres.emplace_back();
+    c.vertex = index;
+    c.edges = mask;
+    std::copy(vertices, vertices + 12, c.edge_vertex);
     return index;
+  };
+  auto compute_vertices = [&] {
+    for (size_t index = 0; index < vertex_count; ++index) {
+      const PendingVertex pv = s.pending[index];
+      if (pv.axis == kCentre) continue;
+      const int axis = pv.axis;
+      const glm::ivec3 p(pv.x, pv.y, pv.z);
+      const int64_t i0 = at(p.x, p.y, p.z);
+      const int64_t i1 = i0 + step[axis];
+      const float v0 = g[i0], v1 = g[i1];
+      const float t = (iso - v0) / (v1 - v0);
+      glm::vec3 pos = glm::vec3(origin + p);
+      pos[axis] += t;
+      glm::vec3 grad = gradient(i0) * (1.0f - t) + gradient(i1) * t;
+      const float len = glm::length(grad);
+      glm::vec3 normal(0.0f);
+      if (len > 0.0f) {
+        normal = grad * (-1.0f / len);  // one division instead of three
+      } else {
+        normal[axis] = v1 > v0 ? -1.0f : 1.0f;  // flat gradient: face down the edge
+      }
+      s.positions[index] = pos * scale;
+      s.normals[index] = normal;
+      if (const uint64_t key = seam_key(p, axis); key != BrickMesh::kNotSeam)
+        out.seams.push_back({static_cast<uint32_t>(index), key});
+    }
+    for (const PendingCentre& c : s.centres) {
+      glm::vec3 pos(0.0f), normal(0.0f);
+      for (uint32_t e = c.edges; e != 0; e &= e - 1) {
+        pos += s.positions[c.edge_vertex[std::countr_zero(e)]];
+        normal += s.normals[c.edge_vertex[std::countr_zero(e)]];
+      }
+      const float len = glm::length(normal);
+      s.positions[c.vertex] = pos / static_cast<float>(std::popcount(c.edges));
+      s.normals[c.vertex] =
+          len > 0.0f ? normal / len : s.normals[c.edge_vertex[std::countr_zero(c.edges)]];
+    }
   };
   int64_t corner_delta[8];
   for (int k = 0; k < 8; ++k) {
@@ -419,11 +464,9 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
   uint32_t edge_vertex[16];
   for (int z = 0; z < n.z; ++z) {
     // The slot tables of this layer of cells, as kEdgeSlotTable numbers them.
-    const uint32_t stamp_lo = base + static_cast<uint32_t>(z);
-    const uint32_t stamp_hi = stamp_lo + 1;
-    Slot* const slot_tables[5] = {s.xy[z & 1][0].data(), s.xy[(z + 1) & 1][0].data(),
-                                  s.xy[z & 1][1].data(), s.xy[(z + 1) & 1][1].data(), s.z.data()};
-    const uint32_t slot_stamps[5] = {stamp_lo, stamp_hi, stamp_lo, stamp_hi, stamp_lo};
+    uint32_t* const slot_tables[5] = {s.xy[z & 1][0].data(), s.xy[(z + 1) & 1][0].data(),
+                                      s.xy[z & 1][1].data(), s.xy[(z + 1) & 1][1].data(),
+                                      s.z.data()};
     for (int y = 0; y < n.y; ++y) {
       const size_t r = static_cast<size_t>(z) * (n.y + 1) + y;
       const size_t rows4[4] = {r, r + 1, r + static_cast<size_t>(n.y + 1),
@@ -434,11 +477,10 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
         all_in = all_in && s.row_all[q];
       }
       if (all_out || all_in) continue;
-      ensure_size(s.positions, vertex_count + row_vertices);
-      ensure_size(s.normals, vertex_count + row_vertices);
-      ensure_size(s.keys, vertex_count + row_vertices);
+      ensure_size(s.pending, vertex_count + row_vertices);
       ensure_size(s.triangles, triangle_count + row_triangles);
       const int64_t row0 = at(0, y, z);
+      const int face_bits = (y == 0 ? 2 : 0) | (z == 0 ? 4 : 0);
       const size_t row_slot = static_cast<size_t>(y) * (n.x + 1);
       const uint8_t* in = s.inside.data() + row0;
       // Column bits of the four rows around this row of cells: a cell's case
@@ -483,33 +525,59 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
         const uint32_t entry = tab.first_entry[c] + decision;
         const uint32_t e_begin = tab.entry_begin[entry], e_end = tab.entry_begin[entry + 1];
         const size_t cell_slot = row_slot + static_cast<size_t>(x);
-        for (uint32_t needed = tab.entry_edges[entry]; needed != 0; needed &= needed - 1) {
-          const int e = std::countr_zero(needed);
-          const int table = kEdgeSlotTable[e];
-          Slot& sl = slot_tables[table][cell_slot + edge_slot_delta[e]];
-          if (sl.stamp != slot_stamps[table]) {
-            sl.stamp = slot_stamps[table];
-            sl.vertex = make_vertex(glm::ivec3(x, y, z) + kEdgeOrigin[e], e >> 2);
+        const uint16_t needed = tab.entry_edges[entry];
+        // Every slot is read, needed or not: twelve loads cost less than
+        // the mispredicted branches of picking the needed ones. Slots of
+        // edges that are not crossed hold stale numbers no triangle uses.
+        for (int e = 0; e < 12; ++e)
+          edge_vertex[e] = slot_tables[kEdgeSlotTable[e]][cell_slot + edge_slot_delta[e]];
+        const int face = face_bits | (x == 0 ? 1 : 0);
+        if (face == 0) {
+          // Inside the block a cell makes the vertices of edges 3, 7 and 11
+          // when they are crossed; without a branch, a number is only kept
+          // (the count moves on) when the edge is crossed.
+          for (const int e : {3, 7, 11}) {
+            const auto v = static_cast<uint32_t>(vertex_count);
+            const glm::ivec3 p = glm::ivec3(x, y, z) + kEdgeOrigin[e];
+            s.pending[v] = {static_cast<uint8_t>(p.x), static_cast<uint8_t>(p.y),
+                            static_cast<uint8_t>(p.z), static_cast<uint8_t>(e >> 2)};
+            slot_tables[kEdgeSlotTable[e]][cell_slot + edge_slot_delta[e]] = v;
+            edge_vertex[e] = v;
+            vertex_count += (needed >> e) & 1u;
           }
-          edge_vertex[e] = sl.vertex;
+        } else {
+          for (uint32_t make = needed & kOwnedEdges[face]; make != 0; make &= make - 1) {
+            const int e = std::countr_zero(make);
+            const uint32_t v = make_vertex(glm::ivec3(x, y, z) + kEdgeOrigin[e], e >> 2);
+            slot_tables[kEdgeSlotTable[e]][cell_slot + edge_slot_delta[e]] = v;
+            edge_vertex[e] = v;
+          }
         }
         for (uint32_t k = tab.centre_begin[entry]; k < tab.centre_begin[entry + 1]; ++k) {
           edge_vertex[12 + k - tab.centre_begin[entry]] =
               make_centre(tab.centre_masks[k], edge_vertex);
         }
-        for (uint32_t k = e_begin; k < e_end; k += 3) {
-          s.triangles[triangle_count++] =
-              glm::uvec3(edge_vertex[tab.tri_edges[k]], edge_vertex[tab.tri_edges[k + 1]],
-                         edge_vertex[tab.tri_edges[k + 2]]);
-        }
+        // kFixedTriangles are written whatever the count (the buffer has
+        // room); those past the entry's end are overwritten later or cut.
+        auto triangle = [&](uint32_t k) {
+          return glm::uvec3(edge_vertex[tab.tri_edges[k]], edge_vertex[tab.tri_edges[k + 1]],
+                            edge_vertex[tab.tri_edges[k + 2]]);
+        };
+        for (uint32_t k = 0; k < kFixedTriangles; ++k)
+          s.triangles[triangle_count + k] = triangle(e_begin + 3 * k);
+        for (uint32_t k = e_begin + 3 * kFixedTriangles; k < e_end; k += 3)
+          s.triangles[triangle_count + (k - e_begin) / 3] = triangle(k);
+        triangle_count += (e_end - e_begin) / 3;
       }
     }
   }
+  ensure_size(s.positions, vertex_count);
+  ensure_size(s.normals, vertex_count);
+  compute_vertices();
   // One exact-size copy into the caller's mesh (whose capacity a cache
   // reuses from the brick's previous mesh).
   out.mesh.positions.assign(s.positions.begin(), s.positions.begin() + vertex_count);
   out.mesh.normals.assign(s.normals.begin(), s.normals.begin() + vertex_count);
-  out.seam_keys.assign(s.keys.begin(), s.keys.begin() + vertex_count);
   out.mesh.triangles.assign(s.triangles.begin(), s.triangles.begin() + triangle_count);
 }
 
@@ -548,10 +616,12 @@ Mesh weld_brick_meshes(const std::vector<const BrickMesh*>& bricks) {
   for (const BrickMesh* b : bricks) {
     const Mesh& m = b->mesh;
     remap.resize(m.positions.size());
+    auto next_seam = b->seams.begin();
     for (size_t v = 0; v < m.positions.size(); ++v) {
       const auto next = static_cast<uint32_t>(out.positions.size());
-      if (b->seam_keys[v] != BrickMesh::kNotSeam) {
-        auto [it, inserted] = seam.try_emplace(b->seam_keys[v], next);
+      if (next_seam != b->seams.end() && next_seam->vertex == v) {
+        auto [it, inserted] = seam.try_emplace(next_seam->key, next);
+        ++next_seam;
         remap[v] = it->second;
         if (!inserted) continue;
       } else {

@@ -95,43 +95,49 @@ bool rows_equal(const uint8_t* a, const uint8_t* b, int n) {
 }  // namespace
 
 void MeshCache::classify(std::span<const uint8_t> voxels, CachedBrick& cb) const {
-  // Per row: inside counts over the first two voxels, the whole row and the
-  // last voxel; rows then add into the sub-boxes of the 27 offsets by their
-  // own y and z (the same sub-boxes refresh() compares).
+  // Per row: whether its first two voxels, the whole row and its last voxel
+  // hold voxels inside and outside (six bits); rows then add into the
+  // sub-boxes of the 27 offsets by their own y and z (the same sub-boxes
+  // refresh() compares), which only the rows at the brick's faces differ in.
   const int m = m_;
   const int lo_n = std::min(2, m);
   const int threshold = static_cast<int>(std::floor(options_.iso)) + 1;  // v > iso
-  uint32_t any_in = 0, any_out = 0;
+  const auto t8 = static_cast<uint8_t>(std::clamp(threshold, 0, 255));
+  uint8_t boxes[3][3] = {};  // [dz + 1][dy + 1]: in bits 0-2, out bits 3-5 by dx + 1
   size_t i = 0;
   for (int z = 0; z < m; ++z)
     for (int y = 0; y < m; ++y, i += static_cast<size_t>(m)) {
       const uint8_t* row = &voxels[i];
-      // Byte-wide any/all reductions vectorise; counts are only needed at
-      // the ends of the row.
-      const auto t8 = static_cast<uint8_t>(std::clamp(threshold, 0, 255));
+      // Byte-wide any/all reductions vectorise.
       uint8_t any = 0, every = 1;
       for (int x = 0; x < m; ++x) {
         any |= static_cast<uint8_t>(row[x] >= t8);
         every &= static_cast<uint8_t>(row[x] >= t8);
       }
-      const int in_all = every ? m : (any ? 1 : 0);
-      int in_lo = 0;
-      for (int x = 0; x < lo_n; ++x)
-        in_lo += row[x] >= threshold;
-      const int in_hi = voxels[i + static_cast<size_t>(m - 1)] >= threshold;
-      const int ins[3] = {in_lo, in_all, in_hi};
-      const int counts[3] = {lo_n, m, 1};
-      for (int dz = -1; dz <= 1; ++dz) {
-        if ((dz == -1 && z >= 2) || (dz == 1 && z != m - 1)) continue;
-        for (int dy = -1; dy <= 1; ++dy) {
-          if ((dy == -1 && y >= 2) || (dy == 1 && y != m - 1)) continue;
-          for (int dx = 0; dx < 3; ++dx) {
-            const uint32_t bit = 1u << ((dz + 1) * 9 + (dy + 1) * 3 + dx);
-            if (ins[dx] > 0) any_in |= bit;
-            if (ins[dx] < counts[dx]) any_out |= bit;
-          }
+      const bool lo_any = row[0] >= t8 || row[lo_n - 1] >= t8;
+      const bool lo_every = row[0] >= t8 && row[lo_n - 1] >= t8;
+      const bool hi = row[m - 1] >= t8;
+      const auto bits = static_cast<uint8_t>(lo_any | (any << 1) | (hi << 2) | (!lo_every << 3) |
+                                             (!every << 4) | (!hi << 5));
+      const bool dz_lo = z < 2, dz_hi = z == m - 1, dy_lo = y < 2, dy_hi = y == m - 1;
+      boxes[1][1] |= bits;
+      if (dy_lo) boxes[1][0] |= bits;
+      if (dy_hi) boxes[1][2] |= bits;
+      if (dz_lo || dz_hi) {
+        for (const int dz : {0, 2}) {
+          if (!(dz == 0 ? dz_lo : dz_hi)) continue;
+          boxes[dz][1] |= bits;
+          if (dy_lo) boxes[dz][0] |= bits;
+          if (dy_hi) boxes[dz][2] |= bits;
         }
       }
+    }
+  uint32_t any_in = 0, any_out = 0;
+  for (int dz = 0; dz < 3; ++dz)
+    for (int dy = 0; dy < 3; ++dy) {
+      const int shift = dz * 9 + dy * 3;
+      any_in |= static_cast<uint32_t>(boxes[dz][dy] & 7u) << shift;
+      any_out |= static_cast<uint32_t>(boxes[dz][dy] >> 3) << shift;
     }
   cb.any_inside = any_in;
   cb.any_outside = any_out;

@@ -266,7 +266,6 @@ void MixedLevelMeshCache::stitch(glm::ivec3 b, int k, BrickMesh& out, MixedLevel
     mesh.positions.push_back(centre / static_cast<float>(loop.size()));
     const float len = glm::length(normal);
     mesh.normals.push_back(len > 0.0f ? normal / len : mesh.normals[loop[0]]);
-    out.seam_keys.push_back(BrickMesh::kNotSeam);
     for (size_t i = 0; i < loop.size(); ++i) {
       mesh.triangles.emplace_back(c, loop[(i + 1) % loop.size()], loop[i]);
       ++st.stitch_triangles;

@@ -36,9 +36,16 @@ struct MarchingCubesOptions {
 /// The mesh of one brick's cells, before welding with its neighbours.
 struct BrickMesh {
   Mesh mesh;
-  /// Per vertex: the key of its cell edge in the whole level when the edge
-  /// is shared with another brick's cells, else kNotSeam. Welding uses it.
-  std::vector<uint64_t> seam_keys;
+  /// A vertex on a cell edge shared with another brick's cells, and the key
+  /// of that edge in the whole level. Welding merges vertices by key.
+  struct Seam {
+    uint32_t vertex = 0;
+    uint64_t key = 0;
+    friend bool operator==(const Seam&, const Seam&) = default;
+  };
+  /// The brick's seam vertices, by increasing vertex index. Most vertices
+  /// are inside the brick, so only these carry a key.
+  std::vector<Seam> seams;
   static constexpr uint64_t kNotSeam = ~uint64_t{0};
 
   bool empty() const { return mesh.triangles.empty(); }
@@ -46,7 +53,7 @@ struct BrickMesh {
     mesh.positions.clear();
     mesh.normals.clear();
     mesh.triangles.clear();
-    seam_keys.clear();
+    seams.clear();
   }
   friend bool operator==(const BrickMesh&, const BrickMesh&) = default;
 };
