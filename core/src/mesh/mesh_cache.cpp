@@ -95,49 +95,59 @@ bool rows_equal(const uint8_t* a, const uint8_t* b, int n) {
 }  // namespace
 
 void MeshCache::classify(std::span<const uint8_t> voxels, CachedBrick& cb) const {
-  // Per row: whether its first two voxels, the whole row and its last voxel
-  // hold voxels inside and outside (six bits); rows then add into the
-  // sub-boxes of the 27 offsets by their own y and z (the same sub-boxes
-  // refresh() compares), which only the rows at the brick's faces differ in.
+  // The sub-box of the 27 offsets (the voxels brick b + d reads from this
+  // brick, the same sub-boxes refresh() compares) that a row falls in depends
+  // only on whether its y and its z are among the first two (d = -1) and
+  // whether they are the last (d = +1). Rows of each such class are ORed and
+  // ANDed together byte by byte (inside flags), which vectorises; the
+  // classes' first two, all and last bytes then say which sub-boxes hold
+  // voxels inside and outside.
   const int m = m_;
-  const int lo_n = std::min(2, m);
   const int threshold = static_cast<int>(std::floor(options_.iso)) + 1;  // v > iso
   const auto t8 = static_cast<uint8_t>(std::clamp(threshold, 0, 255));
-  uint8_t boxes[3][3] = {};  // [dz + 1][dy + 1]: in bits 0-2, out bits 3-5 by dx + 1
+  auto row_class = [m](int c) { return (c < 2 ? 1 : 0) | (c == m - 1 ? 2 : 0); };
+  alignas(64) uint8_t any[4][4][kMaxBrickEdge], every[4][4][kMaxBrickEdge];
+  bool seen[4][4] = {};
   size_t i = 0;
   for (int z = 0; z < m; ++z)
     for (int y = 0; y < m; ++y, i += static_cast<size_t>(m)) {
+      const int zc = row_class(z), yc = row_class(y);
+      uint8_t* a = any[zc][yc];
+      uint8_t* e = every[zc][yc];
       const uint8_t* row = &voxels[i];
-      // Byte-wide any/all reductions vectorise.
-      uint8_t any = 0, every = 1;
-      for (int x = 0; x < m; ++x) {
-        any |= static_cast<uint8_t>(row[x] >= t8);
-        every &= static_cast<uint8_t>(row[x] >= t8);
+      if (!seen[zc][yc]) {
+        seen[zc][yc] = true;
+        for (int x = 0; x < m; ++x)
+          a[x] = e[x] = row[x] >= t8;
+        continue;
       }
-      const bool lo_any = row[0] >= t8 || row[lo_n - 1] >= t8;
-      const bool lo_every = row[0] >= t8 && row[lo_n - 1] >= t8;
-      const bool hi = row[m - 1] >= t8;
-      const auto bits = static_cast<uint8_t>(lo_any | (any << 1) | (hi << 2) | (!lo_every << 3) |
-                                             (!every << 4) | (!hi << 5));
-      const bool dz_lo = z < 2, dz_hi = z == m - 1, dy_lo = y < 2, dy_hi = y == m - 1;
-      boxes[1][1] |= bits;
-      if (dy_lo) boxes[1][0] |= bits;
-      if (dy_hi) boxes[1][2] |= bits;
-      if (dz_lo || dz_hi) {
-        for (const int dz : {0, 2}) {
-          if (!(dz == 0 ? dz_lo : dz_hi)) continue;
-          boxes[dz][1] |= bits;
-          if (dy_lo) boxes[dz][0] |= bits;
-          if (dy_hi) boxes[dz][2] |= bits;
-        }
+      for (int x = 0; x < m; ++x) {
+        const auto in = static_cast<uint8_t>(row[x] >= t8);
+        a[x] |= in;
+        e[x] &= in;
       }
     }
+  const int lo_n = std::min(2, m);
   uint32_t any_in = 0, any_out = 0;
-  for (int dz = 0; dz < 3; ++dz)
-    for (int dy = 0; dy < 3; ++dy) {
-      const int shift = dz * 9 + dy * 3;
-      any_in |= static_cast<uint32_t>(boxes[dz][dy] & 7u) << shift;
-      any_out |= static_cast<uint32_t>(boxes[dz][dy] >> 3) << shift;
+  for (int zc = 0; zc < 4; ++zc)
+    for (int yc = 0; yc < 4; ++yc) {
+      if (!seen[zc][yc]) continue;
+      const uint8_t* a = any[zc][yc];
+      const uint8_t* e = every[zc][yc];
+      // Per dx + 1: inside somewhere, outside somewhere.
+      const bool in[3] = {a[0] || a[lo_n - 1], std::find(a, a + m, 1) != a + m, a[m - 1] != 0};
+      const bool out[3] = {!e[0] || !e[lo_n - 1], std::find(e, e + m, 0) != e + m, e[m - 1] == 0};
+      for (int dz = -1; dz <= 1; ++dz) {
+        if ((dz == -1 && !(zc & 1)) || (dz == 1 && !(zc & 2))) continue;
+        for (int dy = -1; dy <= 1; ++dy) {
+          if ((dy == -1 && !(yc & 1)) || (dy == 1 && !(yc & 2))) continue;
+          for (int dx = 0; dx < 3; ++dx) {
+            const uint32_t bit = 1u << ((dz + 1) * 9 + (dy + 1) * 3 + dx);
+            if (in[dx]) any_in |= bit;
+            if (out[dx]) any_out |= bit;
+          }
+        }
+      }
     }
   cb.any_inside = any_in;
   cb.any_outside = any_out;
