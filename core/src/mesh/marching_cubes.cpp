@@ -293,6 +293,18 @@ struct PendingCentre {
   uint32_t edge_vertex[12];  // their vertices
 };
 
+inline int round_up8(int n) {
+  return (n + 7) & ~7;
+}
+
+// Eight 0/1 flags as the low eight bits, flag i at bit i: the multiply
+// gathers each byte's low bit into the top byte.
+inline uint64_t pack_flags8(const uint8_t* flags) {
+  uint64_t w;
+  std::memcpy(&w, flags, 8);
+  return (w * 0x0102040810204080ull) >> 56;
+}
+
 // Whether any and whether all of `count` 0/1 flags are 1, eight at a time:
 // a byte loop's vector reduction per row of corners cost more than the row.
 inline void flags_any_all(const uint8_t* flags, int count, uint8_t& any, uint8_t& all) {
@@ -322,7 +334,7 @@ struct Scratch {
   std::vector<PendingCentre> centres;
   UninitVector<glm::vec3> positions, normals;
   UninitVector<glm::uvec3> triangles;
-  std::vector<uint8_t> columns;
+  std::vector<uint8_t> columns, crossed;
   std::vector<uint8_t> inside;
   std::vector<uint8_t> row_any, row_all;
   // Vertex of each cell edge's crossing, written by the cell that makes it.
@@ -350,7 +362,10 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
   s.centres.clear();
   const size_t total = static_cast<size_t>(sxy) * dims.z;
   if (s.inside.size() < total) s.inside.resize(total);
-  if (s.columns.size() < static_cast<size_t>(dims.x)) s.columns.resize(static_cast<size_t>(dims.x));
+  if (s.columns.size() < static_cast<size_t>(dims.x)) {
+    s.columns.resize(static_cast<size_t>(dims.x));
+    s.crossed.resize(round_up8(dims.x));
+  }
   const size_t rows = static_cast<size_t>(n.y + 1) * (n.z + 1);
   if (s.row_any.size() < rows) {
     s.row_any.resize(rows);
@@ -508,84 +523,87 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
         col[x] = static_cast<uint8_t>(in[x] | (in[x + sx] << 1) | (in[x + sxy] << 2) |
                                       (in[x + sx + sxy] << 3));
       }
-      for (int x = 0; x < n.x; ++x) {
-        if (x + 9 <= n.x + 1) {
-          // Eight cells at once: nine equal columns all out or all in.
-          uint64_t a, b;
-          std::memcpy(&a, col + x, 8);
-          std::memcpy(&b, col + x + 1, 8);
-          if (a == b && (a == 0 || a == 0x0F0F0F0F0F0F0F0Full)) {
-            x += 7;
-            continue;
+      // Cells the surface crosses: their columns differ, or a column is
+      // neither all out (0) nor all in (15). A byte loop that vectorises,
+      // packed into bits, then the set bits in turn: branching cell by cell
+      // mispredicted at every way in and out of the surface.
+      uint8_t* crossed = s.crossed.data();
+      for (int x = 0; x < n.x; ++x)
+        crossed[x] = static_cast<uint8_t>((col[x] != col[x + 1]) | (col[x] != 0 && col[x] != 15));
+      std::fill(crossed + n.x, crossed + round_up8(n.x), uint8_t{0});
+      for (int word = 0; word < n.x; word += 64) {
+        uint64_t cells = 0;
+        for (int b = 0; b < 64 && word + b < n.x; b += 8)
+          cells |= pack_flags8(crossed + word + b) << b;
+        for (; cells != 0; cells &= cells - 1) {
+          const int x = word + std::countr_zero(cells);
+          const unsigned c = kSpread[col[x]] | (kSpread[col[x + 1]] << 1);
+          unsigned decision = 0;
+          if (const uint8_t amb = tab.ambiguous[c]; amb != 0) {
+            int j = 0;
+            for (int f = 0; f < 6; ++f) {
+              if (!((amb >> f) & 1)) continue;
+              const auto& fc = tab.face_corners[f];
+              float val[4];
+              for (int i = 0; i < 4; ++i)
+                val[i] = float(g[row0 + x + corner_delta[fc[i]]]) - iso;
+              // Inside diagonal (p, q), outside (r, s): the bilinear saddle is
+              // inside when p q > r s. Products commute, so the cell on the
+              // other side of the face decides the same.
+              const bool d0_in = val[0] > 0.0f;
+              const float pq = d0_in ? val[0] * val[2] : val[1] * val[3];
+              const float rs = d0_in ? val[1] * val[3] : val[0] * val[2];
+              if (pq > rs) decision |= 1u << j;
+              ++j;
+            }
           }
-        }
-        if (col[x] == col[x + 1] && (col[x] == 0 || col[x] == 15)) continue;
-        const unsigned c = kSpread[col[x]] | (kSpread[col[x + 1]] << 1);
-        unsigned decision = 0;
-        if (const uint8_t amb = tab.ambiguous[c]; amb != 0) {
-          int j = 0;
-          for (int f = 0; f < 6; ++f) {
-            if (!((amb >> f) & 1)) continue;
-            const auto& fc = tab.face_corners[f];
-            float val[4];
-            for (int i = 0; i < 4; ++i)
-              val[i] = float(g[row0 + x + corner_delta[fc[i]]]) - iso;
-            // Inside diagonal (p, q), outside (r, s): the bilinear saddle is
-            // inside when p q > r s. Products commute, so the cell on the
-            // other side of the face decides the same.
-            const bool d0_in = val[0] > 0.0f;
-            const float pq = d0_in ? val[0] * val[2] : val[1] * val[3];
-            const float rs = d0_in ? val[1] * val[3] : val[0] * val[2];
-            if (pq > rs) decision |= 1u << j;
-            ++j;
+          const uint32_t entry = tab.first_entry[c] + decision;
+          const uint32_t e_begin = tab.entry_begin[entry], e_end = tab.entry_begin[entry + 1];
+          const size_t cell_slot = row_slot + static_cast<size_t>(x);
+          const uint16_t needed = tab.entry_edges[entry];
+          // Every slot is read, needed or not: twelve loads cost less than
+          // the mispredicted branches of picking the needed ones. Slots of
+          // edges that are not crossed hold stale numbers no triangle uses.
+          for (int e = 0; e < 12; ++e)
+            edge_vertex[e] = slot_tables[kEdgeSlotTable[e]][cell_slot + edge_slot_delta[e]];
+          const int face = face_bits | (x == 0 ? 1 : 0);
+          if (face == 0) {
+            // Inside the block a cell makes the vertices of edges 3, 7 and 11
+            // when they are crossed; without a branch, a number is only kept
+            // (the count moves on) when the edge is crossed.
+            for (const int e : {3, 7, 11}) {
+              const auto v = static_cast<uint32_t>(vertex_count);
+              const glm::ivec3 p = glm::ivec3(x, y, z) + kEdgeOrigin[e];
+              s.pending[v] = {static_cast<uint8_t>(p.x), static_cast<uint8_t>(p.y),
+                              static_cast<uint8_t>(p.z), static_cast<uint8_t>(e >> 2)};
+              slot_tables[kEdgeSlotTable[e]][cell_slot + edge_slot_delta[e]] = v;
+              edge_vertex[e] = v;
+              vertex_count += (needed >> e) & 1u;
+            }
+          } else {
+            for (uint32_t make = needed & kOwnedEdges[face]; make != 0; make &= make - 1) {
+              const int e = std::countr_zero(make);
+              const uint32_t v = make_vertex(glm::ivec3(x, y, z) + kEdgeOrigin[e], e >> 2);
+              slot_tables[kEdgeSlotTable[e]][cell_slot + edge_slot_delta[e]] = v;
+              edge_vertex[e] = v;
+            }
           }
-        }
-        const uint32_t entry = tab.first_entry[c] + decision;
-        const uint32_t e_begin = tab.entry_begin[entry], e_end = tab.entry_begin[entry + 1];
-        const size_t cell_slot = row_slot + static_cast<size_t>(x);
-        const uint16_t needed = tab.entry_edges[entry];
-        // Every slot is read, needed or not: twelve loads cost less than
-        // the mispredicted branches of picking the needed ones. Slots of
-        // edges that are not crossed hold stale numbers no triangle uses.
-        for (int e = 0; e < 12; ++e)
-          edge_vertex[e] = slot_tables[kEdgeSlotTable[e]][cell_slot + edge_slot_delta[e]];
-        const int face = face_bits | (x == 0 ? 1 : 0);
-        if (face == 0) {
-          // Inside the block a cell makes the vertices of edges 3, 7 and 11
-          // when they are crossed; without a branch, a number is only kept
-          // (the count moves on) when the edge is crossed.
-          for (const int e : {3, 7, 11}) {
-            const auto v = static_cast<uint32_t>(vertex_count);
-            const glm::ivec3 p = glm::ivec3(x, y, z) + kEdgeOrigin[e];
-            s.pending[v] = {static_cast<uint8_t>(p.x), static_cast<uint8_t>(p.y),
-                            static_cast<uint8_t>(p.z), static_cast<uint8_t>(e >> 2)};
-            slot_tables[kEdgeSlotTable[e]][cell_slot + edge_slot_delta[e]] = v;
-            edge_vertex[e] = v;
-            vertex_count += (needed >> e) & 1u;
+          for (uint32_t k = tab.centre_begin[entry]; k < tab.centre_begin[entry + 1]; ++k) {
+            edge_vertex[12 + k - tab.centre_begin[entry]] =
+                make_centre(tab.centre_masks[k], edge_vertex);
           }
-        } else {
-          for (uint32_t make = needed & kOwnedEdges[face]; make != 0; make &= make - 1) {
-            const int e = std::countr_zero(make);
-            const uint32_t v = make_vertex(glm::ivec3(x, y, z) + kEdgeOrigin[e], e >> 2);
-            slot_tables[kEdgeSlotTable[e]][cell_slot + edge_slot_delta[e]] = v;
-            edge_vertex[e] = v;
-          }
+          // kFixedTriangles are written whatever the count (the buffer has
+          // room); those past the entry's end are overwritten later or cut.
+          auto triangle = [&](uint32_t k) {
+            return glm::uvec3(edge_vertex[tab.tri_edges[k]], edge_vertex[tab.tri_edges[k + 1]],
+                              edge_vertex[tab.tri_edges[k + 2]]);
+          };
+          for (uint32_t k = 0; k < kFixedTriangles; ++k)
+            s.triangles[triangle_count + k] = triangle(e_begin + 3 * k);
+          for (uint32_t k = e_begin + 3 * kFixedTriangles; k < e_end; k += 3)
+            s.triangles[triangle_count + (k - e_begin) / 3] = triangle(k);
+          triangle_count += (e_end - e_begin) / 3;
         }
-        for (uint32_t k = tab.centre_begin[entry]; k < tab.centre_begin[entry + 1]; ++k) {
-          edge_vertex[12 + k - tab.centre_begin[entry]] =
-              make_centre(tab.centre_masks[k], edge_vertex);
-        }
-        // kFixedTriangles are written whatever the count (the buffer has
-        // room); those past the entry's end are overwritten later or cut.
-        auto triangle = [&](uint32_t k) {
-          return glm::uvec3(edge_vertex[tab.tri_edges[k]], edge_vertex[tab.tri_edges[k + 1]],
-                            edge_vertex[tab.tri_edges[k + 2]]);
-        };
-        for (uint32_t k = 0; k < kFixedTriangles; ++k)
-          s.triangles[triangle_count + k] = triangle(e_begin + 3 * k);
-        for (uint32_t k = e_begin + 3 * kFixedTriangles; k < e_end; k += 3)
-          s.triangles[triangle_count + (k - e_begin) / 3] = triangle(k);
-        triangle_count += (e_end - e_begin) / 3;
       }
     }
   }
