@@ -38,6 +38,8 @@ std::atomic<bool> g_vector_kernel{true};
 constexpr int kFracBits = 16;
 constexpr double kOne = 1 << kFracBits;
 constexpr int kPad = PreparedTool::kPad;
+// Core stretches shorter than this are sampled rather than filled.
+constexpr int kMinCoreRun = 16;
 
 int32_t to_fixed(double v) {
   return static_cast<int32_t>(std::llround(v * kOne));
@@ -106,7 +108,7 @@ __attribute__((target("avx2"))) void sample_lines_avx2(const uint8_t* padded,
                                                        const uint64_t* corners, glm::ivec3 pd,
                                                        const int32_t st[3],
                                                        const RotationFrame::Line* lines, int count,
-                                                       bool nearest) {
+                                                       const uint8_t* end, bool nearest) {
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   __m256i lane_step[3];
   __m256i step8[3];
@@ -191,10 +193,23 @@ __attribute__((target("avx2"))) void sample_lines_avx2(const uint8_t* padded,
         std::memcpy(out + done, &lo, 4);
         std::memcpy(out + done + 4, &hi, 4);
       } else {
-        uint8_t bytes[8];
-        std::memcpy(bytes, &lo, 4);
-        std::memcpy(bytes + 4, &hi, 4);
-        std::memcpy(out + done, bytes, static_cast<size_t>(active));
+        // A line's last few samples: eight bytes read, the line's merged
+        // in, written back (a memcpy of a variable size was a library call
+        // per line, and stores by the bits of the count mispredicted). The
+        // bytes past the line keep their values; later lines overwrite
+        // them as ever. Byte by byte where eight would pass `end`.
+        const uint64_t bytes = lo | (static_cast<uint64_t>(hi) << 32);
+        uint8_t* d = out + done;
+        if (d + 8 <= end) {
+          const uint64_t keep = ~uint64_t{0} << (8 * active);
+          uint64_t old;
+          std::memcpy(&old, d, 8);
+          const uint64_t merged = (old & keep) | (bytes & ~keep);
+          std::memcpy(d, &merged, 8);
+        } else {
+          for (int j = 0; j < active; ++j)
+            d[j] = static_cast<uint8_t>(bytes >> (8 * j));
+        }
       }
       for (int i = 0; i < 3; ++i)
         sv[i] = _mm256_add_epi32(sv[i], step8[i]);
@@ -354,8 +369,7 @@ RotationFrame::RotationFrame(const PreparedTool& tool, const glm::mat3& rotation
   for (int i = 0; i < 3; ++i)
     inv_step_x_[i] = step_[0][i] != 0 ? 1.0 / step_[0][i] : 0.0;
   for (int i = 0; i < 3; ++i)
-    centre_[i] = pos[i] - box_.lo[i];
-  reach2_ = static_cast<double>(tool.reach_vox(sampling)) * tool.reach_vox(sampling);
+    centre_[i] = static_cast<float>(pos[i] - box_.lo[i]);
 
   // The balls are tested at exact target positions, the samples taken at
   // fixed-point ones: each of the box's steps is off by at most 2^-17 per
@@ -364,13 +378,22 @@ RotationFrame::RotationFrame(const PreparedTool& tool, const glm::mat3& rotation
   // the balls assume. `error` is more than 7 times that bound.
   const glm::ivec3 size = box_.size();
   const double error = 0.01 + 1e-4 * (size.x + size.y + size.z);
-  const double core = static_cast<double>(tool.core_radius_vox(sampling)) - error;
-  core2_ = core > 0.0 ? core * core : -1.0;
+  // spans() works in float, four rows per instruction, so the balls absorb
+  // its rounding too: the squared distances and chords are off by a few
+  // 2^-24 of the squared radius (hence the relative widening of the
+  // squares, which also covers the centre's rounding), the chord ends by a
+  // few 2^-24 of the box size (float_error).
+  const double float_error = 1e-3 + 1e-5 * (size.x + size.y + size.z);
+  constexpr double kSquareError = 4e-6;
+  const double reach = tool.reach_vox(sampling) + error + float_error;
+  reach2_ = static_cast<float>(reach * reach * (1.0 + kSquareError) + 1e-3);
+  const double core = static_cast<double>(tool.core_radius_vox(sampling)) - error - float_error;
+  const double core2 = core * core * (1.0 - kSquareError) - 1e-3;
+  core2_ = core > 0.0 && core2 > 0.0 ? static_cast<float>(core2) : -1.0f;
   core_value_ = tool.core_value();
   // Samples whose cell floor(s) lies in [0, dims + kPad] per axis read inside
   // the padded grid (both kernels, both samplings): tool coordinates in
   // [-kPad, dims + 1).
-  const double reach = tool.reach_vox(sampling) + error;
   clip_support_ = false;
   for (int i = 0; i < 3; ++i)
     if (pivot[i] - reach < -kPad || pivot[i] + reach >= d[i] + 1.0) clip_support_ = true;
@@ -417,12 +440,13 @@ bool RotationFrame::clip_line(Line& line) const {
   return true;
 }
 
-void RotationFrame::sample_lines(const PreparedTool& tool, const Line* lines, int count) const {
+void RotationFrame::sample_lines(const PreparedTool& tool, const Line* lines, int count,
+                                 const uint8_t* end) const {
   const glm::ivec3 pd = tool.padded_dims();
   const bool nearest = sampling_ == Sampling::kNearest;
 #ifdef SCULPT_TOOL_AVX2
   if (g_vector_kernel.load(std::memory_order_relaxed) && cpu_has_avx2()) {
-    sample_lines_avx2(tool.padded(), tool.corners(), pd, step_[0], lines, count, nearest);
+    sample_lines_avx2(tool.padded(), tool.corners(), pd, step_[0], lines, count, end, nearest);
     return;
   }
 #endif
@@ -455,83 +479,134 @@ void RotationFrame::sample_lines(const PreparedTool& tool, const Line* lines, in
 }
 
 bool RotationFrame::reach_span(int y, int z, int& x0, int& x1) const {
-  const double dy = y - centre_[1], dz = z - centre_[2];
-  const double h2 = reach2_ - dy * dy - dz * dz;
-  if (h2 < 0.0) return false;
-  const double h = std::sqrt(h2);
-  x0 = std::max(x0, static_cast<int>(fast_ceil(centre_[0] - h)));
-  x1 = std::min(x1, static_cast<int>(fast_floor(centre_[0] + h)) + 1);
+  Span span;
+  spans(y, z, 1, &span);
+  x0 = std::max(x0, span.x0);
+  x1 = std::min(x1, span.x1);
   return x0 < x1;
 }
 
-void RotationFrame::chords(int y0, int z, int n, Chords* out) const {
-  const double dz = z - centre_[2];
-  for (int i = 0; i < n; ++i) {
-    const double dy = y0 + i - centre_[1];
-    out[i].reach = reach2_ - dy * dy - dz * dz;
-    out[i].core = core2_ > 0.0 ? core2_ - dy * dy - dz * dz : -1.0;
-  }
-  // The square roots apart from the planning that waits on them: one per
-  // row, in turn, cost each row their latency (a third of a 16^3 tool's
-  // rotation); here they are independent, both of a row in one SSE2
-  // instruction. Negative squares stay as they are (the row misses).
+namespace {
+
+// One row's span from its squared distance to the balls' axis, in the same
+// float operations as the four-row version below, so both give the same
+// spans: ceil and floor by truncation, as the baseline x86-64 has no
+// rounding instruction.
+inline float trunc_ceil(float v) {
+  const auto t = static_cast<float>(static_cast<int32_t>(v));
+  return t < v ? t + 1.0f : t;
+}
+inline float trunc_floor(float v) {
+  const auto t = static_cast<float>(static_cast<int32_t>(v));
+  return t > v ? t - 1.0f : t;
+}
+
+}  // namespace
+
+void RotationFrame::spans(int y0, int z, int n, Span* out) const {
+  const float width = static_cast<float>(box_.size().x);
+  const float cx = centre_[0];
+  const float dz = static_cast<float>(z) - centre_[2];
+  const float dz2 = dz * dz;
+  int i = 0;
 #if defined(__SSE2__)
-  const __m128d zero = _mm_setzero_pd();
-  for (int i = 0; i < n; ++i) {
-    const __m128d h2 = _mm_loadu_pd(&out[i].reach);
-    const __m128d h = _mm_sqrt_pd(_mm_max_pd(h2, zero));
-    const __m128d miss = _mm_cmplt_pd(h2, zero);
-    _mm_storeu_pd(&out[i].reach, _mm_or_pd(_mm_and_pd(miss, h2), _mm_andnot_pd(miss, h)));
-  }
-#else
-  for (int i = 0; i < n; ++i) {
-    if (out[i].reach >= 0.0) out[i].reach = std::sqrt(out[i].reach);
-    if (out[i].core > 0.0) out[i].core = std::sqrt(out[i].core);
+  // Four rows at a time: per row two square roots and four roundings, whose
+  // latency one row at a time cost a third of a 16^3 tool's rotation.
+  const __m128 vcx = _mm_set1_ps(cx), vcy = _mm_set1_ps(centre_[1]), vdz2 = _mm_set1_ps(dz2);
+  const __m128 vreach2 = _mm_set1_ps(reach2_), vcore2 = _mm_set1_ps(core2_);
+  const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f), vwidth = _mm_set1_ps(width);
+  auto ceil4 = [&](__m128 v) {
+    const __m128 t = _mm_cvtepi32_ps(_mm_cvttps_epi32(v));
+    return _mm_add_ps(t, _mm_and_ps(_mm_cmplt_ps(t, v), one));
+  };
+  auto floor4 = [&](__m128 v) {
+    const __m128 t = _mm_cvtepi32_ps(_mm_cvttps_epi32(v));
+    return _mm_sub_ps(t, _mm_and_ps(_mm_cmpgt_ps(t, v), one));
+  };
+  auto select = [](__m128 mask, __m128 a, __m128 b) {
+    return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
+  };
+  for (; i + 4 <= n; i += 4) {
+    const __m128 dy = _mm_sub_ps(
+        _mm_cvtepi32_ps(_mm_add_epi32(_mm_set1_epi32(y0 + i), _mm_setr_epi32(0, 1, 2, 3))), vcy);
+    const __m128 r2 = _mm_add_ps(_mm_mul_ps(dy, dy), vdz2);
+    const __m128 h2 = _mm_sub_ps(vreach2, r2);
+    const __m128 h = _mm_sqrt_ps(_mm_max_ps(h2, zero));
+    __m128 x0 = _mm_max_ps(zero, ceil4(_mm_sub_ps(vcx, h)));
+    __m128 x1 = _mm_min_ps(vwidth, _mm_add_ps(floor4(_mm_add_ps(vcx, h)), one));
+    const __m128 hit = _mm_and_ps(_mm_cmpge_ps(h2, zero), _mm_cmplt_ps(x0, x1));
+    x0 = _mm_and_ps(hit, x0);
+    x1 = _mm_and_ps(hit, x1);
+    const __m128 k2 = _mm_sub_ps(vcore2, r2);
+    const __m128 k = _mm_sqrt_ps(_mm_max_ps(k2, zero));
+    const __m128 has_core = _mm_and_ps(_mm_cmpgt_ps(vcore2, zero), _mm_cmpgt_ps(k2, zero));
+    const __m128 c0 =
+        select(has_core, _mm_min_ps(_mm_max_ps(ceil4(_mm_sub_ps(vcx, k)), x0), x1), x1);
+    const __m128 c1 = select(
+        has_core, _mm_min_ps(_mm_max_ps(_mm_add_ps(floor4(_mm_add_ps(vcx, k)), one), c0), x1), x1);
+    alignas(16) int32_t v[4][4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(v[0]), _mm_cvttps_epi32(x0));
+    _mm_store_si128(reinterpret_cast<__m128i*>(v[1]), _mm_cvttps_epi32(x1));
+    _mm_store_si128(reinterpret_cast<__m128i*>(v[2]), _mm_cvttps_epi32(c0));
+    _mm_store_si128(reinterpret_cast<__m128i*>(v[3]), _mm_cvttps_epi32(c1));
+    for (int j = 0; j < 4; ++j)
+      out[i + j] = Span{v[0][j], v[1][j], v[2][j], v[3][j]};
   }
 #endif
+  for (; i < n; ++i) {
+    const float dy = static_cast<float>(y0 + i) - centre_[1];
+    const float r2 = dy * dy + dz2;
+    const float h2 = reach2_ - r2;
+    const float h = std::sqrt(std::max(h2, 0.0f));
+    float x0 = std::max(0.0f, trunc_ceil(cx - h));
+    float x1 = std::min(width, trunc_floor(cx + h) + 1.0f);
+    if (!(h2 >= 0.0f && x0 < x1)) x0 = x1 = 0.0f;
+    const float k2 = core2_ - r2;
+    const float k = std::sqrt(std::max(k2, 0.0f));
+    float c0 = x1, c1 = x1;
+    if (core2_ > 0.0f && k2 > 0.0f) {
+      c0 = std::min(std::max(trunc_ceil(cx - k), x0), x1);
+      c1 = std::min(std::max(trunc_floor(cx + k) + 1.0f, c0), x1);
+    }
+    out[i] = Span{static_cast<int32_t>(x0), static_cast<int32_t>(x1), static_cast<int32_t>(c0),
+                  static_cast<int32_t>(c1)};
+  }
 }
 
 void RotationFrame::reach_spans(int z, int16_t* x0, int16_t* x1) const {
   const glm::ivec3 size = box_.size();
   constexpr int kRows = 64;
-  Chords c[kRows];
+  Span sp[kRows];
   for (int ya = 0; ya < size.y; ya += kRows) {
     const int n = std::min(kRows, size.y - ya);
-    chords(ya, z, n, c);
+    spans(ya, z, n, sp);
     for (int i = 0; i < n; ++i) {
-      int a = 0, b = 0;
-      if (c[i].reach >= 0.0) {
-        a = std::max(0, static_cast<int>(fast_ceil(centre_[0] - c[i].reach)));
-        b = std::min(size.x, static_cast<int>(fast_floor(centre_[0] + c[i].reach)) + 1);
-        if (a >= b) a = b = 0;
-      }
-      x0[ya + i] = static_cast<int16_t>(a);
-      x1[ya + i] = static_cast<int16_t>(b);
+      x0[ya + i] = static_cast<int16_t>(sp[i].x0);
+      x1[ya + i] = static_cast<int16_t>(sp[i].x1);
     }
   }
 }
 
-int RotationFrame::plan_row(int y, int z, int x0, int x1, Chords c, uint8_t* out,
+int RotationFrame::plan_row(const int32_t row_s[3], int x0, int x1, Span span, uint8_t* out,
                             Line* lines) const {
   const int first = x0;
-  // The stretch within reach (as reach_span()).
-  if (c.reach < 0.0) return 0;
-  x0 = std::max(x0, static_cast<int>(fast_ceil(centre_[0] - c.reach)));
-  x1 = std::min(x1, static_cast<int>(fast_floor(centre_[0] + c.reach)) + 1);
+  // The stretch within reach, and the core stretch [c0, c1) in it, which
+  // needs no sampling.
+  x0 = std::max(x0, span.x0);
+  x1 = std::min(x1, span.x1);
   if (x0 >= x1) return 0;
-  // The core stretch [c0, c1) needs no sampling (empty: c0 = c1 = x1).
-  int c0 = x1, c1 = x1;
-  if (c.core > 0.0) {
-    c0 = std::clamp(static_cast<int>(fast_ceil(centre_[0] - c.core)), x0, x1);
-    c1 = std::clamp(static_cast<int>(fast_floor(centre_[0] + c.core)) + 1, c0, x1);
-    if (core_value_ != 0) std::memset(out + (c0 - first), core_value_, c1 - c0);
-  }
+  int c0 = std::clamp(span.c0, x0, x1);
+  int c1 = std::clamp(span.c1, c0, x1);
+  // A short core is sampled with the rest (its samples are the core value
+  // anyway): one line instead of two costs less than the few samples.
+  if (c1 - c0 < kMinCoreRun) c0 = c1 = x1;
+  if (core_value_ != 0 && c1 > c0) std::memset(out + (c0 - first), core_value_, c1 - c0);
   int count = 0;
   for (const auto& [a, b] : {std::pair{x0, c0}, std::pair{c1, x1}}) {
     if (a >= b) continue;
     Line& line = lines[count];
     for (int i = 0; i < 3; ++i)
-      line.s[i] = origin_[i] + a * step_[0][i] + y * step_[1][i] + z * step_[2][i];
+      line.s[i] = row_s[i] + a * step_[0][i];
     line.n = b - a;
     line.out = out + (a - first);
     if (!clip_support_ || clip_line(line)) ++count;
@@ -542,16 +617,20 @@ int RotationFrame::plan_row(int y, int z, int x0, int x1, Chords c, uint8_t* out
 void RotationFrame::sample_row(const PreparedTool& tool, int y, int z, int x0, int x1,
                                uint8_t* out) const {
   assert(x0 <= x1);
+  const int ry = y - box_.lo.y, rz = z - box_.lo.z;
+  Span span;
+  spans(ry, rz, 1, &span);
+  int32_t row_s[3];
+  for (int i = 0; i < 3; ++i)
+    row_s[i] = origin_[i] + ry * step_[1][i] + rz * step_[2][i];
   Line lines[2];
-  Chords c;
-  chords(y - box_.lo.y, z - box_.lo.z, 1, &c);
-  const int count =
-      plan_row(y - box_.lo.y, z - box_.lo.z, x0 - box_.lo.x, x1 - box_.lo.x, c, out, lines);
-  sample_lines(tool, lines, count);
+  const int count = plan_row(row_s, x0 - box_.lo.x, x1 - box_.lo.x, span, out, lines);
+  sample_lines(tool, lines, count, out + (x1 - x0));
 }
 
 void RotationFrame::sample_box(const PreparedTool& tool, uint8_t* out) const {
   const glm::ivec3 size = box_.size();
+  const uint8_t* end = out + static_cast<size_t>(size.x) * size.y * size.z;
   // Lines are planned first and sampled in batches, so the kernel's set-up
   // is paid once per batch rather than once per row.
   constexpr int kBatch = 256;
@@ -559,28 +638,34 @@ void RotationFrame::sample_box(const PreparedTool& tool, uint8_t* out) const {
   int count = 0;
   for (int z = 0; z < size.z; ++z) {
     // Only the rows of this plane that cross the reach ball.
-    const double dz = z - centre_[2];
-    const double h2 = reach2_ - dz * dz;
+    const double dz = z - static_cast<double>(centre_[2]);
+    const double h2 = static_cast<double>(reach2_) - dz * dz;
     if (h2 < 0.0) continue;
     const double h = std::sqrt(h2);
     const int y0 = std::max(0, static_cast<int>(fast_ceil(centre_[1] - h)));
     const int y1 = std::min(size.y, static_cast<int>(fast_floor(centre_[1] + h)) + 1);
     uint8_t* dst = out + (static_cast<size_t>(z) * size.y + y0) * size.x;
+    // Algorithm 1: each row's first sample one J step from the previous.
+    int32_t row_s[3];
+    for (int i = 0; i < 3; ++i)
+      row_s[i] = origin_[i] + y0 * step_[1][i] + z * step_[2][i];
     constexpr int kRows = 64;
-    Chords c[kRows];
+    Span sp[kRows];
     for (int ya = y0; ya < y1; ya += kRows) {
       const int n = std::min(kRows, y1 - ya);
-      chords(ya, z, n, c);
+      spans(ya, z, n, sp);
       for (int i = 0; i < n; ++i, dst += size.x) {
         if (count + 2 > kBatch) {
-          sample_lines(tool, lines, count);
+          sample_lines(tool, lines, count, end);
           count = 0;
         }
-        count += plan_row(ya + i, z, 0, size.x, c[i], dst, lines + count);
+        count += plan_row(row_s, 0, size.x, sp[i], dst, lines + count);
+        for (int a = 0; a < 3; ++a)
+          row_s[a] += step_[1][a];
       }
     }
   }
-  sample_lines(tool, lines, count);
+  sample_lines(tool, lines, count, end);
 }
 
 RotatedTool rotate_tool(const PreparedTool& tool, const glm::mat3& rotation, glm::vec3 position,

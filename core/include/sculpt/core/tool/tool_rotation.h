@@ -136,20 +136,24 @@ class RotationFrame {
   };
 
  private:
-  // Half-chords of a box-relative row through the reach ball (negative: the
-  // row misses it) and the core ball (<= 0: misses it).
-  struct Chords {
-    double reach, core;
+  // A box-relative row's stretch within the reach ball, [x0, x1) inside
+  // [0, box().size().x) (empty: x0 = x1 = 0), and within it the core
+  // stretch [c0, c1) (empty: c0 = c1 = x1).
+  struct Span {
+    int32_t x0, x1, c0, c1;
   };
   // Those of rows y0 .. y0 + n - 1 of plane z.
-  void chords(int y0, int z, int n, Chords* out) const;
-  // Box-relative row (y, z), x offsets [x0, x1) written from out[0]: fills
-  // the core stretch and adds the stretches left to sample (at most 2) to
-  // lines; returns how many.
-  int plan_row(int y, int z, int x0, int x1, Chords c, uint8_t* out, Line* lines) const;
+  void spans(int y0, int z, int n, Span* out) const;
+  // Box-relative row (y, z) whose first sample (x = 0) is at row_s, x
+  // offsets [x0, x1) written from out[0]: fills the core stretch and adds
+  // the stretches left to sample (at most 2) to lines; returns how many.
+  int plan_row(const int32_t row_s[3], int x0, int x1, Span span, uint8_t* out, Line* lines) const;
   // Narrows a line to its samples within the tool's support; false if none.
   bool clip_line(Line& line) const;
-  void sample_lines(const PreparedTool& tool, const Line* lines, int count) const;
+  // Samples the lines into their outputs, none of which reaches `end`; the
+  // kernel may rewrite (unchanged) bytes past a line's end before `end`.
+  void sample_lines(const PreparedTool& tool, const Line* lines, int count,
+                    const uint8_t* end) const;
 
   Box box_;
   Sampling sampling_;
@@ -161,12 +165,12 @@ class RotationFrame {
   double inv_step_x_[3];
   // The ball outside which every sample is 0: the pivot's position
   // relative to box_.lo (voxel units) and PreparedTool::reach_vox(sampling)
-  // squared.
-  double centre_[3];
-  double reach2_;
-  // The core ball (same centre) shrunk by the fixed-point error bound,
-  // squared; negative when there is none.
-  double core2_;
+  // squared, grown by the float rounding of spans().
+  float centre_[3];
+  float reach2_;
+  // The core ball (same centre) shrunk by the fixed-point error bound and
+  // the float rounding, squared; negative when there is none.
+  float core2_;
   uint8_t core_value_;
   // Whether lines must be clipped to the tool's support: not when the reach
   // ball lies inside the padded grid, whose zero border then reads 0 anyway.
