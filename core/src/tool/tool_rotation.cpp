@@ -479,10 +479,10 @@ void RotationFrame::sample_lines(const PreparedTool& tool, const Line* lines, in
 }
 
 bool RotationFrame::reach_span(int y, int z, int& x0, int& x1) const {
-  Span span;
-  spans(y, z, 1, &span);
-  x0 = std::max(x0, span.x0);
-  x1 = std::min(x1, span.x1);
+  Spans sp;
+  spans(y, z, 1, sp);
+  x0 = std::max(x0, sp.x0[0]);
+  x1 = std::min(x1, sp.x1[0]);
   return x0 < x1;
 }
 
@@ -503,7 +503,8 @@ inline float trunc_floor(float v) {
 
 }  // namespace
 
-void RotationFrame::spans(int y0, int z, int n, Span* out) const {
+void RotationFrame::spans(int y0, int z, int n, Spans& out) const {
+  assert(n <= kSpanRows);
   const float width = static_cast<float>(box_.size().x);
   const float cx = centre_[0];
   const float dz = static_cast<float>(z) - centre_[2];
@@ -544,13 +545,10 @@ void RotationFrame::spans(int y0, int z, int n, Span* out) const {
         select(has_core, _mm_min_ps(_mm_max_ps(ceil4(_mm_sub_ps(vcx, k)), x0), x1), x1);
     const __m128 c1 = select(
         has_core, _mm_min_ps(_mm_max_ps(_mm_add_ps(floor4(_mm_add_ps(vcx, k)), one), c0), x1), x1);
-    alignas(16) int32_t v[4][4];
-    _mm_store_si128(reinterpret_cast<__m128i*>(v[0]), _mm_cvttps_epi32(x0));
-    _mm_store_si128(reinterpret_cast<__m128i*>(v[1]), _mm_cvttps_epi32(x1));
-    _mm_store_si128(reinterpret_cast<__m128i*>(v[2]), _mm_cvttps_epi32(c0));
-    _mm_store_si128(reinterpret_cast<__m128i*>(v[3]), _mm_cvttps_epi32(c1));
-    for (int j = 0; j < 4; ++j)
-      out[i + j] = Span{v[0][j], v[1][j], v[2][j], v[3][j]};
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out.x0 + i), _mm_cvttps_epi32(x0));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out.x1 + i), _mm_cvttps_epi32(x1));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out.c0 + i), _mm_cvttps_epi32(c0));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out.c1 + i), _mm_cvttps_epi32(c1));
   }
 #endif
   for (; i < n; ++i) {
@@ -568,21 +566,22 @@ void RotationFrame::spans(int y0, int z, int n, Span* out) const {
       c0 = std::min(std::max(trunc_ceil(cx - k), x0), x1);
       c1 = std::min(std::max(trunc_floor(cx + k) + 1.0f, c0), x1);
     }
-    out[i] = Span{static_cast<int32_t>(x0), static_cast<int32_t>(x1), static_cast<int32_t>(c0),
-                  static_cast<int32_t>(c1)};
+    out.x0[i] = static_cast<int32_t>(x0);
+    out.x1[i] = static_cast<int32_t>(x1);
+    out.c0[i] = static_cast<int32_t>(c0);
+    out.c1[i] = static_cast<int32_t>(c1);
   }
 }
 
 void RotationFrame::reach_spans(int z, int16_t* x0, int16_t* x1) const {
   const glm::ivec3 size = box_.size();
-  constexpr int kRows = 64;
-  Span sp[kRows];
-  for (int ya = 0; ya < size.y; ya += kRows) {
-    const int n = std::min(kRows, size.y - ya);
+  Spans sp;
+  for (int ya = 0; ya < size.y; ya += kSpanRows) {
+    const int n = std::min(kSpanRows, size.y - ya);
     spans(ya, z, n, sp);
     for (int i = 0; i < n; ++i) {
-      x0[ya + i] = static_cast<int16_t>(sp[i].x0);
-      x1[ya + i] = static_cast<int16_t>(sp[i].x1);
+      x0[ya + i] = static_cast<int16_t>(sp.x0[i]);
+      x1[ya + i] = static_cast<int16_t>(sp.x1[i]);
     }
   }
 }
@@ -595,22 +594,22 @@ int RotationFrame::plan_row(const int32_t row_s[3], int x0, int x1, Span span, u
   x0 = std::max(x0, span.x0);
   x1 = std::min(x1, span.x1);
   if (x0 >= x1) return 0;
-  int c0 = std::clamp(span.c0, x0, x1);
-  int c1 = std::clamp(span.c1, c0, x1);
-  // A short core is sampled with the rest (its samples are the core value
-  // anyway): one line instead of two costs less than the few samples.
-  if (c1 - c0 < kMinCoreRun) c0 = c1 = x1;
-  if (core_value_ != 0 && c1 > c0) std::memset(out + (c0 - first), core_value_, c1 - c0);
-  int count = 0;
-  for (const auto& [a, b] : {std::pair{x0, c0}, std::pair{c1, x1}}) {
-    if (a >= b) continue;
-    Line& line = lines[count];
+  const int c0 = std::clamp(span.c0, x0, x1);
+  const int c1 = std::clamp(span.c1, c0, x1);
+  auto add_line = [&](int a, int b, Line& line) {
     for (int i = 0; i < 3; ++i)
       line.s[i] = row_s[i] + a * step_[0][i];
     line.n = b - a;
     line.out = out + (a - first);
-    if (!clip_support_ || clip_line(line)) ++count;
-  }
+    return !clip_support_ || clip_line(line);
+  };
+  // A short core is sampled with the rest (its samples are the core value
+  // anyway): one line instead of two costs less than the few samples.
+  if (c1 - c0 < kMinCoreRun) return add_line(x0, x1, lines[0]) ? 1 : 0;
+  if (core_value_ != 0) std::memset(out + (c0 - first), core_value_, c1 - c0);
+  int count = 0;
+  if (x0 < c0 && add_line(x0, c0, lines[count])) ++count;
+  if (c1 < x1 && add_line(c1, x1, lines[count])) ++count;
   return count;
 }
 
@@ -618,13 +617,13 @@ void RotationFrame::sample_row(const PreparedTool& tool, int y, int z, int x0, i
                                uint8_t* out) const {
   assert(x0 <= x1);
   const int ry = y - box_.lo.y, rz = z - box_.lo.z;
-  Span span;
-  spans(ry, rz, 1, &span);
+  Spans sp;
+  spans(ry, rz, 1, sp);
   int32_t row_s[3];
   for (int i = 0; i < 3; ++i)
     row_s[i] = origin_[i] + ry * step_[1][i] + rz * step_[2][i];
   Line lines[2];
-  const int count = plan_row(row_s, x0 - box_.lo.x, x1 - box_.lo.x, span, out, lines);
+  const int count = plan_row(row_s, x0 - box_.lo.x, x1 - box_.lo.x, sp.row(0), out, lines);
   sample_lines(tool, lines, count, out + (x1 - x0));
 }
 
@@ -649,17 +648,16 @@ void RotationFrame::sample_box(const PreparedTool& tool, uint8_t* out) const {
     int32_t row_s[3];
     for (int i = 0; i < 3; ++i)
       row_s[i] = origin_[i] + y0 * step_[1][i] + z * step_[2][i];
-    constexpr int kRows = 64;
-    Span sp[kRows];
-    for (int ya = y0; ya < y1; ya += kRows) {
-      const int n = std::min(kRows, y1 - ya);
+    Spans sp;
+    for (int ya = y0; ya < y1; ya += kSpanRows) {
+      const int n = std::min(kSpanRows, y1 - ya);
       spans(ya, z, n, sp);
       for (int i = 0; i < n; ++i, dst += size.x) {
         if (count + 2 > kBatch) {
           sample_lines(tool, lines, count, end);
           count = 0;
         }
-        count += plan_row(row_s, 0, size.x, sp[i], dst, lines + count);
+        count += plan_row(row_s, 0, size.x, sp.row(i), dst, lines + count);
         for (int a = 0; a < 3; ++a)
           row_s[a] += step_[1][a];
       }

@@ -142,8 +142,15 @@ class RotationFrame {
   struct Span {
     int32_t x0, x1, c0, c1;
   };
-  // Those of rows y0 .. y0 + n - 1 of plane z.
-  void spans(int y0, int z, int n, Span* out) const;
+  // Spans of up to kSpanRows rows, one array per field (the planner's
+  // vector stores write them whole).
+  static constexpr int kSpanRows = 64;
+  struct Spans {
+    int32_t x0[kSpanRows], x1[kSpanRows], c0[kSpanRows], c1[kSpanRows];
+    Span row(int i) const { return {x0[i], x1[i], c0[i], c1[i]}; }
+  };
+  // Those of rows y0 .. y0 + n - 1 of plane z (n <= kSpanRows).
+  void spans(int y0, int z, int n, Spans& out) const;
   // Box-relative row (y, z) whose first sample (x = 0) is at row_s, x
   // offsets [x0, x1) written from out[0]: fills the core stretch and adds
   // the stretches left to sample (at most 2) to lines; returns how many.
