@@ -34,7 +34,10 @@ std::optional<CommandResult> run_with_display(const std::string& args,
   if (!display_available()) {
     if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) return std::nullopt;
     // xvfb-run starts an X server just for this command (-a: a free number).
-    launcher = "xvfb-run -a -s '-screen 0 1280x1024x24' ";
+    // Its X authority file lives in `dir` (-f): left to itself, xvfb-run
+    // makes a temporary directory and exits 5, whatever the command did,
+    // when removing it fails, which it did once under parallel ctest.
+    launcher = "xvfb-run -a -f '" + (dir / "xvfb-auth").string() + "' -s '-screen 0 1280x1024x24' ";
   }
   const std::string sculpt = std::string(SCULPT_BINARY_DIR) + "/bin/sculpt";
   const auto err =
