@@ -362,10 +362,8 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
   s.centres.clear();
   const size_t total = static_cast<size_t>(sxy) * dims.z;
   if (s.inside.size() < total) s.inside.resize(total);
-  if (s.columns.size() < static_cast<size_t>(dims.x)) {
-    s.columns.resize(static_cast<size_t>(dims.x));
-    s.crossed.resize(round_up8(dims.x));
-  }
+  if (s.columns.size() < static_cast<size_t>(dims.x)) s.columns.resize(static_cast<size_t>(dims.x));
+  if (s.crossed.size() < static_cast<size_t>(round_up8(n.x))) s.crossed.resize(round_up8(n.x));
   const size_t rows = static_cast<size_t>(n.y + 1) * (n.z + 1);
   if (s.row_any.size() < rows) {
     s.row_any.resize(rows);
@@ -430,10 +428,13 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
   };
   // Cells number their vertices as they need them; compute_vertices()
   // fills them in after the march.
+  auto pending = [](glm::ivec3 p, int axis) {
+    return PendingVertex{static_cast<uint8_t>(p.x), static_cast<uint8_t>(p.y),
+                         static_cast<uint8_t>(p.z), static_cast<uint8_t>(axis)};
+  };
   auto make_vertex = [&](glm::ivec3 p, int axis) -> uint32_t {
     const auto index = static_cast<uint32_t>(vertex_count++);
-    s.pending[index] = {static_cast<uint8_t>(p.x), static_cast<uint8_t>(p.y),
-                        static_cast<uint8_t>(p.z), static_cast<uint8_t>(axis)};
+    s.pending[index] = pending(p, axis);
     return index;
   };
   // A vertex inside the cell, at the mean of a loop's vertices; no other
@@ -573,9 +574,7 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
             // (the count moves on) when the edge is crossed.
             for (const int e : {3, 7, 11}) {
               const auto v = static_cast<uint32_t>(vertex_count);
-              const glm::ivec3 p = glm::ivec3(x, y, z) + kEdgeOrigin[e];
-              s.pending[v] = {static_cast<uint8_t>(p.x), static_cast<uint8_t>(p.y),
-                              static_cast<uint8_t>(p.z), static_cast<uint8_t>(e >> 2)};
+              s.pending[v] = pending(glm::ivec3(x, y, z) + kEdgeOrigin[e], e >> 2);
               slot_tables[kEdgeSlotTable[e]][cell_slot + edge_slot_delta[e]] = v;
               edge_vertex[e] = v;
               vertex_count += (needed >> e) & 1u;

@@ -106,8 +106,10 @@ void MeshCache::classify(std::span<const uint8_t> voxels, CachedBrick& cb) const
   const int threshold = static_cast<int>(std::floor(options_.iso)) + 1;  // v > iso
   const auto t8 = static_cast<uint8_t>(std::clamp(threshold, 0, 255));
   auto row_class = [m](int c) { return (c < 2 ? 1 : 0) | (c == m - 1 ? 2 : 0); };
+  // A class no row falls in keeps any = 0, every = 1: it adds no bits.
   alignas(64) uint8_t any[4][4][kMaxBrickEdge], every[4][4][kMaxBrickEdge];
-  bool seen[4][4] = {};
+  std::memset(any, 0, sizeof any);
+  std::memset(every, 1, sizeof every);
   size_t i = 0;
   for (int z = 0; z < m; ++z)
     for (int y = 0; y < m; ++y, i += static_cast<size_t>(m)) {
@@ -115,12 +117,6 @@ void MeshCache::classify(std::span<const uint8_t> voxels, CachedBrick& cb) const
       uint8_t* a = any[zc][yc];
       uint8_t* e = every[zc][yc];
       const uint8_t* row = &voxels[i];
-      if (!seen[zc][yc]) {
-        seen[zc][yc] = true;
-        for (int x = 0; x < m; ++x)
-          a[x] = e[x] = row[x] >= t8;
-        continue;
-      }
       for (int x = 0; x < m; ++x) {
         const auto in = static_cast<uint8_t>(row[x] >= t8);
         a[x] |= in;
@@ -131,7 +127,6 @@ void MeshCache::classify(std::span<const uint8_t> voxels, CachedBrick& cb) const
   uint32_t any_in = 0, any_out = 0;
   for (int zc = 0; zc < 4; ++zc)
     for (int yc = 0; yc < 4; ++yc) {
-      if (!seen[zc][yc]) continue;
       const uint8_t* a = any[zc][yc];
       const uint8_t* e = every[zc][yc];
       // Per dx + 1: inside somewhere, outside somewhere.

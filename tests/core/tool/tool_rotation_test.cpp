@@ -62,7 +62,8 @@ TEST(ToolRotation, BruteAndIncrementalAgreeExactly) {
 // hollow shell (core 0). The brute-force method samples every voxel, so any
 // core voxel that sampling would not give shows.
 TEST(ToolRotation, CoreFillMatchesBruteForce) {
-  Tool grey = tool_from_grid(DenseGrid<uint8_t>({13, 13, 13}));
+  // Large enough that its core rows reach the fill's minimum run (16).
+  Tool grey = tool_from_grid(DenseGrid<uint8_t>({37, 37, 37}));
   for (uint8_t& v : grey.density.values())
     v = 200;
   Tool shell = make_sphere_tool(9.0f);
@@ -80,7 +81,7 @@ TEST(ToolRotation, CoreFillMatchesBruteForce) {
     float min_core_vox;
   };
   for (const Case& c :
-       {Case{make_sphere_tool(14.0f), 255, 10.0f}, Case{grey, 200, 4.0f}, Case{shell, 0, 1.0f}}) {
+       {Case{make_sphere_tool(14.0f), 255, 10.0f}, Case{grey, 200, 9.0f}, Case{shell, 0, 1.0f}}) {
     const PreparedTool tool(c.tool);
     ASSERT_EQ(tool.core_value(), c.core_value);
     ASSERT_GT(tool.core_radius_vox(), c.min_core_vox);
