@@ -103,14 +103,18 @@ BENCHMARK(BM_ToolPrepare)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMicroseco
 // Full dabs of the 32^3 tool into the 256^3 sphere. range(0): 0 = a new
 // orientation every dab (every contact voxel rotated), 1 = the same
 // orientation moved by whole voxels, 2 = the same orientation moved by
-// sub-voxel steps (snapped to 1/16 voxel by the cache).
+// sub-voxel steps (snapped to 1/16 voxel by the cache). range(1): 1 =
+// trilinear sampling (the sculptor's default), 0 = nearest, for what
+// antialiasing costs a whole dab.
 void BM_ToolDab(benchmark::State& state) {
   const int kind = static_cast<int>(state.range(0));
+  const Sampling sampling = state.range(1) != 0 ? Sampling::kTrilinear : Sampling::kNearest;
   // Built once for the three runs (a 256^3 volume takes a while), never freed.
   static Volume* material = nullptr;
   if (material == nullptr) material = new Volume(sphere_volume(256, 0.35f));
   Volume v = *material;
   Sculptor sculptor(v);
+  sculptor.set_sampling(sampling);
   sculptor.set_tool(peers_tool(32));
   const glm::vec3 centre(127.5f);
   const float radius = 0.35f * 256.0f;
@@ -172,9 +176,8 @@ void BM_ToolDab(benchmark::State& state) {
       static_cast<double>(sculptor.cache().stats().voxels_rotated) / n;
 }
 BENCHMARK(BM_ToolDab)
-    ->Arg(0)
-    ->Arg(1)
-    ->Arg(2)
+    ->ArgsProduct({{0, 1, 2}, {1, 0}})
+    ->ArgNames({"case", "aa"})
     ->Iterations(2000)
     ->UseManualTime()
     ->Unit(benchmark::kMicrosecond);
