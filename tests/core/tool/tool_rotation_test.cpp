@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <vector>
@@ -149,6 +150,30 @@ TEST(ToolRotation, PlaneReachSpansMatchRowByRow) {
     }
     EXPECT_GT(rows, size.y * size.z / 4);
   }
+}
+
+// The rows' stretches are planned eight rows at a time with AVX2 and one at
+// a time otherwise, in the same float operations: the same stretches.
+TEST(ToolRotation, VectorAndScalarPlanningGiveTheSameSpans) {
+  const PreparedTool tool(make_sphere_tool(11.0f));
+  for (glm::vec3 angles : kAngles)
+    for (Sampling s : {Sampling::kNearest, Sampling::kTrilinear}) {
+      const RotationFrame frame(tool, euler_xyz_deg(angles), {0.7f, 3.2f, -1.9f}, s);
+      const glm::ivec3 size = frame.box().size();
+      std::vector<int16_t> lo[2], hi[2];
+      for (int vector = 0; vector < 2; ++vector) {
+        (void)use_vector_kernel(vector == 1);
+        for (int z = 0; z < size.z; ++z) {
+          std::vector<int16_t> l(static_cast<size_t>(size.y)), h(l.size());
+          frame.reach_spans(z, l.data(), h.data());
+          lo[vector].insert(lo[vector].end(), l.begin(), l.end());
+          hi[vector].insert(hi[vector].end(), h.begin(), h.end());
+        }
+      }
+      EXPECT_EQ(lo[0], lo[1]);
+      EXPECT_EQ(hi[0], hi[1]);
+      EXPECT_GT(std::count_if(lo[0].begin(), lo[0].end(), [](int16_t v) { return v > 0; }), 0);
+    }
 }
 
 TEST(ToolRotation, QuarterTurnsAreExact) {
