@@ -104,7 +104,7 @@ __attribute__((target("avx2"), always_inline)) inline __m128i corner_pair(const 
 __attribute__((target("avx2"))) void sample_lines_avx2(const uint8_t* padded,
                                                        const uint64_t* corners, glm::ivec3 pd,
                                                        const int32_t st[3],
-                                                       const RotationFrame::Line* lines, int count,
+                                                       const RotationFrame::Lines& lines,
                                                        const uint8_t* end, bool nearest) {
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   __m256i lane_step[3];
@@ -121,13 +121,12 @@ __attribute__((target("avx2"))) void sample_lines_avx2(const uint8_t* padded,
       _mm256_setr_epi8(0, 4, 8, 12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 4, 8, 12, -1,
                        -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1);
   const __m256i all = _mm256_set1_epi32(-1);
-  for (int l = 0; l < count; ++l) {
-    const RotationFrame::Line& line = lines[l];
-    const int n = line.n;
-    uint8_t* out = line.out;
-    __m256i sv[3];
-    for (int i = 0; i < 3; ++i)
-      sv[i] = _mm256_add_epi32(_mm256_set1_epi32(line.s[i]), lane_step[i]);
+  for (int l = 0; l < lines.count; ++l) {
+    const int n = lines.n[l];
+    uint8_t* out = lines.out[l];
+    __m256i sv[3] = {_mm256_add_epi32(_mm256_set1_epi32(lines.s0[l]), lane_step[0]),
+                     _mm256_add_epi32(_mm256_set1_epi32(lines.s1[l]), lane_step[1]),
+                     _mm256_add_epi32(_mm256_set1_epi32(lines.s2[l]), lane_step[2])};
     for (int done = 0; done < n; done += 8) {
       // The last group may be partial: its idle lanes read cell 0 (so no
       // read outside the grid) and are not stored.
@@ -437,13 +436,13 @@ bool RotationFrame::clip_line(Line& line) const {
   return true;
 }
 
-void RotationFrame::sample_lines(const PreparedTool& tool, const Line* lines, int count,
+void RotationFrame::sample_lines(const PreparedTool& tool, const Lines& lines,
                                  const uint8_t* end) const {
   const glm::ivec3 pd = tool.padded_dims();
   const bool nearest = sampling_ == Sampling::kNearest;
 #ifdef SCULPT_TOOL_AVX2
   if (g_vector_kernel.load(std::memory_order_relaxed) && cpu_has_avx2()) {
-    sample_lines_avx2(tool.padded(), tool.corners(), pd, step_[0], lines, count, end, nearest);
+    sample_lines_avx2(tool.padded(), tool.corners(), pd, step_[0], lines, end, nearest);
     return;
   }
 #endif
@@ -451,10 +450,10 @@ void RotationFrame::sample_lines(const PreparedTool& tool, const Line* lines, in
   const uint8_t* padded = tool.padded();
   const uint16_t* cells = tool.cells();
   const int32_t st[3] = {step_[0][0], step_[0][1], step_[0][2]};
-  for (int l = 0; l < count; ++l) {
-    int32_t s[3] = {lines[l].s[0], lines[l].s[1], lines[l].s[2]};
-    uint8_t* out = lines[l].out;
-    const int n1 = lines[l].n;
+  for (int l = 0; l < lines.count; ++l) {
+    int32_t s[3] = {lines.s0[l], lines.s1[l], lines.s2[l]};
+    uint8_t* out = lines.out[l];
+    const int n1 = lines.n[l];
     if (nearest) {
       for (int n = 0; n < n1; ++n) {
         out[n] = padded[cell_index(s, pd)];
@@ -613,31 +612,134 @@ void RotationFrame::reach_spans(int z, int16_t* x0, int16_t* x1) const {
   }
 }
 
-int RotationFrame::plan_row(const int32_t row_s[3], int x0, int x1, Span span, uint8_t* out,
-                            Line* lines) const {
+void RotationFrame::plan_row(const int32_t row_s[3], int x0, int x1, Span span, uint8_t* out,
+                             Lines& lines) const {
   const int first = x0;
   // The stretch within reach, and the core stretch [c0, c1) in it, which
   // needs no sampling.
   x0 = std::max(x0, span.x0);
   x1 = std::min(x1, span.x1);
-  if (x0 >= x1) return 0;
+  if (x0 >= x1) return;
   const int c0 = std::clamp(span.c0, x0, x1);
   const int c1 = std::clamp(span.c1, c0, x1);
-  auto add_line = [&](int a, int b, Line& line) {
+  auto add_line = [&](int a, int b) {
+    Line line;
     for (int i = 0; i < 3; ++i)
       line.s[i] = row_s[i] + a * step_[0][i];
     line.n = b - a;
     line.out = out + (a - first);
-    return !clip_support_ || clip_line(line);
+    if (!clip_support_ || clip_line(line)) lines.add(line);
   };
   // A short core is sampled with the rest (its samples are the core value
   // anyway): one line instead of two costs less than the few samples.
-  if (c1 - c0 < kMinCoreRun) return add_line(x0, x1, lines[0]) ? 1 : 0;
+  if (c1 - c0 < kMinCoreRun) {
+    add_line(x0, x1);
+    return;
+  }
   if (core_value_ != 0) std::memset(out + (c0 - first), core_value_, c1 - c0);
-  int count = 0;
-  if (x0 < c0 && add_line(x0, c0, lines[count])) ++count;
-  if (c1 < x1 && add_line(c1, x1, lines[count])) ++count;
-  return count;
+  if (x0 < c0) add_line(x0, c0);
+  if (c1 < x1) add_line(c1, x1);
+}
+
+#ifdef SCULPT_TOOL_AVX2
+namespace {
+
+__attribute__((target("avx2"), always_inline)) inline __m256i load(const int32_t* p) {
+  return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+}
+__attribute__((target("avx2"), always_inline)) inline void store(int32_t* p, __m256i v) {
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), v);
+}
+
+// Lines k .. k + 7 of `lines`, one per row of eight: row r's starts at x
+// offset start[r] with n[r] samples, its first sample at row_s + r J +
+// start I and its output at out + r width + start.
+__attribute__((target("avx2"), always_inline)) inline void put_lines(
+    RotationFrame::Lines& lines, int k, const int32_t row_s[3], const int32_t step_i[3],
+    const int32_t step_j[3], __m256i start, __m256i n, int width, uint8_t* out) {
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  int32_t* const s[3] = {lines.s0 + k, lines.s1 + k, lines.s2 + k};
+  for (int i = 0; i < 3; ++i)
+    store(s[i],
+          _mm256_add_epi32(_mm256_add_epi32(_mm256_set1_epi32(row_s[i]),
+                                            _mm256_mullo_epi32(lane, _mm256_set1_epi32(step_j[i]))),
+                           _mm256_mullo_epi32(start, _mm256_set1_epi32(step_i[i]))));
+  store(lines.n + k, n);
+  const __m256i offset =
+      _mm256_add_epi32(_mm256_mullo_epi32(lane, _mm256_set1_epi32(width)), start);
+  const __m256i base = _mm256_set1_epi64x(reinterpret_cast<int64_t>(out));
+  store(reinterpret_cast<int32_t*>(lines.out + k),
+        _mm256_add_epi64(base, _mm256_cvtepi32_epi64(_mm256_castsi256_si128(offset))));
+  store(reinterpret_cast<int32_t*>(lines.out + k + 4),
+        _mm256_add_epi64(base, _mm256_cvtepi32_epi64(_mm256_extracti128_si256(offset, 1))));
+}
+
+// plan_row() for eight whole rows at once (no clipping to the support), in
+// the same integer arithmetic, so the same lines and fills. Rows that miss
+// the reach ball, and the right-hand side of rows whose core is sampled,
+// become lines of no samples rather than branches. Row by row, this
+// planning cost a third of a 16^3 tool's rotation.
+__attribute__((target("avx2"))) void plan_rows_avx2(const int32_t row_s[3], const int32_t step_i[3],
+                                                    const int32_t step_j[3], const int32_t* x0s,
+                                                    const int32_t* x1s, const int32_t* c0s,
+                                                    const int32_t* c1s, int m, int width,
+                                                    uint8_t core_value, uint8_t* out,
+                                                    RotationFrame::Lines& lines) {
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256i x0 = load(x0s), x1 = load(x1s);
+  const __m256i c0 = _mm256_min_epi32(_mm256_max_epi32(load(c0s), x0), x1);
+  const __m256i c1 = _mm256_min_epi32(_mm256_max_epi32(load(c1s), c0), x1);
+  const __m256i hit = _mm256_cmpgt_epi32(x1, x0);
+  const __m256i rows = _mm256_cmpgt_epi32(_mm256_set1_epi32(m), lane);
+  const __m256i filled = _mm256_and_si256(
+      _mm256_and_si256(hit, rows),
+      _mm256_cmpgt_epi32(_mm256_sub_epi32(c1, c0), _mm256_set1_epi32(kMinCoreRun - 1)));
+  const int k = lines.count;
+  if (_mm256_testz_si256(filled, filled)) {
+    // Every core sampled: one line a row, x0 .. x1.
+    put_lines(lines, k, row_s, step_i, step_j, x0, _mm256_and_si256(hit, _mm256_sub_epi32(x1, x0)),
+              width, out);
+    lines.count = k + m;
+    return;
+  }
+  // x0 .. c0 and c1 .. x1 where the core is filled, x0 .. x1 elsewhere. The
+  // right-hand lines overwrite the left-hand ones past row m.
+  const __m256i left_end = _mm256_blendv_epi8(x1, c0, filled);
+  put_lines(lines, k, row_s, step_i, step_j, x0,
+            _mm256_and_si256(hit, _mm256_sub_epi32(left_end, x0)), width, out);
+  put_lines(lines, k + m, row_s, step_i, step_j, c1,
+            _mm256_and_si256(filled, _mm256_sub_epi32(x1, c1)), width, out);
+  lines.count = k + 2 * m;
+  if (core_value == 0) return;
+  alignas(32) int32_t from[8], to[8];
+  store(from, c0);
+  store(to, c1);
+  for (int mask = _mm256_movemask_ps(_mm256_castsi256_ps(filled)); mask != 0; mask &= mask - 1) {
+    const int r = __builtin_ctz(static_cast<unsigned>(mask));
+    std::memset(out + static_cast<size_t>(r) * width + from[r], core_value, to[r] - from[r]);
+  }
+}
+
+}  // namespace
+#endif
+
+void RotationFrame::plan_rows(const int32_t row_s[3], const Spans& sp, int i, int m, uint8_t* out,
+                              Lines& lines) const {
+  assert(m <= 8 && i + 8 <= kSpanRows && lines.count + 16 <= Lines::kCapacity);
+  const int width = box_.size().x;
+#ifdef SCULPT_TOOL_AVX2
+  if (!clip_support_ && g_vector_kernel.load(std::memory_order_relaxed) && cpu_has_avx2()) {
+    plan_rows_avx2(row_s, step_[0], step_[1], sp.x0 + i, sp.x1 + i, sp.c0 + i, sp.c1 + i, m, width,
+                   core_value_, out, lines);
+    return;
+  }
+#endif
+  int32_t s[3] = {row_s[0], row_s[1], row_s[2]};
+  for (int r = 0; r < m; ++r, out += width) {
+    plan_row(s, 0, width, sp.row(i + r), out, lines);
+    for (int a = 0; a < 3; ++a)
+      s[a] += step_[1][a];
+  }
 }
 
 void RotationFrame::sample_row(const PreparedTool& tool, int y, int z, int x0, int x1,
@@ -649,9 +751,9 @@ void RotationFrame::sample_row(const PreparedTool& tool, int y, int z, int x0, i
   int32_t row_s[3];
   for (int i = 0; i < 3; ++i)
     row_s[i] = origin_[i] + ry * step_[1][i] + rz * step_[2][i];
-  Line lines[2];
-  const int count = plan_row(row_s, x0 - box_.lo.x, x1 - box_.lo.x, sp.row(0), out, lines);
-  sample_lines(tool, lines, count, out + (x1 - x0));
+  Lines lines;
+  plan_row(row_s, x0 - box_.lo.x, x1 - box_.lo.x, sp.row(0), out, lines);
+  sample_lines(tool, lines, out + (x1 - x0));
 }
 
 void RotationFrame::sample_box(const PreparedTool& tool, uint8_t* out) const {
@@ -659,9 +761,7 @@ void RotationFrame::sample_box(const PreparedTool& tool, uint8_t* out) const {
   const uint8_t* end = out + static_cast<size_t>(size.x) * size.y * size.z;
   // Lines are planned first and sampled in batches, so the kernel's set-up
   // is paid once per batch rather than once per row.
-  constexpr int kBatch = 256;
-  Line lines[kBatch];
-  int count = 0;
+  Lines lines;
   for (int z = 0; z < size.z; ++z) {
     // Only the rows of this plane that cross the reach ball.
     const double dz = z - static_cast<double>(centre_[2]);
@@ -679,18 +779,20 @@ void RotationFrame::sample_box(const PreparedTool& tool, uint8_t* out) const {
     for (int ya = y0; ya < y1; ya += kSpanRows) {
       const int n = std::min(kSpanRows, y1 - ya);
       spans(ya, z, n, sp);
-      for (int i = 0; i < n; ++i, dst += size.x) {
-        if (count + 2 > kBatch) {
-          sample_lines(tool, lines, count, end);
-          count = 0;
+      for (int i = 0; i < n; i += 8) {
+        if (lines.count + 16 > Lines::kCapacity) {
+          sample_lines(tool, lines, end);
+          lines.count = 0;
         }
-        count += plan_row(row_s, 0, size.x, sp.row(i), dst, lines + count);
+        const int m = std::min(8, n - i);
+        plan_rows(row_s, sp, i, m, dst, lines);
+        dst += static_cast<size_t>(m) * size.x;
         for (int a = 0; a < 3; ++a)
-          row_s[a] += step_[1][a];
+          row_s[a] += m * step_[1][a];
       }
     }
   }
-  sample_lines(tool, lines, count, end);
+  sample_lines(tool, lines, end);
 }
 
 RotatedTool rotate_tool(const PreparedTool& tool, const glm::mat3& rotation, glm::vec3 position,

@@ -128,11 +128,27 @@ class RotationFrame {
   void reach_spans(int z, int16_t* x0, int16_t* x1) const;
 
   /// A stretch of samples along x: the first one's position (16.16, padded
-  /// tool voxels), the count, and where the values go. The kernels' input.
+  /// tool voxels), the count, and where the values go.
   struct Line {
     int32_t s[3];
     int n;
     uint8_t* out;
+  };
+  /// A batch of lines, one array per field (the planner writes eight rows'
+  /// lines with vector stores): the kernels' input.
+  struct Lines {
+    static constexpr int kCapacity = 256;
+    int32_t s0[kCapacity], s1[kCapacity], s2[kCapacity], n[kCapacity];
+    uint8_t* out[kCapacity];
+    int count = 0;
+    void add(const Line& line) {
+      s0[count] = line.s[0];
+      s1[count] = line.s[1];
+      s2[count] = line.s[2];
+      n[count] = line.n;
+      out[count] = line.out;
+      ++count;
+    }
   };
 
  private:
@@ -153,14 +169,18 @@ class RotationFrame {
   void spans(int y0, int z, int n, Spans& out) const;
   // Box-relative row (y, z) whose first sample (x = 0) is at row_s, x
   // offsets [x0, x1) written from out[0]: fills the core stretch and adds
-  // the stretches left to sample (at most 2) to lines; returns how many.
-  int plan_row(const int32_t row_s[3], int x0, int x1, Span span, uint8_t* out, Line* lines) const;
+  // the stretches left to sample (at most 2) to lines.
+  void plan_row(const int32_t row_s[3], int x0, int x1, Span span, uint8_t* out,
+                Lines& lines) const;
+  // Rows i .. i + m - 1 (m <= 8) of `sp`, whole (x offsets [0, width)), the
+  // first at row_s and writing from out (a row apart): plan_row() for each.
+  void plan_rows(const int32_t row_s[3], const Spans& sp, int i, int m, uint8_t* out,
+                 Lines& lines) const;
   // Narrows a line to its samples within the tool's support; false if none.
   bool clip_line(Line& line) const;
   // Samples the lines into their outputs, none of which reaches `end`; the
   // kernel may rewrite (unchanged) bytes past a line's end before `end`.
-  void sample_lines(const PreparedTool& tool, const Line* lines, int count,
-                    const uint8_t* end) const;
+  void sample_lines(const PreparedTool& tool, const Lines& lines, const uint8_t* end) const;
 
   Box box_;
   Sampling sampling_;
