@@ -374,7 +374,7 @@ RotationFrame::RotationFrame(const PreparedTool& tool, const glm::mat3& rotation
   // the balls assume. `error` is more than 7 times that bound.
   const glm::ivec3 size = box_.size();
   const double error = 0.01 + 1e-4 * (size.x + size.y + size.z);
-  // spans() works in float, four rows per instruction, so the balls absorb
+  // spans() works in float, eight rows per instruction, so the balls absorb
   // its rounding too: the squared distances and chords are off by a few
   // 2^-24 of the squared radius (hence the relative widening of the
   // squares, which also covers the centre's rounding), the chord ends by a
@@ -476,7 +476,8 @@ void RotationFrame::sample_lines(const PreparedTool& tool, const Lines& lines,
 
 bool RotationFrame::reach_span(int y, int z, int& x0, int& x1) const {
   Spans sp;
-  spans(y, z, 1, sp);
+  const SpanRun run{y, z, 1, 0};
+  spans(&run, 1, sp);
   x0 = std::max(x0, sp.x0[0]);
   x1 = std::min(x1, sp.x1[0]);
   return x0 < x1;
@@ -522,81 +523,91 @@ __attribute__((target("avx2"), always_inline)) inline void store8(int32_t* out, 
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_cvttps_epi32(v));
 }
 
-// Rows y0 .. y0 + n - 1, in whole eights (the arrays have the slack).
-__attribute__((target("avx2"))) void spans_avx2(int y0, int n, float cx, float cy, float dz2,
-                                                float reach2, float core2, float width,
-                                                int32_t* x0s, int32_t* x1s, int32_t* c0s,
-                                                int32_t* c1s) {
-  const __m256 vcx = _mm256_set1_ps(cx), vcy = _mm256_set1_ps(cy), vdz2 = _mm256_set1_ps(dz2);
+// The runs' rows, in whole eights (the arrays have the slack). All the
+// runs of a batch of planes in one loop: a plane's rows alone were too few
+// to hide the square roots' latency.
+__attribute__((target("avx2"))) void spans_avx2(const RotationFrame::SpanRun* runs, int count,
+                                                float cx, float cy, float cz, float reach2,
+                                                float core2, float width, int32_t* x0s,
+                                                int32_t* x1s, int32_t* c0s, int32_t* c1s) {
+  const __m256 vcx = _mm256_set1_ps(cx), vcy = _mm256_set1_ps(cy);
   const __m256 vreach2 = _mm256_set1_ps(reach2), vcore2 = _mm256_set1_ps(core2);
   const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
   const __m256 vwidth = _mm256_set1_ps(width);
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   const bool any_core = core2 > 0.0f;
-  for (int i = 0; i < n; i += 8) {
-    const __m256 y = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(y0 + i), lane));
-    const __m256 dy = _mm256_sub_ps(y, vcy);
-    const __m256 r2 = _mm256_add_ps(_mm256_mul_ps(dy, dy), vdz2);
-    const __m256 h2 = _mm256_sub_ps(vreach2, r2);
-    const __m256 h = _mm256_sqrt_ps(_mm256_max_ps(h2, zero));
-    __m256 x0 = _mm256_max_ps(zero, ceil8(_mm256_sub_ps(vcx, h)));
-    __m256 x1 = _mm256_min_ps(vwidth, _mm256_add_ps(floor8(_mm256_add_ps(vcx, h)), one));
-    const __m256 hit =
-        _mm256_and_ps(_mm256_cmp_ps(h2, zero, _CMP_GE_OQ), _mm256_cmp_ps(x0, x1, _CMP_LT_OQ));
-    x0 = _mm256_and_ps(hit, x0);
-    x1 = _mm256_and_ps(hit, x1);
-    const __m256 k2 = _mm256_sub_ps(vcore2, r2);
-    const __m256 k = _mm256_sqrt_ps(_mm256_max_ps(k2, zero));
-    const __m256 has_core = any_core ? _mm256_cmp_ps(k2, zero, _CMP_GT_OQ) : _mm256_setzero_ps();
-    const __m256 c0 =
-        select8(has_core, _mm256_min_ps(_mm256_max_ps(ceil8(_mm256_sub_ps(vcx, k)), x0), x1), x1);
-    const __m256 c1 = select8(
-        has_core,
-        _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(floor8(_mm256_add_ps(vcx, k)), one), c0), x1),
-        x1);
-    store8(x0s + i, x0);
-    store8(x1s + i, x1);
-    store8(c0s + i, c0);
-    store8(c1s + i, c1);
-  }
+  for (int run = 0; run < count; ++run)
+    for (int i = 0; i < runs[run].n; i += 8) {
+      const float dz = static_cast<float>(runs[run].z) - cz;
+      const __m256 vdz2 = _mm256_set1_ps(dz * dz);
+      const int at = runs[run].at + i;
+      const __m256 y =
+          _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(runs[run].y0 + i), lane));
+      const __m256 dy = _mm256_sub_ps(y, vcy);
+      const __m256 r2 = _mm256_add_ps(_mm256_mul_ps(dy, dy), vdz2);
+      const __m256 h2 = _mm256_sub_ps(vreach2, r2);
+      const __m256 h = _mm256_sqrt_ps(_mm256_max_ps(h2, zero));
+      __m256 x0 = _mm256_max_ps(zero, ceil8(_mm256_sub_ps(vcx, h)));
+      __m256 x1 = _mm256_min_ps(vwidth, _mm256_add_ps(floor8(_mm256_add_ps(vcx, h)), one));
+      const __m256 hit =
+          _mm256_and_ps(_mm256_cmp_ps(h2, zero, _CMP_GE_OQ), _mm256_cmp_ps(x0, x1, _CMP_LT_OQ));
+      x0 = _mm256_and_ps(hit, x0);
+      x1 = _mm256_and_ps(hit, x1);
+      const __m256 k2 = _mm256_sub_ps(vcore2, r2);
+      const __m256 k = _mm256_sqrt_ps(_mm256_max_ps(k2, zero));
+      const __m256 has_core = any_core ? _mm256_cmp_ps(k2, zero, _CMP_GT_OQ) : _mm256_setzero_ps();
+      const __m256 c0 =
+          select8(has_core, _mm256_min_ps(_mm256_max_ps(ceil8(_mm256_sub_ps(vcx, k)), x0), x1), x1);
+      const __m256 c1 = select8(
+          has_core,
+          _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(floor8(_mm256_add_ps(vcx, k)), one), c0), x1),
+          x1);
+      store8(x0s + at, x0);
+      store8(x1s + at, x1);
+      store8(c0s + at, c0);
+      store8(c1s + at, c1);
+    }
 }
 
 }  // namespace
 #endif
 
-void RotationFrame::spans(int y0, int z, int n, Spans& out) const {
-  assert(n <= kSpanRows);
+void RotationFrame::spans(const SpanRun* runs, int count, Spans& out) const {
+  assert(count == 0 || runs[count - 1].at + runs[count - 1].n <= kSpanRows);
   const float width = static_cast<float>(box_.size().x);
   const float cx = centre_[0];
-  const float dz = static_cast<float>(z) - centre_[2];
-  const float dz2 = dz * dz;
 #ifdef SCULPT_TOOL_AVX2
   static_assert(kSpanRows % 8 == 0);
   if (g_vector_kernel.load(std::memory_order_relaxed) && cpu_has_avx2()) {
-    spans_avx2(y0, n, cx, centre_[1], dz2, reach2_, core2_, width, out.x0, out.x1, out.c0, out.c1);
+    spans_avx2(runs, count, cx, centre_[1], centre_[2], reach2_, core2_, width, out.x0, out.x1,
+               out.c0, out.c1);
     return;
   }
 #endif
-  for (int i = 0; i < n; ++i) {
-    const float dy = static_cast<float>(y0 + i) - centre_[1];
-    const float r2 = dy * dy + dz2;
-    const float h2 = reach2_ - r2;
-    const float h = std::sqrt(std::max(h2, 0.0f));
-    float x0 = std::max(0.0f, trunc_ceil(cx - h));
-    float x1 = std::min(width, trunc_floor(cx + h) + 1.0f);
-    if (!(h2 >= 0.0f && x0 < x1)) x0 = x1 = 0.0f;
-    const float k2 = core2_ - r2;
-    const float k = std::sqrt(std::max(k2, 0.0f));
-    float c0 = x1, c1 = x1;
-    if (core2_ > 0.0f && k2 > 0.0f) {
-      c0 = std::min(std::max(trunc_ceil(cx - k), x0), x1);
-      c1 = std::min(std::max(trunc_floor(cx + k) + 1.0f, c0), x1);
+  for (int run = 0; run < count; ++run)
+    for (int i = 0; i < runs[run].n; ++i) {
+      const float dz = static_cast<float>(runs[run].z) - centre_[2];
+      const float dz2 = dz * dz;
+      const int at = runs[run].at + i;
+      const float dy = static_cast<float>(runs[run].y0 + i) - centre_[1];
+      const float r2 = dy * dy + dz2;
+      const float h2 = reach2_ - r2;
+      const float h = std::sqrt(std::max(h2, 0.0f));
+      float x0 = std::max(0.0f, trunc_ceil(cx - h));
+      float x1 = std::min(width, trunc_floor(cx + h) + 1.0f);
+      if (!(h2 >= 0.0f && x0 < x1)) x0 = x1 = 0.0f;
+      const float k2 = core2_ - r2;
+      const float k = std::sqrt(std::max(k2, 0.0f));
+      float c0 = x1, c1 = x1;
+      if (core2_ > 0.0f && k2 > 0.0f) {
+        c0 = std::min(std::max(trunc_ceil(cx - k), x0), x1);
+        c1 = std::min(std::max(trunc_floor(cx + k) + 1.0f, c0), x1);
+      }
+      out.x0[at] = static_cast<int32_t>(x0);
+      out.x1[at] = static_cast<int32_t>(x1);
+      out.c0[at] = static_cast<int32_t>(c0);
+      out.c1[at] = static_cast<int32_t>(c1);
     }
-    out.x0[i] = static_cast<int32_t>(x0);
-    out.x1[i] = static_cast<int32_t>(x1);
-    out.c0[i] = static_cast<int32_t>(c0);
-    out.c1[i] = static_cast<int32_t>(c1);
-  }
 }
 
 void RotationFrame::reach_spans(int z, int16_t* x0, int16_t* x1) const {
@@ -604,7 +615,8 @@ void RotationFrame::reach_spans(int z, int16_t* x0, int16_t* x1) const {
   Spans sp;
   for (int ya = 0; ya < size.y; ya += kSpanRows) {
     const int n = std::min(kSpanRows, size.y - ya);
-    spans(ya, z, n, sp);
+    const SpanRun run{ya, z, n, 0};
+    spans(&run, 1, sp);
     for (int i = 0; i < n; ++i) {
       x0[ya + i] = static_cast<int16_t>(sp.x0[i]);
       x1[ya + i] = static_cast<int16_t>(sp.x1[i]);
@@ -747,7 +759,8 @@ void RotationFrame::sample_row(const PreparedTool& tool, int y, int z, int x0, i
   assert(x0 <= x1);
   const int ry = y - box_.lo.y, rz = z - box_.lo.z;
   Spans sp;
-  spans(ry, rz, 1, sp);
+  const SpanRun run{ry, rz, 1, 0};
+  spans(&run, 1, sp);
   int32_t row_s[3];
   for (int i = 0; i < 3; ++i)
     row_s[i] = origin_[i] + ry * step_[1][i] + rz * step_[2][i];
@@ -759,9 +772,38 @@ void RotationFrame::sample_row(const PreparedTool& tool, int y, int z, int x0, i
 void RotationFrame::sample_box(const PreparedTool& tool, uint8_t* out) const {
   const glm::ivec3 size = box_.size();
   const uint8_t* end = out + static_cast<size_t>(size.x) * size.y * size.z;
-  // Lines are planned first and sampled in batches, so the kernel's set-up
-  // is paid once per batch rather than once per row.
+  // The rows of several planes are given their spans together, then
+  // planned eight at a time into a batch of lines, which is sampled when
+  // full: each stage's set-up is paid per batch rather than per row.
+  Spans sp;
+  constexpr int kRuns = kSpanRows / 8;
+  SpanRun runs[kRuns];
+  int count = 0, used = 0;
   Lines lines;
+  auto plan = [&] {
+    if (count == 0) return;
+    spans(runs, count, sp);
+    for (int r = 0; r < count; ++r) {
+      const SpanRun& run = runs[r];
+      uint8_t* dst = out + (static_cast<size_t>(run.z) * size.y + run.y0) * size.x;
+      // Algorithm 1: each row's first sample one J step from the previous.
+      int32_t row_s[3];
+      for (int i = 0; i < 3; ++i)
+        row_s[i] = origin_[i] + run.y0 * step_[1][i] + run.z * step_[2][i];
+      for (int i = 0; i < run.n; i += 8) {
+        if (lines.count + 16 > Lines::kCapacity) {
+          sample_lines(tool, lines, end);
+          lines.count = 0;
+        }
+        const int m = std::min(8, run.n - i);
+        plan_rows(row_s, sp, run.at + i, m, dst, lines);
+        dst += static_cast<size_t>(m) * size.x;
+        for (int a = 0; a < 3; ++a)
+          row_s[a] += m * step_[1][a];
+      }
+    }
+    count = used = 0;
+  };
   for (int z = 0; z < size.z; ++z) {
     // Only the rows of this plane that cross the reach ball.
     const double dz = z - static_cast<double>(centre_[2]);
@@ -770,28 +812,15 @@ void RotationFrame::sample_box(const PreparedTool& tool, uint8_t* out) const {
     const double h = std::sqrt(h2);
     const int y0 = std::max(0, static_cast<int>(fast_ceil(centre_[1] - h)));
     const int y1 = std::min(size.y, static_cast<int>(fast_floor(centre_[1] + h)) + 1);
-    uint8_t* dst = out + (static_cast<size_t>(z) * size.y + y0) * size.x;
-    // Algorithm 1: each row's first sample one J step from the previous.
-    int32_t row_s[3];
-    for (int i = 0; i < 3; ++i)
-      row_s[i] = origin_[i] + y0 * step_[1][i] + z * step_[2][i];
-    Spans sp;
     for (int ya = y0; ya < y1; ya += kSpanRows) {
       const int n = std::min(kSpanRows, y1 - ya);
-      spans(ya, z, n, sp);
-      for (int i = 0; i < n; i += 8) {
-        if (lines.count + 16 > Lines::kCapacity) {
-          sample_lines(tool, lines, end);
-          lines.count = 0;
-        }
-        const int m = std::min(8, n - i);
-        plan_rows(row_s, sp, i, m, dst, lines);
-        dst += static_cast<size_t>(m) * size.x;
-        for (int a = 0; a < 3; ++a)
-          row_s[a] += m * step_[1][a];
-      }
+      const int slots = (n + 7) & ~7;
+      if (used + slots > kSpanRows) plan();
+      runs[count++] = SpanRun{ya, z, n, used};
+      used += slots;
     }
   }
+  plan();
   sample_lines(tool, lines, end);
 }
 

@@ -151,6 +151,12 @@ class RotationFrame {
     }
   };
 
+  /// A plane's rows y0 .. y0 + n - 1 (box-relative), whose spans go to
+  /// index `at` on (a multiple of 8) of the planner's arrays.
+  struct SpanRun {
+    int y0, z, n, at;
+  };
+
  private:
   // A box-relative row's stretch within the reach ball, [x0, x1) inside
   // [0, box().size().x) (empty: x0 = x1 = 0), and within it the core
@@ -159,14 +165,15 @@ class RotationFrame {
     int32_t x0, x1, c0, c1;
   };
   // Spans of up to kSpanRows rows, one array per field (the planner's
-  // vector stores write them whole).
-  static constexpr int kSpanRows = 64;
+  // vector loads and stores use them eight at a time).
+  static constexpr int kSpanRows = 512;
   struct Spans {
     int32_t x0[kSpanRows], x1[kSpanRows], c0[kSpanRows], c1[kSpanRows];
     Span row(int i) const { return {x0[i], x1[i], c0[i], c1[i]}; }
   };
-  // Those of rows y0 .. y0 + n - 1 of plane z (n <= kSpanRows).
-  void spans(int y0, int z, int n, Spans& out) const;
+  // The spans of the runs' rows. Each run takes its rows rounded up to a
+  // multiple of 8 from `at`, within kSpanRows.
+  void spans(const SpanRun* runs, int count, Spans& out) const;
   // Box-relative row (y, z) whose first sample (x = 0) is at row_s, x
   // offsets [x0, x1) written from out[0]: fills the core stretch and adds
   // the stretches left to sample (at most 2) to lines.
