@@ -161,21 +161,19 @@ __attribute__((target("avx2"))) void sample_lines_avx2(const uint8_t* padded,
           sv[i] = _mm256_add_epi32(sv[i], step8[i]);
         continue;
       }
-      // A cell's 8 corners are one 64-bit load; samples 0-3 fill a, 4-7
-      // fill b. Then split into the faces at z (low halves) and z + 1.
+      // A cell's 8 corners are one 64-bit load. The low half of a takes
+      // samples 0, 1, its high half 4, 5; b likewise 2, 3 and 6, 7. The
+      // shuffles then split them into the faces at z (low 32 bits) and
+      // z + 1 with the samples in order, no lane crossing needed.
       const __m256i a =
           _mm256_inserti128_si256(_mm256_castsi128_si256(corner_pair(corners, cell[0], cell[1])),
-                                  corner_pair(corners, cell[2], cell[3]), 1);
+                                  corner_pair(corners, cell[4], cell[5]), 1);
       const __m256i b =
-          _mm256_inserti128_si256(_mm256_castsi128_si256(corner_pair(corners, cell[4], cell[5])),
+          _mm256_inserti128_si256(_mm256_castsi128_si256(corner_pair(corners, cell[2], cell[3])),
                                   corner_pair(corners, cell[6], cell[7]), 1);
       const __m256 af = _mm256_castsi256_ps(a), bf = _mm256_castsi256_ps(b);
-      const __m256i fa = _mm256_permute4x64_epi64(
-          _mm256_castps_si256(_mm256_shuffle_ps(af, bf, _MM_SHUFFLE(2, 0, 2, 0))),
-          _MM_SHUFFLE(3, 1, 2, 0));
-      const __m256i fc = _mm256_permute4x64_epi64(
-          _mm256_castps_si256(_mm256_shuffle_ps(af, bf, _MM_SHUFFLE(3, 1, 3, 1))),
-          _MM_SHUFFLE(3, 1, 2, 0));
+      const __m256i fa = _mm256_castps_si256(_mm256_shuffle_ps(af, bf, _MM_SHUFFLE(2, 0, 2, 0)));
+      const __m256i fc = _mm256_castps_si256(_mm256_shuffle_ps(af, bf, _MM_SHUFFLE(3, 1, 3, 1)));
       // The x step in 16-bit pairs: a face's even bytes are the two x
       // corners at y, its odd bytes those at y + 1 (see corners()), and
       // one multiply-add per pair gives p(x) (256 - fx) + p(x+1) fx.
