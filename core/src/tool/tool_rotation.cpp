@@ -116,6 +116,9 @@ __attribute__((target("avx2"))) void sample_lines_avx2(const uint8_t* padded,
   const __m256i vpx = _mm256_set1_epi32(pd.x);
   const __m256i vpxy = _mm256_set1_epi32(pd.x * pd.y);
   const __m256i even = _mm256_set1_epi32(0x00FF00FF);
+  // A face's odd bytes as 16-bit words (one shuffle, not a shift and a mask).
+  const __m256i odd = _mm256_setr_epi8(1, -1, 3, -1, 5, -1, 7, -1, 9, -1, 11, -1, 13, -1, 15, -1, 1,
+                                       -1, 3, -1, 5, -1, 7, -1, 9, -1, 11, -1, 13, -1, 15, -1);
   const __m256i v256 = _mm256_set1_epi32(256), half = _mm256_set1_epi32(1 << 23);
   // Byte shuffles: a coordinate's fraction (bits 8-15) to bits 0-7 and to
   // bits 16-23 of its lane (one instruction each instead of a shift and a
@@ -130,7 +133,6 @@ __attribute__((target("avx2"))) void sample_lines_avx2(const uint8_t* padded,
       _mm256_setr_epi8(0, 4, 8, 12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 4, 8, 12, -1,
                        -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1);
   const __m256i halves = _mm256_setr_epi32(0, 4, 0, 0, 0, 0, 0, 0);
-  const __m256i all = _mm256_set1_epi32(-1);
   for (int l = 0; l < lines.count; ++l) {
     const int n = lines.n[l];
     uint8_t* out = lines.out[l];
@@ -141,15 +143,16 @@ __attribute__((target("avx2"))) void sample_lines_avx2(const uint8_t* padded,
       // The last group may be partial: its idle lanes read cell 0 (so no
       // read outside the grid) and are not stored.
       const int active = std::min(8, n - done);
-      const __m256i on = active == 8 ? all : _mm256_cmpgt_epi32(_mm256_set1_epi32(active), lane);
       const __m256i ix = _mm256_srai_epi32(sv[0], kFracBits);
       const __m256i iy = _mm256_srai_epi32(sv[1], kFracBits);
       const __m256i iz = _mm256_srai_epi32(sv[2], kFracBits);
       // Two independent products (not (z py + y) px): half the latency.
-      const __m256i idx = _mm256_add_epi32(
+      __m256i idx = _mm256_add_epi32(
           _mm256_add_epi32(_mm256_mullo_epi32(iz, vpxy), _mm256_mullo_epi32(iy, vpx)), ix);
+      if (active < 8)
+        idx = _mm256_and_si256(idx, _mm256_cmpgt_epi32(_mm256_set1_epi32(active), lane));
       alignas(32) int32_t cell[8];
-      _mm256_store_si256(reinterpret_cast<__m256i*>(cell), _mm256_and_si256(idx, on));
+      _mm256_store_si256(reinterpret_cast<__m256i*>(cell), idx);
       // The indices are read back from memory, one load each: left to
       // itself the compiler extracts them from the vector (two micro-ops
       // each on Zen 4), which made the trilinear kernel 3% slower.
@@ -181,9 +184,9 @@ __attribute__((target("avx2"))) void sample_lines_avx2(const uint8_t* padded,
       const __m256i wx =
           _mm256_or_si256(_mm256_sub_epi32(v256, fx), _mm256_shuffle_epi8(sv[0], fraction_hi));
       const __m256i c00 = _mm256_madd_epi16(_mm256_and_si256(fa, even), wx);
-      const __m256i c10 = _mm256_madd_epi16(_mm256_and_si256(_mm256_srli_epi32(fa, 8), even), wx);
+      const __m256i c10 = _mm256_madd_epi16(_mm256_shuffle_epi8(fa, odd), wx);
       const __m256i c01 = _mm256_madd_epi16(_mm256_and_si256(fc, even), wx);
-      const __m256i c11 = _mm256_madd_epi16(_mm256_and_si256(_mm256_srli_epi32(fc, 8), even), wx);
+      const __m256i c11 = _mm256_madd_epi16(_mm256_shuffle_epi8(fc, odd), wx);
       // Along y and z the sums exceed 16 bits: 32-bit products.
       const __m256i fy = _mm256_shuffle_epi8(sv[1], fraction);
       const __m256i gy = _mm256_sub_epi32(v256, fy);
