@@ -591,7 +591,9 @@ void RotationFrame::spans(const SpanRun* runs, int count, Spans& out) const {
   const float cx = centre_[0];
 #ifdef SCULPT_TOOL_AVX2
   static_assert(kSpanRows % 8 == 0);
-  if (g_vector_kernel.load(std::memory_order_relaxed) && cpu_has_avx2()) {
+  // A single row (the cache asks row by row) costs less one lane wide.
+  const bool one_row = count == 1 && runs[0].n == 1;
+  if (!one_row && g_vector_kernel.load(std::memory_order_relaxed) && cpu_has_avx2()) {
     spans_avx2(runs, count, cx, centre_[1], centre_[2], reach2_, core2_, width, out.x0, out.x1,
                out.c0, out.c1);
     return;
