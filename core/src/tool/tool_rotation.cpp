@@ -549,13 +549,13 @@ __attribute__((target("avx2"))) void spans_avx2(const RotationFrame::SpanRun* ru
   const __m256 vwidth = _mm256_set1_ps(width);
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   const bool any_core = core2 > 0.0f;
-  for (int run = 0; run < count; ++run)
-    for (int i = 0; i < runs[run].n; i += 8) {
-      const float dz = static_cast<float>(runs[run].z) - cz;
-      const __m256 vdz2 = _mm256_set1_ps(dz * dz);
-      const int at = runs[run].at + i;
-      const __m256 y =
-          _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(runs[run].y0 + i), lane));
+  for (int r = 0; r < count; ++r) {
+    const RotationFrame::SpanRun& run = runs[r];
+    const float dz = static_cast<float>(run.z) - cz;
+    const __m256 vdz2 = _mm256_set1_ps(dz * dz);
+    for (int i = 0; i < run.n; i += 8) {
+      const int at = run.at + i;
+      const __m256 y = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(run.y0 + i), lane));
       const __m256 dy = _mm256_sub_ps(y, vcy);
       const __m256 r2 = _mm256_add_ps(_mm256_mul_ps(dy, dy), vdz2);
       const __m256 h2 = _mm256_sub_ps(vreach2, r2);
@@ -580,6 +580,7 @@ __attribute__((target("avx2"))) void spans_avx2(const RotationFrame::SpanRun* ru
       store8(c0s + at, c0);
       store8(c1s + at, c1);
     }
+  }
 }
 
 }  // namespace
@@ -599,12 +600,13 @@ void RotationFrame::spans(const SpanRun* runs, int count, Spans& out) const {
     return;
   }
 #endif
-  for (int run = 0; run < count; ++run)
-    for (int i = 0; i < runs[run].n; ++i) {
-      const float dz = static_cast<float>(runs[run].z) - centre_[2];
-      const float dz2 = dz * dz;
-      const int at = runs[run].at + i;
-      const float dy = static_cast<float>(runs[run].y0 + i) - centre_[1];
+  for (int r = 0; r < count; ++r) {
+    const SpanRun& run = runs[r];
+    const float dz = static_cast<float>(run.z) - centre_[2];
+    const float dz2 = dz * dz;
+    for (int i = 0; i < run.n; ++i) {
+      const int at = run.at + i;
+      const float dy = static_cast<float>(run.y0 + i) - centre_[1];
       const float r2 = dy * dy + dz2;
       const float h2 = reach2_ - r2;
       const float h = std::sqrt(std::max(h2, 0.0f));
@@ -623,6 +625,7 @@ void RotationFrame::spans(const SpanRun* runs, int count, Spans& out) const {
       out.c0[at] = static_cast<int32_t>(c0);
       out.c1[at] = static_cast<int32_t>(c1);
     }
+  }
 }
 
 void RotationFrame::reach_spans(int z, int16_t* x0, int16_t* x1) const {
