@@ -1,0 +1,96 @@
+#pragma once
+// The sculpting side's half of the haptic contact (DESIGN.md §5a): a dense
+// local signed-distance patch around the tool, built from the material near
+// it, refreshed after each dab over the changed region only, and moved with
+// the tool by computing only the part that is new.
+//
+// The distance is measured to the 127.5 iso-surface of the trilinear density.
+// Along a grid edge the trilinear density is linear, so every edge whose ends
+// lie on both sides of 127.5 gives an exact surface point (a seed), with the
+// surface normal there from the density gradient. Each voxel within
+// ceil(band) + 1 voxels (chessboard) of a seed takes the nearest seed its
+// neighbours know of, ring by ring, and its value is the distance to that
+// seed's tangent plane (exact for planes; about e^2 / 2R off on a surface of
+// radius R when the seed is e voxels beside the true foot point). Voxels no
+// ring reaches are at least ceil(band) + 1 from the surface and store that
+// bound. See distance_patch.cpp for the choices.
+//
+// Every value depends only on the material within ceil(band) + 3 voxels of
+// it, and ties between seeds break the same way whatever order they are met
+// in, so a refreshed or moved patch holds exactly the values a patch built
+// from scratch would.
+//
+// Thread safety: one owner (the sculpting thread); the tick reads a copy
+// through PatchExchange.
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "sculpt/core/grid/box.h"
+#include "sculpt/core/haptics/patch_snapshot.h"
+#include "sculpt/core/volume/volume.h"
+
+namespace sculpt::core {
+
+struct DistancePatchOptions {
+  /// Values per axis (a cube of edge^3 voxels); at least 8.
+  int edge = 48;
+  /// Half width in voxels of the band where values are accurate to 0.1 voxel.
+  float band_vox = 4.0f;
+};
+
+/// The patch edge that covers a tool reaching `reach_vox` from its pivot with
+/// room to move before a re-centre: at least 48, a multiple of 8.
+int patch_edge_for_reach(float reach_vox, float band_vox = 4.0f);
+
+class DistancePatch {
+ public:
+  explicit DistancePatch(const DistancePatchOptions& options = {});
+
+  /// Builds the patch centred on `centre_vox` from scratch.
+  void build(const Volume& volume, glm::vec3 centre_vox);
+  /// Re-reads the material inside `changed` (material voxels, e.g. a dab's
+  /// box) and recomputes the values it can affect. Builds when empty.
+  void refresh(const Volume& volume, const Box& changed);
+  /// Centres the patch on `centre_vox`, keeping the values that stay inside
+  /// and computing the rest. Builds when the move is larger than the patch.
+  void recentre(const Volume& volume, glm::vec3 centre_vox);
+  /// Whether `p` (material voxels) is more than edge / 8 off the centre.
+  bool off_centre(glm::vec3 p) const;
+
+  const PatchSnapshot& snapshot() const { return snapshot_; }
+  /// The material voxels the values cover.
+  Box box() const;
+  glm::vec3 centre() const;
+  const DistancePatchOptions& options() const { return options_; }
+  /// Voxels whose value the last build, refresh or re-centre computed.
+  int64_t last_computed_voxels() const { return last_computed_; }
+
+ private:
+  struct Seed {
+    glm::vec3 point;   // on the iso-surface, material voxels
+    glm::vec3 normal;  // outward unit normal
+  };
+  void read_density(const Volume& volume, const Box& region);
+  void compute(const Box& region);
+  uint8_t density(glm::ivec3 v) const;
+  glm::vec3 density_gradient(glm::ivec3 v) const;
+
+  DistancePatchOptions options_;
+  int rings_;   // ceil(band) + 1
+  int margin_;  // density kept beyond the values on each side: rings_ + 2
+  PatchSnapshot snapshot_;
+  // The material's density over box() grown by margin_ on each side.
+  Box density_box_;
+  std::vector<uint8_t> density_;
+  int64_t last_computed_ = 0;
+  // Scratch reused between computations (grown, never shrunk).
+  std::vector<Seed> seeds_;
+  std::vector<int32_t> nearest_, relaxed_;
+  std::vector<uint8_t> ring_;
+  std::vector<int32_t> frontier_, next_frontier_;
+};
+
+}  // namespace sculpt::core
