@@ -40,11 +40,28 @@ FieldSample PatchSnapshot::sample(glm::vec3 p) const {
   const float y0 = x00 + f.y * (x10 - x00), y1 = x01 + f.y * (x11 - x01);
   FieldSample s;
   s.phi_vox = y0 + f.z * (y1 - y0);
-  const float dx00 = v100 - v000, dx10 = v110 - v010, dx01 = v101 - v001, dx11 = v111 - v011;
-  const float dx0 = dx00 + f.y * (dx10 - dx00), dx1 = dx01 + f.y * (dx11 - dx01);
-  s.gradient.x = dx0 + f.z * (dx1 - dx0);
-  s.gradient.y = (x10 - x00) + f.z * ((x11 - x01) - (x10 - x00));
-  s.gradient.z = y1 - y0;
+  // The gradient is the trilinear blend of the central differences at the
+  // eight corners: the plain derivative of the trilinear polynomial jumps from
+  // cell to cell, and its direction (the contact normal) with it, by a few
+  // degrees on a curved surface; the blend turns smoothly.
+  const glm::ivec3 hi_index(edge - 1);
+  const auto value = [&](glm::ivec3 q) {
+    q = glm::clamp(q, glm::ivec3(0), hi_index);
+    return phi[size_t(q.z) * sz + size_t(q.y) * sy + size_t(q.x)];
+  };
+  const auto corner_gradient = [&](glm::ivec3 q) {
+    return glm::vec3(value(q + glm::ivec3(1, 0, 0)) - value(q - glm::ivec3(1, 0, 0)),
+                     value(q + glm::ivec3(0, 1, 0)) - value(q - glm::ivec3(0, 1, 0)),
+                     value(q + glm::ivec3(0, 0, 1)) - value(q - glm::ivec3(0, 0, 1))) *
+           0.5f;
+  };
+  glm::vec3 g(0.0f);
+  for (int k = 0; k < 8; ++k) {
+    const glm::ivec3 o{k & 1, (k >> 1) & 1, k >> 2};
+    const float w = (o.x ? f.x : 1.0f - f.x) * (o.y ? f.y : 1.0f - f.y) * (o.z ? f.z : 1.0f - f.z);
+    g += w * corner_gradient(c + o);
+  }
+  s.gradient = g;
   return s;
 }
 

@@ -15,8 +15,8 @@ namespace {
 constexpr float kTouchingSkins = 2.0f;
 // Motion shorter than this (voxels) is no motion.
 constexpr float kStill = 1e-5f;
-// Two normals closer than this (cosine) are one constraint.
-constexpr float kSameConstraint = 0.996f;
+// Two normals closer than this (cosine, 30 degrees) are one constraint.
+constexpr float kSameConstraint = 0.866f;
 
 // How far p can go along dir before leaving the region where the patch is
 // sampled exactly (first to last voxel centre).
@@ -34,9 +34,12 @@ float distance_to_patch_edge(const PatchSnapshot& field, glm::vec3 p, glm::vec3 
 // m with the parts that push into the active constraints removed (Zilles &
 // Salisbury: one plane, the edge line of two, nothing at a corner of three).
 glm::vec3 constrained_motion(glm::vec3 m, const std::array<glm::vec3, 3>& normals, int count) {
+  // Rounding leaves a projected motion a hair into its own plane: the
+  // tolerance scales with the motion.
+  const float tolerance = -1e-4f * glm::length(m);
   const auto violates = [&](glm::vec3 v) {
     for (int i = 0; i < count; ++i)
-      if (glm::dot(v, normals[size_t(i)]) < -1e-6f) return true;
+      if (glm::dot(v, normals[size_t(i)]) < tolerance) return true;
     return false;
   };
   if (!violates(m)) return m;
@@ -106,8 +109,15 @@ glm::vec3 SphereProxy::trace(const PatchSnapshot& field, glm::vec3 from, glm::ve
     const float edge = distance_to_patch_edge(field, p, dir);
     step = std::min({step, remaining, edge});
     if (step < kStill) return p;  // at the patch's edge: wait for it to follow
-    const glm::vec3 next = p + dir * step;
+    glm::vec3 next = p + dir * step;
     if (clearance(field, next, nullptr) < skin) {
+      // The field is steeper than 1 here (a sampled distance is only nearly
+      // one): close in on phi - r = skin by bisection, so the proxy rests on
+      // the skin and not somewhere above it.
+      for (int k = 0; k < 16; ++k) {
+        const glm::vec3 mid = 0.5f * (p + next);
+        (clearance(field, mid, nullptr) < skin ? next : p) = mid;
+      }
       *blocked = true;
       return p;
     }
@@ -139,16 +149,22 @@ const ProxyState& SphereProxy::update(const PatchSnapshot& field, glm::vec3 devi
   glm::vec3 held = x, held_normal(0.0f);
   state_.at_patch_edge = false;
 
+  // Once touching, the proxy heads for the device's projection onto the
+  // tangent plane where the contact began this update (Zilles & Salisbury's
+  // goal), not for the device itself: a device pushed straight in then holds
+  // the proxy where it entered, however deep it goes, instead of letting it
+  // run round the far side of the shape.
+  glm::vec3 goal = device_vox;
   for (int step = 0; step < options_.max_steps; ++step) {
-    const glm::vec3 m = device_vox - x;
+    const glm::vec3 m = goal - x;
     if (glm::length(m) < kStill) break;
     glm::vec3 n;
     const float g = clearance(field, x, &n);
     const bool touching = g <= kTouchingSkins * skin;
     if (!touching || (active == 0 && glm::dot(m, n) >= 0.0f)) {
       bool blocked = false;
-      const glm::vec3 reached = trace(field, x, device_vox, &blocked);
-      if (!blocked && glm::length(device_vox - reached) > kStill) state_.at_patch_edge = true;
+      const glm::vec3 reached = trace(field, x, goal, &blocked);
+      if (!blocked && glm::length(goal - reached) > kStill) state_.at_patch_edge = true;
       const bool moved = glm::length(reached - x) > kStill;
       x = reached;
       if (!blocked) break;
@@ -159,15 +175,24 @@ const ProxyState& SphereProxy::update(const PatchSnapshot& field, glm::vec3 devi
       touched = true;
       held = x;
       held_normal = n;
+      goal = device_vox - glm::dot(device_vox - x, n) * n;
     }
-    // A constraint joins when it differs from those already met this update.
-    bool known = false;
-    for (int i = 0; i < active; ++i) known |= glm::dot(normals[size_t(i)], n) > kSameConstraint;
-    if (!known) {
+    // A normal within kSameConstraint of one already met this update is that
+    // constraint, moved along a curved surface: it replaces it. A normal
+    // farther from all of them is a new face (an edge or corner was met).
+    int same = -1;
+    float best = kSameConstraint;
+    for (int i = 0; i < active; ++i) {
+      const float c = glm::dot(normals[size_t(i)], n);
+      if (c > best) best = c, same = i;
+    }
+    if (same >= 0) {
+      normals[size_t(same)] = n;
+    } else {
       if (active == 3) normals[0] = normals[1], normals[1] = normals[2], active = 2;
       normals[size_t(active++)] = n;
     }
-    const glm::vec3 slide = constrained_motion(m, normals, active);
+    const glm::vec3 slide = constrained_motion(goal - x, normals, active);
     const float length = glm::length(slide);
     if (length < kStill) break;
     const glm::vec3 next =

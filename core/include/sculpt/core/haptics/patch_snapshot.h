@@ -44,7 +44,8 @@ struct PatchSnapshot {
   /// region where sampling is exact (between the first and last voxel
   /// centres); negative outside it.
   float inner_clearance(glm::vec3 p) const;
-  /// Trilinear value and its analytic gradient at p. Points outside the
+  /// Trilinear value at p, and the gradient blended trilinearly from central
+  /// differences at the cell's corners. Points outside the
   /// patch are clamped onto its boundary (inner_clearance tells callers).
   FieldSample sample(glm::vec3 p) const;
   /// The value stored at material voxel v (which must lie in the patch).
