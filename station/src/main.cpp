@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   cli::add_offset_command(app, action);
   cli::add_contours_command(app, action);
   cli::add_nurbs_command(app, action);
+  cli::add_haptics_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

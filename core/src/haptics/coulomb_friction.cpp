@@ -5,7 +5,9 @@
 namespace sculpt::core {
 namespace {
 
-glm::vec3 tangential(glm::vec3 v, glm::vec3 n) { return v - glm::dot(v, n) * n; }
+glm::vec3 tangential(glm::vec3 v, glm::vec3 n) {
+  return v - glm::dot(v, n) * n;
+}
 
 }  // namespace
 

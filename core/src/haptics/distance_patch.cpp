@@ -13,7 +13,9 @@
 namespace sculpt::core {
 namespace {
 
-Box grown(const Box& b, int by) { return Box{b.lo - by, b.hi + by}; }
+Box grown(const Box& b, int by) {
+  return Box{b.lo - by, b.hi + by};
+}
 
 size_t local_index(glm::ivec3 v, const Box& box) {
   const glm::ivec3 s = box.size();
@@ -71,9 +73,7 @@ int patch_edge_for_reach(float reach_vox, float band_vox) {
 }
 
 DistancePatch::DistancePatch(const DistancePatchOptions& options)
-    : options_(options),
-      rings_(int(std::ceil(options.band_vox)) + 1),
-      margin_(rings_ + 2) {
+    : options_(options), rings_(int(std::ceil(options.band_vox)) + 1), margin_(rings_ + 2) {
   assert(options.edge >= 8 && options.band_vox > 0.0f);
 }
 
@@ -137,7 +137,8 @@ void DistancePatch::recentre(const Volume& volume, glm::vec3 centre_vox) {
 
   std::array<Box, 3> slabs;
   const int density_slabs = uncovered_slabs(density_box_, old_density_box, slabs);
-  for (int i = 0; i < density_slabs; ++i) read_density(volume, slabs[size_t(i)]);
+  for (int i = 0; i < density_slabs; ++i)
+    read_density(volume, slabs[size_t(i)]);
   int64_t computed = 0;
   const int value_slabs = uncovered_slabs(box(), old_box, slabs);
   for (int i = 0; i < value_slabs; ++i) {
@@ -166,8 +167,8 @@ uint8_t DistancePatch::density(glm::ivec3 v) const {
 
 glm::vec3 DistancePatch::density_gradient(glm::ivec3 v) const {
   const auto d = [&](int dx, int dy, int dz) { return float(density(v + glm::ivec3(dx, dy, dz))); };
-  return 0.5f * glm::vec3(d(1, 0, 0) - d(-1, 0, 0), d(0, 1, 0) - d(0, -1, 0),
-                          d(0, 0, 1) - d(0, 0, -1));
+  return 0.5f *
+         glm::vec3(d(1, 0, 0) - d(-1, 0, 0), d(0, 1, 0) - d(0, -1, 0), d(0, 0, 1) - d(0, 0, -1));
 }
 
 void DistancePatch::compute(const Box& region) {
@@ -262,8 +263,7 @@ void DistancePatch::compute(const Box& region) {
   for (int k = 1; k <= rings; ++k) {
     next_frontier_.clear();
     for (const int32_t u : frontier_) {
-      const glm::ivec3 uv =
-          padded.lo + glm::ivec3(u % ps.x, (u / ps.x) % ps.y, u / (ps.x * ps.y));
+      const glm::ivec3 uv = padded.lo + glm::ivec3(u % ps.x, (u / ps.x) % ps.y, u / (ps.x * ps.y));
       const int32_t seed = nearest_[size_t(u)];
       for (int i = 0; i < 26; ++i) {
         const size_t w = size_t(u + offsets[size_t(i)]);

@@ -14,8 +14,8 @@ const HapticTick& HapticRenderer::tick(const PatchSnapshot& field, glm::vec3 dev
   // Finite differences of the positions given: deterministic for a replay.
   glm::vec3 velocity_m_per_s(0.0f);
   if (started_ && dt_s > 0.0)
-    velocity_m_per_s = (device_vox - last_.device_vox) *
-                       float(double(settings_.coupling.voxel_mm) * 1e-3 / dt_s);
+    velocity_m_per_s =
+        (device_vox - last_.device_vox) * float(double(settings_.coupling.voxel_mm) * 1e-3 / dt_s);
   if (!started_) proxy_.reset(field, device_vox);
   const ProxyState& proxy = proxy_.update(field, device_vox);
   glm::vec3 force = coupling_.force(proxy.position_vox, device_vox, proxy.contact, proxy.normal,

@@ -204,8 +204,7 @@ const ProxyState& SphereProxy::update(const PatchSnapshot& field, glm::vec3 devi
   // Friction holds the proxy back from where the frictionless slide went.
   if (touched && options_.friction.enabled()) {
     const glm::vec3 before = x;
-    x = apply_coulomb_friction(options_.friction, held, x, device_vox, held_normal,
-                               state_.sliding);
+    x = apply_coulomb_friction(options_.friction, held, x, device_vox, held_normal, state_.sliding);
     if (x != before && x != held) x = onto_surface(field, x);
   } else {
     state_.sliding = touched;

@@ -31,6 +31,7 @@ void add_close_command(CLI::App& app, Action& action);
 void add_offset_command(CLI::App& app, Action& action);
 void add_contours_command(CLI::App& app, Action& action);
 void add_nurbs_command(CLI::App& app, Action& action);
+void add_haptics_command(CLI::App& app, Action& action);
 
 /// What `sculpt replay` (and the main job, which replays the demo) computes
 /// and writes; an empty path means "do not write it".

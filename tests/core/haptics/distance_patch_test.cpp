@@ -36,11 +36,10 @@ float iso_radius(const DenseGrid<uint8_t>& g, glm::vec3 centre, glm::vec3 u, flo
 
 // Distance from v to the trilinear iso-surface of a near-sphere, by a coarse
 // then fine search over directions around the radial one.
-float reference_distance(const DenseGrid<uint8_t>& g, glm::vec3 centre, float radius,
-                         glm::vec3 v) {
+float reference_distance(const DenseGrid<uint8_t>& g, glm::vec3 centre, float radius, glm::vec3 v) {
   const glm::vec3 u = glm::normalize(v - centre);
-  const glm::vec3 a = glm::normalize(glm::cross(u, std::abs(u.x) < 0.9f ? glm::vec3(1, 0, 0)
-                                                                       : glm::vec3(0, 1, 0)));
+  const glm::vec3 a =
+      glm::normalize(glm::cross(u, std::abs(u.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
   const glm::vec3 b = glm::cross(u, a);
   glm::vec2 best(0.0f);
   float best_d = 1e9f;
@@ -113,7 +112,8 @@ TEST(DistancePatch, RefreshedAfterADabEqualsAPatchBuiltFromScratch) {
   dab.mode = SculptMode::kSubtract;
   const DabStats stats = sculptor.dab(dab);
   ASSERT_GT(stats.voxels_changed, 0);
-  for (const glm::ivec3 b : volume.take_dirty_bricks()) patch.refresh(volume, volume.brick_box(b));
+  for (const glm::ivec3 b : volume.take_dirty_bricks())
+    patch.refresh(volume, volume.brick_box(b));
   DistancePatch fresh;
   fresh.build(volume, at);
   EXPECT_EQ(patch.snapshot().phi, fresh.snapshot().phi);

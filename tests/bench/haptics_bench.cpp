@@ -1,0 +1,113 @@
+// Haptic contact benchmarks (issue 19): what the 1 kHz tick costs, and what the
+// sculpting side spends keeping its patch current. Each reports the median
+// and the 99th percentile of single calls (counters p50_us, p99_us), since a
+// haptic deadline is missed by the slow call, not the mean.
+//   tick:     the sphere proxy (radius 1) and coupling sliding below the
+//             surface of a radius-40 ball, one device step of 0.05 voxel a tick
+//   refresh:  a 48^3 patch recomputed after a 32^3 dab in its middle
+//   recentre: the patch moved by (6, 2, 1) voxels, as the proxy's drift of
+//             edge/8 triggers it
+//   build:    a 48^3 patch from scratch (first contact, or a jump)
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "sculpt/core/haptics/distance_patch.h"
+#include "sculpt/core/haptics/haptic_renderer.h"
+#include "sculpt/core/shapes/analytic_shapes.h"
+
+namespace sculpt::core {
+namespace {
+
+const Volume& ball_volume() {
+  static const Volume volume = sphere_volume(128, 40.0f / 128.0f);  // radius 40 about 63.5
+  return volume;
+}
+
+// Times each call of `body`, and reports the median and the 99th percentile.
+template <class Body>
+void time_calls(benchmark::State& state, Body&& body) {
+  std::vector<double> us;
+  us.reserve(1 << 16);
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    body();
+    us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
+                     .count());
+  }
+  std::sort(us.begin(), us.end());
+  state.counters["p50_us"] = us[us.size() / 2];
+  state.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
+}
+
+void BM_HapticTick(benchmark::State& state) {
+  const glm::vec3 centre(63.5f);
+  DistancePatch patch;
+  HapticRenderer renderer;
+  int i = 0;
+  double t = 0.0;
+  const auto device = [&](int k) {
+    const float angle = 0.05f * float(k % 2000) / 38.0f;
+    return centre + 38.0f * glm::vec3(std::cos(angle), std::sin(angle), 0.0f);
+  };
+  patch.build(ball_volume(), device(0));
+  // The sculpting side's re-centre runs between ticks, outside the timing.
+  std::vector<double> us;
+  us.reserve(1 << 20);
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const HapticTick& tick = renderer.tick(patch.snapshot(), device(i++), t += 1e-3);
+    benchmark::DoNotOptimize(tick.force_n);
+    us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
+                     .count());
+    if (patch.off_centre(tick.proxy.position_vox)) {
+      state.PauseTiming();
+      patch.recentre(ball_volume(), tick.proxy.position_vox);
+      state.ResumeTiming();
+    }
+  }
+  std::sort(us.begin(), us.end());
+  state.counters["p50_us"] = us[us.size() / 2];
+  state.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
+}
+BENCHMARK(BM_HapticTick)->Unit(benchmark::kMicrosecond);
+
+void BM_PatchRefresh(benchmark::State& state) {
+  const int dab = static_cast<int>(state.range(0));
+  const glm::vec3 at(63.5f + 40.0f, 63.5f, 63.5f);
+  DistancePatch patch;
+  patch.build(ball_volume(), at);
+  const glm::ivec3 lo = glm::ivec3(at) - dab / 2;
+  const Box changed{lo, lo + dab};
+  time_calls(state, [&] { patch.refresh(ball_volume(), changed); });
+  state.counters["voxels"] = double(patch.last_computed_voxels());
+}
+BENCHMARK(BM_PatchRefresh)->Arg(32)->ArgName("dab")->Unit(benchmark::kMicrosecond);
+
+void BM_PatchRecentre(benchmark::State& state) {
+  const glm::vec3 a(63.5f + 40.0f, 63.5f, 63.5f);
+  const glm::vec3 b = a + glm::vec3(6.0f, 2.0f, 1.0f);
+  DistancePatch patch;
+  patch.build(ball_volume(), a);
+  bool at_a = true;
+  time_calls(state, [&] {
+    patch.recentre(ball_volume(), at_a ? b : a);
+    at_a = !at_a;
+  });
+  state.counters["voxels"] = double(patch.last_computed_voxels());
+}
+BENCHMARK(BM_PatchRecentre)->Unit(benchmark::kMicrosecond);
+
+void BM_PatchBuild(benchmark::State& state) {
+  const glm::vec3 at(63.5f + 40.0f, 63.5f, 63.5f);
+  DistancePatch patch;
+  time_calls(state, [&] { patch.build(ball_volume(), at); });
+}
+BENCHMARK(BM_PatchBuild)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace sculpt::core
