@@ -59,8 +59,48 @@ void copy_overlap(const std::vector<T>& from, const Box& from_box, std::vector<T
     }
 }
 
-constexpr uint8_t kUnreached = 255;
-constexpr uint8_t kPadding = 254;
+constexpr uint8_t kHasInside = 1;
+constexpr uint8_t kHasOutside = 2;
+
+// Offers each seed to the values of `region` (laid out x fastest in best_d2
+// and best_seed) within `reach` of it; a value keeps the nearest, and only a
+// strictly nearer seed replaces the one it holds. The row loop runs over a
+// fixed cube around the seed without branches or square roots (values out of
+// reach fail the comparison with best_d2's initial reach^2), so that it
+// vectorises; cloned for AVX2.
+__attribute__((target_clones("avx2", "default"))) void offer_seeds(
+    const glm::vec3* points, size_t count, const Box& region, int reach, float* best_d2,
+    int32_t* best_seed) {
+  const glm::ivec3 rs = region.size();
+  for (size_t id = 0; id < count; ++id) {
+    const glm::vec3 q = points[id];
+    const glm::ivec3 centre = glm::ivec3(glm::floor(q));
+    const glm::ivec3 lo = glm::max(centre - reach + 1, region.lo);
+    const glm::ivec3 hi = glm::min(centre + reach + 1, region.hi);
+    const int n = hi.x - lo.x;
+    if (n <= 0) continue;
+    const float dx0 = float(lo.x) - q.x;
+    for (int z = lo.z; z < hi.z; ++z) {
+      const float dz = float(z) - q.z;
+      for (int y = lo.y; y < hi.y; ++y) {
+        const float dy = float(y) - q.y;
+        const float base = dz * dz + dy * dy;
+        const size_t at = (size_t(z - region.lo.z) * size_t(rs.y) + size_t(y - region.lo.y)) *
+                              size_t(rs.x) +
+                          size_t(lo.x - region.lo.x);
+        float* d2 = best_d2 + at;
+        int32_t* seed = best_seed + at;
+        for (int i = 0; i < n; ++i) {
+          const float dx = dx0 + float(i);
+          const float d = base + dx * dx;
+          const bool nearer = d < d2[i];
+          d2[i] = nearer ? d : d2[i];
+          seed[i] = nearer ? int32_t(id) : seed[i];
+        }
+      }
+    }
+  }
+}
 
 }  // namespace
 
@@ -73,7 +113,9 @@ int patch_edge_for_reach(float reach_vox, float band_vox) {
 }
 
 DistancePatch::DistancePatch(const DistancePatchOptions& options)
-    : options_(options), rings_(int(std::ceil(options.band_vox)) + 1), margin_(rings_ + 2) {
+    : options_(options),
+      reach_(int(std::ceil(options.band_vox + std::sqrt(3.0f)))),
+      margin_(reach_ + 2) {
   assert(options.edge >= 8 && options.band_vox > 0.0f);
 }
 
@@ -96,7 +138,7 @@ void DistancePatch::build(const Volume& volume, glm::vec3 centre_vox) {
   snapshot_.origin = glm::ivec3(glm::floor(centre_vox)) - edge / 2;
   snapshot_.edge = edge;
   snapshot_.band_vox = options_.band_vox;
-  snapshot_.clamp_vox = float(rings_);
+  snapshot_.clamp_vox = float(reach_) - std::sqrt(3.0f);
   snapshot_.phi.assign(size_t(edge) * edge * edge, 0.0f);
   density_box_ = grown(box(), margin_);
   density_.assign(size_t(density_box_.voxel_count()), 0);
@@ -174,63 +216,91 @@ glm::vec3 DistancePatch::density_gradient(glm::ivec3 v) const {
 void DistancePatch::compute(const Box& region) {
   last_computed_ = region.voxel_count();
   if (region.empty()) return;
-  const int rings = rings_;
-  // Seeds within `rings` (chessboard) of a value can be its nearest; the
-  // scratch grids cover them with one voxel of padding, so the ring search
-  // needs no bounds checks.
-  const Box search = intersect(grown(region, rings), grown(box(), rings));
-  const Box padded = grown(search, 1);
-  const glm::ivec3 ps = padded.size();
-  const size_t cells = size_t(padded.voxel_count());
-  ring_.assign(cells, kPadding);
-  nearest_.resize(cells);
-  for (int z = search.lo.z; z < search.hi.z; ++z)
-    for (int y = search.lo.y; y < search.hi.y; ++y)
-      std::memset(&ring_[local_index({search.lo.x, y, z}, padded)], kUnreached,
-                  size_t(search.size().x));
-  seeds_.clear();
-  frontier_.clear();
+  const int reach = reach_;
+  // A seed within `reach` of a value lies on an edge whose ends are within
+  // reach + 1 (chessboard) of it; these are all the edges looked at.
+  const Box scan = intersect(grown(region, reach + 1), grown(box(), reach + 1));
+  find_seeds(scan);
 
-  // Among seeds at equal distance the smaller point wins, so the choice does
-  // not depend on the order the seeds are met in (refresh == build).
-  const auto closer = [&](int32_t a, int32_t b, glm::vec3 v) {
-    const glm::vec3 pa = seeds_[size_t(a)].point, pb = seeds_[size_t(b)].point;
-    const glm::vec3 da = v - pa, db = v - pb;
-    const float la = glm::dot(da, da), lb = glm::dot(db, db);
-    if (la != lb) return la < lb;
-    if (pa.x != pb.x) return pa.x < pb.x;
-    if (pa.y != pb.y) return pa.y < pb.y;
-    return pa.z < pb.z;
-  };
-  const auto offer_seed = [&](glm::ivec3 v, int32_t seed) {
-    if (!search.contains(v)) return;
-    const size_t l = local_index(v, padded);
-    if (ring_[l] != 0) {
-      ring_[l] = 0;
-      nearest_[l] = seed;
-      frontier_.push_back(int32_t(l));
-    } else if (closer(seed, nearest_[l], glm::vec3(v))) {
-      nearest_[l] = seed;
+  // Each seed offers itself to the values of `region` in the ball of radius
+  // `reach` around it; a value keeps the nearest. Seeds come in a fixed order
+  // (axis, then z, y, x of the edge) and only a strictly nearer one replaces
+  // the one held, so ties go the same way whatever region is computed.
+  const size_t count = size_t(region.voxel_count());
+  best_d2_.assign(count, float(reach * reach));
+  best_seed_.assign(count, -1);
+  seed_points_.resize(seeds_.size());
+  for (size_t i = 0; i < seeds_.size(); ++i) seed_points_[i] = seeds_[i].point;
+  offer_seeds(seed_points_.data(), seed_points_.size(), region, reach, best_d2_.data(),
+              best_seed_.data());
+
+  // Values: the distance to the nearest seed's tangent plane, signed by the
+  // voxel's own side. Where plane and side disagree (a voxel beside a sharp
+  // fold) 0 is stored: an underestimate, which keeps a sphere-tracing step
+  // safe. No seed within `reach` means the surface is at least
+  // reach - sqrt(3) away (a cell holding surface has a seed on an edge).
+  const float clamp = snapshot_.clamp_vox;
+  size_t i = 0;
+  for (int z = region.lo.z; z < region.hi.z; ++z)
+    for (int y = region.lo.y; y < region.hi.y; ++y) {
+      const uint8_t* d = &density_[local_index({region.lo.x, y, z}, density_box_)];
+      float* out = &snapshot_.phi[local_index({region.lo.x, y, z}, box())];
+      for (int x = region.lo.x; x < region.hi.x; ++x, ++i, ++d, ++out) {
+        const bool inside = *d >= 128;
+        float magnitude = clamp;
+        if (best_seed_[i] >= 0) {
+          const Seed& s = seeds_[size_t(best_seed_[i])];
+          const float plane = glm::dot(glm::vec3(float(x), float(y), float(z)) - s.point, s.normal);
+          magnitude = std::clamp(inside ? -plane : plane, 0.0f, clamp);
+        }
+        *out = inside ? -magnitude : magnitude;
+      }
     }
+}
+
+void DistancePatch::find_seeds(const Box& scan) {
+  seeds_.clear();
+  // Which rows (along x) of `scan` hold inside and outside voxels: an edge
+  // between two rows can cross the surface only if they are not all on one
+  // and the same side, which skips most of the patch at once.
+  const glm::ivec3 ss = scan.size();
+  row_sides_.assign(size_t(ss.y) * size_t(ss.z), 0);
+  for (int z = scan.lo.z; z < scan.hi.z; ++z)
+    for (int y = scan.lo.y; y < scan.hi.y; ++y) {
+      const uint8_t* row = &density_[local_index({scan.lo.x, y, z}, density_box_)];
+      uint8_t lo = 255, hi = 0;
+      for (int x = 0; x < ss.x; ++x) {
+        lo = std::min(lo, row[x]);
+        hi = std::max(hi, row[x]);
+      }
+      row_sides_[size_t(z - scan.lo.z) * size_t(ss.y) + size_t(y - scan.lo.y)] =
+          uint8_t((hi >= 128 ? kHasInside : 0) | (lo < 128 ? kHasOutside : 0));
+    }
+  const auto sides = [&](int y, int z) {
+    return row_sides_[size_t(z - scan.lo.z) * size_t(ss.y) + size_t(y - scan.lo.y)];
+  };
+  const auto mixed = [](uint8_t a, uint8_t b) {
+    return ((a | b) & kHasInside) && ((a | b) & kHasOutside);
   };
 
-  // Seeds: every edge with an end in `search` whose ends lie on both sides of
-  // 127.5. The trilinear density is linear along an edge, so the crossing is
-  // exact; the normal is the interpolated central-difference gradient (the
-  // one the renderer shades with).
+  const glm::ivec3 ds = density_box_.size();
   for (int a = 0; a < 3; ++a) {
     glm::ivec3 step(0);
     step[a] = 1;
-    Box from = search;
-    from.lo[a] -= 1;
+    const size_t stride = a == 0 ? 1 : a == 1 ? size_t(ds.x) : size_t(ds.x) * size_t(ds.y);
+    Box from = scan;
+    from.hi[a] -= 1;
     for (int z = from.lo.z; z < from.hi.z; ++z)
       for (int y = from.lo.y; y < from.hi.y; ++y) {
+        if (!mixed(sides(y, z), sides(y + step.y, z + step.z))) continue;
         const uint8_t* row = &density_[local_index({from.lo.x, y, z}, density_box_)];
-        const size_t stride = size_t(local_index(step, Box{glm::ivec3(0), density_box_.size()}));
         for (int x = from.lo.x; x < from.hi.x; ++x, ++row) {
           const uint8_t d0 = row[0], d1 = row[stride];
           if ((d0 >= 128) == (d1 >= 128)) continue;
           const glm::ivec3 v{x, y, z};
+          // The trilinear density is linear along an edge: the crossing is
+          // exact. The normal is the interpolated central-difference
+          // gradient (the one the renderer shades with).
           const float t = (float(d0) - 127.5f) / (float(d0) - float(d1));
           Seed seed;
           seed.point = glm::vec3(v) + t * glm::vec3(step);
@@ -238,88 +308,12 @@ void DistancePatch::compute(const Box& region) {
           const float length = glm::length(g);
           // Density falls outward; a flat gradient (a one-voxel sliver) takes
           // the edge's own direction.
-          seed.normal = length > 1e-3f ? -g / length : glm::vec3(step) * (d0 >= 128 ? 1.0f : -1.0f);
-          const int32_t id = int32_t(seeds_.size());
+          seed.normal =
+              length > 1e-3f ? -g / length : glm::vec3(step) * (d0 >= 128 ? 1.0f : -1.0f);
           seeds_.push_back(seed);
-          offer_seed(v, id);
-          offer_seed(v + step, id);
         }
       }
   }
-
-  // Rings: a voxel one step (26-neighbourhood) beyond the previous ring takes
-  // the nearest of the seeds its neighbours there hold.
-  std::array<int32_t, 26> offsets{};
-  std::array<glm::ivec3, 26> steps{};
-  int n = 0;
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        if (dx == 0 && dy == 0 && dz == 0) continue;
-        steps[size_t(n)] = {dx, dy, dz};
-        offsets[size_t(n)] = (dz * ps.y + dy) * ps.x + dx;
-        ++n;
-      }
-  for (int k = 1; k <= rings; ++k) {
-    next_frontier_.clear();
-    for (const int32_t u : frontier_) {
-      const glm::ivec3 uv = padded.lo + glm::ivec3(u % ps.x, (u / ps.x) % ps.y, u / (ps.x * ps.y));
-      const int32_t seed = nearest_[size_t(u)];
-      for (int i = 0; i < 26; ++i) {
-        const size_t w = size_t(u + offsets[size_t(i)]);
-        const uint8_t r = ring_[w];
-        if (r == kUnreached) {
-          ring_[w] = uint8_t(k);
-          nearest_[w] = seed;
-          next_frontier_.push_back(int32_t(w));
-        } else if (r == k && closer(seed, nearest_[w], glm::vec3(uv + steps[size_t(i)]))) {
-          nearest_[w] = seed;
-        }
-      }
-    }
-    frontier_.swap(next_frontier_);
-  }
-
-  // The rings hand a seed on only from the ring before, so a voxel can miss
-  // a nearer seed one of its neighbours holds: one pass over every reached
-  // voxel takes the nearest of its own and its neighbours' seeds. It reads
-  // the rings' choices and writes a copy, so the order does not matter.
-  relaxed_ = nearest_;
-  for (int z = search.lo.z; z < search.hi.z; ++z)
-    for (int y = search.lo.y; y < search.hi.y; ++y)
-      for (int x = search.lo.x; x < search.hi.x; ++x) {
-        const glm::ivec3 v{x, y, z};
-        const size_t l = local_index(v, padded);
-        if (ring_[l] > rings) continue;
-        int32_t best = nearest_[l];
-        for (int i = 0; i < 26; ++i) {
-          const size_t w = size_t(int64_t(l) + offsets[size_t(i)]);
-          if (ring_[w] > rings) continue;
-          if (closer(nearest_[w], best, glm::vec3(v))) best = nearest_[w];
-        }
-        relaxed_[l] = best;
-      }
-  nearest_.swap(relaxed_);
-
-  // Values: the distance to the nearest seed's tangent plane, signed by the
-  // voxel's own side. Where plane and side disagree (a voxel beside a sharp
-  // fold) 0 is stored: an underestimate, which keeps a sphere-tracing step
-  // safe.
-  const float clamp = float(rings);
-  for (int z = region.lo.z; z < region.hi.z; ++z)
-    for (int y = region.lo.y; y < region.hi.y; ++y)
-      for (int x = region.lo.x; x < region.hi.x; ++x) {
-        const glm::ivec3 v{x, y, z};
-        const bool inside = density(v) >= 128;
-        const size_t l = local_index(v, padded);
-        float magnitude = clamp;
-        if (ring_[l] <= rings) {
-          const Seed& s = seeds_[size_t(nearest_[l])];
-          const float plane = glm::dot(glm::vec3(v) - s.point, s.normal);
-          magnitude = std::clamp(inside ? -plane : plane, 0.0f, clamp);
-        }
-        snapshot_.phi[local_index(v, box())] = inside ? -magnitude : magnitude;
-      }
 }
 
 }  // namespace sculpt::core

@@ -88,14 +88,20 @@ TEST(DistancePatch, FarValuesAreClampedBoundsThatNeverExceedTheTrueDistance) {
   DistancePatch patch;
   patch.build(volume, glm::vec3(23.5f));
   const PatchSnapshot& s = patch.snapshot();
-  EXPECT_EQ(s.clamp_vox, 5.0f);
-  EXPECT_EQ(s.at({23, 23, 23}), -5.0f);  // 12 voxels deep
-  EXPECT_EQ(s.at({0, 0, 0}), 5.0f);      // 28 voxels out
+  // Seeds are offered within ceil(4 + sqrt(3)) = 6 voxels; beyond, the
+  // surface is at least 6 - sqrt(3) away.
+  EXPECT_FLOAT_EQ(s.clamp_vox, 6.0f - std::sqrt(3.0f));
+  EXPECT_EQ(s.at({23, 23, 23}), -s.clamp_vox);  // 12 voxels deep
+  EXPECT_EQ(s.at({0, 0, 0}), s.clamp_vox);      // 28 voxels out
   for (int x = 0; x < 48; ++x) {
     const float analytic = glm::length(glm::vec3(float(x) - 23.5f, -0.5f, -0.5f)) - 12.0f;
     const float got = s.at({x, 23, 23});
-    if (std::abs(analytic) <= 4.0f) EXPECT_NEAR(got, analytic, 0.1f) << x;
-    if (std::abs(got) == s.clamp_vox) EXPECT_LE(s.clamp_vox, std::abs(analytic) + 0.1f) << x;
+    if (std::abs(analytic) <= 4.0f) {
+      EXPECT_NEAR(got, analytic, 0.1f) << x;
+    }
+    if (std::abs(got) == s.clamp_vox) {
+      EXPECT_LE(s.clamp_vox, std::abs(analytic) + 0.1f) << x;
+    }
   }
 }
 

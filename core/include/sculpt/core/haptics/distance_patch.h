@@ -7,18 +7,18 @@
 // The distance is measured to the 127.5 iso-surface of the trilinear density.
 // Along a grid edge the trilinear density is linear, so every edge whose ends
 // lie on both sides of 127.5 gives an exact surface point (a seed), with the
-// surface normal there from the density gradient. Each voxel within
-// ceil(band) + 1 voxels (chessboard) of a seed takes the nearest seed its
-// neighbours know of, ring by ring, and its value is the distance to that
-// seed's tangent plane (exact for planes; about e^2 / 2R off on a surface of
-// radius R when the seed is e voxels beside the true foot point). Voxels no
-// ring reaches are at least ceil(band) + 1 from the surface and store that
-// bound. See distance_patch.cpp for the choices.
+// surface normal there from the density gradient. Each voxel takes the nearest
+// seed within reach = ceil(band + sqrt(3)) voxels, and its value is the
+// distance to that seed's tangent plane (exact for planes; about e^2 / 2R off
+// on a surface of radius R when the seed is e voxels beside the true foot
+// point). A voxel with no seed in reach is at least reach - sqrt(3) from the
+// surface (every cell the surface passes through has a seed on an edge) and
+// stores that bound, clamp_vox. See distance_patch.cpp for the choices.
 //
-// Every value depends only on the material within ceil(band) + 3 voxels of
-// it, and ties between seeds break the same way whatever order they are met
-// in, so a refreshed or moved patch holds exactly the values a patch built
-// from scratch would.
+// Every value depends only on the material within reach + 2 voxels of it,
+// and ties between seeds break the same way whatever region is computed, so
+// a refreshed or moved patch holds exactly the values a patch built from
+// scratch would.
 //
 // Thread safety: one owner (the sculpting thread); the tick reads a copy
 // through PatchExchange.
@@ -75,12 +75,14 @@ class DistancePatch {
   };
   void read_density(const Volume& volume, const Box& region);
   void compute(const Box& region);
+  // The seeds on the edges with both ends in `scan`, in a fixed order.
+  void find_seeds(const Box& scan);
   uint8_t density(glm::ivec3 v) const;
   glm::vec3 density_gradient(glm::ivec3 v) const;
 
   DistancePatchOptions options_;
-  int rings_;   // ceil(band) + 1
-  int margin_;  // density kept beyond the values on each side: rings_ + 2
+  int reach_;   // how far a seed is offered: ceil(band + sqrt(3)) voxels
+  int margin_;  // density kept beyond the values on each side: reach_ + 2
   PatchSnapshot snapshot_;
   // The material's density over box() grown by margin_ on each side.
   Box density_box_;
@@ -88,9 +90,10 @@ class DistancePatch {
   int64_t last_computed_ = 0;
   // Scratch reused between computations (grown, never shrunk).
   std::vector<Seed> seeds_;
-  std::vector<int32_t> nearest_, relaxed_;
-  std::vector<uint8_t> ring_;
-  std::vector<int32_t> frontier_, next_frontier_;
+  std::vector<glm::vec3> seed_points_;
+  std::vector<float> best_d2_;
+  std::vector<int32_t> best_seed_;
+  std::vector<uint8_t> row_sides_;
 };
 
 }  // namespace sculpt::core
