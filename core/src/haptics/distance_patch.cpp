@@ -68,9 +68,10 @@ constexpr uint8_t kHasOutside = 2;
 // fixed cube around the seed without branches or square roots (values out of
 // reach fail the comparison with best_d2's initial reach^2), so that it
 // vectorises; cloned for AVX2.
-__attribute__((target_clones("avx2", "default"))) void offer_seeds(
-    const glm::vec3* points, size_t count, const Box& region, int reach, float* best_d2,
-    int32_t* best_seed) {
+__attribute__((target_clones("avx2", "default"))) void offer_seeds(const glm::vec3* points,
+                                                                   size_t count, const Box& region,
+                                                                   int reach, float* best_d2,
+                                                                   int32_t* best_seed) {
   const glm::ivec3 rs = region.size();
   for (size_t id = 0; id < count; ++id) {
     const glm::vec3 q = points[id];
@@ -85,9 +86,9 @@ __attribute__((target_clones("avx2", "default"))) void offer_seeds(
       for (int y = lo.y; y < hi.y; ++y) {
         const float dy = float(y) - q.y;
         const float base = dz * dz + dy * dy;
-        const size_t at = (size_t(z - region.lo.z) * size_t(rs.y) + size_t(y - region.lo.y)) *
-                              size_t(rs.x) +
-                          size_t(lo.x - region.lo.x);
+        const size_t at =
+            (size_t(z - region.lo.z) * size_t(rs.y) + size_t(y - region.lo.y)) * size_t(rs.x) +
+            size_t(lo.x - region.lo.x);
         float* d2 = best_d2 + at;
         int32_t* seed = best_seed + at;
         for (int i = 0; i < n; ++i) {
@@ -230,7 +231,8 @@ void DistancePatch::compute(const Box& region) {
   best_d2_.assign(count, float(reach * reach));
   best_seed_.assign(count, -1);
   seed_points_.resize(seeds_.size());
-  for (size_t i = 0; i < seeds_.size(); ++i) seed_points_[i] = seeds_[i].point;
+  for (size_t i = 0; i < seeds_.size(); ++i)
+    seed_points_[i] = seeds_[i].point;
   offer_seeds(seed_points_.data(), seed_points_.size(), region, reach, best_d2_.data(),
               best_seed_.data());
 
@@ -308,8 +310,7 @@ void DistancePatch::find_seeds(const Box& scan) {
           const float length = glm::length(g);
           // Density falls outward; a flat gradient (a one-voxel sliver) takes
           // the edge's own direction.
-          seed.normal =
-              length > 1e-3f ? -g / length : glm::vec3(step) * (d0 >= 128 ? 1.0f : -1.0f);
+          seed.normal = length > 1e-3f ? -g / length : glm::vec3(step) * (d0 >= 128 ? 1.0f : -1.0f);
           seeds_.push_back(seed);
         }
       }

@@ -142,6 +142,12 @@ void SphereProxy::reset(const PatchSnapshot& field, glm::vec3 position_vox) {
 const ProxyState& SphereProxy::update(const PatchSnapshot& field, glm::vec3 device_vox) {
   if (!placed_) reset(field, device_vox);
   const float skin = options_.skin_vox;
+  // Material added under the proxy (a dab, an undo) lifts it out first.
+  if (clearance(field, state_.position_vox, nullptr) < skin) {
+    const bool sliding = state_.sliding;
+    reset(field, state_.position_vox);
+    state_.sliding = sliding;
+  }
   glm::vec3 x = state_.position_vox;
   std::array<glm::vec3, 3> normals{};
   int active = 0;

@@ -58,6 +58,57 @@ TEST(HapticsCommand, TraceGivesTheSpringForceLineByLine) {
   EXPECT_GT(contact, 30);
 }
 
+TEST(HapticsCommand, ATraceIsTheSameRunTwice) {
+  sculpt::test::ScratchDir scratch;
+  ASSERT_TRUE(core::write_nrrd(scratch.file("ball.nrrd"), core::sphere_density(40, 0.25f)).ok());
+  write_press_probe(scratch.file("probe.jsonl"));
+  const std::string args = "haptics trace " + scratch.file("ball.nrrd") + " --probe " +
+                           scratch.file("probe.jsonl") + " --friction 0.4,0.3 --damping 5 -o ";
+  ASSERT_EQ(run_sculpt(args + scratch.file("a.jsonl")).exit_code, 0);
+  ASSERT_EQ(run_sculpt(args + scratch.file("b.jsonl")).exit_code, 0);
+  EXPECT_EQ(read_text(scratch.file("a.jsonl")), read_text(scratch.file("b.jsonl")));
+}
+
+TEST(HapticsCommand, AToolShapedTraceHasTorqueAndACubeRestsOnTheBall) {
+  sculpt::test::ScratchDir scratch;
+  ASSERT_TRUE(core::write_nrrd(scratch.file("ball.nrrd"), core::sphere_density(40, 0.25f)).ok());
+  std::ofstream probe(scratch.file("probe.jsonl"));
+  // Pressed down onto the top of the ball, held a little off its axis.
+  for (int i = 0; i <= 40; ++i)
+    probe << "{\"t\": " << 0.001 * i << ", \"at\": [21.5, 19.5, " << 40.0f - 0.2f * float(i)
+          << "], \"quat\": [1, 0, 0, 0]}\n";
+  probe.close();
+  const CommandResult r =
+      run_sculpt("haptics trace " + scratch.file("ball.nrrd") + " --probe " +
+                 scratch.file("probe.jsonl") + " --tool cube:6 -o " + scratch.file("trace.jsonl"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto trace = core::parse_trace_text(read_text(scratch.file("trace.jsonl")), "trace");
+  ASSERT_TRUE(trace.ok()) << trace.error().message();
+  const core::TraceLine& last = trace->back();
+  ASSERT_TRUE(last.torque_nm.has_value());
+  EXPECT_TRUE(last.contact);
+  EXPECT_GT(last.force_n.z, 0.0f);
+  // The cube's bottom (3 below its centre) stays on the ball's top (z 29.5).
+  EXPECT_GT(last.proxy_vox.z, 32.0f);
+}
+
+TEST(HapticsCommand, PushingInCarvesAndTheCarvedVolumeIsWritten) {
+  sculpt::test::ScratchDir scratch;
+  ASSERT_TRUE(core::write_nrrd(scratch.file("ball.nrrd"), core::sphere_density(40, 0.25f)).ok());
+  write_press_probe(scratch.file("probe.jsonl"));
+  const CommandResult r = run_sculpt(
+      "haptics trace " + scratch.file("ball.nrrd") + " --probe " + scratch.file("probe.jsonl") +
+      " --radius 2 --carve subtract --press-threshold 1 --press-depth 0.5 --carved " +
+      scratch.file("carved.nrrd") + " -o " + scratch.file("trace.jsonl"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("dabs"), std::string::npos);
+  auto carved = core::read_nrrd_u8(scratch.file("carved.nrrd"));
+  ASSERT_TRUE(carved.ok());
+  // The top of the ball (z 29.5 on the axis) is carved down.
+  EXPECT_LT(carved->at(19, 19, 29), 128);
+  EXPECT_GT(core::sphere_density(40, 0.25f).at(19, 19, 29), 127);
+}
+
 TEST(HapticsCommand, BadInputGetsOneLineNamingItAndNoOutput) {
   sculpt::test::ScratchDir scratch;
   ASSERT_TRUE(core::write_nrrd(scratch.file("ball.nrrd"), core::sphere_density(24, 0.25f)).ok());
