@@ -4,7 +4,13 @@
 // haptic deadline is missed by the slow call, not the mean.
 //   tick:     the sphere proxy (radius 1) and coupling sliding below the
 //             surface of a radius-40 ball, one device step of 0.05 voxel a tick
-//   refresh:  a 48^3 patch recomputed after a 32^3 dab in its middle
+//   tool:     the point shell of a 32^3 tool (a ball of radius 15, 32^3 grid)
+//             with its 6-DOF coupling, pressed 2 voxels into the ball's
+//             surface and sliding along it
+//   refresh:  a 48^3 patch refreshed after a real 32^3 dab (the same ball
+//             tool, subtract then add in turn, 6 voxels into the surface);
+//             box: the whole 32^3 box marked changed without a change of
+//             material (the cost of recomputing the most a dab can touch)
 //   recentre: the patch moved by (6, 2, 1) voxels, as the proxy's drift of
 //             edge/8 triggers it
 //   build:    a 48^3 patch from scratch (first contact, or a jump)
@@ -18,6 +24,8 @@
 
 #include "sculpt/core/haptics/distance_patch.h"
 #include "sculpt/core/haptics/haptic_renderer.h"
+#include "sculpt/core/haptics/tool_proxy.h"
+#include "sculpt/core/sculpt/sculptor.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 
 namespace sculpt::core {
@@ -76,17 +84,82 @@ void BM_HapticTick(benchmark::State& state) {
 }
 BENCHMARK(BM_HapticTick)->Unit(benchmark::kMicrosecond);
 
+void BM_ToolTick(benchmark::State& state) {
+  const glm::vec3 centre(63.5f);
+  const Tool tool = make_sphere_tool(15.0f);
+  ToolProxy proxy(make_point_shell(tool));
+  DistancePatch patch({patch_edge_for_reach(proxy.shell().reach_vox), 4.0f});
+  const auto device = [&](int k) {
+    const float angle = 0.05f * float(k % 2000) / 53.0f;
+    return centre + 53.0f * glm::vec3(std::cos(angle), std::sin(angle), 0.0f);
+  };
+  const glm::quat level(1, 0, 0, 0);
+  patch.build(ball_volume(), device(0));
+  proxy.reset(device(0) + glm::vec3(4, 0, 0), level);
+  int i = 0;
+  std::vector<double> us;
+  us.reserve(1 << 20);
+  int64_t contacts = 0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const ToolTick& tick = proxy.update(patch.snapshot(), device(i++), level);
+    benchmark::DoNotOptimize(tick.force_n);
+    us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
+                     .count());
+    contacts += tick.points_in_contact;
+    if (patch.off_centre(tick.position_vox)) {
+      state.PauseTiming();
+      patch.recentre(ball_volume(), tick.position_vox);
+      state.ResumeTiming();
+    }
+  }
+  std::sort(us.begin(), us.end());
+  state.counters["p50_us"] = us[us.size() / 2];
+  state.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
+  state.counters["shell_points"] = double(proxy.shell().points.size());
+  state.counters["points_in_contact"] = double(contacts) / double(us.size());
+}
+BENCHMARK(BM_ToolTick)->Unit(benchmark::kMicrosecond);
+
 void BM_PatchRefresh(benchmark::State& state) {
-  const int dab = static_cast<int>(state.range(0));
+  const bool real_dab = state.range(0) == 1;
+  Volume volume = sphere_volume(128, 40.0f / 128.0f);
   const glm::vec3 at(63.5f + 40.0f, 63.5f, 63.5f);
   DistancePatch patch;
-  patch.build(ball_volume(), at);
-  const glm::ivec3 lo = glm::ivec3(at) - dab / 2;
-  const Box changed{lo, lo + dab};
-  time_calls(state, [&] { patch.refresh(ball_volume(), changed); });
-  state.counters["voxels"] = double(patch.last_computed_voxels());
+  patch.build(volume, at);
+  Sculptor sculptor(volume);
+  sculptor.set_tool(make_sphere_tool(15.0f));  // a 32^3 tool grid
+  Dab dab;
+  dab.position_vox = at + glm::vec3(15.0f - 6.0f, 0.0f, 0.0f);
+  const glm::ivec3 lo = glm::ivec3(at) - 16;
+  const Box box{lo, lo + 32};
+  std::vector<double> us;
+  int64_t computed = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    std::vector<glm::ivec3> bricks;
+    if (real_dab) {
+      dab.mode = dab.mode == SculptMode::kSubtract ? SculptMode::kAdd : SculptMode::kSubtract;
+      (void)sculptor.dab(dab);
+      bricks = volume.take_dirty_bricks();
+    }
+    state.ResumeTiming();
+    const auto start = std::chrono::steady_clock::now();
+    if (real_dab) {
+      patch.refresh_bricks(volume, bricks);
+    } else {
+      patch.refresh(volume, box);
+    }
+    us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
+                     .count());
+    computed += patch.last_computed_voxels();
+  }
+  std::sort(us.begin(), us.end());
+  state.counters["p50_us"] = us[us.size() / 2];
+  state.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
+  state.counters["voxels"] = double(computed) / double(us.size());
 }
-BENCHMARK(BM_PatchRefresh)->Arg(32)->ArgName("dab")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PatchRefresh)->Arg(1)->Arg(0)->ArgName("real_dab")->Unit(benchmark::kMicrosecond);
 
 void BM_PatchRecentre(benchmark::State& state) {
   const glm::vec3 a(63.5f + 40.0f, 63.5f, 63.5f);

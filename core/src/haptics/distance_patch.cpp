@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -63,40 +64,51 @@ constexpr uint8_t kHasInside = 1;
 constexpr uint8_t kHasOutside = 2;
 
 // Offers each seed to the values of `region` (laid out x fastest in best_d2
-// and best_seed) within `reach` of it; a value keeps the nearest, and only a
-// strictly nearer seed replaces the one it holds. The row loop runs over a
-// fixed cube around the seed without branches or square roots (values out of
-// reach fail the comparison with best_d2's initial reach^2), so that it
-// vectorises; cloned for AVX2.
-__attribute__((target_clones("avx2", "default"))) void offer_seeds(const glm::vec3* points,
-                                                                   size_t count, const Box& region,
-                                                                   int reach, float* best_d2,
-                                                                   int32_t* best_seed) {
+// and best_seed, rows `stride` apart) within `reach` of it; a value keeps the
+// nearest, and only a strictly nearer one replaces the seed it holds. Each
+// row of the ball around a seed is updated over kWindow values from the
+// seed's reach, without branches or square roots (values out of reach fail
+// the comparison with best_d2's initial reach^2; a window running past the
+// row's end lands in the row's padding): two eight-lane operations a row
+// (GCC vector types; a per-row extent costs more than it saves); cloned for
+// AVX2.
+constexpr int kWindow = 16;
+using Floats8 = float __attribute__((vector_size(32)));
+using Ints8 = int32_t __attribute__((vector_size(32)));
+constexpr Floats8 kLanes = {0, 1, 2, 3, 4, 5, 6, 7};
+
+__attribute__((target_clones("avx2", "default"))) void offer_seeds(
+    const glm::vec3* points, size_t count, const Box& region, size_t stride, int reach,
+    float* best_d2, int32_t* best_seed) {
   const glm::ivec3 rs = region.size();
+  const float reach2 = float(reach * reach);
   for (size_t id = 0; id < count; ++id) {
     const glm::vec3 q = points[id];
     const glm::ivec3 centre = glm::ivec3(glm::floor(q));
     const glm::ivec3 lo = glm::max(centre - reach + 1, region.lo);
     const glm::ivec3 hi = glm::min(centre + reach + 1, region.hi);
-    const int n = hi.x - lo.x;
-    if (n <= 0) continue;
-    const float dx0 = float(lo.x) - q.x;
     for (int z = lo.z; z < hi.z; ++z) {
       const float dz = float(z) - q.z;
       for (int y = lo.y; y < hi.y; ++y) {
         const float dy = float(y) - q.y;
         const float base = dz * dz + dy * dy;
-        const size_t at =
-            (size_t(z - region.lo.z) * size_t(rs.y) + size_t(y - region.lo.y)) * size_t(rs.x) +
-            size_t(lo.x - region.lo.x);
-        float* d2 = best_d2 + at;
-        int32_t* seed = best_seed + at;
-        for (int i = 0; i < n; ++i) {
-          const float dx = dx0 + float(i);
-          const float d = base + dx * dx;
-          const bool nearer = d < d2[i];
-          d2[i] = nearer ? d : d2[i];
-          seed[i] = nearer ? int32_t(id) : seed[i];
+        if (base >= reach2) continue;
+        const size_t at = (size_t(z - region.lo.z) * size_t(rs.y) + size_t(y - region.lo.y)) *
+                              stride + size_t(lo.x - region.lo.x);
+        const float dx0 = float(lo.x) - q.x;
+        for (int k = 0; k < kWindow / 8; ++k) {
+          const size_t h = size_t(8 * k);
+          const Floats8 dx = (dx0 + float(h)) + kLanes;
+          const Floats8 d = base + dx * dx;
+          Floats8 held;
+          Ints8 seed;
+          std::memcpy(&held, best_d2 + at + h, sizeof held);
+          std::memcpy(&seed, best_seed + at + h, sizeof seed);
+          const Ints8 nearer = d < held;
+          held = nearer ? d : held;
+          seed = nearer ? Ints8{} + int32_t(id) : seed;
+          std::memcpy(best_d2 + at + h, &held, sizeof held);
+          std::memcpy(best_seed + at + h, &seed, sizeof seed);
         }
       }
     }
@@ -115,7 +127,10 @@ int patch_edge_for_reach(float reach_vox, float band_vox) {
 
 DistancePatch::DistancePatch(const DistancePatchOptions& options)
     : options_(options),
-      reach_(int(std::ceil(options.band_vox + std::sqrt(3.0f)))),
+      // A voxel in the band has a seed within its distance plus the farthest
+      // a surface point lies from a crossing on its cell's edges (0.87: the
+      // cell's half diagonal, for a smooth surface).
+      reach_(int(std::ceil(options.band_vox + 0.87f))),
       margin_(reach_ + 2) {
   assert(options.edge >= 8 && options.band_vox > 0.0f);
 }
@@ -143,19 +158,33 @@ void DistancePatch::build(const Volume& volume, glm::vec3 centre_vox) {
   snapshot_.phi.assign(size_t(edge) * edge * edge, 0.0f);
   density_box_ = grown(box(), margin_);
   density_.assign(size_t(density_box_.voxel_count()), 0);
-  read_density(volume, density_box_);
+  (void)read_density(volume, density_box_);
   compute(box());
   ++snapshot_.version;
 }
 
 void DistancePatch::refresh(const Volume& volume, const Box& changed) {
   if (snapshot_.empty()) return;
-  const Box read = intersect(changed, density_box_);
-  if (read.empty()) return;
-  read_density(volume, read);
+  // Only the voxels whose density really changed count: a dab's box is
+  // mostly material it left alone.
+  const Box differs = read_density(volume, changed);
+  if (differs.empty()) {
+    last_computed_ = 0;
+    return;
+  }
   // A value depends on the density within margin_ of it.
-  compute(intersect(grown(read, margin_), box()));
+  compute(intersect(grown(differs, margin_), box()));
   ++snapshot_.version;
+}
+
+void DistancePatch::refresh_bricks(const Volume& volume, std::span<const glm::ivec3> bricks) {
+  if (bricks.empty()) return;
+  Box all = volume.brick_box(bricks.front());
+  for (const glm::ivec3 b : bricks) {
+    const Box one = volume.brick_box(b);
+    all = Box{glm::min(all.lo, one.lo), glm::max(all.hi, one.hi)};
+  }
+  refresh(volume, all);
 }
 
 void DistancePatch::recentre(const Volume& volume, glm::vec3 centre_vox) {
@@ -181,7 +210,7 @@ void DistancePatch::recentre(const Volume& volume, glm::vec3 centre_vox) {
   std::array<Box, 3> slabs;
   const int density_slabs = uncovered_slabs(density_box_, old_density_box, slabs);
   for (int i = 0; i < density_slabs; ++i)
-    read_density(volume, slabs[size_t(i)]);
+    (void)read_density(volume, slabs[size_t(i)]);
   int64_t computed = 0;
   const int value_slabs = uncovered_slabs(box(), old_box, slabs);
   for (int i = 0; i < value_slabs; ++i) {
@@ -192,15 +221,25 @@ void DistancePatch::recentre(const Volume& volume, glm::vec3 centre_vox) {
   ++snapshot_.version;
 }
 
-void DistancePatch::read_density(const Volume& volume, const Box& region) {
+Box DistancePatch::read_density(const Volume& volume, const Box& region) {
   const Box r = intersect(region, density_box_);
-  if (r.empty()) return;
+  Box changed{glm::ivec3(std::numeric_limits<int>::max()), glm::ivec3(std::numeric_limits<int>::min())};
+  if (r.empty()) return Box{};
   const DenseGrid<uint8_t> values = volume.read(r);
-  const size_t row = size_t(r.size().x);
+  const int n = r.size().x;
   for (int z = r.lo.z; z < r.hi.z; ++z)
-    for (int y = r.lo.y; y < r.hi.y; ++y)
-      std::memcpy(&density_[local_index({r.lo.x, y, z}, density_box_)],
-                  &values.values()[local_index({r.lo.x, y, z}, r)], row);
+    for (int y = r.lo.y; y < r.hi.y; ++y) {
+      uint8_t* to = &density_[local_index({r.lo.x, y, z}, density_box_)];
+      const uint8_t* from = &values.values()[local_index({r.lo.x, y, z}, r)];
+      if (std::memcmp(to, from, size_t(n)) == 0) continue;
+      int first = 0, last = n - 1;
+      while (to[first] == from[first]) ++first;
+      while (to[last] == from[last]) --last;
+      changed.lo = glm::min(changed.lo, glm::ivec3(r.lo.x + first, y, z));
+      changed.hi = glm::max(changed.hi, glm::ivec3(r.lo.x + last + 1, y + 1, z + 1));
+      std::memcpy(to, from, size_t(n));
+    }
+  return changed.empty() ? Box{} : changed;
 }
 
 uint8_t DistancePatch::density(glm::ivec3 v) const {
@@ -227,33 +266,36 @@ void DistancePatch::compute(const Box& region) {
   // `reach` around it; a value keeps the nearest. Seeds come in a fixed order
   // (axis, then z, y, x of the edge) and only a strictly nearer one replaces
   // the one held, so ties go the same way whatever region is computed.
-  const size_t count = size_t(region.voxel_count());
+  assert(2 * reach <= kWindow);
+  const glm::ivec3 rs = region.size();
+  const size_t stride = size_t(rs.x) + kWindow;
+  const size_t count = stride * size_t(rs.y) * size_t(rs.z);
   best_d2_.assign(count, float(reach * reach));
   best_seed_.assign(count, -1);
   seed_points_.resize(seeds_.size());
-  for (size_t i = 0; i < seeds_.size(); ++i)
-    seed_points_[i] = seeds_[i].point;
-  offer_seeds(seed_points_.data(), seed_points_.size(), region, reach, best_d2_.data(),
+  for (size_t i = 0; i < seeds_.size(); ++i) seed_points_[i] = seeds_[i].point;
+  offer_seeds(seed_points_.data(), seed_points_.size(), region, stride, reach, best_d2_.data(),
               best_seed_.data());
 
   // Values: the distance to the nearest seed's tangent plane, signed by the
   // voxel's own side. Where plane and side disagree (a voxel beside a sharp
   // fold) 0 is stored: an underestimate, which keeps a sphere-tracing step
   // safe. No seed within `reach` means the surface is at least
-  // reach - sqrt(3) away (a cell holding surface has a seed on an edge).
+  // reach - sqrt(3) away (a cell holding surface has a seed on an edge
+  // within its diagonal), the bound stored there.
   const float clamp = snapshot_.clamp_vox;
-  size_t i = 0;
   for (int z = region.lo.z; z < region.hi.z; ++z)
     for (int y = region.lo.y; y < region.hi.y; ++y) {
       const uint8_t* d = &density_[local_index({region.lo.x, y, z}, density_box_)];
       float* out = &snapshot_.phi[local_index({region.lo.x, y, z}, box())];
+      size_t i = (size_t(z - region.lo.z) * size_t(rs.y) + size_t(y - region.lo.y)) * stride;
       for (int x = region.lo.x; x < region.hi.x; ++x, ++i, ++d, ++out) {
         const bool inside = *d >= 128;
         float magnitude = clamp;
         if (best_seed_[i] >= 0) {
           const Seed& s = seeds_[size_t(best_seed_[i])];
           const float plane = glm::dot(glm::vec3(float(x), float(y), float(z)) - s.point, s.normal);
-          magnitude = std::clamp(inside ? -plane : plane, 0.0f, clamp);
+          magnitude = std::clamp(inside ? -plane : plane, 0.0f, float(reach));
         }
         *out = inside ? -magnitude : magnitude;
       }

@@ -184,8 +184,7 @@ int run_trace(const TraceOptions& o) {
         dab.mode = *carve;
         (void)sculptor->dab(dab);
         ++dabs;
-        for (const glm::ivec3 b : volume.take_dirty_bricks())
-          patch.refresh(volume, volume.brick_box(b));
+        patch.refresh_bricks(volume, volume.take_dirty_bricks());
       }
     }
     if (patch.off_centre(line.proxy_vox)) patch.recentre(volume, line.proxy_vox);

@@ -88,9 +88,9 @@ TEST(DistancePatch, FarValuesAreClampedBoundsThatNeverExceedTheTrueDistance) {
   DistancePatch patch;
   patch.build(volume, glm::vec3(23.5f));
   const PatchSnapshot& s = patch.snapshot();
-  // Seeds are offered within ceil(4 + sqrt(3)) = 6 voxels; beyond, the
-  // surface is at least 6 - sqrt(3) away.
-  EXPECT_FLOAT_EQ(s.clamp_vox, 6.0f - std::sqrt(3.0f));
+  // Seeds are offered within ceil(4 + 0.87) = 5 voxels; beyond, the
+  // surface is at least 5 - sqrt(3) away.
+  EXPECT_FLOAT_EQ(s.clamp_vox, 5.0f - std::sqrt(3.0f));
   EXPECT_EQ(s.at({23, 23, 23}), -s.clamp_vox);  // 12 voxels deep
   EXPECT_EQ(s.at({0, 0, 0}), s.clamp_vox);      // 28 voxels out
   for (int x = 0; x < 48; ++x) {

@@ -8,12 +8,13 @@
 // Along a grid edge the trilinear density is linear, so every edge whose ends
 // lie on both sides of 127.5 gives an exact surface point (a seed), with the
 // surface normal there from the density gradient. Each voxel takes the nearest
-// seed within reach = ceil(band + sqrt(3)) voxels, and its value is the
-// distance to that seed's tangent plane (exact for planes; about e^2 / 2R off
-// on a surface of radius R when the seed is e voxels beside the true foot
-// point). A voxel with no seed in reach is at least reach - sqrt(3) from the
-// surface (every cell the surface passes through has a seed on an edge) and
-// stores that bound, clamp_vox. See distance_patch.cpp for the choices.
+// seed within reach = ceil(band + 0.87) voxels (0.87: how far a smooth
+// surface's point lies at most from a crossing on its cell's edges), and its
+// value is the distance to that seed's tangent plane (exact for planes; about
+// e^2 / 2R off on a surface of radius R when the seed is e voxels beside the
+// true foot point). A voxel with no seed in reach is at least reach - sqrt(3)
+// from the surface (every cell the surface passes through has a seed on an
+// edge) and stores that bound, clamp_vox. See distance_patch.cpp.
 //
 // Every value depends only on the material within reach + 2 voxels of it,
 // and ties between seeds break the same way whatever region is computed, so
@@ -24,6 +25,7 @@
 // through PatchExchange.
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -54,6 +56,9 @@ class DistancePatch {
   /// Re-reads the material inside `changed` (material voxels, e.g. a dab's
   /// box) and recomputes the values it can affect. Builds when empty.
   void refresh(const Volume& volume, const Box& changed);
+  /// refresh() over the bricks a dab stored (Volume::take_dirty_bricks), in
+  /// one pass over their bounding box.
+  void refresh_bricks(const Volume& volume, std::span<const glm::ivec3> bricks);
   /// Centres the patch on `centre_vox`, keeping the values that stay inside
   /// and computing the rest. Builds when the move is larger than the patch.
   void recentre(const Volume& volume, glm::vec3 centre_vox);
@@ -73,7 +78,9 @@ class DistancePatch {
     glm::vec3 point;   // on the iso-surface, material voxels
     glm::vec3 normal;  // outward unit normal
   };
-  void read_density(const Volume& volume, const Box& region);
+  // Copies the material's density over `region` in; returns the bounding box
+  // of the voxels that differ from what was held (empty: none).
+  Box read_density(const Volume& volume, const Box& region);
   void compute(const Box& region);
   // The seeds on the edges with both ends in `scan`, in a fixed order.
   void find_seeds(const Box& scan);

@@ -5,9 +5,9 @@
 //
 // Values are in voxel units, negative inside, sampled at the material's voxel
 // centres: value (i, j, k) is the distance at voxel origin + (i, j, k). They
-// are accurate (0.1 voxel) where |phi| <= band_vox and clamped to
-// +-clamp_vox beyond; a clamped value never exceeds the true distance, so a
-// step of phi - r stays safe anywhere in the patch.
+// are accurate (0.1 voxel) where |phi| <= band_vox; beyond, a voxel holds an
+// estimate or, far from any surface, the bound +-clamp_vox, which never
+// exceeds the true distance, so a step of phi - r stays safe anywhere.
 //
 // Sampling is trilinear and never allocates, locks or decodes: it is the only
 // thing the 1 kHz tick does with the material.
@@ -31,7 +31,8 @@ struct PatchSnapshot {
   glm::ivec3 origin{0};
   /// Values per axis (a cube).
   int edge = 0;
-  /// Half width of the accurate band, and the magnitude values clamp to.
+  /// Half width of the accurate band, and the value of voxels far from any
+  /// surface (a lower bound of their distance).
   float band_vox = 0.0f;
   float clamp_vox = 0.0f;
   /// Increments each time the sculpting side changes the values.

@@ -14,6 +14,9 @@
 // it pulled at the tool's rim); force N, torque N·m. The tick reads only the
 // patch and never allocates.
 
+#include <cstdint>
+#include <vector>
+
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
@@ -67,7 +70,7 @@ class ToolProxy {
     float clearance = 1e30f;  // least distance of a point to the material, voxels (lower bound)
   };
   Wrench contact_wrench(const PatchSnapshot& field, glm::vec3 position,
-                        glm::quat orientation) const;
+                        glm::quat orientation);
 
   PointShell shell_;
   ToolProxyOptions options_;
@@ -75,6 +78,9 @@ class ToolProxy {
   float kr_n_vox_per_rad_;
   ToolTick state_;
   bool placed_ = false;
+  // The shell one array per axis, and the tick's scratch (sized once).
+  std::vector<float> px_, py_, pz_, wx_, wy_, wz_;
+  std::vector<int32_t> nearest_;
 };
 
 }  // namespace sculpt::core
