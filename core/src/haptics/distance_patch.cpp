@@ -242,17 +242,6 @@ Box DistancePatch::read_density(const Volume& volume, const Box& region) {
   return changed.empty() ? Box{} : changed;
 }
 
-uint8_t DistancePatch::density(glm::ivec3 v) const {
-  assert(density_box_.contains(v));
-  return density_[local_index(v, density_box_)];
-}
-
-glm::vec3 DistancePatch::density_gradient(glm::ivec3 v) const {
-  const auto d = [&](int dx, int dy, int dz) { return float(density(v + glm::ivec3(dx, dy, dz))); };
-  return 0.5f *
-         glm::vec3(d(1, 0, 0) - d(-1, 0, 0), d(0, 1, 0) - d(0, -1, 0), d(0, 0, 1) - d(0, 0, -1));
-}
-
 void DistancePatch::compute(const Box& region) {
   last_computed_ = region.voxel_count();
   if (region.empty()) return;
@@ -331,7 +320,8 @@ void DistancePatch::find_seeds(const Box& scan) {
   for (int a = 0; a < 3; ++a) {
     glm::ivec3 step(0);
     step[a] = 1;
-    const size_t stride = a == 0 ? 1 : a == 1 ? size_t(ds.x) : size_t(ds.x) * size_t(ds.y);
+    const ptrdiff_t plane = ptrdiff_t(ds.x) * ds.y;
+    const size_t stride = a == 0 ? 1 : a == 1 ? size_t(ds.x) : size_t(plane);
     Box from = scan;
     from.hi[a] -= 1;
     for (int z = from.lo.z; z < from.hi.z; ++z)
@@ -348,11 +338,20 @@ void DistancePatch::find_seeds(const Box& scan) {
           const float t = (float(d0) - 127.5f) / (float(d0) - float(d1));
           Seed seed;
           seed.point = glm::vec3(v) + t * glm::vec3(step);
-          const glm::vec3 g = glm::mix(density_gradient(v), density_gradient(v + step), t);
+          const auto gradient = [&](const uint8_t* p) {
+            return glm::vec3(float(p[1]) - float(p[-1]), float(p[ds.x]) - float(p[-ds.x]),
+                             float(p[plane]) - float(p[-plane]));
+          };
+          const glm::vec3 g = 0.5f * glm::mix(gradient(row), gradient(row + stride), t);
           const float length = glm::length(g);
           // Density falls outward; a flat gradient (a one-voxel sliver) takes
           // the edge's own direction.
           seed.normal = length > 1e-3f ? -g / length : glm::vec3(step) * (d0 >= 128 ? 1.0f : -1.0f);
+          // An edge within 60 degrees of the normal places its crossing well;
+          // a grazing one adds a seed beside others and little accuracy (the
+          // axis nearest the normal always qualifies: its component is at
+          // least 1/sqrt(3)).
+          if (std::abs(seed.normal[a]) < 0.5f) continue;
           seeds_.push_back(seed);
         }
       }

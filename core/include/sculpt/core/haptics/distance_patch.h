@@ -84,8 +84,6 @@ class DistancePatch {
   void compute(const Box& region);
   // The seeds on the edges with both ends in `scan`, in a fixed order.
   void find_seeds(const Box& scan);
-  uint8_t density(glm::ivec3 v) const;
-  glm::vec3 density_gradient(glm::ivec3 v) const;
 
   DistancePatchOptions options_;
   int reach_;   // how far a seed is offered: ceil(band + sqrt(3)) voxels
