@@ -66,20 +66,25 @@ constexpr uint8_t kHasOutside = 2;
 // Offers each seed to the values of `region` (laid out x fastest in best_d2
 // and best_seed, rows `stride` apart) within `reach` of it; a value keeps the
 // nearest, and only a strictly nearer one replaces the seed it holds. Each
-// row of the ball around a seed is updated over kWindow values from the
-// seed's reach, without branches or square roots (values out of reach fail
-// the comparison with best_d2's initial reach^2; a window running past the
-// row's end lands in the row's padding): two eight-lane operations a row
-// (GCC vector types; a per-row extent costs more than it saves); cloned for
-// AVX2.
+// row of the ball around a seed is updated over 12 values from the seed's
+// reach, without branches or square roots (values out of reach fail the
+// comparison with best_d2's initial reach^2; a window running past the row's
+// end lands in the row's padding of kWindow): an eight- and a four-lane
+// operation a row (GCC vector types; a per-row extent costs more than it
+// saves); cloned for AVX2.
 constexpr int kWindow = 16;
 using Floats8 = float __attribute__((vector_size(32)));
 using Ints8 = int32_t __attribute__((vector_size(32)));
+using Floats4 = float __attribute__((vector_size(16)));
+using Ints4 = int32_t __attribute__((vector_size(16)));
 constexpr Floats8 kLanes = {0, 1, 2, 3, 4, 5, 6, 7};
+constexpr Floats4 kLanes4 = {0, 1, 2, 3};
 
-__attribute__((target_clones("avx2", "default"))) void offer_seeds(
-    const glm::vec3* points, size_t count, const Box& region, size_t stride, int reach,
-    float* best_d2, int32_t* best_seed) {
+__attribute__((target_clones("avx2", "default"))) void offer_seeds(const glm::vec3* points,
+                                                                   size_t count, const Box& region,
+                                                                   size_t stride, int reach,
+                                                                   float* best_d2,
+                                                                   int32_t* best_seed) {
   const glm::ivec3 rs = region.size();
   const float reach2 = float(reach * reach);
   for (size_t id = 0; id < count; ++id) {
@@ -93,25 +98,67 @@ __attribute__((target_clones("avx2", "default"))) void offer_seeds(
         const float dy = float(y) - q.y;
         const float base = dz * dz + dy * dy;
         if (base >= reach2) continue;
-        const size_t at = (size_t(z - region.lo.z) * size_t(rs.y) + size_t(y - region.lo.y)) *
-                              stride + size_t(lo.x - region.lo.x);
+        const size_t at =
+            (size_t(z - region.lo.z) * size_t(rs.y) + size_t(y - region.lo.y)) * stride +
+            size_t(lo.x - region.lo.x);
         const float dx0 = float(lo.x) - q.x;
-        for (int k = 0; k < kWindow / 8; ++k) {
-          const size_t h = size_t(8 * k);
-          const Floats8 dx = (dx0 + float(h)) + kLanes;
-          const Floats8 d = base + dx * dx;
-          Floats8 held;
-          Ints8 seed;
-          std::memcpy(&held, best_d2 + at + h, sizeof held);
-          std::memcpy(&seed, best_seed + at + h, sizeof seed);
-          const Ints8 nearer = d < held;
-          held = nearer ? d : held;
-          seed = nearer ? Ints8{} + int32_t(id) : seed;
-          std::memcpy(best_d2 + at + h, &held, sizeof held);
-          std::memcpy(best_seed + at + h, &seed, sizeof seed);
-        }
+        // Eight values, then four: a row of the ball spans at most
+        // 2 * reach <= 12 of them.
+        Floats8 held;
+        Ints8 seed;
+        std::memcpy(&held, best_d2 + at, sizeof held);
+        std::memcpy(&seed, best_seed + at, sizeof seed);
+        const Floats8 dx = dx0 + kLanes;
+        const Floats8 d = base + dx * dx;
+        const Ints8 nearer = d < held;
+        held = nearer ? d : held;
+        seed = nearer ? Ints8{} + int32_t(id) : seed;
+        std::memcpy(best_d2 + at, &held, sizeof held);
+        std::memcpy(best_seed + at, &seed, sizeof seed);
+        Floats4 held4;
+        Ints4 seed4;
+        std::memcpy(&held4, best_d2 + at + 8, sizeof held4);
+        std::memcpy(&seed4, best_seed + at + 8, sizeof seed4);
+        const Floats4 dx4 = (dx0 + 8.0f) + kLanes4;
+        const Floats4 d4 = base + dx4 * dx4;
+        const Ints4 nearer4 = d4 < held4;
+        held4 = nearer4 ? d4 : held4;
+        seed4 = nearer4 ? Ints4{} + int32_t(id) : seed4;
+        std::memcpy(best_d2 + at + 8, &held4, sizeof held4);
+        std::memcpy(best_seed + at + 8, &seed4, sizeof seed4);
       }
     }
+  }
+}
+
+// offer_seeds() for a reach beyond six voxels (a wide band, for a sphere
+// tool of large radius): the same result, row by row over the exact extent.
+void offer_seeds_wide(const glm::vec3* points, size_t count, const Box& region, size_t stride,
+                      int reach, float* best_d2, int32_t* best_seed) {
+  const glm::ivec3 rs = region.size();
+  const float reach2 = float(reach * reach);
+  for (size_t id = 0; id < count; ++id) {
+    const glm::vec3 q = points[id];
+    const glm::ivec3 centre = glm::ivec3(glm::floor(q));
+    const glm::ivec3 lo = glm::max(centre - reach + 1, region.lo);
+    const glm::ivec3 hi = glm::min(centre + reach + 1, region.hi);
+    for (int z = lo.z; z < hi.z; ++z)
+      for (int y = lo.y; y < hi.y; ++y) {
+        const float base =
+            (float(z) - q.z) * (float(z) - q.z) + (float(y) - q.y) * (float(y) - q.y);
+        if (base >= reach2) continue;
+        const size_t row =
+            (size_t(z - region.lo.z) * size_t(rs.y) + size_t(y - region.lo.y)) * stride;
+        for (int x = lo.x; x < hi.x; ++x) {
+          const float dx = float(x) - q.x;
+          const float d = base + dx * dx;
+          const size_t i = row + size_t(x - region.lo.x);
+          if (d < best_d2[i]) {
+            best_d2[i] = d;
+            best_seed[i] = int32_t(id);
+          }
+        }
+      }
   }
 }
 
@@ -223,7 +270,8 @@ void DistancePatch::recentre(const Volume& volume, glm::vec3 centre_vox) {
 
 Box DistancePatch::read_density(const Volume& volume, const Box& region) {
   const Box r = intersect(region, density_box_);
-  Box changed{glm::ivec3(std::numeric_limits<int>::max()), glm::ivec3(std::numeric_limits<int>::min())};
+  Box changed{glm::ivec3(std::numeric_limits<int>::max()),
+              glm::ivec3(std::numeric_limits<int>::min())};
   if (r.empty()) return Box{};
   const DenseGrid<uint8_t> values = volume.read(r);
   const int n = r.size().x;
@@ -233,8 +281,10 @@ Box DistancePatch::read_density(const Volume& volume, const Box& region) {
       const uint8_t* from = &values.values()[local_index({r.lo.x, y, z}, r)];
       if (std::memcmp(to, from, size_t(n)) == 0) continue;
       int first = 0, last = n - 1;
-      while (to[first] == from[first]) ++first;
-      while (to[last] == from[last]) --last;
+      while (to[first] == from[first])
+        ++first;
+      while (to[last] == from[last])
+        --last;
       changed.lo = glm::min(changed.lo, glm::ivec3(r.lo.x + first, y, z));
       changed.hi = glm::max(changed.hi, glm::ivec3(r.lo.x + last + 1, y + 1, z + 1));
       std::memcpy(to, from, size_t(n));
@@ -255,16 +305,21 @@ void DistancePatch::compute(const Box& region) {
   // `reach` around it; a value keeps the nearest. Seeds come in a fixed order
   // (axis, then z, y, x of the edge) and only a strictly nearer one replaces
   // the one held, so ties go the same way whatever region is computed.
-  assert(2 * reach <= kWindow);
   const glm::ivec3 rs = region.size();
   const size_t stride = size_t(rs.x) + kWindow;
   const size_t count = stride * size_t(rs.y) * size_t(rs.z);
   best_d2_.assign(count, float(reach * reach));
   best_seed_.assign(count, -1);
   seed_points_.resize(seeds_.size());
-  for (size_t i = 0; i < seeds_.size(); ++i) seed_points_[i] = seeds_[i].point;
-  offer_seeds(seed_points_.data(), seed_points_.size(), region, stride, reach, best_d2_.data(),
-              best_seed_.data());
+  for (size_t i = 0; i < seeds_.size(); ++i)
+    seed_points_[i] = seeds_[i].point;
+  if (2 * reach <= 12) {
+    offer_seeds(seed_points_.data(), seed_points_.size(), region, stride, reach, best_d2_.data(),
+                best_seed_.data());
+  } else {
+    offer_seeds_wide(seed_points_.data(), seed_points_.size(), region, stride, reach,
+                     best_d2_.data(), best_seed_.data());
+  }
 
   // Values: the distance to the nearest seed's tangent plane, signed by the
   // voxel's own side. Where plane and side disagree (a voxel beside a sharp

@@ -139,6 +139,27 @@ TEST(DistancePatch, RecentredEqualsAPatchBuiltThereAndComputesOnlyTheNewPart) {
   EXPECT_EQ(patch.snapshot().phi, fresh.snapshot().phi);
 }
 
+TEST(DistancePatch, AWideBandGivesTheSameValuesInTheNarrowBand) {
+  // Band 8 takes the row-by-row path (reach 9); within 4 voxels it must agree
+  // with the eight-lane one within 0.1 voxel.
+  const Volume volume = sphere_volume(64, 0.3f);
+  const glm::vec3 at(31.5f + 19.2f, 31.5f, 31.5f);
+  DistancePatch narrow, wide({.edge = 48, .band_vox = 8.0f});
+  narrow.build(volume, at);
+  wide.build(volume, at);
+  ASSERT_EQ(narrow.box(), wide.box());
+  int compared = 0;
+  for (size_t i = 0; i < narrow.snapshot().phi.size(); ++i) {
+    const float a = narrow.snapshot().phi[i], b = wide.snapshot().phi[i];
+    // (Voxels with no seed in the narrow reach hold its bound, not a value.)
+    if (std::abs(a) > 4.0f || std::abs(a) == narrow.snapshot().clamp_vox) continue;
+    EXPECT_NEAR(a, b, 0.1f) << i;
+    ++compared;
+  }
+  EXPECT_GT(compared, 10000);
+  EXPECT_GT(wide.snapshot().clamp_vox, 7.0f);
+}
+
 TEST(DistancePatch, EdgeForReachCoversTheToolAndTheBand) {
   EXPECT_EQ(patch_edge_for_reach(1.0f), 48);
   EXPECT_GE(patch_edge_for_reach(16.0f), 2 * (16 + 4));

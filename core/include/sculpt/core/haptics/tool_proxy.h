@@ -69,8 +69,7 @@ class ToolProxy {
     int points = 0;
     float clearance = 1e30f;  // least distance of a point to the material, voxels (lower bound)
   };
-  Wrench contact_wrench(const PatchSnapshot& field, glm::vec3 position,
-                        glm::quat orientation);
+  Wrench contact_wrench(const PatchSnapshot& field, glm::vec3 position, glm::quat orientation);
 
   PointShell shell_;
   ToolProxyOptions options_;
