@@ -164,6 +164,10 @@ void offer_seeds_wide(const glm::vec3* points, size_t count, const Box& region, 
 
 }  // namespace
 
+float band_for_sphere(float radius_vox) {
+  return std::max(4.0f, std::ceil(radius_vox) + 3.0f);
+}
+
 int patch_edge_for_reach(float reach_vox, float band_vox) {
   // The tool's reach on both sides, the band beyond it, and as much again to
   // move before the patch has to follow.
@@ -201,7 +205,10 @@ void DistancePatch::build(const Volume& volume, glm::vec3 centre_vox) {
   snapshot_.origin = glm::ivec3(glm::floor(centre_vox)) - edge / 2;
   snapshot_.edge = edge;
   snapshot_.band_vox = options_.band_vox;
-  snapshot_.clamp_vox = float(reach_) - std::sqrt(3.0f);
+  // A cell the surface crosses has a crossing within its diagonal (sqrt 3),
+  // though not always on an edge that gives a seed: then one in the next
+  // cell along the normal does (one voxel more).
+  snapshot_.clamp_vox = float(reach_) - std::sqrt(3.0f) - 1.0f;
   snapshot_.phi.assign(size_t(edge) * edge * edge, 0.0f);
   density_box_ = grown(box(), margin_);
   density_.assign(size_t(density_box_.voxel_count()), 0);
@@ -324,9 +331,8 @@ void DistancePatch::compute(const Box& region) {
   // Values: the distance to the nearest seed's tangent plane, signed by the
   // voxel's own side. Where plane and side disagree (a voxel beside a sharp
   // fold) 0 is stored: an underestimate, which keeps a sphere-tracing step
-  // safe. No seed within `reach` means the surface is at least
-  // reach - sqrt(3) away (a cell holding surface has a seed on an edge
-  // within its diagonal), the bound stored there.
+  // safe. No seed within `reach` means the surface is at least clamp_vox
+  // away (see build()), the bound stored there.
   const float clamp = snapshot_.clamp_vox;
   for (int z = region.lo.z; z < region.hi.z; ++z)
     for (int y = region.lo.y; y < region.hi.y; ++y) {
@@ -402,11 +408,12 @@ void DistancePatch::find_seeds(const Box& scan) {
           // Density falls outward; a flat gradient (a one-voxel sliver) takes
           // the edge's own direction.
           seed.normal = length > 1e-3f ? -g / length : glm::vec3(step) * (d0 >= 128 ? 1.0f : -1.0f);
-          // An edge within 60 degrees of the normal places its crossing well;
-          // a grazing one adds a seed beside others and little accuracy (the
-          // axis nearest the normal always qualifies: its component is at
-          // least 1/sqrt(3)).
-          if (std::abs(seed.normal[a]) < 0.5f) continue;
+          // The edges along the axis nearest the normal (or nearly as near)
+          // place the surface a seed per column, enough for the tangent
+          // planes; the others add seeds beside those, and time, but little
+          // accuracy.
+          const glm::vec3 m = glm::abs(seed.normal);
+          if (m[a] < 0.9f * std::max({m.x, m.y, m.z})) continue;
           seeds_.push_back(seed);
         }
       }

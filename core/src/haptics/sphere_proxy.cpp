@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -140,6 +141,8 @@ void SphereProxy::reset(const PatchSnapshot& field, glm::vec3 position_vox) {
 }
 
 const ProxyState& SphereProxy::update(const PatchSnapshot& field, glm::vec3 device_vox) {
+  // The patch must know the distance out to r and beyond (band_for_sphere).
+  assert(field.clamp_vox > options_.radius_vox + kTouchingSkins * options_.skin_vox);
   if (!placed_) reset(field, device_vox);
   const float skin = options_.skin_vox;
   // Material added under the proxy (a dab, an undo) lifts it out first.

@@ -131,10 +131,12 @@ const ToolTick& ToolProxy::update(const PatchSnapshot& field, glm::vec3 device_v
     // up with the hand.
     const float clearance = std::max(w.clearance, 0.0f);
     const float reach = std::max(shell_.reach_vox, 1.0f);
-    const glm::vec3 move = limited((pull + w.force) / (k_n_per_vox_ + w.stiffness),
-                                   std::max(options_.max_step_vox, 0.5f * clearance));
+    // A turn moves a point by at most reach * angle; the move gets the rest.
     const glm::vec3 turn = limited((twist + w.torque) / (kr_n_vox_per_rad_ + w.rotational),
                                    std::max(options_.max_turn_rad, 0.5f * clearance / reach));
+    const glm::vec3 move =
+        limited((pull + w.force) / (k_n_per_vox_ + w.stiffness),
+                std::max(options_.max_step_vox, clearance - reach * glm::length(turn)));
     x += move;
     q = glm::normalize(from_rotation_vector(turn) * q);
   }

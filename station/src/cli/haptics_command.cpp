@@ -131,7 +131,7 @@ int run_trace(const TraceOptions& o) {
   // The band must reach the sphere's radius and a little beyond, so that
   // phi - r is exact where the proxy rests; a tool's shell samples phi < 0.
   const float reach_vox = tool_proxy ? tool_proxy->shell().reach_vox : o.radius_vox;
-  const float band_vox = tool_proxy ? 4.0f : std::max(4.0f, std::ceil(o.radius_vox) + 2.0f);
+  const float band_vox = tool_proxy ? 4.0f : core::band_for_sphere(o.radius_vox);
   core::DistancePatch patch({core::patch_edge_for_reach(reach_vox, band_vox), band_vox});
   core::HapticRenderer renderer(settings);
   std::optional<core::Sculptor> sculptor;

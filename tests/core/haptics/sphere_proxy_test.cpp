@@ -25,7 +25,8 @@ SphereProxyOptions with_radius(float radius_vox) {
 }
 
 PatchSnapshot patch_of(const Volume& volume, glm::vec3 centre, int edge = 64) {
-  DistancePatch patch({.edge = edge, .band_vox = 4.0f});
+  // Band for the largest sphere the tests use (radius 3).
+  DistancePatch patch({.edge = edge, .band_vox = band_for_sphere(3.0f)});
   patch.build(volume, centre);
   return patch.snapshot();
 }

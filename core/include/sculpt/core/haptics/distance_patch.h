@@ -12,9 +12,10 @@
 // surface's point lies at most from a crossing on its cell's edges), and its
 // value is the distance to that seed's tangent plane (exact for planes; about
 // e^2 / 2R off on a surface of radius R when the seed is e voxels beside the
-// true foot point). A voxel with no seed in reach is at least reach - sqrt(3)
-// from the surface (every cell the surface passes through has a seed on an
-// edge) and stores that bound, clamp_vox. See distance_patch.cpp.
+// true foot point). Seeds come from the edges along the axis nearest the
+// normal, one per column of the surface. A voxel with no seed in reach is at
+// least reach - sqrt(3) - 1 from the surface and stores that bound,
+// clamp_vox. See distance_patch.cpp.
 //
 // Every value depends only on the material within reach + 2 voxels of it,
 // and ties between seeds break the same way whatever region is computed, so
@@ -46,6 +47,11 @@ struct DistancePatchOptions {
 /// The patch edge that covers a tool reaching `reach_vox` from its pivot with
 /// room to move before a re-centre: at least 48, a multiple of 8.
 int patch_edge_for_reach(float reach_vox, float band_vox = 4.0f);
+
+/// The band a sphere proxy of `radius_vox` needs: the constraint phi = r
+/// inside it, and the bound stored far from the material (clamp_vox) above r,
+/// so a free proxy moves in long steps: max(4, ceil(r) + 3).
+float band_for_sphere(float radius_vox);
 
 class DistancePatch {
  public:

@@ -25,7 +25,8 @@
 namespace sculpt::core {
 
 struct SphereProxyOptions {
-  /// The tool's radius in voxels (0: a point).
+  /// The tool's radius in voxels (0: a point). The patch's band must be at
+  /// least band_for_sphere(radius_vox) (distance_patch.h).
   float radius_vox = 1.0f;
   /// The proxy rests this far outside phi = r, so contact does not flicker.
   float skin_vox = 0.01f;
