@@ -390,6 +390,18 @@ void DistancePatch::find_seeds(const Box& scan) {
         if (!mixed(sides(y, z), sides(y + step.y, z + step.z))) continue;
         const uint8_t* row = &density_[local_index({from.lo.x, y, z}, density_box_)];
         for (int x = from.lo.x; x < from.hi.x; ++x, ++row) {
+          // Inside is the top bit of a density: eight edges at a time whose
+          // ends agree on it are skipped in one test.
+          if (x + 8 <= from.hi.x) {
+            uint64_t here, there;
+            std::memcpy(&here, row, 8);
+            std::memcpy(&there, row + stride, 8);
+            if (((here ^ there) & 0x8080808080808080ull) == 0) {
+              x += 7;
+              row += 7;
+              continue;
+            }
+          }
           const uint8_t d0 = row[0], d1 = row[stride];
           if ((d0 >= 128) == (d1 >= 128)) continue;
           const glm::ivec3 v{x, y, z};
