@@ -82,15 +82,17 @@ core::Result<core::Tool> tool_from_spec(const std::string& spec) {
 
 // CLI::Range lets NaN through (every comparison with it is false).
 CLI::Validator finite_range(double lo, double hi) {
+  char range[64];
+  std::snprintf(range, sizeof range, "[%g, %g]", lo, hi);
+  const std::string text_range = range;
   return CLI::Validator(
-      [lo, hi](std::string& text) -> std::string {
+      [lo, hi, text_range](std::string& text) -> std::string {
         double v = 0.0;
         if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v) || v < lo || v > hi)
-          return "value " + text + " not a number in [" + std::to_string(lo) + ", " +
-                 std::to_string(hi) + "]";
+          return "value " + text + " is not a number in " + text_range;
         return {};
       },
-      "FINITE in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+      "in " + text_range);
 }
 
 int run_trace(const TraceOptions& o) {
@@ -219,8 +221,10 @@ void add_haptics_command(CLI::App& app, Action& action) {
   cmd->add_option("--probe", o->probe, "device path: JSON Lines {\"t\": s, \"at\": [x, y, z]}")
       ->required();
   cmd->add_option("-o,--output", o->output, "trace, JSON Lines")->required();
+  // Beyond 8 voxels the sphere's band makes the patch slow to build: larger
+  // tools take --tool's point shell.
   cmd->add_option("--radius", o->radius_vox, "sphere tool radius, voxels (0: a point)")
-      ->check(finite_range(0.0, 32.0));
+      ->check(finite_range(0.0, 8.0));
   cmd->add_option("--stiffness", o->stiffness_n_per_mm, "coupling stiffness K, N/mm")
       ->check(finite_range(1e-3, 100.0));
   cmd->add_option("--voxel-mm", o->voxel_mm, "voxel size S, mm")->check(finite_range(1e-3, 100.0));
