@@ -36,6 +36,13 @@ const Volume& ball_volume() {
   return volume;
 }
 
+// The median and 99th percentile of the calls timed, as counters.
+void report_percentiles(benchmark::State& state, std::vector<double>& us) {
+  std::sort(us.begin(), us.end());
+  state.counters["p50_us"] = us[us.size() / 2];
+  state.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
+}
+
 // Times each call of `body`, and reports the median and the 99th percentile.
 template <class Body>
 void time_calls(benchmark::State& state, Body&& body) {
@@ -47,9 +54,7 @@ void time_calls(benchmark::State& state, Body&& body) {
     us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start)
                      .count());
   }
-  std::sort(us.begin(), us.end());
-  state.counters["p50_us"] = us[us.size() / 2];
-  state.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
+  report_percentiles(state, us);
 }
 
 void BM_HapticTick(benchmark::State& state) {
@@ -78,9 +83,7 @@ void BM_HapticTick(benchmark::State& state) {
       state.ResumeTiming();
     }
   }
-  std::sort(us.begin(), us.end());
-  state.counters["p50_us"] = us[us.size() / 2];
-  state.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
+  report_percentiles(state, us);
 }
 BENCHMARK(BM_HapticTick)->Unit(benchmark::kMicrosecond);
 
@@ -113,9 +116,7 @@ void BM_ToolTick(benchmark::State& state) {
       state.ResumeTiming();
     }
   }
-  std::sort(us.begin(), us.end());
-  state.counters["p50_us"] = us[us.size() / 2];
-  state.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
+  report_percentiles(state, us);
   state.counters["shell_points"] = double(proxy.shell().points.size());
   state.counters["points_in_contact"] = double(contacts) / double(us.size());
 }
@@ -154,9 +155,7 @@ void BM_PatchRefresh(benchmark::State& state) {
                      .count());
     computed += patch.last_computed_voxels();
   }
-  std::sort(us.begin(), us.end());
-  state.counters["p50_us"] = us[us.size() / 2];
-  state.counters["p99_us"] = us[std::min(us.size() - 1, us.size() * 99 / 100)];
+  report_percentiles(state, us);
   state.counters["voxels"] = double(computed) / double(us.size());
 }
 BENCHMARK(BM_PatchRefresh)->Arg(1)->Arg(0)->ArgName("real_dab")->Unit(benchmark::kMicrosecond);
