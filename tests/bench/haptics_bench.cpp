@@ -124,9 +124,10 @@ BENCHMARK(BM_ToolTick)->Unit(benchmark::kMicrosecond);
 
 void BM_PatchRefresh(benchmark::State& state) {
   const bool real_dab = state.range(0) == 1;
+  const int threads = static_cast<int>(state.range(1));
   Volume volume = sphere_volume(128, 40.0f / 128.0f);
   const glm::vec3 at(63.5f + 40.0f, 63.5f, 63.5f);
-  DistancePatch patch;
+  DistancePatch patch({.edge = 48, .band_vox = 4.0f, .threads = threads});
   patch.build(volume, at);
   Sculptor sculptor(volume);
   sculptor.set_tool(make_sphere_tool(15.0f));  // a 32^3 tool grid
@@ -158,7 +159,12 @@ void BM_PatchRefresh(benchmark::State& state) {
   report_percentiles(state, us);
   state.counters["voxels"] = double(computed) / double(us.size());
 }
-BENCHMARK(BM_PatchRefresh)->Arg(1)->Arg(0)->ArgName("real_dab")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PatchRefresh)
+    ->Args({1, 1})
+    ->Args({0, 1})
+    ->Args({1, 2})
+    ->ArgNames({"real_dab", "threads"})
+    ->Unit(benchmark::kMicrosecond);
 
 void BM_PatchRecentre(benchmark::State& state) {
   const glm::vec3 a(63.5f + 40.0f, 63.5f, 63.5f);

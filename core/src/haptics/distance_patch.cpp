@@ -11,6 +11,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
 
+#include "sculpt/core/util/parallel_for.h"
+
 namespace sculpt::core {
 namespace {
 
@@ -82,28 +84,33 @@ constexpr Floats4 kLanes4 = {0, 1, 2, 3};
 
 __attribute__((target_clones("avx2", "default"))) void offer_seeds(const glm::vec3* points,
                                                                    size_t count, const Box& region,
-                                                                   size_t stride, int reach,
-                                                                   float* best_d2,
+                                                                   const Box& clip, size_t stride,
+                                                                   int reach, float* best_d2,
                                                                    int32_t* best_seed) {
   const glm::ivec3 rs = region.size();
   const float reach2 = float(reach * reach);
   for (size_t id = 0; id < count; ++id) {
     const glm::vec3 q = points[id];
     const glm::ivec3 centre = glm::ivec3(glm::floor(q));
-    const glm::ivec3 lo = glm::max(centre - reach + 1, region.lo);
-    const glm::ivec3 hi = glm::min(centre + reach + 1, region.hi);
+    const glm::ivec3 lo = glm::max(centre - reach + 1, clip.lo);
+    const glm::ivec3 hi = glm::min(centre + reach + 1, clip.hi);
+    if (hi.x <= lo.x) continue;
     for (int z = lo.z; z < hi.z; ++z) {
       const float dz = float(z) - q.z;
       for (int y = lo.y; y < hi.y; ++y) {
         const float dy = float(y) - q.y;
         const float base = dz * dz + dy * dy;
         if (base >= reach2) continue;
+        // A row within three voxels of q along x (the ball's outer rows)
+        // fits one eight-value step from centre - 3; the others take eight
+        // values, then four: a row of the ball spans at most 2 * reach <= 12.
+        // (Offers beyond reach never win, so covering more changes nothing.)
+        const bool narrow = base >= reach2 - 9.0f;
+        const int x0 = narrow ? std::max(centre.x - 3, clip.lo.x) : lo.x;
         const size_t at =
             (size_t(z - region.lo.z) * size_t(rs.y) + size_t(y - region.lo.y)) * stride +
-            size_t(lo.x - region.lo.x);
-        const float dx0 = float(lo.x) - q.x;
-        // Eight values, then four: a row of the ball spans at most
-        // 2 * reach <= 12 of them.
+            size_t(x0 - region.lo.x);
+        const float dx0 = float(x0) - q.x;
         Floats8 held;
         Ints8 seed;
         std::memcpy(&held, best_d2 + at, sizeof held);
@@ -115,6 +122,7 @@ __attribute__((target_clones("avx2", "default"))) void offer_seeds(const glm::ve
         seed = nearer ? Ints8{} + int32_t(id) : seed;
         std::memcpy(best_d2 + at, &held, sizeof held);
         std::memcpy(best_seed + at, &seed, sizeof seed);
+        if (narrow) continue;
         Floats4 held4;
         Ints4 seed4;
         std::memcpy(&held4, best_d2 + at + 8, sizeof held4);
@@ -133,15 +141,15 @@ __attribute__((target_clones("avx2", "default"))) void offer_seeds(const glm::ve
 
 // offer_seeds() for a reach beyond six voxels (a wide band, for a sphere
 // tool of large radius): the same result, row by row over the exact extent.
-void offer_seeds_wide(const glm::vec3* points, size_t count, const Box& region, size_t stride,
-                      int reach, float* best_d2, int32_t* best_seed) {
+void offer_seeds_wide(const glm::vec3* points, size_t count, const Box& region, const Box& clip,
+                      size_t stride, int reach, float* best_d2, int32_t* best_seed) {
   const glm::ivec3 rs = region.size();
   const float reach2 = float(reach * reach);
   for (size_t id = 0; id < count; ++id) {
     const glm::vec3 q = points[id];
     const glm::ivec3 centre = glm::ivec3(glm::floor(q));
-    const glm::ivec3 lo = glm::max(centre - reach + 1, region.lo);
-    const glm::ivec3 hi = glm::min(centre + reach + 1, region.hi);
+    const glm::ivec3 lo = glm::max(centre - reach + 1, clip.lo);
+    const glm::ivec3 hi = glm::min(centre + reach + 1, clip.hi);
     for (int z = lo.z; z < hi.z; ++z)
       for (int y = lo.y; y < hi.y; ++y) {
         const float base =
@@ -320,26 +328,44 @@ void DistancePatch::compute(const Box& region) {
   seed_points_.resize(seeds_.size());
   for (size_t i = 0; i < seeds_.size(); ++i)
     seed_points_[i] = seeds_[i].point;
-  if (2 * reach <= 12) {
-    offer_seeds(seed_points_.data(), seed_points_.size(), region, stride, reach, best_d2_.data(),
-                best_seed_.data());
+  // The values are split in z among the threads; each offers every seed to
+  // its own slab, in the same order, so the split never changes a value.
+  const int slabs = std::max(1, std::min(options_.threads, rs.z / 8));
+  const auto slab = [&](int64_t k) {
+    Box clip = region;
+    clip.lo.z = region.lo.z + int(int64_t(rs.z) * k / slabs);
+    clip.hi.z = region.lo.z + int(int64_t(rs.z) * (k + 1) / slabs);
+    if (2 * reach <= 12) {
+      offer_seeds(seed_points_.data(), seed_points_.size(), region, clip, stride, reach,
+                  best_d2_.data(), best_seed_.data());
+    } else {
+      offer_seeds_wide(seed_points_.data(), seed_points_.size(), region, clip, stride, reach,
+                       best_d2_.data(), best_seed_.data());
+    }
+    write_values(region, clip, stride);
+  };
+  if (slabs == 1) {
+    slab(0);
   } else {
-    offer_seeds_wide(seed_points_.data(), seed_points_.size(), region, stride, reach,
-                     best_d2_.data(), best_seed_.data());
+    parallel_for(slabs, slab, slabs);
   }
+}
 
+void DistancePatch::write_values(const Box& region, const Box& clip, size_t stride) {
+  const glm::ivec3 rs = region.size();
+  const int reach = reach_;
   // Values: the distance to the nearest seed's tangent plane, signed by the
   // voxel's own side. Where plane and side disagree (a voxel beside a sharp
   // fold) 0 is stored: an underestimate, which keeps a sphere-tracing step
   // safe. No seed within `reach` means the surface is at least clamp_vox
   // away (see build()), the bound stored there.
   const float clamp = snapshot_.clamp_vox;
-  for (int z = region.lo.z; z < region.hi.z; ++z)
-    for (int y = region.lo.y; y < region.hi.y; ++y) {
-      const uint8_t* d = &density_[local_index({region.lo.x, y, z}, density_box_)];
-      float* out = &snapshot_.phi[local_index({region.lo.x, y, z}, box())];
+  for (int z = clip.lo.z; z < clip.hi.z; ++z)
+    for (int y = clip.lo.y; y < clip.hi.y; ++y) {
+      const uint8_t* d = &density_[local_index({clip.lo.x, y, z}, density_box_)];
+      float* out = &snapshot_.phi[local_index({clip.lo.x, y, z}, box())];
       size_t i = (size_t(z - region.lo.z) * size_t(rs.y) + size_t(y - region.lo.y)) * stride;
-      for (int x = region.lo.x; x < region.hi.x; ++x, ++i, ++d, ++out) {
+      for (int x = clip.lo.x; x < clip.hi.x; ++x, ++i, ++d, ++out) {
         const bool inside = *d >= 128;
         float magnitude = clamp;
         if (best_seed_[i] >= 0) {

@@ -160,6 +160,25 @@ TEST(DistancePatch, AWideBandGivesTheSameValuesInTheNarrowBand) {
   EXPECT_GT(wide.snapshot().clamp_vox, 6.0f);
 }
 
+TEST(DistancePatch, ThreadsSplitTheWorkButNeverChangeAValue) {
+  Volume volume = sphere_volume(64, 0.3f);
+  const glm::vec3 at(31.5f + 19.2f, 31.5f, 31.5f);
+  DistancePatch one, two({.edge = 48, .band_vox = 4.0f, .threads = 2});
+  one.build(volume, at);
+  two.build(volume, at);
+  EXPECT_EQ(one.snapshot().phi, two.snapshot().phi);
+  Sculptor sculptor(volume);
+  sculptor.set_tool(make_sphere_tool(8.0f));
+  Dab dab;
+  dab.position_vox = at;
+  dab.mode = SculptMode::kSubtract;
+  (void)sculptor.dab(dab);
+  const std::vector<glm::ivec3> bricks = volume.take_dirty_bricks();
+  one.refresh_bricks(volume, bricks);
+  two.refresh_bricks(volume, bricks);
+  EXPECT_EQ(one.snapshot().phi, two.snapshot().phi);
+}
+
 TEST(DistancePatch, EdgeForReachCoversTheToolAndTheBand) {
   EXPECT_EQ(patch_edge_for_reach(1.0f), 48);
   EXPECT_GE(patch_edge_for_reach(16.0f), 2 * (16 + 4));

@@ -42,6 +42,9 @@ struct DistancePatchOptions {
   int edge = 48;
   /// Half width in voxels of the band where values are accurate to 0.1 voxel.
   float band_vox = 4.0f;
+  /// Threads computing the values (split in z); the values never depend on
+  /// it. 1 keeps the work on the sculpting thread alone.
+  int threads = 1;
 };
 
 /// The patch edge that covers a tool reaching `reach_vox` from its pivot with
@@ -90,6 +93,8 @@ class DistancePatch {
   void compute(const Box& region);
   // The seeds on the edges with both ends in `scan`, in a fixed order.
   void find_seeds(const Box& scan);
+  // The values of `clip` (a z slab of `region`) from the nearest seeds found.
+  void write_values(const Box& region, const Box& clip, size_t stride);
 
   DistancePatchOptions options_;
   int reach_;   // how far a seed is offered: ceil(band + sqrt(3)) voxels
