@@ -73,7 +73,7 @@ constexpr uint8_t kHasOutside = 2;
 // comparison with best_d2's initial reach^2; a window running past the row's
 // end lands in the row's padding of kWindow): an eight- and a four-lane
 // operation a row (GCC vector types; a per-row extent costs more than it
-// saves); cloned for AVX2.
+// saves); compiled twice, for AVX2 and the baseline.
 constexpr int kWindow = 16;
 using Floats8 = float __attribute__((vector_size(32)));
 using Ints8 = int32_t __attribute__((vector_size(32)));
@@ -82,11 +82,10 @@ using Ints4 = int32_t __attribute__((vector_size(16)));
 constexpr Floats8 kLanes = {0, 1, 2, 3, 4, 5, 6, 7};
 constexpr Floats4 kLanes4 = {0, 1, 2, 3};
 
-__attribute__((target_clones("avx2", "default"))) void offer_seeds(const glm::vec3* points,
-                                                                   size_t count, const Box& region,
-                                                                   const Box& clip, size_t stride,
-                                                                   int reach, float* best_d2,
-                                                                   int32_t* best_seed) {
+inline __attribute__((always_inline)) void offer_seeds_body(const glm::vec3* points, size_t count,
+                                                            const Box& region, const Box& clip,
+                                                            size_t stride, int reach,
+                                                            float* best_d2, int32_t* best_seed) {
   const glm::ivec3 rs = region.size();
   const float reach2 = float(reach * reach);
   for (size_t id = 0; id < count; ++id) {
@@ -137,6 +136,27 @@ __attribute__((target_clones("avx2", "default"))) void offer_seeds(const glm::ve
       }
     }
   }
+}
+
+// Dispatched by hand rather than with target_clones: an ifunc resolver runs
+// before ThreadSanitizer's runtime is up and crashes the instrumented build.
+__attribute__((target("avx2"))) void offer_seeds_avx2(const glm::vec3* points, size_t count,
+                                                      const Box& region, const Box& clip,
+                                                      size_t stride, int reach, float* best_d2,
+                                                      int32_t* best_seed) {
+  offer_seeds_body(points, count, region, clip, stride, reach, best_d2, best_seed);
+}
+
+void offer_seeds_baseline(const glm::vec3* points, size_t count, const Box& region, const Box& clip,
+                          size_t stride, int reach, float* best_d2, int32_t* best_seed) {
+  offer_seeds_body(points, count, region, clip, stride, reach, best_d2, best_seed);
+}
+
+void offer_seeds(const glm::vec3* points, size_t count, const Box& region, const Box& clip,
+                 size_t stride, int reach, float* best_d2, int32_t* best_seed) {
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  (avx2 ? offer_seeds_avx2 : offer_seeds_baseline)(points, count, region, clip, stride, reach,
+                                                   best_d2, best_seed);
 }
 
 // offer_seeds() for a reach beyond six voxels (a wide band, for a sphere

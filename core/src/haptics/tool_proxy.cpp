@@ -61,7 +61,7 @@ namespace {
 
 // Where the shell points are and which stored value is nearest each: a flat
 // loop over the points' coordinates (one array per axis) that vectorises.
-__attribute__((target_clones("avx2", "default"))) void place_points(
+inline __attribute__((always_inline)) void place_points_body(
     const float* px, const float* py, const float* pz, size_t n, const float* m, glm::vec3 t,
     glm::ivec3 origin, int edge, float* wx, float* wy, float* wz, int32_t* nearest) {
   const float hi = float(edge - 1);
@@ -78,6 +78,30 @@ __attribute__((target_clones("avx2", "default"))) void place_points(
     const float lz = std::min(std::max(z - float(origin.z) + 0.5f, 0.0f), hi);
     nearest[i] = (int32_t(lz) * edge + int32_t(ly)) * edge + int32_t(lx);
   }
+}
+
+// Dispatched by hand: an ifunc (target_clones) resolver runs before
+// ThreadSanitizer's runtime is up and crashes the instrumented build.
+__attribute__((target("avx2"))) void place_points_avx2(const float* px, const float* py,
+                                                       const float* pz, size_t n, const float* m,
+                                                       glm::vec3 t, glm::ivec3 origin, int edge,
+                                                       float* wx, float* wy, float* wz,
+                                                       int32_t* nearest) {
+  place_points_body(px, py, pz, n, m, t, origin, edge, wx, wy, wz, nearest);
+}
+
+void place_points_baseline(const float* px, const float* py, const float* pz, size_t n,
+                           const float* m, glm::vec3 t, glm::ivec3 origin, int edge, float* wx,
+                           float* wy, float* wz, int32_t* nearest) {
+  place_points_body(px, py, pz, n, m, t, origin, edge, wx, wy, wz, nearest);
+}
+
+void place_points(const float* px, const float* py, const float* pz, size_t n, const float* m,
+                  glm::vec3 t, glm::ivec3 origin, int edge, float* wx, float* wy, float* wz,
+                  int32_t* nearest) {
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  (avx2 ? place_points_avx2 : place_points_baseline)(px, py, pz, n, m, t, origin, edge, wx, wy, wz,
+                                                     nearest);
 }
 
 }  // namespace
