@@ -8,14 +8,6 @@
 
 namespace sculpt::core {
 
-float PatchSnapshot::inner_clearance(glm::vec3 p) const {
-  const glm::vec3 local = p - glm::vec3(origin);
-  const float far = float(edge - 1);
-  float c = std::min({local.x, local.y, local.z});
-  c = std::min({c, far - local.x, far - local.y, far - local.z});
-  return c;
-}
-
 float PatchSnapshot::at(glm::ivec3 v) const {
   const glm::ivec3 l = v - origin;
   assert(l.x >= 0 && l.y >= 0 && l.z >= 0 && l.x < edge && l.y < edge && l.z < edge);

@@ -25,7 +25,6 @@ TEST(PatchExchange, TheReaderGetsWholeSnapshotsInOrderWhileTheWriterNeverWaits) 
     done = true;
   });
   uint64_t last = 0, reads = 0;
-  const float* first_data = nullptr;
   while (!done || last < kPublishes) {
     const PatchSnapshot& s = exchange.acquire();
     if (s.empty()) continue;
@@ -35,7 +34,6 @@ TEST(PatchExchange, TheReaderGetsWholeSnapshotsInOrderWhileTheWriterNeverWaits) 
       ASSERT_EQ(v, float(s.version));
     last = s.version;
     ++reads;
-    if (first_data == nullptr) first_data = s.phi.data();
   }
   writer.join();
   EXPECT_EQ(last, kPublishes);

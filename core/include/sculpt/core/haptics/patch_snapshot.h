@@ -41,13 +41,9 @@ struct PatchSnapshot {
   std::vector<float> phi;
 
   bool empty() const { return edge == 0; }
-  /// Distance from p (material voxel units) to the nearest face of the
-  /// region where sampling is exact (between the first and last voxel
-  /// centres); negative outside it.
-  float inner_clearance(glm::vec3 p) const;
   /// Trilinear value at p, and the gradient blended trilinearly from central
   /// differences at the cell's corners. Points outside the
-  /// patch are clamped onto its boundary (inner_clearance tells callers).
+  /// patch are clamped onto its boundary (the proxy never steps past it).
   FieldSample sample(glm::vec3 p) const;
   /// The value stored at material voxel v (which must lie in the patch).
   float at(glm::ivec3 v) const;
