@@ -8,9 +8,12 @@
 //             with its 6-DOF coupling, pressed 2 voxels into the ball's
 //             surface and sliding along it
 //   refresh:  a 48^3 patch refreshed after a real 32^3 dab (the same ball
-//             tool, subtract then add in turn, 6 voxels into the surface);
-//             box: the whole 32^3 box marked changed without a change of
-//             material (the cost of recomputing the most a dab can touch)
+//             tool), dab:1 the worst case, the whole ball 6 voxels into the
+//             surface, subtracted then added back in turn (a fresh crater or
+//             mound every time); dab:2 a stroke, dabs a quarter radius apart
+//             sliding across the patch, adding on the way out and carving on
+//             the way back; dab:0 the whole 32^3 box marked changed without
+//             a change of material
 //   recentre: the patch moved by (6, 2, 1) voxels, as the proxy's drift of
 //             edge/8 triggers it
 //   build:    a 48^3 patch from scratch (first contact, or a jump)
@@ -123,7 +126,7 @@ void BM_ToolTick(benchmark::State& state) {
 BENCHMARK(BM_ToolTick)->Unit(benchmark::kMicrosecond);
 
 void BM_PatchRefresh(benchmark::State& state) {
-  const bool real_dab = state.range(0) == 1;
+  const int kind = static_cast<int>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
   Volume volume = sphere_volume(128, 40.0f / 128.0f);
   const glm::vec3 at(63.5f + 40.0f, 63.5f, 63.5f);
@@ -135,19 +138,28 @@ void BM_PatchRefresh(benchmark::State& state) {
   dab.position_vox = at + glm::vec3(15.0f - 6.0f, 0.0f, 0.0f);
   const glm::ivec3 lo = glm::ivec3(at) - 16;
   const Box box{lo, lo + 32};
+  int step = 0;
   std::vector<double> us;
   int64_t computed = 0;
   for (auto _ : state) {
     state.PauseTiming();
     std::vector<glm::ivec3> bricks;
-    if (real_dab) {
+    if (kind == 1) {
       dab.mode = dab.mode == SculptMode::kSubtract ? SculptMode::kAdd : SculptMode::kSubtract;
+    } else if (kind == 2) {
+      // Eight dabs of 3.75 voxels out along y, eight back.
+      const int k = step++ % 16;
+      const float y = k < 8 ? -15.0f + 3.75f * float(k) : 15.0f - 3.75f * float(k - 8);
+      dab.position_vox = at + glm::vec3(15.0f - 4.0f, y, 0.0f);
+      dab.mode = k < 8 ? SculptMode::kAdd : SculptMode::kSubtract;
+    }
+    if (kind != 0) {
       (void)sculptor.dab(dab);
       bricks = volume.take_dirty_bricks();
     }
     state.ResumeTiming();
     const auto start = std::chrono::steady_clock::now();
-    if (real_dab) {
+    if (kind != 0) {
       patch.refresh_bricks(volume, bricks);
     } else {
       patch.refresh(volume, box);
@@ -161,9 +173,10 @@ void BM_PatchRefresh(benchmark::State& state) {
 }
 BENCHMARK(BM_PatchRefresh)
     ->Args({1, 1})
+    ->Args({2, 1})
     ->Args({0, 1})
     ->Args({1, 2})
-    ->ArgNames({"real_dab", "threads"})
+    ->ArgNames({"dab", "threads"})
     ->Unit(benchmark::kMicrosecond);
 
 void BM_PatchRecentre(benchmark::State& state) {

@@ -6,11 +6,13 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <tuple>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
 
+#include "nearest_seed.h"
 #include "sculpt/core/util/parallel_for.h"
 
 namespace sculpt::core {
@@ -65,131 +67,6 @@ void copy_overlap(const std::vector<T>& from, const Box& from_box, std::vector<T
 constexpr uint8_t kHasInside = 1;
 constexpr uint8_t kHasOutside = 2;
 
-// Offers each seed to the values of `region` (laid out x fastest in best_d2
-// and best_seed, rows `stride` apart) within `reach` of it; a value keeps the
-// nearest, and only a strictly nearer one replaces the seed it holds. Each
-// row of the ball around a seed is updated over 12 values from the seed's
-// reach, without branches or square roots (values out of reach fail the
-// comparison with best_d2's initial reach^2; a window running past the row's
-// end lands in the row's padding of kWindow): an eight- and a four-lane
-// operation a row (GCC vector types; a per-row extent costs more than it
-// saves); compiled twice, for AVX2 and the baseline.
-constexpr int kWindow = 16;
-using Floats8 = float __attribute__((vector_size(32)));
-using Ints8 = int32_t __attribute__((vector_size(32)));
-using Floats4 = float __attribute__((vector_size(16)));
-using Ints4 = int32_t __attribute__((vector_size(16)));
-constexpr Floats8 kLanes = {0, 1, 2, 3, 4, 5, 6, 7};
-constexpr Floats4 kLanes4 = {0, 1, 2, 3};
-
-inline __attribute__((always_inline)) void offer_seeds_body(const glm::vec3* points, size_t count,
-                                                            const Box& region, const Box& clip,
-                                                            size_t stride, int reach,
-                                                            float* best_d2, int32_t* best_seed) {
-  const glm::ivec3 rs = region.size();
-  const float reach2 = float(reach * reach);
-  for (size_t id = 0; id < count; ++id) {
-    const glm::vec3 q = points[id];
-    const glm::ivec3 centre = glm::ivec3(glm::floor(q));
-    const glm::ivec3 lo = glm::max(centre - reach + 1, clip.lo);
-    const glm::ivec3 hi = glm::min(centre + reach + 1, clip.hi);
-    if (hi.x <= lo.x) continue;
-    for (int z = lo.z; z < hi.z; ++z) {
-      const float dz = float(z) - q.z;
-      for (int y = lo.y; y < hi.y; ++y) {
-        const float dy = float(y) - q.y;
-        const float base = dz * dz + dy * dy;
-        if (base >= reach2) continue;
-        // A row within three voxels of q along x (the ball's outer rows)
-        // fits one eight-value step from centre - 3; the others take eight
-        // values, then four: a row of the ball spans at most 2 * reach <= 12.
-        // (Offers beyond reach never win, so covering more changes nothing.)
-        const bool narrow = base >= reach2 - 9.0f;
-        const int x0 = narrow ? std::max(centre.x - 3, clip.lo.x) : lo.x;
-        const size_t at =
-            (size_t(z - region.lo.z) * size_t(rs.y) + size_t(y - region.lo.y)) * stride +
-            size_t(x0 - region.lo.x);
-        const float dx0 = float(x0) - q.x;
-        Floats8 held;
-        Ints8 seed;
-        std::memcpy(&held, best_d2 + at, sizeof held);
-        std::memcpy(&seed, best_seed + at, sizeof seed);
-        const Floats8 dx = dx0 + kLanes;
-        const Floats8 d = base + dx * dx;
-        const Ints8 nearer = d < held;
-        held = nearer ? d : held;
-        seed = nearer ? Ints8{} + int32_t(id) : seed;
-        std::memcpy(best_d2 + at, &held, sizeof held);
-        std::memcpy(best_seed + at, &seed, sizeof seed);
-        if (narrow) continue;
-        Floats4 held4;
-        Ints4 seed4;
-        std::memcpy(&held4, best_d2 + at + 8, sizeof held4);
-        std::memcpy(&seed4, best_seed + at + 8, sizeof seed4);
-        const Floats4 dx4 = (dx0 + 8.0f) + kLanes4;
-        const Floats4 d4 = base + dx4 * dx4;
-        const Ints4 nearer4 = d4 < held4;
-        held4 = nearer4 ? d4 : held4;
-        seed4 = nearer4 ? Ints4{} + int32_t(id) : seed4;
-        std::memcpy(best_d2 + at + 8, &held4, sizeof held4);
-        std::memcpy(best_seed + at + 8, &seed4, sizeof seed4);
-      }
-    }
-  }
-}
-
-// Dispatched by hand rather than with target_clones: an ifunc resolver runs
-// before ThreadSanitizer's runtime is up and crashes the instrumented build.
-__attribute__((target("avx2"))) void offer_seeds_avx2(const glm::vec3* points, size_t count,
-                                                      const Box& region, const Box& clip,
-                                                      size_t stride, int reach, float* best_d2,
-                                                      int32_t* best_seed) {
-  offer_seeds_body(points, count, region, clip, stride, reach, best_d2, best_seed);
-}
-
-void offer_seeds_baseline(const glm::vec3* points, size_t count, const Box& region, const Box& clip,
-                          size_t stride, int reach, float* best_d2, int32_t* best_seed) {
-  offer_seeds_body(points, count, region, clip, stride, reach, best_d2, best_seed);
-}
-
-void offer_seeds(const glm::vec3* points, size_t count, const Box& region, const Box& clip,
-                 size_t stride, int reach, float* best_d2, int32_t* best_seed) {
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  (avx2 ? offer_seeds_avx2 : offer_seeds_baseline)(points, count, region, clip, stride, reach,
-                                                   best_d2, best_seed);
-}
-
-// offer_seeds() for a reach beyond six voxels (a wide band, for a sphere
-// tool of large radius): the same result, row by row over the exact extent.
-void offer_seeds_wide(const glm::vec3* points, size_t count, const Box& region, const Box& clip,
-                      size_t stride, int reach, float* best_d2, int32_t* best_seed) {
-  const glm::ivec3 rs = region.size();
-  const float reach2 = float(reach * reach);
-  for (size_t id = 0; id < count; ++id) {
-    const glm::vec3 q = points[id];
-    const glm::ivec3 centre = glm::ivec3(glm::floor(q));
-    const glm::ivec3 lo = glm::max(centre - reach + 1, clip.lo);
-    const glm::ivec3 hi = glm::min(centre + reach + 1, clip.hi);
-    for (int z = lo.z; z < hi.z; ++z)
-      for (int y = lo.y; y < hi.y; ++y) {
-        const float base =
-            (float(z) - q.z) * (float(z) - q.z) + (float(y) - q.y) * (float(y) - q.y);
-        if (base >= reach2) continue;
-        const size_t row =
-            (size_t(z - region.lo.z) * size_t(rs.y) + size_t(y - region.lo.y)) * stride;
-        for (int x = lo.x; x < hi.x; ++x) {
-          const float dx = float(x) - q.x;
-          const float d = base + dx * dx;
-          const size_t i = row + size_t(x - region.lo.x);
-          if (d < best_d2[i]) {
-            best_d2[i] = d;
-            best_seed[i] = int32_t(id);
-          }
-        }
-      }
-  }
-}
-
 }  // namespace
 
 float band_for_sphere(float radius_vox) {
@@ -218,6 +95,12 @@ Box DistancePatch::box() const {
   return Box{snapshot_.origin, snapshot_.origin + snapshot_.edge};
 }
 
+Box DistancePatch::seed_box() const {
+  // A seed within `reach` of a value lies on an edge whose ends are within
+  // reach + 1 (chessboard) of it.
+  return grown(box(), reach_ + 1);
+}
+
 glm::vec3 DistancePatch::centre() const {
   return glm::vec3(snapshot_.origin) + 0.5f * float(snapshot_.edge - 1);
 }
@@ -241,21 +124,87 @@ void DistancePatch::build(const Volume& volume, glm::vec3 centre_vox) {
   density_box_ = grown(box(), margin_);
   density_.assign(size_t(density_box_.voxel_count()), 0);
   (void)read_density(volume, density_box_);
+  seeds_.clear();
+  find_seeds(seed_box(), seeds_);
   compute(box());
   ++snapshot_.version;
 }
+
+namespace {
+
+// The order seeds are offered in (z, y, axis, x of the edge): ties between
+// equally near seeds go to the first, so the order is part of every value.
+bool ordered_before(const glm::ivec3& a_edge, int a_axis, const glm::ivec3& b_edge, int b_axis) {
+  return std::tie(a_edge.z, a_edge.y, a_axis, a_edge.x) <
+         std::tie(b_edge.z, b_edge.y, b_axis, b_edge.x);
+}
+
+// Whether both ends of the edge from `edge` along `axis` lie in `box`.
+bool edge_inside(glm::ivec3 edge, int axis, const Box& box) {
+  glm::ivec3 end = edge;
+  end[axis] += 1;
+  return box.contains(edge) && box.contains(end);
+}
+
+// The voxels a seed at `p` is offered to (the ball's bounding box).
+Box reach_box(glm::vec3 p, int reach) {
+  const glm::ivec3 c = glm::ivec3(glm::floor(p));
+  return Box{c - reach + 1, c + reach + 1};
+}
+
+}  // namespace
 
 void DistancePatch::refresh(const Volume& volume, const Box& changed) {
   if (snapshot_.empty()) return;
   // Only the voxels whose density really changed count: a dab's box is
   // mostly material it left alone.
-  const Box differs = read_density(volume, changed);
+  flipped_.clear();
+  const Box differs = read_density(volume, changed, &flipped_);
   if (differs.empty()) {
     last_computed_ = 0;
     return;
   }
-  // A value depends on the density within margin_ of it.
-  compute(intersect(grown(differs, margin_), box()));
+  // A seed depends on the density at its edge's ends and their neighbours:
+  // the seeds on the edges with both ends in `rescan` are found again, the
+  // others stand.
+  const Box rescan = intersect(grown(differs, 2), seed_box());
+  found_.clear();
+  find_seeds(rescan, found_);
+
+  // A value can change only if it changed side or a seed offered to it
+  // appeared, went or moved: those are marked stale. Merging the seeds held
+  // with the ones found keeps the order.
+  stale_.reset(box());
+  for (const Box& run : flipped_)
+    stale_.mark(run);
+  merged_.clear();
+  size_t i = 0, j = 0;
+  while (i < seeds_.size() || j < found_.size()) {
+    const Seed* held = i < seeds_.size() ? &seeds_[i] : nullptr;
+    const Seed* found = j < found_.size() ? &found_[j] : nullptr;
+    if (held && found && held->edge == found->edge && held->axis == found->axis) {
+      if (held->point != found->point || held->normal != found->normal) {
+        stale_.mark(reach_box(held->point, reach_));
+        stale_.mark(reach_box(found->point, reach_));
+      }
+      merged_.push_back(*found);
+      ++i, ++j;
+    } else if (held && (!found || ordered_before(held->edge, held->axis, found->edge, found->axis))) {
+      if (edge_inside(held->edge, held->axis, rescan)) {
+        stale_.mark(reach_box(held->point, reach_));  // gone
+      } else {
+        merged_.push_back(*held);
+      }
+      ++i;
+    } else {
+      stale_.mark(reach_box(found->point, reach_));  // new
+      merged_.push_back(*found);
+      ++j;
+    }
+  }
+  seeds_.swap(merged_);
+  stale_.finish();
+  compute(stale_.bounds(), &stale_);
   ++snapshot_.version;
 }
 
@@ -293,6 +242,35 @@ void DistancePatch::recentre(const Volume& volume, glm::vec3 centre_vox) {
   const int density_slabs = uncovered_slabs(density_box_, old_density_box, slabs);
   for (int i = 0; i < density_slabs; ++i)
     (void)read_density(volume, slabs[size_t(i)]);
+  // The seeds: those still inside stay; those of the edges the move
+  // brought in are found (an edge with an end in a new slab has the other
+  // within a voxel of it) and merged in order.
+  const Box old_seed_box = grown(old_box, reach_ + 1);
+  std::erase_if(seeds_, [&](const Seed& s) { return !edge_inside(s.edge, s.axis, seed_box()); });
+  found_.clear();
+  std::array<Box, 3> scans;
+  const int seed_slabs = uncovered_slabs(seed_box(), old_seed_box, scans);
+  for (int i = 0; i < seed_slabs; ++i) {
+    scans[size_t(i)] = intersect(grown(scans[size_t(i)], 1), seed_box());
+    const size_t before = found_.size();
+    find_seeds(scans[size_t(i)], found_);
+    // Edges found before (both ends in the old box or an earlier scan) go.
+    const auto seen = [&](const Seed& s) {
+      if (edge_inside(s.edge, s.axis, old_seed_box)) return true;
+      for (int j = 0; j < i; ++j)
+        if (edge_inside(s.edge, s.axis, scans[size_t(j)])) return true;
+      return false;
+    };
+    found_.erase(std::remove_if(found_.begin() + ptrdiff_t(before), found_.end(), seen),
+                 found_.end());
+  }
+  const auto ordered = [](const Seed& a, const Seed& b) {
+    return ordered_before(a.edge, a.axis, b.edge, b.axis);
+  };
+  std::sort(found_.begin(), found_.end(), ordered);
+  merged_.resize(seeds_.size() + found_.size());
+  std::merge(seeds_.begin(), seeds_.end(), found_.begin(), found_.end(), merged_.begin(), ordered);
+  seeds_.swap(merged_);
   int64_t computed = 0;
   const int value_slabs = uncovered_slabs(box(), old_box, slabs);
   for (int i = 0; i < value_slabs; ++i) {
@@ -303,7 +281,7 @@ void DistancePatch::recentre(const Volume& volume, glm::vec3 centre_vox) {
   ++snapshot_.version;
 }
 
-Box DistancePatch::read_density(const Volume& volume, const Box& region) {
+Box DistancePatch::read_density(const Volume& volume, const Box& region, std::vector<Box>* flipped) {
   const Box r = intersect(region, density_box_);
   Box changed{glm::ivec3(std::numeric_limits<int>::max()),
               glm::ivec3(std::numeric_limits<int>::min())};
@@ -322,56 +300,74 @@ Box DistancePatch::read_density(const Volume& volume, const Box& region) {
         --last;
       changed.lo = glm::min(changed.lo, glm::ivec3(r.lo.x + first, y, z));
       changed.hi = glm::max(changed.hi, glm::ivec3(r.lo.x + last + 1, y + 1, z + 1));
+      // Inside is the top bit; each run of voxels that changed side is one box.
+      for (int x = first; flipped && x <= last; ++x) {
+        if (((to[x] ^ from[x]) & 0x80) == 0) continue;
+        int end = x + 1;
+        while (end <= last && ((to[end] ^ from[end]) & 0x80) != 0)
+          ++end;
+        flipped->push_back(Box{{r.lo.x + x, y, z}, {r.lo.x + end, y + 1, z + 1}});
+        x = end;
+      }
       std::memcpy(to, from, size_t(n));
     }
   return changed.empty() ? Box{} : changed;
 }
 
-void DistancePatch::compute(const Box& region) {
-  last_computed_ = region.voxel_count();
+void DistancePatch::compute(const Box& region, const CellMarks* stale) {
+  last_computed_ = 0;
   if (region.empty()) return;
   const int reach = reach_;
-  // A seed within `reach` of a value lies on an edge whose ends are within
-  // reach + 1 (chessboard) of it; these are all the edges looked at.
-  const Box scan = intersect(grown(region, reach + 1), grown(box(), reach + 1));
-  find_seeds(scan);
+  // The seeds offered: those reaching `region` (and, with `stale`, a marked
+  // cell), in order; the search breaks ties by that order, so they go the
+  // same way whatever region is computed.
+  offered_.clear();
+  seed_points_.clear();
+  for (const Seed& s : seeds_) {
+    const Box reached = intersect(reach_box(s.point, reach), region);
+    if (reached.empty() || (stale && !stale->any(reached))) continue;
+    offered_.push_back(s);
+    seed_points_.push_back(s.point);
+  }
+  if (offered_.size() > kMaxSeeds) {
+    // More than one search tells apart (dense, noisy material in a large
+    // patch): halve the region along its longest side.
+    const glm::ivec3 rs = region.size();
+    const int a = rs.x >= rs.y && rs.x >= rs.z ? 0 : rs.y >= rs.z ? 1 : 2;
+    Box first = region, second = region;
+    first.hi[a] = second.lo[a] = region.lo[a] + rs[a] / 2;
+    compute(first, stale);
+    const int64_t done = last_computed_;
+    compute(second, stale);
+    last_computed_ += done;
+    return;
+  }
 
-  // Each seed offers itself to the values of `region` in the ball of radius
-  // `reach` around it; a value keeps the nearest. Seeds come in a fixed order
-  // (axis, then z, y, x of the edge) and only a strictly nearer one replaces
-  // the one held, so ties go the same way whatever region is computed.
   const glm::ivec3 rs = region.size();
-  const size_t stride = size_t(rs.x) + kWindow;
-  const size_t count = stride * size_t(rs.y) * size_t(rs.z);
-  best_d2_.assign(count, float(reach * reach));
-  best_seed_.assign(count, -1);
-  seed_points_.resize(seeds_.size());
-  for (size_t i = 0; i < seeds_.size(); ++i)
-    seed_points_[i] = seeds_[i].point;
+  const size_t stride = size_t(rs.x) + kRowPadding;
+  best_key_.assign(stride * size_t(rs.y) * size_t(rs.z), unreached_key(reach));
   // The values are split in z among the threads; each offers every seed to
-  // its own slab, in the same order, so the split never changes a value.
+  // its own slab, so the split never changes a value.
   const int slabs = std::max(1, std::min(options_.threads, rs.z / 8));
+  std::vector<int64_t> written(size_t(slabs), 0);
   const auto slab = [&](int64_t k) {
     Box clip = region;
     clip.lo.z = region.lo.z + int(int64_t(rs.z) * k / slabs);
     clip.hi.z = region.lo.z + int(int64_t(rs.z) * (k + 1) / slabs);
-    if (2 * reach <= 12) {
-      offer_seeds(seed_points_.data(), seed_points_.size(), region, clip, stride, reach,
-                  best_d2_.data(), best_seed_.data());
-    } else {
-      offer_seeds_wide(seed_points_.data(), seed_points_.size(), region, clip, stride, reach,
-                       best_d2_.data(), best_seed_.data());
-    }
-    write_values(region, clip, stride);
+    offer_seeds(seed_points_, region, clip, stride, reach, best_key_.data());
+    written[size_t(k)] = write_values(region, clip, stride, stale);
   };
   if (slabs == 1) {
     slab(0);
   } else {
     parallel_for(slabs, slab, slabs);
   }
+  for (const int64_t n : written)
+    last_computed_ += n;
 }
 
-void DistancePatch::write_values(const Box& region, const Box& clip, size_t stride) {
+int64_t DistancePatch::write_values(const Box& region, const Box& clip, size_t stride,
+                                    const CellMarks* stale) {
   const glm::ivec3 rs = region.size();
   const int reach = reach_;
   // Values: the distance to the nearest seed's tangent plane, signed by the
@@ -380,26 +376,30 @@ void DistancePatch::write_values(const Box& region, const Box& clip, size_t stri
   // safe. No seed within `reach` means the surface is at least clamp_vox
   // away (see build()), the bound stored there.
   const float clamp = snapshot_.clamp_vox;
+  int64_t written = 0;
   for (int z = clip.lo.z; z < clip.hi.z; ++z)
     for (int y = clip.lo.y; y < clip.hi.y; ++y) {
       const uint8_t* d = &density_[local_index({clip.lo.x, y, z}, density_box_)];
       float* out = &snapshot_.phi[local_index({clip.lo.x, y, z}, box())];
       size_t i = (size_t(z - region.lo.z) * size_t(rs.y) + size_t(y - region.lo.y)) * stride;
       for (int x = clip.lo.x; x < clip.hi.x; ++x, ++i, ++d, ++out) {
+        if (stale && !stale->marked({x, y, z})) continue;
         const bool inside = *d >= 128;
         float magnitude = clamp;
-        if (best_seed_[i] >= 0) {
-          const Seed& s = seeds_[size_t(best_seed_[i])];
+        if (const int32_t seed = seed_of_key(best_key_[i]); seed >= 0) {
+          const Seed& s = offered_[size_t(seed)];
           const float plane = glm::dot(glm::vec3(float(x), float(y), float(z)) - s.point, s.normal);
           magnitude = std::clamp(inside ? -plane : plane, 0.0f, float(reach));
         }
         *out = inside ? -magnitude : magnitude;
+        ++written;
       }
     }
+  return written;
 }
 
-void DistancePatch::find_seeds(const Box& scan) {
-  seeds_.clear();
+void DistancePatch::find_seeds(const Box& scan, std::vector<Seed>& out) {
+  if (scan.empty()) return;
   // Which rows (along x) of `scan` hold inside and outside voxels: an edge
   // between two rows can cross the surface only if they are not all on one
   // and the same side, which skips most of the patch at once.
@@ -424,21 +424,23 @@ void DistancePatch::find_seeds(const Box& scan) {
   };
 
   const glm::ivec3 ds = density_box_.size();
-  for (int a = 0; a < 3; ++a) {
-    glm::ivec3 step(0);
-    step[a] = 1;
-    const ptrdiff_t plane = ptrdiff_t(ds.x) * ds.y;
-    const size_t stride = a == 0 ? 1 : a == 1 ? size_t(ds.x) : size_t(plane);
-    Box from = scan;
-    from.hi[a] -= 1;
-    for (int z = from.lo.z; z < from.hi.z; ++z)
-      for (int y = from.lo.y; y < from.hi.y; ++y) {
+  const ptrdiff_t plane = ptrdiff_t(ds.x) * ds.y;
+  // Seeds come row by row (z, then y), the three axes' edges of a row in
+  // turn: the offers then sweep the values once, a few planes at a time.
+  for (int z = scan.lo.z; z < scan.hi.z; ++z)
+    for (int y = scan.lo.y; y < scan.hi.y; ++y)
+      for (int a = 0; a < 3; ++a) {
+        glm::ivec3 step(0);
+        step[a] = 1;
+        if (y + step.y >= scan.hi.y || z + step.z >= scan.hi.z) continue;
         if (!mixed(sides(y, z), sides(y + step.y, z + step.z))) continue;
-        const uint8_t* row = &density_[local_index({from.lo.x, y, z}, density_box_)];
-        for (int x = from.lo.x; x < from.hi.x; ++x, ++row) {
+        const size_t stride = a == 0 ? 1 : a == 1 ? size_t(ds.x) : size_t(plane);
+        const int x_end = scan.hi.x - step.x;
+        const uint8_t* row = &density_[local_index({scan.lo.x, y, z}, density_box_)];
+        for (int x = scan.lo.x; x < x_end; ++x, ++row) {
           // Inside is the top bit of a density: eight edges at a time whose
           // ends agree on it are skipped in one test.
-          if (x + 8 <= from.hi.x) {
+          if (x + 8 <= x_end) {
             uint64_t here, there;
             std::memcpy(&here, row, 8);
             std::memcpy(&there, row + stride, 8);
@@ -471,11 +473,12 @@ void DistancePatch::find_seeds(const Box& scan) {
           // planes; the others add seeds beside those, and time, but little
           // accuracy.
           const glm::vec3 m = glm::abs(seed.normal);
-          if (m[a] < 0.9f * std::max({m.x, m.y, m.z})) continue;
-          seeds_.push_back(seed);
+          if (m[a] < 1.0f * std::max({m.x, m.y, m.z})) continue;
+          seed.edge = v;
+          seed.axis = a;
+          out.push_back(seed);
         }
       }
-  }
 }
 
 }  // namespace sculpt::core

@@ -32,6 +32,7 @@
 #include <glm/vec3.hpp>
 
 #include "sculpt/core/grid/box.h"
+#include "sculpt/core/grid/cell_marks.h"
 #include "sculpt/core/haptics/patch_snapshot.h"
 #include "sculpt/core/volume/volume.h"
 
@@ -63,7 +64,8 @@ class DistancePatch {
   /// Builds the patch centred on `centre_vox` from scratch.
   void build(const Volume& volume, glm::vec3 centre_vox);
   /// Re-reads the material inside `changed` (material voxels, e.g. a dab's
-  /// box) and recomputes the values it can affect. Builds when empty.
+  /// box) and recomputes the values it can affect: those a changed seed
+  /// reaches and those that changed side. Does nothing before build().
   void refresh(const Volume& volume, const Box& changed);
   /// refresh() over the bricks a dab stored (Volume::take_dirty_bricks), in
   /// one pass over their bounding box.
@@ -86,15 +88,23 @@ class DistancePatch {
   struct Seed {
     glm::vec3 point;   // on the iso-surface, material voxels
     glm::vec3 normal;  // outward unit normal
+    glm::ivec3 edge;   // the edge's lower end
+    int axis;          // and its direction
   };
+  // The edges looked at: every edge whose seed can reach a value.
+  Box seed_box() const;
   // Copies the material's density over `region` in; returns the bounding box
-  // of the voxels that differ from what was held (empty: none).
-  Box read_density(const Volume& volume, const Box& region);
-  void compute(const Box& region);
-  // The seeds on the edges with both ends in `scan`, in a fixed order.
-  void find_seeds(const Box& scan);
-  // The values of `clip` (a z slab of `region`) from the nearest seeds found.
-  void write_values(const Box& region, const Box& clip, size_t stride);
+  // of the voxels that differ from what was held (empty: none). Runs of
+  // voxels that changed side go to `flipped` when given.
+  Box read_density(const Volume& volume, const Box& region, std::vector<Box>* flipped = nullptr);
+  // Recomputes the values of `region` from the seeds held; with `stale`,
+  // only those of its marked cells, from the seeds that reach one.
+  void compute(const Box& region, const CellMarks* stale = nullptr);
+  // Appends the seeds on the edges with both ends in `scan`, in order.
+  void find_seeds(const Box& scan, std::vector<Seed>& out);
+  // Writes the values of `clip` (a z slab of `region`; with `stale`, only
+  // its marked cells) from the nearest seeds offered; returns how many.
+  int64_t write_values(const Box& region, const Box& clip, size_t stride, const CellMarks* stale);
 
   DistancePatchOptions options_;
   int reach_;   // how far a seed is offered: ceil(band + sqrt(3)) voxels
@@ -103,12 +113,15 @@ class DistancePatch {
   // The material's density over box() grown by margin_ on each side.
   Box density_box_;
   std::vector<uint8_t> density_;
+  // Every seed of seed_box(), in order (z, y, axis, x of the edge).
+  std::vector<Seed> seeds_;
   int64_t last_computed_ = 0;
   // Scratch reused between computations (grown, never shrunk).
-  std::vector<Seed> seeds_;
+  std::vector<Seed> found_, merged_, offered_;
+  std::vector<Box> flipped_;
+  CellMarks stale_;
   std::vector<glm::vec3> seed_points_;
-  std::vector<float> best_d2_;
-  std::vector<int32_t> best_seed_;
+  std::vector<uint32_t> best_key_;  // nearest_seed.h
   std::vector<uint8_t> row_sides_;
 };
 
