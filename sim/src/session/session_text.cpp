@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sculpt/sim/session/command_limits.h"
 #include "sculpt/sim/session/session_file.h"
 
 namespace sculpt::sim {
@@ -322,6 +323,7 @@ SessionRecord parse_command(const json& j, int64_t t) {
     default:
       break;
   }
+  if (auto why = command_problem(c)) throw std::string(command_name(c.kind)) + ": " + *why;
   return SessionRecord::of(t, c);
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/number_checks.h"
 
 #ifdef SCULPT_HAVE_BENCH
 #include <benchmark/benchmark.h>
@@ -58,7 +59,7 @@ void add_bench_command(CLI::App& app, Action& action) {
   cmd->add_option("--filter", o->filter,
                   "only benchmarks whose name matches this regular expression");
   cmd->add_option("--min-time", o->min_time, "minimum seconds per benchmark")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   cmd->add_flag("--list", o->list, "list the benchmarks without running them");
   cmd->callback([o, &action] { action = [o] { return run_bench(*o); }; });
 }

@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/number_checks.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/morphology.h"
 #include "sculpt/core/io/nrrd.h"
@@ -59,9 +60,9 @@ void add_close_command(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", o->output, "output NRRD")->required();
   cmd->add_option("--radius", o->radius, "closing radius, voxels (> 0)")
       ->required()
-      ->check(CLI::Range(0.001f, 1024.0f));
+      ->check(finite_range(0.001f, 1024.0f));
   cmd->add_flag("--sdf", o->sdf, "write the float32 signed distance");
-  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(finite_range(0, 1024));
   cmd->callback([o, &action] { action = [o] { return run_close(*o); }; });
 }
 

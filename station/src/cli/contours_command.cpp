@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/number_checks.h"
 #include "sculpt/core/distance/contours.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/distance_normals.h"
@@ -77,7 +78,7 @@ void add_contours_command(CLI::App& app, Action& action) {
   cmd->add_option("input", o->input, "contour text file (sculpt-contours 1)")->required();
   cmd->add_option("-o,--output", o->output, "output: .nrrd, .ply, .obj or .stl")->required();
   cmd->add_flag("--sdf", o->sdf, "write the float32 signed distance (.nrrd only)");
-  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(finite_range(0, 1024));
   cmd->callback([o, &action] { action = [o] { return run_contours(*o); }; });
 }
 

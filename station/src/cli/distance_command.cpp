@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include "cli/number_checks.h"
 #include "sculpt/core/distance/distance_comparison.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/signed_distance.h"
@@ -136,7 +137,7 @@ void add_distance_command(CLI::App& app, Action& action) {
   cmd->add_option("--sizes", o->sizes, "--table sizes, comma separated (default 128,256)");
   cmd->add_option("--methods", o->methods,
                   "--table methods, comma separated (default all but brute)");
-  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(finite_range(0, 1024));
   cmd->callback([o, &action] { action = [o] { return run_distance(*o); }; });
 }
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/number_checks.h"
 #include "sculpt/core/haptics/distance_patch.h"
 #include "sculpt/core/haptics/haptic_renderer.h"
 #include "sculpt/core/haptics/press_dab.h"
@@ -78,21 +79,6 @@ core::Result<core::Tool> tool_from_spec(const std::string& spec) {
   if (!st) return st.error();
   return core::Error("--tool " + spec + ": unknown shape '" + shape +
                      "' (sphere, cube, cylinder, ring, cone, or a tool NRRD)");
-}
-
-// CLI::Range lets NaN through (every comparison with it is false).
-CLI::Validator finite_range(double lo, double hi) {
-  char range[64];
-  std::snprintf(range, sizeof range, "[%g, %g]", lo, hi);
-  const std::string text_range = range;
-  return CLI::Validator(
-      [lo, hi, text_range](std::string& text) -> std::string {
-        double v = 0.0;
-        if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v) || v < lo || v > hi)
-          return "value " + text + " is not a number in " + text_range;
-        return {};
-      },
-      "in " + text_range);
 }
 
 int run_trace(const TraceOptions& o) {

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/number_checks.h"
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/core/util/parallel_for.h"
@@ -78,11 +79,11 @@ void add_mesh_command(CLI::App& app, Action& action) {
   cmd->add_option("input", o->input, "uint8 NRRD volume")->required();
   cmd->add_option("-o,--output", o->output, "output mesh: .ply, .obj or .stl")->required();
   cmd->add_option("--iso", o->iso, "iso-level in density units, 0 <= V < 255 (default 127.5)")
-      ->check(CLI::Range(0.0f, 254.999f));
+      ->check(finite_range(0.0f, 254.999f));
   cmd->add_option("--lod", o->lod, "level of detail: 0 = full resolution .. 5 = 1/32")
-      ->check(CLI::Range(0, 5));
+      ->check(finite_range(0, 5));
   cmd->add_flag("--ascii", o->ascii, "ASCII instead of binary PLY");
-  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(finite_range(0, 1024));
   cmd->callback([o, &action] { action = [o] { return run_mesh(*o); }; });
 }
 

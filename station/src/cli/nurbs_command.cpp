@@ -17,6 +17,7 @@
 #include <glm/geometric.hpp>
 
 #include "cli/commands.h"
+#include "cli/number_checks.h"
 #include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/core/nurbs/influence.h"
 #include "sculpt/core/nurbs/nurbs_json.h"
@@ -329,15 +330,15 @@ void add_nurbs_command(CLI::App& app, Action& action) {
   deform
       ->add_option("--refine", d->refine,
                    "with a zone: insert knots in it until it holds at least M control points")
-      ->check(CLI::Range(0, 1000000));
+      ->check(finite_range(0, 1000000));
   deform->add_option("--path", d->path, "path curve JSON, starting at S(u,v)");
   deform->add_option("--steps", d->steps, "path steps N (default 10 x degree x control points)")
-      ->check(CLI::Range(1, 10000000));
+      ->check(finite_range(1, 10000000));
   deform->add_flag("--no-rotate", d->no_rotate, "path: translate only, no rotation per step");
   deform->add_option("-o,--output", d->output, "deformed surface JSON")->required();
   deform->add_option("--mesh", d->mesh, "also write the tessellated result: .obj, .ply or .stl");
   deform->add_option("--per-span", d->per_span, "mesh cells per knot span (default 8)")
-      ->check(CLI::Range(1, 256));
+      ->check(finite_range(1, 256));
   deform->callback([d, &action] { action = [d] { return run_deform(*d); }; });
 
   auto t = std::make_shared<TessellateOptions>();
@@ -346,7 +347,7 @@ void add_nurbs_command(CLI::App& app, Action& action) {
   tess->add_option("surface", t->input, "surface JSON")->required();
   tess->add_option("-o,--output", t->output, ".obj, .ply or .stl")->required();
   tess->add_option("--per-span", t->per_span, "cells per knot span (default 8)")
-      ->check(CLI::Range(1, 256));
+      ->check(finite_range(1, 256));
   tess->add_flag("--freeform", t->freeform, "write exact OBJ free-form (cstype bspline) instead");
   tess->callback([t, &action] { action = [t] { return run_tessellate(*t); }; });
 

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/number_checks.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/morphology.h"
 #include "sculpt/core/io/nrrd.h"
@@ -55,9 +56,9 @@ void add_offset_command(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", o->output, "output NRRD")->required();
   cmd->add_option("--by", o->by, "offset D, voxels")
       ->required()
-      ->check(CLI::Range(-1024.0f, 1024.0f));
+      ->check(finite_range(-1024.0f, 1024.0f));
   cmd->add_flag("--sdf", o->sdf, "write the float32 signed distance");
-  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(finite_range(0, 1024));
   cmd->callback([o, &action] { action = [o] { return run_offset(*o); }; });
 }
 

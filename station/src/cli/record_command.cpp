@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "cli/commands.h"
+#include "cli/number_checks.h"
 #include "sculpt/hal/device/device_registry.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/sim/replay/sim_backend.h"
@@ -144,9 +145,9 @@ void add_record_command(CLI::App& app, Action& action) {
                   "device id as `sculpt devices` prints it, a backend, vvvv:pppp, or sim:FILE")
       ->required();
   cmd->add_option("-o,--output", o->output, "session file to write (.scs)")->required();
-  cmd->add_option("--seconds", o->seconds, "stop after this long")->check(CLI::PositiveNumber);
+  cmd->add_option("--seconds", o->seconds, "stop after this long")->check(finite_positive());
   cmd->add_option("--speed", o->speed, "sim:FILE only: play the session this much faster")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   cmd->callback([o, &action] { action = [o] { return run_record(*o); }; });
 }
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/number_checks.h"
 #include "sculpt/core/distance/surface_normals.h"
 #include "sculpt/core/io/atomic_file.h"
 #include "sculpt/core/mesh/mesh_io.h"
@@ -178,11 +179,11 @@ void add_replay_command(CLI::App& app, Action& action) {
   cmd->add_option("session", o->session, "session file (.scs binary or .jsonl text)")->required();
   auto* fast = cmd->add_flag("--fast", o->fast, "as fast as possible");
   cmd->add_option("--speed", o->speed, "speed factor (1 = real time)")
-      ->check(CLI::PositiveNumber)
+      ->check(finite_positive())
       ->excludes(fast);
   cmd->add_option("--threads", o->threads,
                   "threads for volume work (0 = all cores); never changes the result")
-      ->check(CLI::Range(0, 256));
+      ->check(finite_range(0, 256));
   cmd->add_option("--volume", o->volume, "write the resulting volume (NRRD)");
   cmd->add_option("--mesh", o->mesh, "write the resulting surface (.ply, .obj, .stl)");
   cmd->add_option("--png", o->png, "write a picture of the result (PNG)");

@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/number_checks.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
 #include "sculpt/station/window/gl_snapshot.h"
 #include "sculpt/station/window/station_window.h"
@@ -83,9 +84,9 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_option("--open", w.project, "window: open this project (.sculpt)");
   cmd->add_option("--record", w.record, "window: record the session to this file (.scs)");
   cmd->add_option("--speed", w.sim_speed, "window, sim devices: play the session this much faster")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   cmd->add_option("--frames", w.frames, "window: stop after this many frames")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   cmd->add_flag("--until-replayed", w.exit_when_replayed,
                 "window: stop when the sim device goes (its session played, or unplugged in it)");
   cmd->add_option("--stats", w.stats, "window: write frame times and dab latency (JSON) at exit");
@@ -97,7 +98,7 @@ void add_run_command(CLI::App& app, Action& action) {
          "field's gradient; also in the panel's View section)")
       ->check(CLI::IsMember({"density", "distance"}));
   cmd->add_option("--lod", w.lod, "window: draw every brick at this level (default: by distance)")
-      ->check(CLI::Range(0, 2));
+      ->check(finite_range(0, 2));
   cmd->add_flag(
       "--no-vsync", [&w = *o](int64_t) { w.window.vsync = false; },
       "window: draw as fast as possible (to measure frame rates)");

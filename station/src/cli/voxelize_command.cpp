@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/number_checks.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/mesh_distance.h"
 #include "sculpt/core/distance/mesh_reader.h"
@@ -80,11 +81,11 @@ void add_voxelize_command(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", o->output, "output NRRD")->required();
   cmd->add_option("--size", o->size, "grid edge N (N^3 voxels, 8..1024)")
       ->required()
-      ->check(CLI::Range(8, 1024));
+      ->check(finite_range(8, 1024));
   cmd->add_option("--margin", o->margin, "voxels between the mesh and the grid's faces (default 4)")
-      ->check(CLI::Range(0.0f, 256.0f));
+      ->check(finite_range(0.0f, 256.0f));
   cmd->add_flag("--sdf", o->sdf, "write the float32 signed distance instead of uint8 density");
-  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(finite_range(0, 1024));
   cmd->callback([o, &action] { action = [o] { return run_voxelize(*o); }; });
 }
 

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/number_checks.h"
 #include "sculpt/core/volume/volume_io.h"
 
 namespace sculpt::station::cli {
@@ -101,8 +102,8 @@ void add_wavelet_command(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand(
       "wavelet", "3D Haar wavelet volume: extract a level, or verify the round trip");
   cmd->add_option("input", o->input, "uint8 NRRD volume")->required();
-  cmd->add_option("--levels", o->levels, "wavelet levels (1..7)")->check(CLI::Range(0, 7));
-  cmd->add_option("--lod", o->lod, "level to write (0 = the input)")->check(CLI::Range(0, 7));
+  cmd->add_option("--levels", o->levels, "wavelet levels (1..7)")->check(finite_range(0, 7));
+  cmd->add_option("--lod", o->lod, "level to write (0 = the input)")->check(finite_range(0, 7));
   cmd->add_option("-o,--output", o->output, "output NRRD");
   cmd->callback([o, &action] { action = [o] { return run_wavelet(*o); }; });
 }

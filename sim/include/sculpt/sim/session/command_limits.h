@@ -1,0 +1,27 @@
+#pragma once
+// The ranges a session's commands must keep, checked by both readers (the
+// binary file and the text form) before a command reaches the station: a
+// record whose CRC holds can still carry a choice no name table has, a NaN,
+// or a size that would take all the machine's memory.
+
+#include <optional>
+#include <string>
+
+#include "sculpt/sim/session/session.h"
+
+namespace sculpt::sim {
+
+/// Tool sizes (a radius, an edge, a height) in voxels: a 513^3 tool grid at
+/// most (135 MB).
+inline constexpr float kMaxToolSizeVox = 256.0f;
+/// Positions, plane positions and volume sides, in voxels.
+inline constexpr float kMaxCoordinateVox = 1048576.0f;
+/// A new volume's voxels.
+inline constexpr double kMaxVolumeVoxels = 4294967296.0;
+/// Dab spacing, as a fraction of the tool's size.
+inline constexpr float kMaxSpacing = 16.0f;
+
+/// What is wrong with `c`, in a few words; nothing when it is in range.
+std::optional<std::string> command_problem(const Command& c);
+
+}  // namespace sculpt::sim

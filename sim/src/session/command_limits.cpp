@@ -1,0 +1,123 @@
+#include "sculpt/sim/session/command_limits.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace sculpt::sim {
+namespace {
+
+// A number as a message shows it: shortest form, printable.
+std::string number(float v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", double(v));
+  return text;
+}
+
+}  // namespace
+
+std::optional<std::string> command_problem(const Command& c) {
+  const int n = Command::value_count(c.kind);
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(c.values[i])) return "value " + std::to_string(i) + " is not a finite number";
+  const auto in = [](float v, float lo, float hi) { return v >= lo && v <= hi; };
+  const auto coordinates = [&](int first, int count) -> std::optional<std::string> {
+    for (int i = first; i < first + count; ++i)
+      if (!in(c.values[i], -kMaxCoordinateVox, kMaxCoordinateVox))
+        return "coordinate " + number(c.values[i]) + " is beyond +-" + number(kMaxCoordinateVox) +
+               " voxels";
+    return std::nullopt;
+  };
+  const auto choice_below = [&](int count, const char* what) -> std::optional<std::string> {
+    if (c.choice >= count) return std::string(what) + " " + std::to_string(c.choice) + " unknown";
+    return std::nullopt;
+  };
+  switch (c.kind) {
+    case CommandKind::kTool:
+      if (auto why = choice_below(kToolShapeCount, "tool shape")) return why;
+    {
+      // A sphere and a cube have one size (the second is 0); the others two.
+      const auto shape = static_cast<ToolShape>(c.choice);
+      const int sizes = shape == ToolShape::kSphere || shape == ToolShape::kCube ? 1 : 2;
+      for (int i = 0; i < 2; ++i) {
+        const bool unused = i >= sizes && c.values[i] == 0.0f;
+        if (!unused && !(c.values[i] > 0.0f && c.values[i] <= kMaxToolSizeVox))
+          return "tool size " + number(c.values[i]) + " is outside (0, " + number(kMaxToolSizeVox) +
+                 "] voxels";
+      }
+      return std::nullopt;
+    }
+    case CommandKind::kMode:
+      return choice_below(kSculptModeCount, "sculpt mode");
+    case CommandKind::kStrength:
+      if (!in(c.values[0], 0.0f, 1.0f)) return "strength " + number(c.values[0]) + " is outside [0, 1]";
+      return choice_below(1, "choice");
+    case CommandKind::kSpacing:
+      if (!(c.values[0] > 0.0f && c.values[0] <= kMaxSpacing))
+        return "spacing " + number(c.values[0]) + " is outside (0, " + number(kMaxSpacing) + "]";
+      return choice_below(1, "choice");
+    case CommandKind::kMirror:
+      if (c.choice > 2 && c.choice != kMirrorOff)
+        return "mirror axis " + std::to_string(c.choice) + " unknown";
+      return coordinates(0, 1);
+    case CommandKind::kVolume: {
+      if (auto why = choice_below(2, "volume kind")) return why;
+      double voxels = 1.0;
+      for (int i = 0; i < 3; ++i) {
+        const float side = c.values[i];
+        if (!(side >= 1.0f && side <= kMaxCoordinateVox) || side != std::floor(side))
+          return "volume side " + number(side) + " is not a whole number of voxels from 1";
+        voxels *= double(side);
+      }
+      if (voxels > kMaxVolumeVoxels)
+        return "volume of " + number(float(voxels)) + " voxels is over the limit of 2^32";
+      if (c.choice == kVolumeFill && !in(c.values[3], 0.0f, 255.0f))
+        return "fill density " + number(c.values[3]) + " is outside [0, 255]";
+      if (c.choice == kVolumeClay && !in(c.values[3], 0.0f, kMaxCoordinateVox))
+        return "clay margin " + number(c.values[3]) + " is negative or too large";
+      return std::nullopt;
+    }
+    case CommandKind::kToolPose:
+    case CommandKind::kPointer: {
+      if (auto why = coordinates(0, 3)) return why;
+      float norm2 = 0.0f;
+      for (int i = 3; i < 7; ++i)
+        norm2 += c.values[i] * c.values[i];
+      if (!(norm2 > 1e-12f && norm2 < 1e12f)) return "orientation is not a rotation";
+      return choice_below(1, "choice");
+    }
+    case CommandKind::kToolFromRegion:
+      if (auto why = coordinates(0, 6)) return why;
+      for (int i = 0; i < 3; ++i)
+        if (c.values[i + 3] - c.values[i] > 2.0f * kMaxToolSizeVox + 1.0f)
+          return "region side " + number(c.values[i + 3] - c.values[i]) + " is over " +
+                 number(2.0f * kMaxToolSizeVox + 1.0f) + " voxels, the largest tool";
+      return choice_below(1, "choice");
+    case CommandKind::kHypertexture:
+      if (auto why = coordinates(0, 3)) return why;
+      if (!in(c.values[3], 0.0f, kMaxCoordinateVox) || !in(c.values[4], 0.0f, kMaxCoordinateVox))
+        return "hypertexture radius or width is negative or too large";
+      return choice_below(1, "choice");
+    case CommandKind::kSheet: {
+      if (auto why = choice_below(kSheetActionCount, "sheet action")) return why;
+      const auto action = static_cast<SheetAction>(c.choice);
+      if (action == SheetAction::kPlace) {
+        if (auto why = coordinates(0, 4)) return why;
+        if (c.values[5] != 0.0f && c.values[5] != 1.0f && c.values[5] != 2.0f)
+          return "sheet axis " + number(c.values[5]) + " is not 0, 1 or 2";
+      }
+      if (action == SheetAction::kEdit && c.values[1] != 0.0f && c.values[1] != 1.0f &&
+          c.values[1] != 2.0f)
+        return "sheet influence " + number(c.values[1]) + " is not 0, 1 or 2";
+      return std::nullopt;
+    }
+    case CommandKind::kPress:
+    case CommandKind::kRelease:
+    case CommandKind::kUndo:
+    case CommandKind::kRedo:
+      return choice_below(1, "choice");
+  }
+  return "unknown command";
+}
+
+}  // namespace sculpt::sim

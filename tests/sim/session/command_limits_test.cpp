@@ -1,0 +1,100 @@
+#include "sculpt/sim/session/command_limits.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "sculpt/sim/session/session_file.h"
+#include "sculpt/sim/session/session_text.h"
+
+namespace sculpt::sim {
+namespace {
+
+Command command(CommandKind kind, uint8_t choice, std::initializer_list<float> values) {
+  Command c{kind, choice};
+  int i = 0;
+  for (const float v : values)
+    c.values[i++] = v;
+  return c;
+}
+
+Session with(const Command& c) {
+  Session s;
+  s.header.device.backend = "sim";
+  s.records.push_back(SessionRecord::of(1000, command(CommandKind::kPress, 0, {})));
+  s.records.push_back(SessionRecord::of(2000, c));
+  return s;
+}
+
+TEST(CommandLimits, CommandsTheStationWritesPass) {
+  EXPECT_FALSE(command_problem(command(CommandKind::kTool, 4, {12.5f, 3.0f})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kMode, 4, {})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kMirror, kMirrorOff, {0.0f})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kMirror, 2, {127.5f})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kVolume, kVolumeClay, {256, 256, 256, 64})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kVolume, kVolumeFill, {65536, 65536, 1, 0})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kToolPose, 0, {10, -5, 3, 1, 0, 0, 0})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kSheet, 0, {64, 64, 64, 100, 8, 2})));
+}
+
+TEST(CommandLimits, EachOutOfRangeFieldIsNamed) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  const struct {
+    Command c;
+    const char* says;
+  } cases[] = {
+      {command(CommandKind::kTool, 200, {4, 4}), "tool shape 200 unknown"},
+      {command(CommandKind::kMode, 5, {}), "sculpt mode 5 unknown"},
+      {command(CommandKind::kMirror, 3, {0}), "mirror axis 3 unknown"},
+      {command(CommandKind::kSheet, 6, {0, 0, 0, 0, 0, 0}), "sheet action 6 unknown"},
+      {command(CommandKind::kSheet, 0, {0, 0, 0, 10, 8, 7}), "sheet axis 7"},
+      {command(CommandKind::kPress, 9, {}), "choice 9 unknown"},
+      {command(CommandKind::kTool, 0, {500, 4}), "tool size 500 is outside (0, 256]"},
+      {command(CommandKind::kTool, 0, {nan, 4}), "value 0 is not a finite number"},
+      {command(CommandKind::kStrength, 0, {inf}), "value 0 is not a finite number"},
+      {command(CommandKind::kStrength, 0, {1.5f}), "strength 1.5 is outside [0, 1]"},
+      {command(CommandKind::kSpacing, 0, {0}), "spacing 0 is outside (0, 16]"},
+      {command(CommandKind::kVolume, 0, {1 << 20, 1 << 20, 1 << 20, 0}), "over the limit of 2^32"},
+      {command(CommandKind::kVolume, 0, {64.5f, 64, 64, 0}), "volume side 64.5"},
+      {command(CommandKind::kVolume, 0, {64, 64, 64, 300}), "fill density 300"},
+      {command(CommandKind::kToolPose, 0, {1e30f, 0, 0, 1, 0, 0, 0}), "coordinate 1e+30 is beyond"},
+      {command(CommandKind::kPointer, 0, {0, 0, 0, 0, 0, 0, 0}), "orientation is not a rotation"},
+      {command(CommandKind::kToolFromRegion, 0, {0, 0, 0, 2000, 10, 10}), "region side 2000"},
+  };
+  for (const auto& [c, says] : cases) {
+    const auto why = command_problem(c);
+    ASSERT_TRUE(why) << says;
+    EXPECT_NE(why->find(says), std::string::npos) << *why;
+  }
+}
+
+// The reproducer of the crash: a command record whose CRC holds but whose
+// choice indexes past the name tables. The binary reader stops there with a
+// warning naming the record; the text converter never sees it.
+TEST(CommandLimits, ABinarySessionStopsAtTheBadCommandWithAWarning) {
+  const std::vector<uint8_t> bytes =
+      serialize_session(with(command(CommandKind::kTool, 200, {4, 4})));
+  SessionReadInfo info;
+  const auto r = parse_session_bytes(bytes, "bad.scs", &info);
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r->records.size(), 1u);
+  EXPECT_NE(info.warning.find("bad.scs: record 2: tool command: tool shape 200 unknown"),
+            std::string::npos)
+      << info.warning;
+  EXPECT_NE(session_to_text(*r).find("press"), std::string::npos);
+}
+
+TEST(CommandLimits, TheTextFormRefusesTheSameWithTheLine) {
+  std::string text = session_to_text(with(command(CommandKind::kPress, 0, {})));
+  text += "{\"t\": 3000, \"cmd\": \"tool\", \"shape\": \"sphere\", \"size\": [1e39, 2]}\n";
+  const auto r = session_from_text(text, "bad.jsonl");
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message().find("bad.jsonl:4: tool: value 0 is not a finite number"),
+            std::string::npos)
+      << r.error().message();
+}
+
+}  // namespace
+}  // namespace sculpt::sim

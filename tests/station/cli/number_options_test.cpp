@@ -1,0 +1,33 @@
+// Numeric command-line options refuse NaN and infinities (CLI11's own range
+// checks let NaN through: every comparison with it is false).
+
+#include <gtest/gtest.h>
+
+#include "run_sculpt.h"
+
+namespace sculpt::station::test {
+namespace {
+
+TEST(NumberOptions, NanAndInfinityAreRefusedWithTheOptionNamed) {
+  const struct {
+    const char* args;
+    const char* option;
+  } cases[] = {{"replay s.scs --speed nan", "--speed"},
+               {"replay s.scs --speed inf", "--speed"},
+               {"mesh v.nrrd -o m.ply --iso nan", "--iso"},
+               {"record --seconds nan -o r.scs", "--seconds"},
+               {"offset v.nrrd -o o.nrrd --by nan", "--by"},
+               {"close v.nrrd -o c.nrrd --radius -inf", "--radius"}};
+  for (const auto& [args, option] : cases) {
+    const CommandResult r = run_sculpt(args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    // The first line names the option and says what is wrong (CLI11 adds a
+    // hint below it).
+    const std::string first = r.err.substr(0, r.err.find('\n'));
+    EXPECT_EQ(first.rfind(std::string(option) + ": value ", 0), 0u) << args << ": " << r.err;
+    EXPECT_NE(first.find("is not a number"), std::string::npos) << args << ": " << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace sculpt::station::test
