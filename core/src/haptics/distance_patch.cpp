@@ -146,10 +146,11 @@ bool edge_inside(glm::ivec3 edge, int axis, const Box& box) {
   return box.contains(edge) && box.contains(end);
 }
 
-// The voxels a seed at `p` is offered to (the ball's bounding box).
-Box reach_box(glm::vec3 p, int reach) {
-  const glm::ivec3 c = glm::ivec3(glm::floor(p));
-  return Box{c - reach + 1, c + reach + 1};
+// The voxels a seed on the edge from `edge` may be offered to: the bounding
+// box of the ball around floor(point), which is the edge's lower end or, when
+// the crossing rounds up to the next voxel, the one above it.
+Box reach_box(glm::ivec3 edge, int reach) {
+  return Box{edge - reach + 1, edge + reach + 2};
 }
 
 }  // namespace
@@ -183,21 +184,19 @@ void DistancePatch::refresh(const Volume& volume, const Box& changed) {
     const Seed* held = i < seeds_.size() ? &seeds_[i] : nullptr;
     const Seed* found = j < found_.size() ? &found_[j] : nullptr;
     if (held && found && held->edge == found->edge && held->axis == found->axis) {
-      if (held->point != found->point || held->normal != found->normal) {
-        stale_.mark(reach_box(held->point, reach_));
-        stale_.mark(reach_box(found->point, reach_));
-      }
+      if (held->point != found->point || held->normal != found->normal)
+        stale_.mark(reach_box(held->edge, reach_));  // moved (on the same edge)
       merged_.push_back(*found);
       ++i, ++j;
     } else if (held && (!found || ordered_before(held->edge, held->axis, found->edge, found->axis))) {
       if (edge_inside(held->edge, held->axis, rescan)) {
-        stale_.mark(reach_box(held->point, reach_));  // gone
+        stale_.mark(reach_box(held->edge, reach_));  // gone
       } else {
         merged_.push_back(*held);
       }
       ++i;
     } else {
-      stale_.mark(reach_box(found->point, reach_));  // new
+      stale_.mark(reach_box(found->edge, reach_));  // new
       merged_.push_back(*found);
       ++j;
     }
@@ -324,7 +323,7 @@ void DistancePatch::compute(const Box& region, const CellMarks* stale) {
   offered_.clear();
   seed_points_.clear();
   for (const Seed& s : seeds_) {
-    const Box reached = intersect(reach_box(s.point, reach), region);
+    const Box reached = intersect(reach_box(s.edge, reach), region);
     if (reached.empty() || (stale && !stale->any(reached))) continue;
     offered_.push_back(s);
     seed_points_.push_back(s.point);
@@ -382,8 +381,10 @@ int64_t DistancePatch::write_values(const Box& region, const Box& clip, size_t s
       const uint8_t* d = &density_[local_index({clip.lo.x, y, z}, density_box_)];
       float* out = &snapshot_.phi[local_index({clip.lo.x, y, z}, box())];
       size_t i = (size_t(z - region.lo.z) * size_t(rs.y) + size_t(y - region.lo.y)) * stride;
+      const uint8_t* marks = stale ? stale->row_marks(y, z) : nullptr;
+      const int marks_lo = stale ? stale->box().lo.x : 0;
       for (int x = clip.lo.x; x < clip.hi.x; ++x, ++i, ++d, ++out) {
-        if (stale && !stale->marked({x, y, z})) continue;
+        if (marks && !marks[(x - marks_lo) >> 1]) continue;
         const bool inside = *d >= 128;
         float magnitude = clamp;
         if (const int32_t seed = seed_of_key(best_key_[i]); seed >= 0) {
@@ -464,6 +465,10 @@ void DistancePatch::find_seeds(const Box& scan, std::vector<Seed>& out) {
                              float(p[plane]) - float(p[-plane]));
           };
           const glm::vec3 g = 0.5f * glm::mix(gradient(row), gradient(row + stride), t);
+          // Most crossings fail the axis test below by far: those go before
+          // the square root (the margin keeps the test's own outcome).
+          const glm::vec3 ga = glm::abs(g);
+          if (ga[a] < 0.89f * std::max({ga.x, ga.y, ga.z}) && glm::dot(g, g) > 1e-6f) continue;
           const float length = glm::length(g);
           // Density falls outward; a flat gradient (a one-voxel sliver) takes
           // the edge's own direction.

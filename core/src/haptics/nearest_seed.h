@@ -3,7 +3,7 @@
 // distance_patch.h): every seed is offered to the values within `reach`
 // of it, and a value keeps the nearest.
 //
-// A value holds one 32-bit key: the squared distance in fixed point (15
+// A value holds one 32-bit key: the squared distance in fixed point (14
 // bits up to reach^2), above the seed's number (16 bits). The nearest seed is then the smallest key, ties go to the
 // lower number whatever order seeds are offered in, and an offer is one
 // unsigned minimum over a row: half the memory of a distance and a number
@@ -37,7 +37,7 @@ inline int32_t seed_of_key(uint32_t key) {
 /// Offers `points` (at most kMaxSeeds, in the order that breaks ties) to
 /// the values of `clip`, a z slab of `region`, laid out x fastest in `keys`
 /// with rows `stride` = region width + kRowPadding apart. Distances tie
-/// within reach^2 / 32767 voxel^2 (0.0008 for reach 5).
+/// within reach^2 / 16383 voxel^2 (0.0015 for reach 5).
 void offer_seeds(std::span<const glm::vec3> points, const Box& region, const Box& clip,
                  size_t stride, int reach, uint32_t* keys);
 

@@ -28,6 +28,12 @@ class CellMarks {
   bool any(const Box& voxels) const;
   /// Whether the cell holding voxel `v` (inside the box) is marked.
   bool marked(glm::ivec3 v) const { return flags_[cell_index(cell_of(v))] != 0; }
+  /// The marks of the cells along the row of voxels (y, z) inside the box:
+  /// voxel x's is at [(x - box().lo.x) >> 1].
+  const uint8_t* row_marks(int y, int z) const {
+    return &flags_[cell_index(cell_of({box_.lo.x, y, z}))];
+  }
+  const Box& box() const { return box_; }
   /// The voxels of the marked cells' bounding box, clipped to the box; empty
   /// when nothing is marked.
   Box bounds() const { return bounds_; }
