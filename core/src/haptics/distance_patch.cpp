@@ -178,10 +178,17 @@ void DistancePatch::refresh(const Volume& volume, const Box& changed) {
   stale_.reset(box());
   for (const Box& run : flipped_)
     stale_.mark(run);
-  merged_.clear();
-  size_t i = 0, j = 0;
-  while (i < seeds_.size() || j < found_.size()) {
-    const Seed* held = i < seeds_.size() ? &seeds_[i] : nullptr;
+  // Seeds of the planes before and after the rescan stand as they are and
+  // are copied whole; only those between are compared one by one.
+  const auto z_below = [](const Seed& s, int z) { return s.edge.z < z; };
+  const size_t first = size_t(
+      std::lower_bound(seeds_.begin(), seeds_.end(), rescan.lo.z, z_below) - seeds_.begin());
+  const size_t last = size_t(
+      std::lower_bound(seeds_.begin(), seeds_.end(), rescan.hi.z, z_below) - seeds_.begin());
+  merged_.assign(seeds_.begin(), seeds_.begin() + ptrdiff_t(first));
+  size_t i = first, j = 0;
+  while (i < last || j < found_.size()) {
+    const Seed* held = i < last ? &seeds_[i] : nullptr;
     const Seed* found = j < found_.size() ? &found_[j] : nullptr;
     if (held && found && held->edge == found->edge && held->axis == found->axis) {
       if (held->point != found->point || held->normal != found->normal)
@@ -201,6 +208,7 @@ void DistancePatch::refresh(const Volume& volume, const Box& changed) {
       ++j;
     }
   }
+  merged_.insert(merged_.end(), seeds_.begin() + ptrdiff_t(last), seeds_.end());
   seeds_.swap(merged_);
   stale_.finish();
   compute(stale_.bounds(), &stale_);
@@ -322,7 +330,11 @@ void DistancePatch::compute(const Box& region, const CellMarks* stale) {
   // same way whatever region is computed.
   offered_.clear();
   seed_points_.clear();
-  for (const Seed& s : seeds_) {
+  // Seeds are in z order: only those of the planes within reach are looked at.
+  const auto z_below = [](const Seed& s, int z) { return s.edge.z < z; };
+  const auto from = std::lower_bound(seeds_.begin(), seeds_.end(), region.lo.z - reach - 1, z_below);
+  const auto to = std::lower_bound(from, seeds_.end(), region.hi.z + reach, z_below);
+  for (const Seed& s : std::span(from, to)) {
     const Box reached = intersect(reach_box(s.edge, reach), region);
     if (reached.empty() || (stale && !stale->any(reached))) continue;
     offered_.push_back(s);
