@@ -156,11 +156,29 @@ Box reach_box(glm::ivec3 edge, int reach) {
 }  // namespace
 
 void DistancePatch::refresh(const Volume& volume, const Box& changed) {
+  refresh_boxes(volume, std::span(&changed, 1));
+}
+
+void DistancePatch::refresh_bricks(const Volume& volume, std::span<const glm::ivec3> bricks) {
+  // Brick by brick: the bounding box of an L of bricks holds others, which
+  // would be decoded for nothing.
+  brick_boxes_.clear();
+  for (const glm::ivec3 b : bricks)
+    brick_boxes_.push_back(volume.brick_box(b));
+  refresh_boxes(volume, brick_boxes_);
+}
+
+void DistancePatch::refresh_boxes(const Volume& volume, std::span<const Box> changed) {
   if (snapshot_.empty()) return;
   // Only the voxels whose density really changed count: a dab's box is
   // mostly material it left alone.
   flipped_.clear();
-  const Box differs = read_density(volume, changed, &flipped_);
+  Box differs;
+  for (const Box& box : changed) {
+    const Box one = read_density(volume, box, &flipped_);
+    if (one.empty()) continue;
+    differs = differs.empty() ? one : Box{glm::min(differs.lo, one.lo), glm::max(differs.hi, one.hi)};
+  }
   if (differs.empty()) {
     last_computed_ = 0;
     return;
@@ -213,16 +231,6 @@ void DistancePatch::refresh(const Volume& volume, const Box& changed) {
   stale_.finish();
   compute(stale_.bounds(), &stale_);
   ++snapshot_.version;
-}
-
-void DistancePatch::refresh_bricks(const Volume& volume, std::span<const glm::ivec3> bricks) {
-  if (bricks.empty()) return;
-  Box all = volume.brick_box(bricks.front());
-  for (const glm::ivec3 b : bricks) {
-    const Box one = volume.brick_box(b);
-    all = Box{glm::min(all.lo, one.lo), glm::max(all.hi, one.hi)};
-  }
-  refresh(volume, all);
 }
 
 void DistancePatch::recentre(const Volume& volume, glm::vec3 centre_vox) {

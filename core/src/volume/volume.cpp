@@ -169,7 +169,31 @@ uint8_t Volume::voxel(glm::ivec3 p) const {
 
 void Volume::decode_brick(glm::ivec3 b, std::span<uint8_t> out, int level) const {
   assert(level >= 0 && level <= options_.levels);
+  if (level == 0) {
+    const auto i = static_cast<int64_t>(brick_index(b));
+    const size_t n = static_cast<size_t>(options_.brick_edge) * options_.brick_edge *
+                     static_cast<size_t>(options_.brick_edge);
+    for (size_t k = 0; k < recent_brick_.size(); ++k)
+      if (recent_brick_[k] == i) {
+        std::memcpy(out.data(), recent_voxels_.data() + k * n, n);
+        return;
+      }
+  }
   brick(b).extract_level(level, out);
+}
+
+void Volume::remember_stored(size_t i, std::span<const uint8_t> voxels) {
+  const size_t n = voxels.size();
+  if (recent_voxels_.empty()) recent_voxels_.resize(recent_brick_.size() * n);
+  size_t slot = recent_brick_.size();
+  for (size_t k = 0; k < recent_brick_.size(); ++k)
+    if (recent_brick_[k] == static_cast<int64_t>(i)) slot = k;
+  if (slot == recent_brick_.size()) {
+    slot = static_cast<size_t>(recent_next_);
+    recent_next_ = (recent_next_ + 1) % kRecentBricks;
+  }
+  recent_brick_[slot] = static_cast<int64_t>(i);
+  std::memcpy(recent_voxels_.data() + slot * n, voxels.data(), n);
 }
 
 DenseGrid<uint8_t> Volume::read(const Box& region, int level) const {
@@ -210,6 +234,7 @@ DenseGrid<uint8_t> Volume::to_dense(int level) const {
 void Volume::store_brick(glm::ivec3 b, std::span<uint8_t> voxels) {
   const size_t i = brick_index(b);
   pad_outside(b, voxels);
+  remember_stored(i, voxels);
   bricks_[i].encode(voxels, options_.brick_edge, options_.levels);
   ++versions_[i];
   if (!dirty_flags_[i]) {
@@ -230,6 +255,7 @@ void Volume::store_brick(glm::ivec3 b, std::span<uint8_t> voxels, const Box& cha
   }
   const size_t i = brick_index(b);
   const glm::ivec3 lo = local.lo - box.lo, hi = local.hi - box.lo;
+  remember_stored(i, voxels);
   bricks_[i].encode_region(voxels, e, options_.levels, {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
   ++versions_[i];
   if (!dirty_flags_[i]) {

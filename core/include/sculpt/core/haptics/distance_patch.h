@@ -68,7 +68,7 @@ class DistancePatch {
   /// reaches and those that changed side. Does nothing before build().
   void refresh(const Volume& volume, const Box& changed);
   /// refresh() over the bricks a dab stored (Volume::take_dirty_bricks), in
-  /// one pass over their bounding box.
+  /// one pass.
   void refresh_bricks(const Volume& volume, std::span<const glm::ivec3> bricks);
   /// Centres the patch on `centre_vox`, keeping the values that stay inside
   /// and computing the rest. Builds when the move is larger than the patch.
@@ -91,6 +91,8 @@ class DistancePatch {
     glm::ivec3 edge;   // the edge's lower end
     int axis;          // and its direction
   };
+  // refresh() over several boxes of material at once.
+  void refresh_boxes(const Volume& volume, std::span<const Box> changed);
   // The edges looked at: every edge whose seed can reach a value.
   Box seed_box() const;
   // Copies the material's density over `region` in; returns the bounding box
@@ -118,7 +120,7 @@ class DistancePatch {
   int64_t last_computed_ = 0;
   // Scratch reused between computations (grown, never shrunk).
   std::vector<Seed> found_, merged_, offered_;
-  std::vector<Box> flipped_;
+  std::vector<Box> flipped_, brick_boxes_;
   CellMarks stale_;
   std::vector<glm::vec3> seed_points_;
   std::vector<uint32_t> best_key_;  // nearest_seed.h

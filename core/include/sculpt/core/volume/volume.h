@@ -15,6 +15,7 @@
 // Thread safety: const member functions may run concurrently; editing needs
 // exclusive access.
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -93,7 +94,12 @@ class Volume {
   void write(glm::ivec3 origin, const DenseGrid<uint8_t>& values);
 
   /// Decodes brick `b` at `level` into `out` ((edge >> level)^3, x fastest).
+  /// A brick among the last kRecentBricks stored is copied, not decoded.
   void decode_brick(glm::ivec3 b, std::span<uint8_t> out, int level = 0) const;
+  /// How many of the bricks stored last keep their voxels decoded: what a
+  /// dab of a 32^3 tool stores, for the reads that follow it (the haptic
+  /// patch, the mesher).
+  static constexpr int kRecentBricks = 16;
   /// Stores the full-resolution voxels of brick `b` (edge^3, x fastest):
   /// re-encodes it, re-pads its out-of-volume part, and marks it dirty.
   void store_brick(glm::ivec3 b, std::span<uint8_t> voxels);
@@ -127,6 +133,10 @@ class Volume {
   // outside the volume.
   void pad_outside(glm::ivec3 b, std::span<uint8_t> voxels) const;
 
+  // Keeps the voxels of brick index `i` just stored (after padding) among
+  // the recent ones, replacing the oldest.
+  void remember_stored(size_t i, std::span<const uint8_t> voxels);
+
   glm::ivec3 dims_;
   VolumeOptions options_;
   glm::ivec3 grid_;
@@ -134,6 +144,15 @@ class Volume {
   std::vector<uint64_t> versions_;
   std::vector<uint8_t> dirty_flags_;
   std::vector<int64_t> dirty_list_;
+  // The recently stored bricks: index (-1: free slot) and decoded voxels,
+  // slot k at k * edge^3; written only by store_brick (exclusive access).
+  std::array<int64_t, kRecentBricks> recent_brick_ = [] {
+    std::array<int64_t, kRecentBricks> none;
+    none.fill(-1);
+    return none;
+  }();
+  std::vector<uint8_t> recent_voxels_;
+  int recent_next_ = 0;
 };
 
 }  // namespace sculpt::core
