@@ -478,30 +478,30 @@ void DistancePatch::find_seeds(const Box& scan, std::vector<Seed>& out) {
           // exact. The normal is the interpolated central-difference
           // gradient (the one the renderer shades with).
           const float t = (float(d0) - 127.5f) / (float(d0) - float(d1));
-          Seed seed;
-          seed.point = glm::vec3(v) + t * glm::vec3(step);
           const auto gradient = [&](const uint8_t* p) {
             return glm::vec3(float(p[1]) - float(p[-1]), float(p[ds.x]) - float(p[-ds.x]),
                              float(p[plane]) - float(p[-plane]));
           };
           const glm::vec3 g = 0.5f * glm::mix(gradient(row), gradient(row + stride), t);
-          // Most crossings fail the axis test below by far: those go before
-          // the square root (the margin keeps the test's own outcome).
+          // The edges along the axis nearest the normal place the surface a
+          // seed per column, enough for the tangent planes; the others would
+          // add seeds beside those, and time, but no accuracy. Most crossings
+          // fail that test by far and go before the square root (the margin
+          // keeps the exact test's outcome).
           const glm::vec3 ga = glm::abs(g);
-          if (ga[a] < 0.89f * std::max({ga.x, ga.y, ga.z}) && glm::dot(g, g) > 1e-6f) continue;
+          if (ga[a] < 0.99f * std::max({ga.x, ga.y, ga.z}) && glm::dot(g, g) > 1e-6f) continue;
           const float length = glm::length(g);
           // Density falls outward; a flat gradient (a one-voxel sliver) takes
           // the edge's own direction.
-          seed.normal = length > 1e-3f ? -g / length : glm::vec3(step) * (d0 >= 128 ? 1.0f : -1.0f);
-          // The edges along the axis nearest the normal (or nearly as near)
-          // place the surface a seed per column, enough for the tangent
-          // planes; the others add seeds beside those, and time, but little
-          // accuracy.
-          const glm::vec3 m = glm::abs(seed.normal);
-          if (m[a] < 1.0f * std::max({m.x, m.y, m.z})) continue;
+          const glm::vec3 normal =
+              length > 1e-3f ? -g / length : glm::vec3(step) * (d0 >= 128 ? 1.0f : -1.0f);
+          const glm::vec3 m = glm::abs(normal);
+          if (m[a] < std::max({m.x, m.y, m.z})) continue;
+          Seed& seed = out.emplace_back();
+          seed.point = glm::vec3(v) + t * glm::vec3(step);
+          seed.normal = normal;
           seed.edge = v;
           seed.axis = a;
-          out.push_back(seed);
         }
       }
 }
