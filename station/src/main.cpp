@@ -30,8 +30,20 @@ int main(int argc, char** argv) {
   cli::add_haptics_command(app, action);
   try {
     app.parse(argc, argv);
+  } catch (const CLI::ValidationError& e) {
+    // A value out of range or not a number is bad input: one line, exit 1.
+    std::cerr << "sculpt: " << e.what() << "\n";
+    return 1;
+  } catch (const CLI::ConversionError& e) {
+    std::cerr << "sculpt: " << e.what() << "\n";
+    return 1;
+  } catch (const CLI::ArgumentMismatch& e) {
+    // An option given the wrong number of values ("--friction 0.2").
+    std::cerr << "sculpt: " << e.what() << "\n";
+    return 1;
   } catch (const CLI::ParseError& e) {
-    // --help and --version exit 0; everything else is a usage error, exit 2.
+    // --help and --version exit 0; everything else (an unknown command or
+    // option, a missing argument) is a usage error, exit 2.
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
   }

@@ -151,7 +151,7 @@ TEST_F(NurbsCommandTest, BadInputIsOneLineNamingItAndNoOutput) {
       "nurbs deform " + sheet + " --uv 0.5,0.5 --to 1,2,3 -o " + out + " --mesh " + path("m.xyz"),
       1, "m.xyz", out);
   expect_refused(
-      "nurbs deform " + sheet + " --uv 0.5,0.5 --to 1,2,3 --influence gaussian:-1 -o " + out, 2,
+      "nurbs deform " + sheet + " --uv 0.5,0.5 --to 1,2,3 --influence gaussian:-1 -o " + out, 1,
       "gaussian:R", out);
   expect_refused("nurbs deform " + sheet + " --uv 0.5,0.5 -o " + out, 2, "--to", out);
   expect_refused("nurbs deform " + sheet + " --to 1,2,3 -o " + out, 2, "--uv", out);

@@ -60,9 +60,11 @@ TEST_F(VoxelizeCommandTest, BadMeshesAreOneLineErrorsAndNoOutput) {
     EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(path("v.nrrd")));
   }
-  EXPECT_EQ(
-      run_sculpt("voxelize " + kData + "octahedron.obj --size 2 -o " + path("v.nrrd")).exit_code,
-      2);
+  // A size out of range is bad input: one line, exit 1.
+  const CommandResult small =
+      run_sculpt("voxelize " + kData + "octahedron.obj --size 2 -o " + path("v.nrrd"));
+  EXPECT_EQ(small.exit_code, 1);
+  EXPECT_EQ(line_count(small.err), 1) << small.err;
 }
 
 }  // namespace

@@ -136,7 +136,8 @@ TEST(HapticsCommand, BadInputGetsOneLineNamingItAndNoOutput) {
     const CommandResult bad =
         run_sculpt("haptics trace " + scratch.file("ball.nrrd") + " --probe " +
                    scratch.file("p.jsonl") + " " + option + " -o " + out);
-    EXPECT_EQ(bad.exit_code, 2) << option;
+    EXPECT_EQ(bad.exit_code, 1) << option;
+    EXPECT_EQ(line_count(bad.err), 1) << option << ": " << bad.err;
     EXPECT_FALSE(fs::exists(out)) << option;
   }
   const CommandResult friction =

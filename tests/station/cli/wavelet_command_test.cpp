@@ -75,7 +75,8 @@ TEST_F(WaveletCommandTest, BadInputIsOneLineExitOneAndNoOutput) {
 
 TEST_F(WaveletCommandTest, UsageErrorsExitTwo) {
   EXPECT_EQ(run_sculpt("wavelet").exit_code, 2);
-  EXPECT_EQ(run_sculpt("wavelet " + path("in.nrrd") + " --levels 9").exit_code, 2);
+  // A value out of range is bad input, not a usage error.
+  EXPECT_EQ(run_sculpt("wavelet " + path("in.nrrd") + " --levels 9").exit_code, 1);
   EXPECT_EQ(run_sculpt("wavelet " + path("in.nrrd") + " --bogus").exit_code, 2);
   EXPECT_EQ(run_sculpt("").exit_code, 2);
   EXPECT_EQ(run_sculpt("no-such-command").exit_code, 2);
