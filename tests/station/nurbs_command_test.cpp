@@ -157,6 +157,10 @@ TEST_F(NurbsCommandTest, BadInputIsOneLineNamingItAndNoOutput) {
   expect_refused("nurbs deform " + sheet + " --to 1,2,3 -o " + out, 2, "--uv", out);
   expect_refused("nurbs tessellate " + sheet + " --freeform -o " + path("f.ply"), 1, "f.ply",
                  path("f.ply"));
+  // A --mesh that cannot be written leaves no -o either.
+  expect_refused("nurbs deform " + sheet + " --uv 0.5,0.5 --to 1,2,3 -o " + out + " --mesh " +
+                     path("missing") + "/m.ply",
+                 1, "missing/m.ply", out);
   expect_refused("nurbs", 2, "subcommand", out);
 }
 

@@ -18,6 +18,7 @@
 
 #include "cli/commands.h"
 #include "cli/number_checks.h"
+#include "sculpt/core/io/output_set.h"
 #include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/core/nurbs/influence.h"
 #include "sculpt/core/nurbs/nurbs_json.h"
@@ -193,13 +194,18 @@ int run_deform(const DeformOptions& o) {
   const auto t1 = clock::now();
   const double residual = glm::length(nurbs::evaluate(surface, u, v) - target);
 
-  if (Status st = nurbs::write_json(o.output, surface); !st) return report(st.error());
+  // Both outputs or neither (a bad --mesh path must not leave -o written).
+  core::OutputSet outputs;
+  if (Status st = nurbs::write_json(outputs.stage(o.output), surface); !st) {
+    return report(outputs.named(st.error()));
+  }
   size_t triangles = 0;
   if (!o.mesh.empty()) {
-    if (Status st = write_mesh_output(o.mesh, surface, o.per_span, &triangles); !st) {
-      return report(st.error());
+    if (Status st = write_mesh_output(outputs.stage(o.mesh), surface, o.per_span, &triangles); !st) {
+      return report(outputs.named(st.error()));
     }
   }
+  if (Status st = outputs.commit(); !st) return report(st.error());
   std::printf("surface     degree %d x %d, %d control points", surface.degree_u, surface.degree_v,
               points_before);
   if (surface.point_count() != points_before) {

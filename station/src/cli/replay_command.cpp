@@ -14,6 +14,7 @@
 #include "cli/number_checks.h"
 #include "sculpt/core/distance/surface_normals.h"
 #include "sculpt/core/io/atomic_file.h"
+#include "sculpt/core/io/output_set.h"
 #include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/core/util/parallel_for.h"
 #include "sculpt/core/volume/volume_io.h"
@@ -115,8 +116,14 @@ int replay_to_outputs(const ReplayCliOptions& o) {
       {"unknown_reports", result->unknown_reports},
       {"short_reports", result->short_reports},
   };
+  // Every output or none: each is staged whole, and all are moved into
+  // place once the last one is written.
+  core::OutputSet outputs;
+  const auto failed = [&](const core::Status& st) { return report(outputs.named(st.error())); };
   if (!o.volume.empty()) {
-    if (core::Status st = core::write_volume_nrrd(o.volume, volume); !st) return report(st.error());
+    if (core::Status st = core::write_volume_nrrd(outputs.stage(o.volume), volume); !st) {
+      return failed(st);
+    }
   }
   core::Mesh mesh = loop.mesh().welded_mesh();
   if (o.normals == "distance" && (mesh_format || !o.png.empty())) {
@@ -126,8 +133,8 @@ int replay_to_outputs(const ReplayCliOptions& o) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   if (mesh_format) {
-    if (core::Status st = core::write_mesh(o.mesh, mesh, *mesh_format); !st) {
-      return report(st.error());
+    if (core::Status st = core::write_mesh(outputs.stage(o.mesh), mesh, *mesh_format); !st) {
+      return failed(st);
     }
   }
   if (!o.png.empty()) {
@@ -143,26 +150,27 @@ int replay_to_outputs(const ReplayCliOptions& o) {
       image = render_mesh(mesh, view_of(mesh, glm::vec3(0.0f), glm::vec3(volume.dims())));
     }
     stats["renderer"] = gl ? "gl" : "software";
-    if (core::Status st = write_png(o.png, image); !st) return report(st.error());
+    if (core::Status st = write_png(outputs.stage(o.png), image); !st) return failed(st);
   }
   if (!o.project.empty()) {
     const StationSettings& settings = loop.settings();
-    if (core::Status st = save_project(o.project, volume, settings,
+    if (core::Status st = save_project(outputs.stage(o.project), volume, settings,
                                        settings.custom_tool ? &loop.tool() : nullptr, {});
         !st) {
-      return report(st.error());
+      return failed(st);
     }
   }
   if (!o.samples.empty()) {
-    core::AtomicFileWriter out(o.samples);
+    core::AtomicFileWriter out(outputs.stage(o.samples));
     out.write(samples_text);
-    if (core::Status st = out.commit(); !st) return report(st.error());
+    if (core::Status st = out.commit(); !st) return failed(st);
   }
   if (!o.stats.empty()) {
-    core::AtomicFileWriter out(o.stats);
+    core::AtomicFileWriter out(outputs.stage(o.stats));
     out.write(stats.dump(2) + "\n");
-    if (core::Status st = out.commit(); !st) return report(st.error());
+    if (core::Status st = out.commit(); !st) return failed(st);
   }
+  if (core::Status st = outputs.commit(); !st) return report(st.error());
   std::printf(
       "replayed %s: %lld records, %lld dabs in %lld strokes, %lld triangles, %.2f s (%.1fx real "
       "time)\n",

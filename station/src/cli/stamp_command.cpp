@@ -34,6 +34,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "sculpt/core/io/output_set.h"
 #include "sculpt/core/sculpt/sculptor.h"
 #include "sculpt/core/tool/tool.h"
 #include "sculpt/core/tool/tool_rotation.h"
@@ -271,6 +272,9 @@ int run_stamp(const StampOptions& o) {
   std::optional<core::Tool> tool;
   core::DabStats total;
   int dabs = 0;
+  // The tools the script saves and the volume appear together, or none of
+  // them if a later line fails.
+  core::OutputSet outputs;
   const auto t0 = std::chrono::steady_clock::now();
   for (auto& [n, op] : ops) {
     const std::string where = o.dabs + ":" + std::to_string(n);
@@ -294,9 +298,10 @@ int run_stamp(const StampOptions& o) {
     } else if (auto* s = std::get_if<SaveToolOp>(&op)) {
       if (!tool) return report(core::Error("save_tool before any tool").in(where));
       const std::filesystem::path p(s->path);
-      if (core::Status st = core::write_tool_nrrd(p.is_absolute() ? p : script_dir / p, *tool);
+      if (core::Status st =
+              core::write_tool_nrrd(outputs.stage(p.is_absolute() ? p : script_dir / p), *tool);
           !st) {
-        return report(st.error().in(where));
+        return report(outputs.named(st.error()).in(where));
       }
     } else if (auto* sm = std::get_if<SamplingOp>(&op)) {
       sculptor.set_sampling(sm->sampling);
@@ -318,7 +323,10 @@ int run_stamp(const StampOptions& o) {
   sculptor.end_stroke();
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  if (core::Status st = core::write_volume_nrrd(o.output, *volume); !st) return report(st.error());
+  if (core::Status st = core::write_volume_nrrd(outputs.stage(o.output), *volume); !st) {
+    return report(outputs.named(st.error()));
+  }
+  if (core::Status st = outputs.commit(); !st) return report(st.error());
 
   std::printf("%d dabs in %.2f ms (%.3f ms per dab): %d bricks changed, %lld voxels changed\n",
               dabs, ms, dabs ? ms / dabs : 0.0, total.bricks_changed,

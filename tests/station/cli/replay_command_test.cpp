@@ -153,5 +153,17 @@ TEST_F(ReplayCommandTest, RecordCapturesTheRawReportsOfALiveDevice) {
   EXPECT_FALSE(fs::exists(dir_ / "none.scs"));
 }
 
+TEST_F(ReplayCommandTest, OneBadOutputLeavesNoneOfTheOthers) {
+  const std::string bad = path("missing") + "/s.json";
+  const CommandResult r = run_sculpt("replay " + short_ + " --fast --volume " + path("v.nrrd") +
+                                     " --mesh " + path("m.ply") + " --stats " + bad);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(line_count(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(bad), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("v.nrrd")));
+  EXPECT_FALSE(fs::exists(path("m.ply")));
+  EXPECT_TRUE(fs::is_empty(dir_)) << "staged files left behind";
+}
+
 }  // namespace
 }  // namespace sculpt::station::test

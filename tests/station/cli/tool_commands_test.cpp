@@ -46,6 +46,26 @@ TEST_F(ToolCommandsTest, StampThenRotateAQuarterTurnKeepsTheMaterial) {
   EXPECT_EQ(mass(*rotated), mass(*sculpted));  // a quarter turn is exact
 }
 
+TEST_F(ToolCommandsTest, AToolSavedBeforeAFailingLineIsNotWritten) {
+  // The script runs as far as line 3, which fails when it runs (the tool
+  // file is missing): the tool line 2 saved must not appear either.
+  std::ofstream(dir_ / "late.jsonl") << R"({"op":"tool","shape":"sphere","radius":4})"
+                                        "\n"
+                                     << R"({"op":"save_tool","path":"saved.nrrd"})"
+                                        "\n"
+                                     << R"({"op":"tool","shape":"file","path":"missing.nrrd"})"
+                                        "\n";
+  const CommandResult r =
+      run_sculpt("stamp --new 32,32,32 --dabs " + path("late.jsonl") + " -o " + path("o.nrrd"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(line_count(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("late.jsonl:3"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "saved.nrrd"));
+  EXPECT_FALSE(fs::exists(dir_ / "o.nrrd"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1)
+      << "staged files left behind";
+}
+
 TEST_F(ToolCommandsTest, BadScriptLineIsNamedAndNothingIsWritten) {
   std::ofstream(dir_ / "bad.jsonl") << R"({"op":"tool","shape":"sphere","radius":4})"
                                        "\n"

@@ -1,0 +1,47 @@
+#include "sculpt/core/io/output_set.h"
+
+#include <unistd.h>
+
+#include <system_error>
+
+namespace sculpt::core {
+
+OutputSet::~OutputSet() {
+  if (committed_) return;
+  for (const auto& [staged, target] : staged_) {
+    std::error_code ignored;
+    std::filesystem::remove(staged, ignored);
+  }
+}
+
+std::filesystem::path OutputSet::stage(const std::filesystem::path& target) {
+  // The extension stays last: writers choose a format by it.
+  const std::string name = "." + target.stem().string() + ".staged-" + std::to_string(::getpid()) +
+                           "-" + std::to_string(staged_.size()) + target.extension().string();
+  std::filesystem::path staged = target.parent_path() / name;
+  staged_.emplace_back(staged, target);
+  return staged;
+}
+
+Error OutputSet::named(const Error& error) const {
+  std::string message = error.message();
+  for (const auto& [staged, target] : staged_) {
+    const std::string from = staged.string(), to = target.string();
+    for (size_t at = message.find(from); at != std::string::npos;
+         at = message.find(from, at + to.size()))
+      message.replace(at, from.size(), to);
+  }
+  return Error(message);
+}
+
+Status OutputSet::commit() {
+  for (const auto& [staged, target] : staged_) {
+    std::error_code ec;
+    std::filesystem::rename(staged, target, ec);
+    if (ec) return Error(target.string() + ": cannot move the finished file into place: " + ec.message());
+  }
+  committed_ = true;
+  return {};
+}
+
+}  // namespace sculpt::core
