@@ -4,9 +4,12 @@
 #include <iostream>
 
 #include "cli/commands.h"
+#include "sculpt/core/io/temp_files.h"
 
 int main(int argc, char** argv) {
   namespace cli = sculpt::station::cli;
+  // Ctrl-C or a kill while an output is being written leaves no temporary.
+  sculpt::core::remove_temp_files_on_signals();
   CLI::App app{"sculpt: a virtual sculpting station for 6-DOF input devices", "sculpt"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "sculpt 0.1.0");

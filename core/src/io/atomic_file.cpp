@@ -8,6 +8,8 @@
 #include <cstring>
 #include <vector>
 
+#include "sculpt/core/io/temp_files.h"
+
 namespace sculpt::core {
 
 AtomicFileWriter::AtomicFileWriter(std::filesystem::path target) : target_(std::move(target)) {
@@ -22,6 +24,7 @@ AtomicFileWriter::AtomicFileWriter(std::filesystem::path target) : target_(std::
     return;
   }
   temp_ = name.data();
+  temp_slot_ = remember_temp_file(temp_.string());
   // mkstemp creates 0600; the renamed file must get the mode any new file
   // gets (0666 less the umask), or other programs and users cannot read it.
   const mode_t mask = ::umask(0);
@@ -41,6 +44,7 @@ AtomicFileWriter::~AtomicFileWriter() {
     std::error_code ignored;
     std::filesystem::remove(temp_, ignored);
   }
+  forget_temp_file(temp_slot_);
 }
 
 void AtomicFileWriter::write(const void* data, size_t size) {
@@ -65,6 +69,8 @@ Status AtomicFileWriter::commit() {
     return error();
   }
   committed_ = true;
+  forget_temp_file(temp_slot_);
+  temp_slot_ = -1;
   return {};
 }
 

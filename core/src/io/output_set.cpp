@@ -3,15 +3,21 @@
 #include <unistd.h>
 
 #include <system_error>
+#include <utility>
+
+#include "sculpt/core/io/temp_files.h"
 
 namespace sculpt::core {
 
 OutputSet::~OutputSet() {
-  if (committed_) return;
-  for (const auto& [staged, target] : staged_) {
-    std::error_code ignored;
-    std::filesystem::remove(staged, ignored);
+  if (!committed_) {
+    for (const auto& [staged, target] : staged_) {
+      std::error_code ignored;
+      std::filesystem::remove(staged, ignored);
+    }
   }
+  for (const int slot : slots_)
+    forget_temp_file(slot);
 }
 
 std::filesystem::path OutputSet::stage(const std::filesystem::path& target) {
@@ -20,6 +26,7 @@ std::filesystem::path OutputSet::stage(const std::filesystem::path& target) {
                            "-" + std::to_string(staged_.size()) + target.extension().string();
   std::filesystem::path staged = target.parent_path() / name;
   staged_.emplace_back(staged, target);
+  slots_.push_back(remember_temp_file(staged.string()));
   return staged;
 }
 
@@ -41,6 +48,8 @@ Status OutputSet::commit() {
     if (ec) return Error(target.string() + ": cannot move the finished file into place: " + ec.message());
   }
   committed_ = true;
+  for (int& slot : slots_)
+    forget_temp_file(std::exchange(slot, -1));
   return {};
 }
 

@@ -4,7 +4,10 @@
 
 #include <sys/stat.h>
 #include "scratch_dir.h"
+#include "sculpt/core/io/output_set.h"
+#include "sculpt/core/io/temp_files.h"
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -78,6 +81,27 @@ TEST_F(AtomicFileTest, UnwritableFolderIsReportedWithTheName) {
   const Status st = w.commit();
   ASSERT_FALSE(st.ok());
   EXPECT_NE(st.error().message().find("missing/out.txt"), std::string::npos);
+}
+
+TEST_F(AtomicFileTest, ASignalDuringAWriteLeavesNoTemporary) {
+  // The process dies of SIGTERM half way through an output (and with an
+  // output set staged): the handler removes both temporaries first.
+  // "fast" forks without re-running the test, so the child writes into
+  // this test's own folder (the pool's idle threads hold no lock then).
+  GTEST_FLAG_SET(death_test_style, "fast");
+  const fs::path target = dir_ / "big.raw";
+  EXPECT_EXIT(
+      {
+        remove_temp_files_on_signals();
+        OutputSet outputs;
+        const fs::path staged = outputs.stage(dir_ / "other.json");
+        std::ofstream(staged) << "staged";
+        AtomicFileWriter out(target);
+        out.write(std::string(1 << 20, 'x'));
+        std::raise(SIGTERM);
+      },
+      ::testing::KilledBySignal(SIGTERM), "");
+  EXPECT_EQ(files_in(dir_), 0u);
 }
 
 }  // namespace

@@ -37,6 +37,7 @@ class AtomicFileWriter {
   std::FILE* file_ = nullptr;
   std::string error_;
   bool committed_ = false;
+  int temp_slot_ = -1;  // temp_files.h: removed if a signal ends the process
 };
 
 }  // namespace sculpt::core

@@ -31,6 +31,7 @@ class OutputSet {
 
  private:
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> staged_;  // staged, target
+  std::vector<int> slots_;  // temp_files.h: staged files a signal removes
   bool committed_ = false;
 };
 
