@@ -56,6 +56,60 @@ std::optional<std::vector<uint8_t>> from_hex(std::string_view s) {
   return out;
 }
 
+// Whether `s` is well-formed UTF-8 (no overlong forms, surrogates or code
+// points past U+10FFFF): what a JSON string can carry.
+bool is_utf8(std::string_view s) {
+  size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    int extra;
+    uint32_t cp;
+    if (c < 0x80) {
+      ++i;
+      continue;
+    } else if ((c & 0xE0) == 0xC0) {
+      extra = 1, cp = c & 0x1F;
+    } else if ((c & 0xF0) == 0xE0) {
+      extra = 2, cp = c & 0x0F;
+    } else if ((c & 0xF8) == 0xF0) {
+      extra = 3, cp = c & 0x07;
+    } else {
+      return false;
+    }
+    if (i + size_t(extra) >= s.size()) return false;  // cut short
+    for (int k = 1; k <= extra; ++k) {
+      const auto d = static_cast<unsigned char>(s[i + size_t(k)]);
+      if ((d & 0xC0) != 0x80) return false;
+      cp = (cp << 6) | (d & 0x3F);
+    }
+    static constexpr uint32_t kSmallest[] = {0, 0x80, 0x800, 0x10000};
+    if (cp < kSmallest[extra] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return false;
+    i += size_t(extra) + 1;
+  }
+  return true;
+}
+
+// A device string as JSON: itself when it is UTF-8, else {"bytes": hex}, so
+// that a name a device reports in another encoding survives the round trip.
+ordered text_field(const std::string& s) {
+  if (is_utf8(s)) return s;
+  const auto* bytes = reinterpret_cast<const uint8_t*>(s.data());
+  return ordered{{"bytes", to_hex({bytes, s.size()})}};
+}
+
+// text_field()'s inverse; missing is empty. Throws like the other readers.
+std::string read_text_field(const json& object, const char* key) {
+  if (!object.contains(key)) return {};
+  const json& v = object[key];
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_object() && v.contains("bytes") && v["bytes"].is_string()) {
+    const auto bytes = from_hex(v["bytes"].get<std::string>());
+    if (!bytes) throw std::string(key) + ".bytes: not hex";
+    return std::string(bytes->begin(), bytes->end());
+  }
+  throw std::string(key) + ": expected a string or {\"bytes\": hex}";
+}
+
 ordered floats(const float* v, int n) {
   ordered a = ordered::array();
   for (int i = 0; i < n; ++i)
@@ -334,16 +388,16 @@ std::string session_to_text(const Session& session) {
   ordered header = {
       {"sculpt_session", kSessionVersion},
       {"device",
-       {{"backend", d.backend},
-        {"path", d.path},
-        {"name", d.name},
-        {"manufacturer", d.manufacturer},
-        {"serial", d.serial},
+       {{"backend", text_field(d.backend)},
+        {"path", text_field(d.path)},
+        {"name", text_field(d.name)},
+        {"manufacturer", text_field(d.manufacturer)},
+        {"serial", text_field(d.serial)},
         {"vendor_product", d.vendor_product()},
         {"usage_page", d.usage_page},
         {"usage", d.usage},
         {"report_descriptor", to_hex(d.report_descriptor)}}},
-      {"normalizer", session.header.normalizer_config},
+      {"normalizer", text_field(session.header.normalizer_config)},
       {"created_unix_ns", session.header.created_unix_ns},
   };
   std::string out = header.dump() + "\n";
@@ -375,11 +429,11 @@ core::Result<Session> session_from_text(std::string_view text, const std::string
           throw std::string("unsupported session version ") + j["sculpt_session"].dump();
         const json& d = j.at("device");
         hal::DeviceInfo& info = s.header.device;
-        info.backend = d.value("backend", "");
-        info.path = d.value("path", "");
-        info.name = d.value("name", "");
-        info.manufacturer = d.value("manufacturer", "");
-        info.serial = d.value("serial", "");
+        info.backend = read_text_field(d, "backend");
+        info.path = read_text_field(d, "path");
+        info.name = read_text_field(d, "name");
+        info.manufacturer = read_text_field(d, "manufacturer");
+        info.serial = read_text_field(d, "serial");
         const std::string vp = d.value("vendor_product", "");
         unsigned vid = 0, pid = 0;
         char tail = 0;
@@ -393,7 +447,7 @@ core::Result<Session> session_from_text(std::string_view text, const std::string
         const auto descriptor = from_hex(d.value("report_descriptor", ""));
         if (!descriptor) throw std::string("device.report_descriptor: not hex");
         info.report_descriptor = *descriptor;
-        s.header.normalizer_config = j.value("normalizer", "");
+        s.header.normalizer_config = read_text_field(j, "normalizer");
         s.header.created_unix_ns = j.value("created_unix_ns", int64_t{0});
         have_header = true;
         continue;

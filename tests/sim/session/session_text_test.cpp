@@ -20,6 +20,27 @@ TEST(SessionText, ConvertsBothWaysWithoutLoss) {
   }
 }
 
+TEST(SessionText, DeviceStringsThatAreNotUtf8SurviveTheRoundTrip) {
+  // A device may report its name in Latin-1 or send garbage; JSON strings
+  // hold only Unicode, so such a string is written as {"bytes": hex}.
+  Session s = bundled_session("short");
+  s.header.device.name = "Caf\xe9 Mouse";               // Latin-1
+  s.header.device.serial = std::string("\xff\x00\x80", 3);  // not text at all
+  s.header.device.manufacturer = "3Dconnexion \xe2\x84\xa2";  // valid UTF-8 (TM)
+  s.header.device.path = "\xed\xa0\x80";               // an encoded surrogate
+  const std::string text = session_to_text(s);
+  EXPECT_NE(text.find("\"name\":{\"bytes\":\"43 61 66 e9 20 4d 6f 75 73 65\"}"), std::string::npos)
+      << text.substr(0, 400);
+  EXPECT_NE(text.find("\"manufacturer\":\"3Dconnexion \xe2\x84\xa2\""), std::string::npos);
+  const auto back = session_from_text(text, "latin1.jsonl");
+  ASSERT_TRUE(back.ok()) << back.error().message();
+  EXPECT_EQ(back->header.device.name, s.header.device.name);
+  EXPECT_EQ(back->header.device.serial, s.header.device.serial);
+  EXPECT_EQ(back->header.device.manufacturer, s.header.device.manufacturer);
+  EXPECT_EQ(back->header.device.path, s.header.device.path);
+  EXPECT_EQ(serialize_session(*back), serialize_session(s));
+}
+
 TEST(SessionText, ReadsAHandWrittenSessionWithPastedHex) {
   const std::string text =
       "# captured with usbhid-dump, pasted as is\n"
