@@ -45,6 +45,12 @@ const SessionRecord* SessionPlayer::next() {
     catch_up_until_t_ns_ = INT64_MIN;
     restart_pacing();
   }
+  if (next_ > 0) {
+    // A pause in the recording longer than kMaxPacedGapNs plays as that
+    // long: a session resumed the next day must not sleep a day.
+    const int64_t gap = r.t_ns() - session_.records[next_ - 1].t_ns();
+    if (gap > kMaxPacedGapNs) session_origin_t_ns_ += gap - kMaxPacedGapNs;
+  }
   const int64_t due = due_ns();
   if (clock_.now_ns() < due) clock_.sleep_until_ns(due);
   ++next_;

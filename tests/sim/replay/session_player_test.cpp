@@ -37,6 +37,18 @@ TEST(SessionPlayer, PacesRecordsAtTheirRecordedSpacingTimesTheSpeed) {
   EXPECT_EQ(p.progress(), 1.0);
 }
 
+TEST(SessionPlayer, APauseOfADayInTheRecordingPlaysAsTwoSeconds) {
+  const int64_t day = int64_t{86'400} * 1'000'000'000;
+  const Session s = timed_session({1000, 2000, 2000 + day, 3000 + day});
+  FakeClock c;
+  SessionPlayer p(s, 1.0, false, c.clock());
+  std::vector<int64_t> played_at;
+  while (p.next() != nullptr)
+    played_at.push_back(c.now);
+  const int64_t cap = SessionPlayer::kMaxPacedGapNs;
+  EXPECT_EQ(played_at, (std::vector<int64_t>{5000, 6000, 6000 + cap, 7000 + cap}));
+}
+
 TEST(SessionPlayer, FastNeverWaits) {
   const Session s = timed_session({0, 1'000'000'000, 2'000'000'000});
   FakeClock c;

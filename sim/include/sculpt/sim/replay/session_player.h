@@ -21,6 +21,10 @@ struct PlayerClock {
 
 class SessionPlayer {
  public:
+  /// The longest pause in a recording that pacing reproduces (session
+  /// time); a longer one plays as this long.
+  static constexpr int64_t kMaxPacedGapNs = 2'000'000'000;
+
   /// speed: 1 = real time, 2 = twice as fast; fast = no waiting at all.
   SessionPlayer(const Session& session, double speed = 1.0, bool fast = false,
                 PlayerClock clock = PlayerClock::steady());
