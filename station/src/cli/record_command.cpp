@@ -15,6 +15,7 @@
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "cli/commands.h"
@@ -63,14 +64,26 @@ int run_record(const RecordOptions& o) {
   reader_options.on_raw = [queue](const hal::RawEvent& e) { queue->push(e); };
   auto config = hal::load_normalizer_config_or_defaults(hal::default_normalizer_config_path());
   if (!config) return report(config.error());
+  std::optional<sim::Session> sim_session;
+  if (o.device.rfind("sim:", 0) == 0) {
+    const std::string file = o.device.substr(4);
+    auto session = load_session(file);
+    if (!session) return report(session.error());
+    // A session plays through the normaliser settings it was recorded with,
+    // as in the window and in its replay; the recording stores those, so it
+    // replays to the same sculpture.
+    auto recorded = hal::parse_normalizer_config(session->header.normalizer_config,
+                                                 file + " (normaliser settings)");
+    if (!recorded) return report(recorded.error());
+    *config = *recorded;
+    sim_session = std::move(session).value();
+  }
   hal::DeviceRegistry registry(hal::DeviceRegistry::default_backends(), *config, reader_options);
 
   sim::SimBackend* sim_backend = nullptr;
-  if (o.device.rfind("sim:", 0) == 0) {
-    auto session = load_session(o.device.substr(4));
-    if (!session) return report(session.error());
+  if (sim_session) {
     auto backend =
-        std::make_unique<sim::SimBackend>(std::move(session).value(), o.device.substr(4), o.speed);
+        std::make_unique<sim::SimBackend>(std::move(*sim_session), o.device.substr(4), o.speed);
     sim_backend = backend.get();
     registry.add_backend(std::move(backend), /*first=*/true);
   }
