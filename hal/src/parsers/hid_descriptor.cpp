@@ -10,6 +10,8 @@
 #include <map>
 #include <string>
 
+#include "sculpt/hal/device/raw_event.h"
+
 namespace sculpt::hal {
 namespace {
 
@@ -28,6 +30,14 @@ constexpr uint16_t kUsageX = 0x30;
 constexpr uint16_t kUsageRz = 0x35;
 // 4 KiB: a high-speed HID interrupt packet is at most 1 KiB.
 constexpr uint64_t kMaxReportBits = 4096 * 8;
+// Fields a report event can hold (RawEvent keeps 64 bytes, the Report ID
+// byte among them): fields past it are never read, so they are not kept.
+constexpr uint64_t kReadableBits = RawEvent::kMaxReportBytes * 8;
+// Button usages the parser reports (std::bitset<128> of buttons).
+constexpr uint16_t kMaxButtonUsage = 128;
+// Every report walks the button fields: a bound keeps that microseconds
+// whatever a (hostile) descriptor declares.
+constexpr size_t kMaxButtonFields = 1024;
 
 core::Error at(size_t offset, const std::string& what) {
   return core::Error("report descriptor: byte " + std::to_string(offset) + ": " + what);
@@ -196,7 +206,12 @@ core::Result<HidLayout> parse_hid_descriptor(std::span<const uint8_t> d) {
           if (f.usage_page == kGenericDesktop && f.usage >= kUsageX && f.usage <= kUsageRz) {
             auto& slot = layout.axes[f.usage - kUsageX];
             if (!slot) slot = f;  // the first field of an axis wins
-          } else if (f.usage_page == kButtonPage && f.usage >= 1) {
+          } else if (f.usage_page == kButtonPage && f.usage >= 1 && f.usage <= kMaxButtonUsage &&
+                     uint64_t{f.bit_offset} + f.bit_size <= kReadableBits) {
+            if (layout.buttons.size() == kMaxButtonFields) {
+              return at(item_at, "more than " + std::to_string(kMaxButtonFields) +
+                                     " button fields");
+            }
             layout.buttons.push_back(f);
           }
           bits += g.report_size;

@@ -87,5 +87,30 @@ TEST(HidDescriptor, HugeReportCountIsRefusedNotLoopedOver) {
       << layout.error().message();
 }
 
+TEST(HidDescriptor, ButtonFieldsAreBoundedWhateverTheDescriptorDeclares) {
+  // 255 reports of 4000 one-bit button fields each (usages 1..65535): the
+  // parser keeps only the buttons a report can carry and it reports (usages
+  // up to 128 within the first 64 bytes), so each report walks a bounded
+  // list. One report of them is within the limits; all of them are refused.
+  const auto descriptor = [](int reports) {
+    std::vector<uint8_t> d = {0x05, 0x01, 0x09, 0x08, 0xA1, 0x01, 0x05, 0x09,
+                              0x15, 0x00, 0x25, 0x01, 0x75, 0x01};
+    for (int id = 1; id <= reports; ++id) {
+      // Report ID, Usage Minimum 1, Usage Maximum 65535, Report Count 4000, Input.
+      d.insert(d.end(), {0x85, uint8_t(id), 0x19, 0x01, 0x2A, 0xFF, 0xFF, 0x96, 0xA0, 0x0F, 0x81,
+                         0x02});
+    }
+    d.push_back(0xC0);
+    return d;
+  };
+  const auto one = parse_hid_descriptor(descriptor(1));
+  ASSERT_TRUE(one.ok()) << one.error().message();
+  EXPECT_EQ(one->buttons.size(), 128u);
+  const auto many = parse_hid_descriptor(descriptor(255));
+  ASSERT_FALSE(many.ok());
+  EXPECT_NE(many.error().message().find("more than 1024 button fields"), std::string::npos)
+      << many.error().message();
+}
+
 }  // namespace
 }  // namespace sculpt::hal
