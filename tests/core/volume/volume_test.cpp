@@ -241,6 +241,10 @@ TEST(Volume, EditSeesAndKeepsNeighbouringContent) {
 TEST(Volume, ValidateNamesWhatIsOutOfRange) {
   EXPECT_FALSE(Volume::validate({0, 10, 10}, {}).ok());
   EXPECT_FALSE(Volume::validate({100000, 100000, 100000}, {}).ok());
+  // 2^32 voxels at most: 65536 x 65536 x 1 fits, x 2 does not.
+  EXPECT_TRUE(Volume::validate({65536, 65536, 1}, {}).ok());
+  EXPECT_NE(Volume::validate({65536, 65536, 2}, {}).error().message().find("4294967296"),
+            std::string::npos);
   VolumeOptions bad_edge;
   bad_edge.brick_edge = 24;
   EXPECT_NE(Volume::validate({10, 10, 10}, bad_edge).error().message().find("power of two"),

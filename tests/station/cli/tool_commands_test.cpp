@@ -66,6 +66,17 @@ TEST_F(ToolCommandsTest, AToolSavedBeforeAFailingLineIsNotWritten) {
       << "staged files left behind";
 }
 
+TEST_F(ToolCommandsTest, ANewVolumeBeyondTwoToThe32VoxelsIsRefused) {
+  std::ofstream(dir_ / "one.jsonl") << R"({"op":"tool","shape":"sphere","radius":4})"
+                                       "\n";
+  const CommandResult r = run_sculpt("stamp --new 65536,65536,256 --dabs " + path("one.jsonl") +
+                                     " -o " + path("o.nrrd"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(line_count(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("--new"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "o.nrrd"));
+}
+
 TEST_F(ToolCommandsTest, BadScriptLineIsNamedAndNothingIsWritten) {
   std::ofstream(dir_ / "bad.jsonl") << R"({"op":"tool","shape":"sphere","radius":4})"
                                        "\n"

@@ -50,10 +50,11 @@ struct VolumeStats {
 
 class Volume {
  public:
-  /// Largest edge accepted on any axis, and the largest voxel count: far beyond
-  /// what fits a workstation's memory densely, well within int64 arithmetic.
+  /// Largest edge accepted on any axis, and the largest voxel count: 2^32,
+  /// the limit the NRRD reader and the session's volume command keep too (a
+  /// volume of 2^40 voxels was accepted and wrote tens of GB no reader took).
   static constexpr int kMaxEdge = 1 << 16;
-  static constexpr int64_t kMaxVoxels = int64_t{1} << 40;
+  static constexpr int64_t kMaxVoxels = int64_t{1} << 32;
 
   /// Checks `dims` and `options`; the error names what is out of range.
   static Status validate(glm::ivec3 dims, const VolumeOptions& options);
