@@ -325,6 +325,15 @@ Status NrrdReader::read_slices(int slices, std::span<std::byte> out) {
     if (rc != Z_STREAM_END || s.zs.avail_out == 0) {
       return s.fail("gzip data is longer than the sizes say (wrong sizes or type?)");
     }
+    s.zs_done = true;
+  }
+  if (s.slices_left == 0 && s.header.gzip) {
+    // Nothing may follow the stream: bytes there are a second stream or a
+    // damaged file, and ignoring them would read a different volume.
+    char more;
+    if (s.zs.avail_in > 0 || std::fread(&more, 1, 1, s.file.get()) == 1) {
+      return s.fail("bytes follow the gzip data (a damaged or concatenated file)");
+    }
   }
   return {};
 }

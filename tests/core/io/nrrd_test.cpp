@@ -194,6 +194,12 @@ TEST_F(NrrdTest, RefusesTruncatedAndOverlongData) {
   cut.resize(cut.size() / 2);
   expect_refused(write_file("gzcut.nrrd", gz + cut), "truncated gzip data");
   expect_refused(write_file("gzjunk.nrrd", gz + std::string(40, '\x55')), "corrupt gzip data");
+  // Bytes after a complete stream (a second stream, or junk) are refused.
+  expect_refused(write_file("gztail.nrrd", gz + gzip(std::string(64, 'a')) + "junk"),
+                 "bytes follow the gzip data");
+  expect_refused(
+      write_file("gztwo.nrrd", gz + gzip(std::string(64, 'a')) + gzip(std::string(64, 'b'))),
+      "bytes follow the gzip data");
   // A large claimed size with little gzip data fails on the data, not on memory.
   expect_refused(write_file("gzlie.nrrd",
                             "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 1000 1000 1000\n"
