@@ -1,7 +1,6 @@
 // The `sculpt` executable: one command with subcommands (DESIGN.md §7).
 
 #include <exception>
-#include <iostream>
 
 #include "cli/commands.h"
 #include "sculpt/core/io/temp_files.h"
@@ -35,15 +34,12 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ValidationError& e) {
     // A value out of range or not a number is bad input: one line, exit 1.
-    std::cerr << "sculpt: " << e.what() << "\n";
-    return 1;
+    return cli::report(sculpt::core::Error(e.what()));
   } catch (const CLI::ConversionError& e) {
-    std::cerr << "sculpt: " << e.what() << "\n";
-    return 1;
+    return cli::report(sculpt::core::Error(e.what()));
   } catch (const CLI::ArgumentMismatch& e) {
     // An option given the wrong number of values ("--friction 0.2").
-    std::cerr << "sculpt: " << e.what() << "\n";
-    return 1;
+    return cli::report(sculpt::core::Error(e.what()));
   } catch (const CLI::ParseError& e) {
     // --help and --version exit 0; everything else (an unknown command or
     // option, a missing argument) is a usage error, exit 2.
@@ -54,7 +50,6 @@ int main(int argc, char** argv) {
     return action ? action() : 2;
   } catch (const std::exception& e) {
     // Out of memory and the like: still one line and a clean exit.
-    std::cerr << "sculpt: " << e.what() << "\n";
-    return 1;
+    return cli::report(sculpt::core::Error(e.what()));
   }
 }

@@ -57,5 +57,19 @@ TEST_F(MeshCommandTest, BadInputIsOneLineNamingItAndNoOutput) {
   EXPECT_FALSE(fs::exists(path("m.ply")));
 }
 
+TEST_F(MeshCommandTest, AMessageQuotingAHostileHeaderIsOnePrintableShortLine) {
+  // A header line with an escape sequence and 3000 more bytes: the message
+  // quotes it, but shows control bytes as \xNN and stops at ~300 bytes.
+  std::ofstream(path("ctrl.nrrd")) << "NRRD0004\ntype: uint8\x1b[2J" << std::string(3000, 'A')
+                                   << "\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n";
+  const CommandResult r = run_sculpt("mesh " + path("ctrl.nrrd") + " -o " + path("m.ply"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(line_count(r.err), 1) << r.err;
+  EXPECT_EQ(r.err.find('\x1b'), std::string::npos);
+  EXPECT_NE(r.err.find("\\x1b[2J"), std::string::npos) << r.err;
+  EXPECT_LT(r.err.size(), 320u);
+  EXPECT_NE(r.err.find("ctrl.nrrd"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace sculpt::station::test
