@@ -1,6 +1,8 @@
 // The `sculpt` executable: one command with subcommands (DESIGN.md §7).
 
 #include <exception>
+#include <new>
+#include <string>
 
 #include "cli/commands.h"
 #include "sculpt/core/io/temp_files.h"
@@ -48,6 +50,13 @@ int main(int argc, char** argv) {
   }
   try {
     return action ? action() : 2;
+  } catch (const std::bad_alloc&) {
+    // The inputs are on the command line: name it, not the allocator.
+    std::string command = "sculpt";
+    for (int i = 1; i < argc; ++i)
+      command += std::string(" ") + argv[i];
+    return cli::report(sculpt::core::Error(
+        "out of memory running `" + command + "`: an input asks for more than this machine holds"));
   } catch (const std::exception& e) {
     // Out of memory and the like: still one line and a clean exit.
     return cli::report(sculpt::core::Error(e.what()));
