@@ -25,6 +25,9 @@ Result<json> parse(const std::string& text) {
     return j;
   } catch (const json::parse_error& e) {
     return Error("not valid JSON (at byte " + std::to_string(e.byte) + ")");
+  } catch (const json::exception&) {
+    // out_of_range 406: a number beyond a double, e.g. 1e400 (found by fuzzing).
+    return Error("a number is out of range for a double");
   }
 }
 

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
+#include "scratch_dir.h"
+
 namespace sculpt::core {
 namespace {
 
@@ -29,6 +33,24 @@ TEST(MeshReader, ErrorsNameTheFileAndWhat) {
   auto none = read_mesh(kData + "none.obj");
   ASSERT_FALSE(none.ok());
   EXPECT_NE(none.error().message().find("cannot open"), std::string::npos);
+}
+
+TEST(MeshReader, AFaceIndexThatIsNotAWholeNumberIsRefused) {
+  // A PLY whose face list holds floats (found by fuzzing: 1e20 was cast to
+  // an index, undefined behaviour).
+  sculpt::test::ScratchDir scratch;
+  for (const std::string index : {"1e20", "0.5", "-1"}) {
+    const std::string path = scratch.file("f.ply");
+    std::ofstream(path) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                           "property float y\nproperty float z\nelement face 1\n"
+                           "property list uchar float vertex_indices\nend_header\n"
+                           "0 0 0\n1 0 0\n0 1 0\n3 0 1 "
+                        << index << "\n";
+    const auto mesh = read_mesh(path);
+    ASSERT_FALSE(mesh.ok()) << index;
+    EXPECT_NE(mesh.error().message().find("is not a whole number from 0"), std::string::npos)
+        << mesh.error().message();
+  }
 }
 
 }  // namespace

@@ -49,6 +49,8 @@ TEST(NurbsJson, BadFilesNameTheFieldAndTheFile) {
   EXPECT_EQ(error_of(good), "");
   EXPECT_NE(error_of("{").find("not valid JSON"), std::string::npos);
   EXPECT_NE(error_of("[1]").find("expected a JSON object"), std::string::npos);
+  // A number beyond a double (found by fuzzing: it ended the process).
+  EXPECT_NE(error_of("{\"degree_u\": 1e400}").find("out of range for a double"), std::string::npos);
   std::string t = good;
   t.replace(t.find("\"count_u\": 15"), 13, "\"count_u\": 14");
   EXPECT_NE(error_of(t).find("knots_u"), std::string::npos) << error_of(t);
