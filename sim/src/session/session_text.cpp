@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <climits>
 #include <cstdio>
 
 #include <nlohmann/json.hpp>
@@ -95,6 +96,21 @@ ordered text_field(const std::string& s) {
   if (is_utf8(s)) return s;
   const auto* bytes = reinterpret_cast<const uint8_t*>(s.data());
   return ordered{{"bytes", to_hex({bytes, s.size()})}};
+}
+
+// An integer field in [lo, hi]; missing is 0. A float or an out-of-range
+// value is refused before any conversion (found by fuzzing: 1.8e124 was
+// converted to a uint16_t, undefined behaviour).
+int64_t read_integer(const json& object, const char* key, int64_t lo, int64_t hi) {
+  if (!object.contains(key)) return 0;
+  const json& v = object[key];
+  const bool in_range = v.is_number_unsigned()   ? v.get<uint64_t>() <= uint64_t(hi)
+                        : v.is_number_integer() ? v.get<int64_t>() >= lo && v.get<int64_t>() <= hi
+                                                : false;
+  if (!in_range)
+    throw std::string(key) + ": expected an integer from " + std::to_string(lo) + " to " +
+        std::to_string(hi);
+  return v.get<int64_t>();
 }
 
 // text_field()'s inverse; missing is empty. Throws like the other readers.
@@ -442,13 +458,13 @@ core::Result<Session> session_from_text(std::string_view text, const std::string
         }
         info.vendor_id = static_cast<uint16_t>(vid);
         info.product_id = static_cast<uint16_t>(pid);
-        info.usage_page = d.value("usage_page", uint16_t{0});
-        info.usage = d.value("usage", uint16_t{0});
+        info.usage_page = static_cast<uint16_t>(read_integer(d, "usage_page", 0, 0xFFFF));
+        info.usage = static_cast<uint16_t>(read_integer(d, "usage", 0, 0xFFFF));
         const auto descriptor = from_hex(d.value("report_descriptor", ""));
         if (!descriptor) throw std::string("device.report_descriptor: not hex");
         info.report_descriptor = *descriptor;
         s.header.normalizer_config = read_text_field(j, "normalizer");
-        s.header.created_unix_ns = j.value("created_unix_ns", int64_t{0});
+        s.header.created_unix_ns = read_integer(j, "created_unix_ns", INT64_MIN, INT64_MAX);
         have_header = true;
         continue;
       }

@@ -41,6 +41,26 @@ TEST(SessionText, DeviceStringsThatAreNotUtf8SurviveTheRoundTrip) {
   EXPECT_EQ(serialize_session(*back), serialize_session(s));
 }
 
+TEST(SessionText, AHeaderNumberOutOfRangeIsRefusedBeforeAnyConversion) {
+  // Found by fuzzing: a usage page of 1.8e124 was converted to a uint16_t.
+  const std::string header_start =
+      "{\"sculpt_session\": 1, \"device\": {\"backend\": \"sim\", \"vendor_product\": "
+      "\"046d:c626\", ";
+  for (const std::string field : {"\"usage_page\": 1.8e124", "\"usage_page\": 70000",
+                                  "\"usage\": -1", "\"usage\": 8.5"}) {
+    const auto r = session_from_text(header_start + field + "}}\n", "h.jsonl");
+    ASSERT_FALSE(r.ok()) << field;
+    EXPECT_NE(r.error().message().find("h.jsonl:1: usage"), std::string::npos)
+        << r.error().message();
+    EXPECT_NE(r.error().message().find("expected an integer from 0 to 65535"), std::string::npos)
+        << r.error().message();
+  }
+  const auto time = session_from_text(
+      header_start + "\"usage\": 8}, \"created_unix_ns\": 1e300}\n", "h.jsonl");
+  ASSERT_FALSE(time.ok());
+  EXPECT_NE(time.error().message().find("created_unix_ns"), std::string::npos);
+}
+
 TEST(SessionText, ReadsAHandWrittenSessionWithPastedHex) {
   const std::string text =
       "# captured with usbhid-dump, pasted as is\n"
