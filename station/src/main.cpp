@@ -55,8 +55,8 @@ int main(int argc, char** argv) {
     std::string command = "sculpt";
     for (int i = 1; i < argc; ++i)
       command += std::string(" ") + argv[i];
-    return cli::report(sculpt::core::Error(
-        "out of memory running `" + command + "`: an input asks for more than this machine holds"));
+    return cli::report(sculpt::core::Error("out of memory running `" + command +
+                                           "`: an input asks for more than this machine holds"));
   } catch (const std::exception& e) {
     // Out of memory and the like: still one line and a clean exit.
     return cli::report(sculpt::core::Error(e.what()));

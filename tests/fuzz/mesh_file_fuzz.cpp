@@ -14,8 +14,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;
   static const char* const kExtensions[] = {".ply", ".obj", ".stl"};
-  const std::string path = "/tmp/sculpt_mesh_fuzz_" + std::to_string(::getpid()) +
-                           kExtensions[data[0] % 3];
+  const std::string path =
+      "/tmp/sculpt_mesh_fuzz_" + std::to_string(::getpid()) + kExtensions[data[0] % 3];
   std::FILE* f = std::fopen(path.c_str(), "wb");
   if (f == nullptr) return 0;
   std::fwrite(data + 1, 1, size - 1, f);

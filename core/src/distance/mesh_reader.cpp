@@ -199,8 +199,8 @@ Result<Mesh> read_ply(const std::string& data) {
             return Error(e.name + " " + std::to_string(i) + ": data ends early");
           // A float or huge index (found by fuzzing) is refused before the cast.
           if (!(v >= 0.0 && v < 4294967296.0) || v != std::floor(v))
-            return Error(e.name + " " + std::to_string(i) + ": vertex index " +
-                         std::to_string(v) + " is not a whole number from 0");
+            return Error(e.name + " " + std::to_string(i) + ": vertex index " + std::to_string(v) +
+                         " is not a whole number from 0");
           idx.push_back(uint32_t(v));
         }
         if (e.name == "face" && (prop.name == "vertex_indices" || prop.name == "vertex_index")) {

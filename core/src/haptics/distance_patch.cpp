@@ -177,7 +177,8 @@ void DistancePatch::refresh_boxes(const Volume& volume, std::span<const Box> cha
   for (const Box& box : changed) {
     const Box one = read_density(volume, box, &flipped_);
     if (one.empty()) continue;
-    differs = differs.empty() ? one : Box{glm::min(differs.lo, one.lo), glm::max(differs.hi, one.hi)};
+    differs =
+        differs.empty() ? one : Box{glm::min(differs.lo, one.lo), glm::max(differs.hi, one.hi)};
   }
   if (differs.empty()) {
     last_computed_ = 0;
@@ -199,10 +200,10 @@ void DistancePatch::refresh_boxes(const Volume& volume, std::span<const Box> cha
   // Seeds of the planes before and after the rescan stand as they are and
   // are copied whole; only those between are compared one by one.
   const auto z_below = [](const Seed& s, int z) { return s.edge.z < z; };
-  const size_t first = size_t(
-      std::lower_bound(seeds_.begin(), seeds_.end(), rescan.lo.z, z_below) - seeds_.begin());
-  const size_t last = size_t(
-      std::lower_bound(seeds_.begin(), seeds_.end(), rescan.hi.z, z_below) - seeds_.begin());
+  const size_t first =
+      size_t(std::lower_bound(seeds_.begin(), seeds_.end(), rescan.lo.z, z_below) - seeds_.begin());
+  const size_t last =
+      size_t(std::lower_bound(seeds_.begin(), seeds_.end(), rescan.hi.z, z_below) - seeds_.begin());
   merged_.assign(seeds_.begin(), seeds_.begin() + ptrdiff_t(first));
   size_t i = first, j = 0;
   while (i < last || j < found_.size()) {
@@ -213,7 +214,8 @@ void DistancePatch::refresh_boxes(const Volume& volume, std::span<const Box> cha
         stale_.mark(reach_box(held->edge, reach_));  // moved (on the same edge)
       merged_.push_back(*found);
       ++i, ++j;
-    } else if (held && (!found || ordered_before(held->edge, held->axis, found->edge, found->axis))) {
+    } else if (held &&
+               (!found || ordered_before(held->edge, held->axis, found->edge, found->axis))) {
       if (edge_inside(held->edge, held->axis, rescan)) {
         stale_.mark(reach_box(held->edge, reach_));  // gone
       } else {
@@ -296,7 +298,8 @@ void DistancePatch::recentre(const Volume& volume, glm::vec3 centre_vox) {
   ++snapshot_.version;
 }
 
-Box DistancePatch::read_density(const Volume& volume, const Box& region, std::vector<Box>* flipped) {
+Box DistancePatch::read_density(const Volume& volume, const Box& region,
+                                std::vector<Box>* flipped) {
   const Box r = intersect(region, density_box_);
   Box changed{glm::ivec3(std::numeric_limits<int>::max()),
               glm::ivec3(std::numeric_limits<int>::min())};
@@ -340,7 +343,8 @@ void DistancePatch::compute(const Box& region, const CellMarks* stale) {
   seed_points_.clear();
   // Seeds are in z order: only those of the planes within reach are looked at.
   const auto z_below = [](const Seed& s, int z) { return s.edge.z < z; };
-  const auto from = std::lower_bound(seeds_.begin(), seeds_.end(), region.lo.z - reach - 1, z_below);
+  const auto from =
+      std::lower_bound(seeds_.begin(), seeds_.end(), region.lo.z - reach - 1, z_below);
   const auto to = std::lower_bound(from, seeds_.end(), region.hi.z + reach, z_below);
   for (const Seed& s : std::span(from, to)) {
     const Box reached = intersect(reach_box(s.edge, reach), region);

@@ -78,7 +78,7 @@ inline __attribute__((always_inline)) void offer_body(std::span<const glm::vec3>
         const float scaled_base = base * scale;
         for (int s = 0; s < kSteps; ++s) {
           const Floats d2 = scaled_base + dx2[s];
-          Keys k = (Keys)__builtin_convertvector(d2, Ints);
+          Keys k = (Keys) __builtin_convertvector(d2, Ints);
           k = (k & ~kNumberMask) | number;
           Keys held;
           std::memcpy(&held, row + s * kLanes, sizeof held);
@@ -93,8 +93,8 @@ inline __attribute__((always_inline)) void offer_body(std::span<const glm::vec3>
 // Dispatched by hand rather than with target_clones: an ifunc resolver runs
 // before ThreadSanitizer's runtime is up and crashes the instrumented build.
 __attribute__((target("avx512f"))) void offer_avx512(std::span<const glm::vec3> points,
-                                                    const Box& region, const Box& clip,
-                                                    size_t stride, int reach, uint32_t* keys) {
+                                                     const Box& region, const Box& clip,
+                                                     size_t stride, int reach, uint32_t* keys) {
   offer_body<Floats16, Keys16, Ints16>(points, region, clip, stride, reach, keys);
 }
 

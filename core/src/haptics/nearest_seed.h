@@ -4,8 +4,8 @@
 // of it, and a value keeps the nearest.
 //
 // A value holds one 32-bit key: the squared distance in fixed point (14
-// bits up to reach^2), above the seed's number (16 bits). The nearest seed is then the smallest key, ties go to the
-// lower number whatever order seeds are offered in, and an offer is one
+// bits up to reach^2), above the seed's number (16 bits). The nearest seed is then the smallest
+// key, ties go to the lower number whatever order seeds are offered in, and an offer is one
 // unsigned minimum over a row: half the memory of a distance and a number
 // kept apart, and no compare and blend.
 

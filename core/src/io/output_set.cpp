@@ -45,7 +45,8 @@ Status OutputSet::commit() {
   for (const auto& [staged, target] : staged_) {
     std::error_code ec;
     std::filesystem::rename(staged, target, ec);
-    if (ec) return Error(target.string() + ": cannot move the finished file into place: " + ec.message());
+    if (ec)
+      return Error(target.string() + ": cannot move the finished file into place: " + ec.message());
   }
   committed_ = true;
   for (int& slot : slots_)

@@ -209,8 +209,8 @@ core::Result<HidLayout> parse_hid_descriptor(std::span<const uint8_t> d) {
           } else if (f.usage_page == kButtonPage && f.usage >= 1 && f.usage <= kMaxButtonUsage &&
                      uint64_t{f.bit_offset} + f.bit_size <= kReadableBits) {
             if (layout.buttons.size() == kMaxButtonFields) {
-              return at(item_at, "more than " + std::to_string(kMaxButtonFields) +
-                                     " button fields");
+              return at(item_at,
+                        "more than " + std::to_string(kMaxButtonFields) + " button fields");
             }
             layout.buttons.push_back(f);
           }

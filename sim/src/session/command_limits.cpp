@@ -19,7 +19,8 @@ std::string number(float v) {
 std::optional<std::string> command_problem(const Command& c) {
   const int n = Command::value_count(c.kind);
   for (int i = 0; i < n; ++i)
-    if (!std::isfinite(c.values[i])) return "value " + std::to_string(i) + " is not a finite number";
+    if (!std::isfinite(c.values[i]))
+      return "value " + std::to_string(i) + " is not a finite number";
   const auto in = [](float v, float lo, float hi) { return v >= lo && v <= hi; };
   const auto coordinates = [&](int first, int count) -> std::optional<std::string> {
     for (int i = first; i < first + count; ++i)
@@ -35,22 +36,23 @@ std::optional<std::string> command_problem(const Command& c) {
   switch (c.kind) {
     case CommandKind::kTool:
       if (auto why = choice_below(kToolShapeCount, "tool shape")) return why;
-    {
-      // A sphere and a cube have one size (the second is 0); the others two.
-      const auto shape = static_cast<ToolShape>(c.choice);
-      const int sizes = shape == ToolShape::kSphere || shape == ToolShape::kCube ? 1 : 2;
-      for (int i = 0; i < 2; ++i) {
-        const bool unused = i >= sizes && c.values[i] == 0.0f;
-        if (!unused && !(c.values[i] > 0.0f && c.values[i] <= kMaxToolSizeVox))
-          return "tool size " + number(c.values[i]) + " is outside (0, " + number(kMaxToolSizeVox) +
-                 "] voxels";
+      {
+        // A sphere and a cube have one size (the second is 0); the others two.
+        const auto shape = static_cast<ToolShape>(c.choice);
+        const int sizes = shape == ToolShape::kSphere || shape == ToolShape::kCube ? 1 : 2;
+        for (int i = 0; i < 2; ++i) {
+          const bool unused = i >= sizes && c.values[i] == 0.0f;
+          if (!unused && !(c.values[i] > 0.0f && c.values[i] <= kMaxToolSizeVox))
+            return "tool size " + number(c.values[i]) + " is outside (0, " +
+                   number(kMaxToolSizeVox) + "] voxels";
+        }
+        return std::nullopt;
       }
-      return std::nullopt;
-    }
     case CommandKind::kMode:
       return choice_below(kSculptModeCount, "sculpt mode");
     case CommandKind::kStrength:
-      if (!in(c.values[0], 0.0f, 1.0f)) return "strength " + number(c.values[0]) + " is outside [0, 1]";
+      if (!in(c.values[0], 0.0f, 1.0f))
+        return "strength " + number(c.values[0]) + " is outside [0, 1]";
       return choice_below(1, "choice");
     case CommandKind::kSpacing:
       if (!(c.values[0] > 0.0f && c.values[0] <= kMaxSpacing))

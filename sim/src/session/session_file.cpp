@@ -199,7 +199,8 @@ std::string decode_record(uint8_t kind, uint8_t flags, int64_t t, std::span<cons
       if (p.left() != sizeof(float) * static_cast<size_t>(n)) return "command record of wrong size";
       for (int i = 0; i < n; ++i)
         p.num(c.values[i]);
-      if (auto why = command_problem(c)) return std::string(command_name(c.kind)) + " command: " + *why;
+      if (auto why = command_problem(c))
+        return std::string(command_name(c.kind)) + " command: " + *why;
       out = SessionRecord::of(t, c);
       return {};
     }

@@ -104,7 +104,7 @@ ordered text_field(const std::string& s) {
 int64_t read_integer(const json& object, const char* key, int64_t lo, int64_t hi) {
   if (!object.contains(key)) return 0;
   const json& v = object[key];
-  const bool in_range = v.is_number_unsigned()   ? v.get<uint64_t>() <= uint64_t(hi)
+  const bool in_range = v.is_number_unsigned()  ? v.get<uint64_t>() <= uint64_t(hi)
                         : v.is_number_integer() ? v.get<int64_t>() >= lo && v.get<int64_t>() <= hi
                                                 : false;
   if (!in_range)

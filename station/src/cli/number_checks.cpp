@@ -24,11 +24,13 @@ CLI::Validator finite_check(const std::string& what, bool (*ok)(double, double, 
 CLI::Validator finite_range(double lo, double hi) {
   char range[64];
   std::snprintf(range, sizeof range, "in [%g, %g]", lo, hi);
-  return finite_check(range, [](double v, double l, double h) { return v >= l && v <= h; }, lo, hi);
+  return finite_check(
+      range, [](double v, double l, double h) { return v >= l && v <= h; }, lo, hi);
 }
 
 CLI::Validator finite_positive() {
-  return finite_check("above 0", [](double v, double, double) { return v > 0.0; }, 0.0, 0.0);
+  return finite_check(
+      "above 0", [](double v, double, double) { return v > 0.0; }, 0.0, 0.0);
 }
 
 }  // namespace sculpt::station::cli

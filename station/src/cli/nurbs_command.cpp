@@ -201,7 +201,8 @@ int run_deform(const DeformOptions& o) {
   }
   size_t triangles = 0;
   if (!o.mesh.empty()) {
-    if (Status st = write_mesh_output(outputs.stage(o.mesh), surface, o.per_span, &triangles); !st) {
+    if (Status st = write_mesh_output(outputs.stage(o.mesh), surface, o.per_span, &triangles);
+        !st) {
       return report(outputs.named(st.error()));
     }
   }

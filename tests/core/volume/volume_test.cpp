@@ -122,7 +122,8 @@ TEST(Volume, RecentlyStoredBricksReadBackAsTheirCoefficientsDecode) {
   // decoded again; the copy must be exactly what decoding gives, for whole
   // and partial re-encodes and for border bricks (padded), and a brick
   // pushed out of the recent ones decodes as before.
-  Volume volume = Volume::from_dense(sphere_density(100, 0.3f), VolumeOptions{.brick_edge = 16, .levels = 4});
+  Volume volume =
+      Volume::from_dense(sphere_density(100, 0.3f), VolumeOptions{.brick_edge = 16, .levels = 4});
   std::mt19937 rng(5);
   std::uniform_int_distribution<int> at(0, 90), size(1, 12), value(0, 255);
   for (int round = 0; round < 40; ++round) {

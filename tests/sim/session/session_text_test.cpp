@@ -24,10 +24,10 @@ TEST(SessionText, DeviceStringsThatAreNotUtf8SurviveTheRoundTrip) {
   // A device may report its name in Latin-1 or send garbage; JSON strings
   // hold only Unicode, so such a string is written as {"bytes": hex}.
   Session s = bundled_session("short");
-  s.header.device.name = "Caf\xe9 Mouse";               // Latin-1
-  s.header.device.serial = std::string("\xff\x00\x80", 3);  // not text at all
+  s.header.device.name = "Caf\xe9 Mouse";                     // Latin-1
+  s.header.device.serial = std::string("\xff\x00\x80", 3);    // not text at all
   s.header.device.manufacturer = "3Dconnexion \xe2\x84\xa2";  // valid UTF-8 (TM)
-  s.header.device.path = "\xed\xa0\x80";               // an encoded surrogate
+  s.header.device.path = "\xed\xa0\x80";                      // an encoded surrogate
   const std::string text = session_to_text(s);
   EXPECT_NE(text.find("\"name\":{\"bytes\":\"43 61 66 e9 20 4d 6f 75 73 65\"}"), std::string::npos)
       << text.substr(0, 400);
@@ -46,8 +46,8 @@ TEST(SessionText, AHeaderNumberOutOfRangeIsRefusedBeforeAnyConversion) {
   const std::string header_start =
       "{\"sculpt_session\": 1, \"device\": {\"backend\": \"sim\", \"vendor_product\": "
       "\"046d:c626\", ";
-  for (const std::string field : {"\"usage_page\": 1.8e124", "\"usage_page\": 70000",
-                                  "\"usage\": -1", "\"usage\": 8.5"}) {
+  for (const std::string field :
+       {"\"usage_page\": 1.8e124", "\"usage_page\": 70000", "\"usage\": -1", "\"usage\": 8.5"}) {
     const auto r = session_from_text(header_start + field + "}}\n", "h.jsonl");
     ASSERT_FALSE(r.ok()) << field;
     EXPECT_NE(r.error().message().find("h.jsonl:1: usage"), std::string::npos)
@@ -55,8 +55,8 @@ TEST(SessionText, AHeaderNumberOutOfRangeIsRefusedBeforeAnyConversion) {
     EXPECT_NE(r.error().message().find("expected an integer from 0 to 65535"), std::string::npos)
         << r.error().message();
   }
-  const auto time = session_from_text(
-      header_start + "\"usage\": 8}, \"created_unix_ns\": 1e300}\n", "h.jsonl");
+  const auto time =
+      session_from_text(header_start + "\"usage\": 8}, \"created_unix_ns\": 1e300}\n", "h.jsonl");
   ASSERT_FALSE(time.ok());
   EXPECT_NE(time.error().message().find("created_unix_ns"), std::string::npos);
 }
