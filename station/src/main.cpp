@@ -5,12 +5,12 @@
 #include <string>
 
 #include "cli/commands.h"
-#include "sculpt/core/io/temp_files.h"
+#include "sculpt/base/temp_files.h"
 
 int main(int argc, char** argv) {
   namespace cli = sculpt::station::cli;
   // Ctrl-C or a kill while an output is being written leaves no temporary.
-  sculpt::core::remove_temp_files_on_signals();
+  sculpt::remove_temp_files_on_signals();
   CLI::App app{"sculpt: a virtual sculpting station for 6-DOF input devices", "sculpt"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "sculpt 0.1.0");
@@ -36,12 +36,12 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ValidationError& e) {
     // A value out of range or not a number is bad input: one line, exit 1.
-    return cli::report(sculpt::core::Error(e.what()));
+    return cli::report(sculpt::Error(e.what()));
   } catch (const CLI::ConversionError& e) {
-    return cli::report(sculpt::core::Error(e.what()));
+    return cli::report(sculpt::Error(e.what()));
   } catch (const CLI::ArgumentMismatch& e) {
     // An option given the wrong number of values ("--friction 0.2").
-    return cli::report(sculpt::core::Error(e.what()));
+    return cli::report(sculpt::Error(e.what()));
   } catch (const CLI::ParseError& e) {
     // --help and --version exit 0; everything else (an unknown command or
     // option, a missing argument) is a usage error, exit 2.
@@ -55,10 +55,10 @@ int main(int argc, char** argv) {
     std::string command = "sculpt";
     for (int i = 1; i < argc; ++i)
       command += std::string(" ") + argv[i];
-    return cli::report(sculpt::core::Error("out of memory running `" + command +
+    return cli::report(sculpt::Error("out of memory running `" + command +
                                            "`: an input asks for more than this machine holds"));
   } catch (const std::exception& e) {
     // Out of memory and the like: still one line and a clean exit.
-    return cli::report(sculpt::core::Error(e.what()));
+    return cli::report(sculpt::Error(e.what()));
   }
 }

@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "sculpt/hal/device/raw_event.h"
+#include "sculpt/hal/types/raw_event.h"
 #include "sculpt/hal/parsers/hid_descriptor.h"
 #include "sculpt/hal/parsers/hid_descriptor_parser.h"
 

@@ -21,7 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 namespace nurbs = core::nurbs;
-using core::Result;
 
 const std::string kData = std::string(SCULPT_TEST_DATA_DIR) + "/nurbs/";
 

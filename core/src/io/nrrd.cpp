@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "sculpt/core/io/atomic_file.h"
+#include "sculpt/base/atomic_file.h"
 
 namespace sculpt::core {
 namespace {

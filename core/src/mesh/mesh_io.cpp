@@ -9,7 +9,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "sculpt/core/io/atomic_file.h"
+#include "sculpt/base/atomic_file.h"
 
 namespace sculpt::core {
 namespace {

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sculpt/core/io/atomic_file.h"
+#include "sculpt/base/atomic_file.h"
 
 namespace sculpt::core::nurbs {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <cstdio>
 
-#include "sculpt/core/io/atomic_file.h"
+#include "sculpt/base/atomic_file.h"
 
 namespace sculpt::core::nurbs {
 namespace {

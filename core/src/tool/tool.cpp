@@ -11,7 +11,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
-#include "sculpt/core/io/atomic_file.h"
+#include "sculpt/base/atomic_file.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 
 namespace sculpt::core {

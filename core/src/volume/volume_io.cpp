@@ -4,7 +4,7 @@
 #include <cstring>
 #include <vector>
 
-#include "sculpt/core/io/atomic_file.h"
+#include "sculpt/base/atomic_file.h"
 
 namespace sculpt::core {
 

@@ -63,7 +63,7 @@ class FeedDevice final : public Device {
 
 }  // namespace
 
-core::Result<std::vector<DeviceInfo>> FeedBackend::enumerate() {
+Result<std::vector<DeviceInfo>> FeedBackend::enumerate() {
   std::lock_guard lock(mutex_);
   std::vector<DeviceInfo> out;
   for (const auto& [path, feed] : feeds_)
@@ -71,10 +71,10 @@ core::Result<std::vector<DeviceInfo>> FeedBackend::enumerate() {
   return out;
 }
 
-core::Result<std::unique_ptr<Device>> FeedBackend::open(const DeviceInfo& info) {
+Result<std::unique_ptr<Device>> FeedBackend::open(const DeviceInfo& info) {
   std::lock_guard lock(mutex_);
   const auto it = feeds_.find(info.path);
-  if (it == feeds_.end()) return core::Error(info.id() + ": no such device (unplugged?)");
+  if (it == feeds_.end()) return Error(info.id() + ": no such device (unplugged?)");
   return std::unique_ptr<Device>(std::make_unique<FeedDevice>(it->second));
 }
 

@@ -16,8 +16,8 @@
 #include <cwchar>
 
 #include "backends/sysfs_hidraw.h"
-#include "sculpt/hal/device/clock.h"
-#include "sculpt/hal/device/quirks.h"
+#include "sculpt/hal/types/clock.h"
+#include "sculpt/hal/types/quirks.h"
 #endif
 
 namespace sculpt::hal {
@@ -76,8 +76,8 @@ class HidapiBackend final : public Backend {
     return {};
   }
 
-  core::Result<std::vector<DeviceInfo>> enumerate() override {
-    if (!init_ok_) return core::Error("hidapi: hid_init failed");
+  Result<std::vector<DeviceInfo>> enumerate() override {
+    if (!init_ok_) return Error("hidapi: hid_init failed");
     std::vector<DeviceInfo> out;
     hid_device_info* list = hid_enumerate(0, 0);
     for (hid_device_info* d = list; d != nullptr; d = d->next) {
@@ -106,14 +106,14 @@ class HidapiBackend final : public Backend {
     return out;
   }
 
-  core::Result<std::unique_ptr<Device>> open(const DeviceInfo& info) override {
+  Result<std::unique_ptr<Device>> open(const DeviceInfo& info) override {
     hid_device* h = hid_open_path(info.path.c_str());
     if (h == nullptr) {
       if (::access(info.path.c_str(), R_OK | W_OK) != 0) {
-        return core::Error(info.id() +
+        return Error(info.id() +
                            ": no permission; install the udev rules (see README: Devices)");
       }
-      return core::Error(info.id() + ": cannot open: " + narrow(hid_error(nullptr)));
+      return Error(info.id() + ": cannot open: " + narrow(hid_error(nullptr)));
     }
     return std::unique_ptr<Device>(std::make_unique<HidapiDevice>(h, info));
   }

@@ -19,8 +19,8 @@
 #include <cstring>
 #include <string>
 
-#include "sculpt/hal/device/clock.h"
-#include "sculpt/hal/device/quirks.h"
+#include "sculpt/hal/types/clock.h"
+#include "sculpt/hal/types/quirks.h"
 #endif
 
 namespace sculpt::hal {
@@ -142,12 +142,12 @@ class LibusbBackend final : public Backend {
     return changed_.exchange(false);
   }
 
-  core::Result<std::vector<DeviceInfo>> enumerate() override {
-    if (ctx_ == nullptr) return core::Error(std::string("libusb: ") + status().note);
+  Result<std::vector<DeviceInfo>> enumerate() override {
+    if (ctx_ == nullptr) return Error(std::string("libusb: ") + status().note);
     libusb_device** list = nullptr;
     const ssize_t n = libusb_get_device_list(ctx_, &list);
     if (n < 0)
-      return core::Error(std::string("libusb: cannot list devices: ") +
+      return Error(std::string("libusb: cannot list devices: ") +
                          libusb_error_name(static_cast<int>(n)));
     std::vector<DeviceInfo> out;
     for (ssize_t i = 0; i < n; ++i) {
@@ -185,11 +185,11 @@ class LibusbBackend final : public Backend {
     return out;
   }
 
-  core::Result<std::unique_ptr<Device>> open(const DeviceInfo& info) override {
-    if (ctx_ == nullptr) return core::Error(info.id() + ": " + status().note);
+  Result<std::unique_ptr<Device>> open(const DeviceInfo& info) override {
+    if (ctx_ == nullptr) return Error(info.id() + ": " + status().note);
     libusb_device** list = nullptr;
     const ssize_t n = libusb_get_device_list(ctx_, &list);
-    if (n < 0) return core::Error(info.id() + ": cannot list devices");
+    if (n < 0) return Error(info.id() + ": cannot list devices");
     libusb_device* found = nullptr;
     int interface = -1;
     uint8_t endpoint = 0;
@@ -205,15 +205,15 @@ class LibusbBackend final : public Backend {
     const int r = found ? libusb_open(found, &h) : LIBUSB_ERROR_NO_DEVICE;
     libusb_free_device_list(list, 1);
     if (r == LIBUSB_ERROR_ACCESS) {
-      return core::Error(info.id() +
+      return Error(info.id() +
                          ": no permission; install the udev rules (see README: Devices)");
     }
-    if (r != 0) return core::Error(info.id() + ": cannot open: " + libusb_error_name(r));
+    if (r != 0) return Error(info.id() + ": cannot open: " + libusb_error_name(r));
     bool reattach = false;
     if (libusb_kernel_driver_active(h, interface) == 1) {
       if (const int d = libusb_detach_kernel_driver(h, interface); d != 0) {
         libusb_close(h);
-        return core::Error(info.id() +
+        return Error(info.id() +
                            ": cannot detach the kernel driver: " + libusb_error_name(d));
       }
       reattach = true;
@@ -221,7 +221,7 @@ class LibusbBackend final : public Backend {
     if (const int c = libusb_claim_interface(h, interface); c != 0) {
       if (reattach) libusb_attach_kernel_driver(h, interface);
       libusb_close(h);
-      return core::Error(info.id() + ": cannot claim interface " + std::to_string(interface) +
+      return Error(info.id() + ": cannot claim interface " + std::to_string(interface) +
                          ": " + libusb_error_name(c));
     }
     DeviceInfo opened = info;

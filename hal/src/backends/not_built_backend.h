@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "sculpt/hal/device/device.h"
+#include "sculpt/hal/types/device.h"
 
 namespace sculpt::hal::detail {
 

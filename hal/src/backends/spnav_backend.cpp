@@ -19,7 +19,7 @@
 #include <deque>
 #include <memory>
 
-#include "sculpt/hal/device/clock.h"
+#include "sculpt/hal/types/clock.h"
 #endif
 
 namespace sculpt::hal {
@@ -141,9 +141,9 @@ class SpnavBackend final : public Backend {
     return {};
   }
 
-  core::Result<std::vector<DeviceInfo>> enumerate() override {
+  Result<std::vector<DeviceInfo>> enumerate() override {
     if (g_connection_in_use.load()) return std::vector<DeviceInfo>{cached_};
-    if (!connect_daemon()) return core::Error(std::string("spnav: ") + kNoDaemon);
+    if (!connect_daemon()) return Error(std::string("spnav: ") + kNoDaemon);
     // Protocol 0 daemons (before 1.0) cannot describe the device: assume one.
     const bool described = spnav_protocol() >= 1;
     DeviceInfo info = described ? query_device() : DeviceInfo{};
@@ -160,14 +160,14 @@ class SpnavBackend final : public Backend {
     return out;
   }
 
-  core::Result<std::unique_ptr<Device>> open(const DeviceInfo& info) override {
+  Result<std::unique_ptr<Device>> open(const DeviceInfo& info) override {
     bool expected = false;
     if (!g_connection_in_use.compare_exchange_strong(expected, true)) {
-      return core::Error(info.id() + ": already open (libspnav has one connection per process)");
+      return Error(info.id() + ": already open (libspnav has one connection per process)");
     }
     if (!connect_daemon()) {
       g_connection_in_use.store(false);
-      return core::Error(info.id() + ": " + kNoDaemon);
+      return Error(info.id() + ": " + kNoDaemon);
     }
     spnav_client_name("sculpt");
     cached_ = spnav_protocol() >= 1 ? query_device() : info;

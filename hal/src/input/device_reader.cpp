@@ -1,6 +1,6 @@
 #include "sculpt/hal/input/device_reader.h"
 
-#include "sculpt/hal/device/clock.h"
+#include "sculpt/hal/types/clock.h"
 
 namespace sculpt::hal {
 

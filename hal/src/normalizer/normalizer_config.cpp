@@ -60,7 +60,7 @@ std::string fmt(float v) {
 
 }  // namespace
 
-core::Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
+Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
                                                        const std::string& name) {
   NormalizerConfig c;
   int line_no = 0;
@@ -81,14 +81,14 @@ core::Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
     const std::string where = name + ":" + std::to_string(line_no) + ": ";
     const size_t eq = line.find('=');
     if (eq == std::string_view::npos)
-      return core::Error(where + "expected 'key = value', got '" + std::string(line) + "'");
+      return Error(where + "expected 'key = value', got '" + std::string(line) + "'");
     const std::string_view key = trim(line.substr(0, eq));
     const std::string_view value = trim(line.substr(eq + 1));
     const std::string k(key);
-    auto number = [&](float lo, float hi, float& out) -> core::Status {
+    auto number = [&](float lo, float hi, float& out) -> Status {
       float v = 0;
       if (!parse_float(value, v) || v < lo || v > hi) {
-        return core::Error(where + k + ": expected a number in [" + fmt(lo) + ", " + fmt(hi) +
+        return Error(where + k + ": expected a number in [" + fmt(lo) + ", " + fmt(hi) +
                            "], got '" + std::string(value) + "'");
       }
       out = v;
@@ -103,7 +103,7 @@ core::Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
       const bool dz = base == "deadzone";
       float v = 0;
       if (auto st = dz ? number(0.0f, 0.9f, v) : number(0.0f, 10.0f, v); !st) return st.error();
-      if (!dz && v <= 0.0f) return core::Error(where + k + ": must be above 0");
+      if (!dz && v <= 0.0f) return Error(where + k + ": must be above 0");
       auto& arr = dz ? c.deadzone : c.sensitivity;
       if (sub.empty()) {
         arr.fill(v);
@@ -114,7 +114,7 @@ core::Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
       } else if (int a = axis_index(sub); a >= 0) {
         arr[a] = v;
       } else {
-        return core::Error(where + "unknown axis '" + std::string(sub) +
+        return Error(where + "unknown axis '" + std::string(sub) +
                            "' (want translation, rotation, tx, ty, tz, rx, ry or rz)");
       }
     } else if (key == "curve") {
@@ -129,14 +129,14 @@ core::Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
                  c.curve_param >= 1.0f && c.curve_param <= 4.0f) {
         c.curve = CurveKind::kPower;
       } else {
-        return core::Error(where +
+        return Error(where +
                            "curve: expected linear, cubic K (0..1) or power P (1..4), got '" +
                            std::string(value) + "'");
       }
     } else if (key == "map") {
       const auto w = words(value);
       if (w.size() != 6) {
-        return core::Error(where + "map: expected 6 axis names, got " + std::to_string(w.size()));
+        return Error(where + "map: expected 6 axis names, got " + std::to_string(w.size()));
       }
       std::array<bool, 6> used{};
       for (int i = 0; i < 6; ++i) {
@@ -147,8 +147,8 @@ core::Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
           n.remove_prefix(1);
         }
         const int a = axis_index(n);
-        if (a < 0) return core::Error(where + "map: unknown axis '" + std::string(w[i]) + "'");
-        if (used[a]) return core::Error(where + "map: axis '" + std::string(n) + "' used twice");
+        if (a < 0) return Error(where + "map: unknown axis '" + std::string(w[i]) + "'");
+        if (used[a]) return Error(where + "map: axis '" + std::string(n) + "' used twice");
         used[a] = true;
         c.map_source[i] = static_cast<uint8_t>(a);
         c.map_sign[i] = sign;
@@ -161,14 +161,14 @@ core::Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
       else if (value == "rotation")
         c.lock = AxisLock::kRotation;
       else
-        return core::Error(where + "lock: expected none, translation or rotation, got '" +
+        return Error(where + "lock: expected none, translation or rotation, got '" +
                            std::string(value) + "'");
     } else if (key == "dominant" || key == "filter") {
       bool on = false;
       if (value == "on")
         on = true;
       else if (value != "off")
-        return core::Error(where + k + ": expected on or off, got '" + std::string(value) + "'");
+        return Error(where + k + ": expected on or off, got '" + std::string(value) + "'");
       (key == "dominant" ? c.dominant : c.filter) = on;
     } else if (key == "filter.min_cutoff_hz") {
       if (auto st = number(0.01f, 100.0f, c.filter_params.min_cutoff_hz); !st) return st.error();
@@ -177,19 +177,19 @@ core::Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
     } else if (key == "filter.d_cutoff_hz") {
       if (auto st = number(0.01f, 100.0f, c.filter_params.d_cutoff_hz); !st) return st.error();
     } else {
-      return core::Error(where + "unknown key '" + k + "'");
+      return Error(where + "unknown key '" + k + "'");
     }
     if (eol == text.size()) break;
   }
   return c;
 }
 
-core::Result<NormalizerConfig> load_normalizer_config(const std::string& path) {
+Result<NormalizerConfig> load_normalizer_config(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) return core::Error(path + ": cannot open");
+  if (!in) return Error(path + ": cannot open");
   std::ostringstream ss;
   ss << in.rdbuf();
-  if (in.bad()) return core::Error(path + ": read failed");
+  if (in.bad()) return Error(path + ": read failed");
   return parse_normalizer_config(ss.str(), path);
 }
 
@@ -202,7 +202,7 @@ std::string default_normalizer_config_path() {
   return "input.conf";
 }
 
-core::Result<NormalizerConfig> load_normalizer_config_or_defaults(const std::string& path) {
+Result<NormalizerConfig> load_normalizer_config_or_defaults(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return NormalizerConfig{};
   return load_normalizer_config(path);

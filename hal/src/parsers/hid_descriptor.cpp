@@ -10,7 +10,7 @@
 #include <map>
 #include <string>
 
-#include "sculpt/hal/device/raw_event.h"
+#include "sculpt/hal/types/raw_event.h"
 
 namespace sculpt::hal {
 namespace {
@@ -39,8 +39,8 @@ constexpr uint16_t kMaxButtonUsage = 128;
 // whatever a (hostile) descriptor declares.
 constexpr size_t kMaxButtonFields = 1024;
 
-core::Error at(size_t offset, const std::string& what) {
-  return core::Error("report descriptor: byte " + std::to_string(offset) + ": " + what);
+Error at(size_t offset, const std::string& what) {
+  return Error("report descriptor: byte " + std::to_string(offset) + ": " + what);
 }
 
 }  // namespace
@@ -53,7 +53,7 @@ bool HidLayout::is_multi_axis_controller() const {
   return false;
 }
 
-core::Result<HidLayout> parse_hid_descriptor(std::span<const uint8_t> d) {
+Result<HidLayout> parse_hid_descriptor(std::span<const uint8_t> d) {
   HidLayout layout;
   Globals g;
   std::vector<Globals> stack;
@@ -225,7 +225,7 @@ core::Result<HidLayout> parse_hid_descriptor(std::span<const uint8_t> d) {
     have_range = false;
   }
   if (depth != 0)
-    return core::Error("report descriptor: " + std::to_string(depth) + " collection(s) not closed");
+    return Error("report descriptor: " + std::to_string(depth) + " collection(s) not closed");
   return layout;
 }
 

@@ -1,30 +1,30 @@
 #include "sculpt/hal/parsers/make_parser.h"
 
-#include "sculpt/hal/device/quirks.h"
+#include "sculpt/hal/types/quirks.h"
 #include "sculpt/hal/parsers/axis_event_parser.h"
 #include "sculpt/hal/parsers/hid_descriptor_parser.h"
 #include "sculpt/hal/parsers/spacemouse_parser.h"
 
 namespace sculpt::hal {
 
-core::Result<std::unique_ptr<ReportParser>> make_parser(const DeviceInfo& info) {
+Result<std::unique_ptr<ReportParser>> make_parser(const DeviceInfo& info) {
   const std::string who = info.id() + " (" + info.vendor_product() + ")";
   // spacenavd has decoded the device already, whatever it is.
   if (info.backend == "spnav")
     return std::unique_ptr<ReportParser>(std::make_unique<AxisEventParser>());
   if (const DeviceQuirks* q = find_quirks(info.vendor_id, info.product_id)) {
     if (q->kind == QuirkKind::kIgnore) {
-      return core::Error(who + ": " + std::string(q->name) + " is not a 6-DOF device");
+      return Error(who + ": " + std::string(q->name) + " is not a 6-DOF device");
     }
     return std::unique_ptr<ReportParser>(std::make_unique<SpaceMouseParser>(*q));
   }
   if (info.report_descriptor.empty()) {
-    return core::Error(who + ": unknown device and no HID report descriptor to read it by");
+    return Error(who + ": unknown device and no HID report descriptor to read it by");
   }
   auto layout = parse_hid_descriptor(info.report_descriptor);
   if (!layout) return layout.error().in(who);
   if (!layout->is_multi_axis_controller()) {
-    return core::Error(who + ": not a multi-axis controller (usage page " +
+    return Error(who + ": not a multi-axis controller (usage page " +
                        std::to_string(layout->usage_page) + " usage " +
                        std::to_string(layout->usage) + ", want page 1 usage 8 with axes)");
   }

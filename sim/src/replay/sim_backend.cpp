@@ -78,14 +78,14 @@ SimBackend::SimBackend(Session session, std::string path, double speed)
   shared_->speed = speed;
 }
 
-core::Result<std::vector<hal::DeviceInfo>> SimBackend::enumerate() {
+Result<std::vector<hal::DeviceInfo>> SimBackend::enumerate() {
   return std::vector<hal::DeviceInfo>{info_};
 }
 
-core::Result<std::unique_ptr<hal::Device>> SimBackend::open(const hal::DeviceInfo& info) {
-  if (info.path != info_.path) return core::Error("sim:" + info.path + ": no such session device");
+Result<std::unique_ptr<hal::Device>> SimBackend::open(const hal::DeviceInfo& info) {
+  if (info.path != info_.path) return Error("sim:" + info.path + ": no such session device");
   std::lock_guard lock(shared_->mutex);
-  if (shared_->opened) return core::Error("sim:" + info.path + ": already open");
+  if (shared_->opened) return Error("sim:" + info.path + ": already open");
   shared_->opened = true;
   return std::unique_ptr<hal::Device>(std::make_unique<SimDevice>(shared_, info_));
 }

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "sculpt/core/io/atomic_file.h"
+#include "sculpt/base/atomic_file.h"
 #include "sculpt/sim/session/command_limits.h"
 
 namespace sculpt::sim {
@@ -211,29 +211,29 @@ std::string decode_record(uint8_t kind, uint8_t flags, int64_t t, std::span<cons
 
 }  // namespace
 
-core::Result<Session> parse_session_bytes(std::span<const uint8_t> bytes, const std::string& name,
+Result<Session> parse_session_bytes(std::span<const uint8_t> bytes, const std::string& name,
                                           SessionReadInfo* info) {
   if (bytes.size() < sizeof(kSessionMagic) ||
       std::memcmp(bytes.data(), kSessionMagic, sizeof(kSessionMagic)) != 0) {
-    return core::Error(name + ": not a sculpt session file (bad magic)");
+    return Error(name + ": not a sculpt session file (bad magic)");
   }
   Reader r(bytes.subspan(sizeof(kSessionMagic)));
   uint16_t version, flags;
   uint32_t n;
   if (!r.num(version) || !r.num(flags) || !r.num(n))
-    return core::Error(name + ": truncated header");
+    return Error(name + ": truncated header");
   if (version != kSessionVersion) {
-    return core::Error(name + ": session version " + std::to_string(version) +
+    return Error(name + ": session version " + std::to_string(version) +
                        " is not supported (this build reads " + std::to_string(kSessionVersion) +
                        ")");
   }
   if (n > kMaxHeaderBytes)
-    return core::Error(name + ": header length " + std::to_string(n) + " is absurd");
+    return Error(name + ": header length " + std::to_string(n) + " is absurd");
   std::span<const uint8_t> fields;
   uint32_t header_crc;
-  if (!r.bytes(n, fields) || !r.num(header_crc)) return core::Error(name + ": truncated header");
+  if (!r.bytes(n, fields) || !r.num(header_crc)) return Error(name + ": truncated header");
   if (crc(fields) != header_crc)
-    return core::Error(name + ": header checksum mismatch (damaged file)");
+    return Error(name + ": header checksum mismatch (damaged file)");
 
   Session s;
   Reader f(fields);
@@ -244,7 +244,7 @@ core::Result<Session> parse_session_bytes(std::span<const uint8_t> bytes, const 
                          f.num(d.usage) && f.blob(d.report_descriptor, kMaxDescriptorBytes) &&
                          f.str(s.header.normalizer_config, kMaxHeaderBytes) &&
                          f.num(s.header.created_unix_ns) && f.left() == 0;
-  if (!fields_ok) return core::Error(name + ": malformed header fields");
+  if (!fields_ok) return Error(name + ": malformed header fields");
 
   const size_t records_start = sizeof(kSessionMagic) + r.at();
   size_t at = records_start;
@@ -291,21 +291,21 @@ core::Result<Session> parse_session_bytes(std::span<const uint8_t> bytes, const 
   return s;
 }
 
-core::Result<Session> read_session_file(const std::filesystem::path& path, SessionReadInfo* info) {
+Result<Session> read_session_file(const std::filesystem::path& path, SessionReadInfo* info) {
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
-  if (ec) return core::Error(path.string() + ": cannot open: " + ec.message());
+  if (ec) return Error(path.string() + ": cannot open: " + ec.message());
   // Sessions are read whole; the limit keeps a wrong path (a disk image, say)
   // from exhausting memory. An hour at 1 kHz is about 100 MB.
   constexpr uintmax_t kMaxSessionBytes = uintmax_t{4} << 30;
   if (size > kMaxSessionBytes)
-    return core::Error(path.string() + ": too large for a session (" + std::to_string(size) +
+    return Error(path.string() + ": too large for a session (" + std::to_string(size) +
                        " bytes)");
   std::ifstream in(path, std::ios::binary);
-  if (!in) return core::Error(path.string() + ": cannot open: " + std::strerror(errno));
+  if (!in) return Error(path.string() + ": cannot open: " + std::strerror(errno));
   std::vector<uint8_t> bytes(static_cast<size_t>(size));
   in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (!in) return core::Error(path.string() + ": read failed");
+  if (!in) return Error(path.string() + ": read failed");
   return parse_session_bytes(bytes, path.string(), info);
 }
 
@@ -316,20 +316,20 @@ std::vector<uint8_t> serialize_session(const Session& session) {
   return out;
 }
 
-core::Status write_session_file(const std::filesystem::path& path, const Session& session) {
-  core::AtomicFileWriter out(path);
+Status write_session_file(const std::filesystem::path& path, const Session& session) {
+  AtomicFileWriter out(path);
   const std::vector<uint8_t> bytes = serialize_session(session);
   out.write(bytes.data(), bytes.size());
   return out.commit();
 }
 
-core::Result<SessionWriter> SessionWriter::create(const std::filesystem::path& path,
+Result<SessionWriter> SessionWriter::create(const std::filesystem::path& path,
                                                   const SessionHeader& header) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) return core::Error(path.string() + ": cannot create: " + std::strerror(errno));
+  if (fd < 0) return Error(path.string() + ": cannot create: " + std::strerror(errno));
   SessionWriter w(fd, path.string());
-  if (core::Status st = w.write_all(header_bytes(header)); !st) return st.error();
-  if (core::Status st = w.sync(); !st) return st.error();
+  if (Status st = w.write_all(header_bytes(header)); !st) return st.error();
+  if (Status st = w.sync(); !st) return st.error();
   return w;
 }
 
@@ -359,42 +359,42 @@ SessionWriter::~SessionWriter() {
   (void)close();
 }
 
-core::Status SessionWriter::write_all(std::span<const uint8_t> bytes) {
+Status SessionWriter::write_all(std::span<const uint8_t> bytes) {
   while (!bytes.empty()) {
     const ssize_t n = ::write(fd_, bytes.data(), bytes.size());
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return core::Error(name_ + ": write failed: " + std::strerror(errno));
+    if (n <= 0) return Error(name_ + ": write failed: " + std::strerror(errno));
     bytes = bytes.subspan(static_cast<size_t>(n));
   }
   return {};
 }
 
-core::Status SessionWriter::sync() {
-  if (::fdatasync(fd_) != 0) return core::Error(name_ + ": sync failed: " + std::strerror(errno));
+Status SessionWriter::sync() {
+  if (::fdatasync(fd_) != 0) return Error(name_ + ": sync failed: " + std::strerror(errno));
   last_sync_ = std::chrono::steady_clock::now();
   return {};
 }
 
-core::Status SessionWriter::append(const SessionRecord& record) {
-  if (fd_ < 0) return core::Error(name_ + ": recording is closed");
-  if (record.t_ns() < last_t_ns_) return core::Error(name_ + ": record goes back in time");
+Status SessionWriter::append(const SessionRecord& record) {
+  if (fd_ < 0) return Error(name_ + ": recording is closed");
+  if (record.t_ns() < last_t_ns_) return Error(name_ + ": record goes back in time");
   std::vector<uint8_t> bytes;
   append_record(record, bytes);
-  if (core::Status st = write_all(bytes); !st) return st;
+  if (Status st = write_all(bytes); !st) return st;
   ++records_;
   last_t_ns_ = record.t_ns();
   return sync_if_due();
 }
 
-core::Status SessionWriter::sync_if_due() {
+Status SessionWriter::sync_if_due() {
   if (fd_ < 0) return {};
   if (std::chrono::steady_clock::now() - last_sync_ < kSyncInterval) return {};
   return sync();
 }
 
-core::Status SessionWriter::close() {
+Status SessionWriter::close() {
   if (fd_ < 0) return {};
-  core::Status st = sync();
+  Status st = sync();
   ::close(fd_);
   fd_ = -1;
   return st;

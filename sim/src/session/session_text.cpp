@@ -422,7 +422,7 @@ std::string session_to_text(const Session& session) {
   return out;
 }
 
-core::Result<Session> session_from_text(std::string_view text, const std::string& name) {
+Result<Session> session_from_text(std::string_view text, const std::string& name) {
   Session s;
   bool have_header = false;
   int64_t last_t = INT64_MIN;
@@ -436,7 +436,7 @@ core::Result<Session> session_from_text(std::string_view text, const std::string
     if (line.find_first_not_of(" \t") == std::string_view::npos || line[0] == '#') continue;
     const std::string where = name + ":" + std::to_string(line_no) + ": ";
     const json j = json::parse(line, nullptr, /*allow_exceptions=*/false);
-    if (j.is_discarded() || !j.is_object()) return core::Error(where + "not a JSON object");
+    if (j.is_discarded() || !j.is_object()) return Error(where + "not a JSON object");
     try {
       if (!have_header) {
         if (!j.contains("sculpt_session"))
@@ -473,12 +473,12 @@ core::Result<Session> session_from_text(std::string_view text, const std::string
       last_t = r.t_ns();
       s.records.push_back(r);
     } catch (const std::string& why) {
-      return core::Error(where + why);
+      return Error(where + why);
     } catch (const nlohmann::json::exception& e) {
-      return core::Error(where + "malformed field (" + e.what() + ")");
+      return Error(where + "malformed field (" + e.what() + ")");
     }
   }
-  if (!have_header) return core::Error(name + ": empty session (no header line)");
+  if (!have_header) return Error(name + ": empty session (no header line)");
   return s;
 }
 

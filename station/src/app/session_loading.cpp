@@ -8,10 +8,10 @@
 
 namespace sculpt::station {
 
-core::Result<sim::Session> load_session(const std::filesystem::path& path,
+Result<sim::Session> load_session(const std::filesystem::path& path,
                                         sim::SessionReadInfo* info) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) return core::Error(path.string() + ": cannot open: " + std::strerror(errno));
+  if (!in) return Error(path.string() + ": cannot open: " + std::strerror(errno));
   char magic[sizeof(sim::kSessionMagic)] = {};
   in.read(magic, sizeof magic);
   if (in.gcount() == sizeof magic && std::memcmp(magic, sim::kSessionMagic, sizeof magic) == 0) {

@@ -4,7 +4,7 @@
 
 namespace sculpt::station {
 
-core::Status SessionRecorder::start(const std::filesystem::path& path,
+Status SessionRecorder::start(const std::filesystem::path& path,
                                     const sim::SessionHeader& header,
                                     const std::vector<sim::Command>& opening, int64_t now_ns) {
   if (writer_) {
@@ -43,7 +43,7 @@ void SessionRecorder::raw(const hal::RawEvent& e) {
   raw_.push_back(e);
 }
 
-core::Status SessionRecorder::flush() {
+Status SessionRecorder::flush() {
   std::vector<hal::RawEvent> raw;
   {
     std::lock_guard lock(raw_mutex_);
@@ -80,22 +80,22 @@ core::Status SessionRecorder::flush() {
       }
     }
     last_t_ns_ = r.t_ns();
-    if (core::Status st = writer_->append(r); !st) {
+    if (Status st = writer_->append(r); !st) {
       stop_accepting();
       return st;
     }
   }
-  core::Status st = writer_->sync_if_due();
+  Status st = writer_->sync_if_due();
   if (!st) stop_accepting();
   return st;
 }
 
-core::Result<int64_t> SessionRecorder::stop() {
+Result<int64_t> SessionRecorder::stop() {
   if (!writer_) return int64_t{0};
   released_t_ns_ = std::numeric_limits<int64_t>::max();
-  if (core::Status st = flush(); !st) return st.error();
+  if (Status st = flush(); !st) return st.error();
   const int64_t records = writer_->records();
-  core::Status st = writer_->close();
+  Status st = writer_->close();
   stop_accepting();
   if (!st) return st.error();
   return records;

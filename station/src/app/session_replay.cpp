@@ -36,7 +36,7 @@ hal::InputEvent lifecycle_event(hal::InputKind kind, int64_t t_ns) {
 
 }  // namespace
 
-core::Result<ReplayResult> replay_session(const sim::Session& session, const std::string& name,
+Result<ReplayResult> replay_session(const sim::Session& session, const std::string& name,
                                           StationLoop& loop, const ReplayOptions& options) {
   const hal::DeviceInfo& device = session.header.device;
   auto config = hal::parse_normalizer_config(session.header.normalizer_config,
@@ -44,9 +44,9 @@ core::Result<ReplayResult> replay_session(const sim::Session& session, const std
   if (!config) return config.error();
   // A re-plugged device gets a new reader, hence a new parser and normaliser
   // with no memory of the buttons held before: so does its replay.
-  auto make_pipeline = [&]() -> core::Result<std::unique_ptr<hal::MotionPipeline>> {
+  auto make_pipeline = [&]() -> Result<std::unique_ptr<hal::MotionPipeline>> {
     auto parser = hal::make_parser(device);
-    if (!parser) return core::Error(name + ": " + parser.error().message());
+    if (!parser) return Error(name + ": " + parser.error().message());
     return std::make_unique<hal::MotionPipeline>(std::move(parser).value(), *config);
   };
   auto first = make_pipeline();

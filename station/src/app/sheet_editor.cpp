@@ -86,12 +86,12 @@ void SheetEditor::reset(std::optional<nurbs::NurbsSurface> surface) {
   retessellate();
 }
 
-core::Status SheetEditor::grab(glm::dvec3 tip, const SheetDragOptions& options) {
-  if (!surface_) return core::Error("there is no sheet to grab");
+Status SheetEditor::grab(glm::dvec3 tip, const SheetDragOptions& options) {
+  if (!surface_) return Error("there is no sheet to grab");
   if (drag_) release();
   const nurbs::SurfacePoint hit = nurbs::closest_point(*surface_, tip);
   if (!(hit.distance <= options.reach_vox)) {
-    return core::Error("the sheet is " +
+    return Error("the sheet is " +
                        std::to_string(static_cast<int>(std::lround(hit.distance))) +
                        " voxels from the tool; move within " +
                        std::to_string(static_cast<int>(options.reach_vox)) + " to grab it");

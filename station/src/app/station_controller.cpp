@@ -10,12 +10,12 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "make_command.h"
-#include "sculpt/core/io/atomic_file.h"
+#include "sculpt/base/atomic_file.h"
 #include "sculpt/core/mesh/marching_cubes.h"
 #include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/sim/synth/session_script.h"
-#include "sculpt/station/project/session_start.h"
+#include "sculpt/station/app/session_start.h"
 
 namespace sculpt::station {
 namespace {
@@ -185,7 +185,7 @@ StationController::~StationController() {
   if (recorder_.recording()) (void)recorder_.stop();
 }
 
-bool StationController::report(const core::Status& st, const std::string& done) {
+bool StationController::report(const Status& st, const std::string& done) {
   status_ = st ? done : st.error().message();
   return st.ok();
 }
@@ -559,9 +559,9 @@ ProjectView StationController::view() const {
   return v;
 }
 
-core::Status StationController::save(const std::filesystem::path& path) {
+Status StationController::save(const std::filesystem::path& path) {
   const StationSettings& s = loop_.settings();
-  core::Status st =
+  Status st =
       save_project(path, loop_.volume(), s, s.custom_tool ? &loop_.tool() : nullptr, view(),
                    loop_.sheet().has_sheet() ? &loop_.sheet().surface() : nullptr);
   if (st) saved_generation_ = generation_;
@@ -569,7 +569,7 @@ core::Status StationController::save(const std::filesystem::path& path) {
   return st;
 }
 
-core::Status StationController::open(const std::filesystem::path& path) {
+Status StationController::open(const std::filesystem::path& path) {
   auto project = load_project(path);
   if (!project) {
     report(project.error(), "");
@@ -588,7 +588,7 @@ core::Status StationController::open(const std::filesystem::path& path) {
   return {};
 }
 
-core::Status StationController::export_mesh(const std::filesystem::path& path) {
+Status StationController::export_mesh(const std::filesystem::path& path) {
   auto format = core::mesh_format_for(path);
   if (!format) {
     report(format.error(), "");
@@ -597,7 +597,7 @@ core::Status StationController::export_mesh(const std::filesystem::path& path) {
   // Full resolution, whatever the view draws.
   const core::Mesh mesh = options_.loop.mesh ? (loop_.update_mesh(), loop_.mesh().welded_mesh())
                                              : core::marching_cubes(loop_.volume());
-  core::Status st = core::write_mesh(path, mesh, *format);
+  Status st = core::write_mesh(path, mesh, *format);
   report(st, "exported " + path.string());
   return st;
 }
@@ -635,7 +635,7 @@ std::vector<sim::Command> StationController::opening_commands(bool with_block) c
   return c;
 }
 
-core::Status StationController::start_recording(const std::filesystem::path& path, int64_t now_ns) {
+Status StationController::start_recording(const std::filesystem::path& path, int64_t now_ns) {
   sim::SessionHeader header;
   header.device = device_info_;
   header.normalizer_config = normalizer_text_;
@@ -652,7 +652,7 @@ core::Status StationController::start_recording(const std::filesystem::path& pat
     std::filesystem::remove(start, ec);
   } else {
     const StationSettings& s = loop_.settings();
-    core::Status saved =
+    Status saved =
         save_project(start, loop_.volume(), s, s.custom_tool ? &loop_.tool() : nullptr, view(),
                      loop_.sheet().has_sheet() ? &loop_.sheet().surface() : nullptr);
     if (!saved) {
@@ -660,14 +660,14 @@ core::Status StationController::start_recording(const std::filesystem::path& pat
       return saved;
     }
   }
-  core::Status st =
+  Status st =
       recorder_.start(path, header, opening_commands(/*with_block=*/fresh), stamp(now_ns));
   report(st, "recording to " + path.string() +
                  (fresh ? "" : " (starting from this sculpture, saved as " + start.string() + ")"));
   return st;
 }
 
-core::Status StationController::stop_recording() {
+Status StationController::stop_recording() {
   auto records = recorder_.stop();
   if (!records) {
     report(records.error(), "");
@@ -685,14 +685,14 @@ std::filesystem::path StationController::autosave_path() const {
 
 void StationController::finish_autosave() {
   if (autosave_.valid()) {
-    core::Status st = autosave_.get();
+    Status st = autosave_.get();
     if (!st) status_ = "autosave failed: " + st.error().message();
   }
 }
 
 void StationController::tick(int64_t now_ns) {
   if (recorder_.recording()) {
-    if (core::Status st = recorder_.flush(); !st)
+    if (Status st = recorder_.flush(); !st)
       status_ = "recording stopped: " + st.error().message();
   }
   if (options_.autosave_seconds <= 0 || generation_ == saved_generation_) return;
@@ -717,9 +717,9 @@ void StationController::tick(int64_t now_ns) {
       });
 }
 
-core::Status StationController::save_input_settings(float sensitivity, float deadzone) {
+Status StationController::save_input_settings(float sensitivity, float deadzone) {
   const std::string& path = options_.normalizer_config_path;
-  if (path.empty()) return core::Error("no input settings file");
+  if (path.empty()) return Error("no input settings file");
   auto config = hal::load_normalizer_config_or_defaults(path);
   if (!config) {
     report(config.error(), "");
@@ -729,10 +729,10 @@ core::Status StationController::save_input_settings(float sensitivity, float dea
   config->deadzone.fill(std::clamp(deadzone, 0.0f, 0.9f));
   std::error_code ec;
   std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
-  core::AtomicFileWriter writer(path);
+  AtomicFileWriter writer(path);
   if (!writer.ok()) return writer.error();
   writer.write(hal::to_text(*config));
-  core::Status st = writer.commit();
+  Status st = writer.commit();
   report(st, "saved the input settings to " + path + " (devices opened from now on use them)");
   return st;
 }

@@ -97,10 +97,10 @@ bool StationController::sheet_as_tool(int64_t now_ns) {
   return loop_.sheet_problem().empty();
 }
 
-core::Status StationController::export_sheet(const std::filesystem::path& stem) {
+Status StationController::export_sheet(const std::filesystem::path& stem) {
   if (!loop_.sheet().has_sheet()) {
     status_ = "there is no sheet to export";
-    return core::Error(status_);
+    return Error(status_);
   }
   auto with = [&](const char* ext) {
     std::filesystem::path p = stem;
@@ -108,7 +108,7 @@ core::Status StationController::export_sheet(const std::filesystem::path& stem) 
     return p;
   };
   const core::nurbs::NurbsSurface& s = loop_.sheet().surface();
-  core::Status st = core::nurbs::write_json(with(".json"), s);
+  Status st = core::nurbs::write_json(with(".json"), s);
   if (st) st = core::nurbs::write_freeform_obj(with(".obj"), s);
   if (st) st = core::write_mesh(with(".ply"), loop_.sheet().mesh(), core::MeshFormat::kPlyBinary);
   report(st, "sheet exported: " + with(".json").string() + " (NURBS), " + with(".obj").string() +

@@ -256,7 +256,7 @@ void StationLoop::press() {
   pressed_ = true;
   sheet_press_ = settings_.sheet_editing;
   if (sheet_press_) {
-    const core::Status grabbed =
+    const Status grabbed =
         sheet_.grab(glm::dvec3(integrator_.pose().position), settings_.sheet_drag);
     sheet_held_ = grabbed.ok();
     sheet_problem_ = grabbed.ok() ? std::string() : grabbed.error().message();

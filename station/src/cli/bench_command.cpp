@@ -40,13 +40,13 @@ int run_bench(const BenchOptions& o) {
   benchmark::Initialize(&argc, argv.data());
   if (benchmark::RunSpecifiedBenchmarks() == 0 && !o.list) {
     return report(
-        core::Error("--filter '" + o.filter + "' matches no benchmark (see sculpt bench --list)"));
+        Error("--filter '" + o.filter + "' matches no benchmark (see sculpt bench --list)"));
   }
   benchmark::Shutdown();
   return 0;
 #else
   (void)o;
-  return report(core::Error("benchmarks were not built (configure with -DSCULPT_BUILD_BENCH=ON)"));
+  return report(Error("benchmarks were not built (configure with -DSCULPT_BUILD_BENCH=ON)"));
 #endif
 }
 

@@ -32,7 +32,7 @@ int run_close(const CloseOptions& o) {
   if (!in) return report(in.error());
   const core::DenseGrid<float> closed = core::close_distance(in->phi, o.radius, o.threads);
   const bool as_float = o.sdf || !in->from_density;
-  const core::Status st =
+  const Status st =
       as_float ? core::write_nrrd(o.output, closed)
                : core::write_nrrd(o.output, core::density_from_distance_field(closed));
   if (!st) return report(st.error());

@@ -9,7 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 
 namespace sculpt::station::cli {
 
@@ -49,6 +49,6 @@ struct ReplayCliOptions {
 int replay_to_outputs(const ReplayCliOptions& options);
 
 /// Prints "sculpt: <message>" on stderr and returns exit code 1.
-int report(const core::Error& error);
+int report(const Error& error);
 
 }  // namespace sculpt::station::cli

@@ -36,15 +36,15 @@ int run_contours(const ContoursOptions& o) {
   core::MeshFormat format = core::MeshFormat::kPlyBinary;
   if (!volume_out) {
     auto f = core::mesh_format_for(out);
-    if (!f) return report(core::Error(o.output + ": output must be .nrrd, .ply, .obj or .stl"));
+    if (!f) return report(Error(o.output + ": output must be .nrrd, .ply, .obj or .stl"));
     format = *f;
-    if (o.sdf) return report(core::Error(o.output + ": --sdf applies to .nrrd output only"));
+    if (o.sdf) return report(Error(o.output + ": --sdf applies to .nrrd output only"));
   }
   auto stack = core::read_contours(o.input);
   if (!stack) return report(stack.error());
   const core::DenseGrid<float> field = core::contour_distance_field(*stack, o.threads);
   const core::DenseGrid<uint8_t> density = core::density_from_distance_field(field);
-  core::Status st;
+  Status st;
   if (volume_out) {
     st = o.sdf ? core::write_nrrd(out, field) : core::write_nrrd(out, density);
   } else {

@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "sculpt/hal/device/device_registry.h"
-#include "sculpt/hal/device/quirks.h"
+#include "sculpt/hal/registry/device_registry.h"
+#include "sculpt/hal/types/quirks.h"
 
 namespace sculpt::station::cli {
 namespace {

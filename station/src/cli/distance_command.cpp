@@ -55,13 +55,13 @@ int run_table(const DistanceOptions& o) {
     } catch (...) {
     }
     if (n < 8 || n > 512)
-      return report(core::Error("--sizes: '" + word + "' is not a size in 8..512"));
+      return report(Error("--sizes: '" + word + "' is not a size in 8..512"));
     sizes.push_back(n);
   }
   for (const auto& c : cases)
     for (int n : sizes)
       if (c.method == core::DistanceMethod::kBrute && int64_t(n) * n * n > kBruteMaxVoxels)
-        return report(core::Error("--methods: brute is O(n^2); use it on sizes up to 96"));
+        return report(Error("--methods: brute is O(n^2); use it on sizes up to 96"));
   std::vector<core::ComparisonRow> rows;
   for (int n : sizes)
     for (auto shape : {core::ComparisonShape::kSphere, core::ComparisonShape::kTorus}) {
@@ -77,8 +77,8 @@ int run_table(const DistanceOptions& o) {
 
 int run_distance(const DistanceOptions& o) {
   if (o.table) return run_table(o);
-  if (o.input.empty()) return report(core::Error("distance: needs an input volume (or --table)"));
-  if (o.output.empty()) return report(core::Error("distance: needs an output file (-o OUT.nrrd)"));
+  if (o.input.empty()) return report(Error("distance: needs an input volume (or --table)"));
+  if (o.output.empty()) return report(Error("distance: needs an output file (-o OUT.nrrd)"));
   auto method = core::parse_distance_method(o.method);
   if (!method) return report(method.error());
   auto init = core::parse_distance_init(o.init);
@@ -89,7 +89,7 @@ int run_distance(const DistanceOptions& o) {
   if (!in) return report(in.error());
   const glm::ivec3 d = in->phi.dims();
   if (*method == core::DistanceMethod::kBrute && core::voxel_count(d) > kBruteMaxVoxels)
-    return report(core::Error(o.input + ": " + std::to_string(d.x) + "x" + std::to_string(d.y) +
+    return report(Error(o.input + ": " + std::to_string(d.x) + "x" + std::to_string(d.y) +
                               "x" + std::to_string(d.z) +
                               " is too large for --method brute (O(n^2), at most 96^3); use "
                               "exact or octree"));
@@ -100,7 +100,7 @@ int run_distance(const DistanceOptions& o) {
   const core::DenseGrid<float> field =
       core::compute_signed_distance(prepared, *method, *init, o.threads);
   const auto t3 = clock::now();
-  if (core::Status st = core::write_nrrd(o.output, field); !st) return report(st.error());
+  if (Status st = core::write_nrrd(o.output, field); !st) return report(st.error());
   float lo = 0, hi = 0;
   for (float v : field.values()) {
     lo = std::min(lo, v);

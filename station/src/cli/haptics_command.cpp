@@ -23,7 +23,7 @@
 #include "sculpt/core/haptics/press_dab.h"
 #include "sculpt/core/haptics/probe_file.h"
 #include "sculpt/core/haptics/tool_proxy.h"
-#include "sculpt/core/io/atomic_file.h"
+#include "sculpt/base/atomic_file.h"
 #include "sculpt/core/io/nrrd.h"
 #include "sculpt/core/sculpt/sculptor.h"
 
@@ -46,7 +46,7 @@ struct TraceOptions {
 };
 
 // sphere:R, cube:E, cylinder:R,H, ring:R,r, cone:R,H (voxels), or a tool NRRD.
-core::Result<core::Tool> tool_from_spec(const std::string& spec) {
+Result<core::Tool> tool_from_spec(const std::string& spec) {
   const size_t colon = spec.find(':');
   const std::string shape = spec.substr(0, colon);
   if (colon == std::string::npos) {
@@ -61,35 +61,35 @@ core::Result<core::Tool> tool_from_spec(const std::string& spec) {
     double v = 0.0;
     const std::string word = rest.substr(at, comma - at);
     if (!CLI::detail::lexical_cast(word, v) || !std::isfinite(v) || v < 0.5 || v > 64.0)
-      return core::Error("--tool " + spec + ": '" + word + "' is not a size in [0.5, 64] voxels");
+      return Error("--tool " + spec + ": '" + word + "' is not a size in [0.5, 64] voxels");
     sizes.push_back(float(v));
     at = comma + 1;
   }
-  const auto want = [&](size_t n) -> core::Status {
+  const auto want = [&](size_t n) -> Status {
     if (sizes.size() == n) return {};
-    return core::Error("--tool " + spec + ": " + shape + " takes " + std::to_string(n) +
+    return Error("--tool " + spec + ": " + shape + " takes " + std::to_string(n) +
                        " size(s)");
   };
-  core::Status st;
+  Status st;
   if (shape == "sphere" && (st = want(1))) return core::make_sphere_tool(sizes[0]);
   if (shape == "cube" && (st = want(1))) return core::make_cube_tool(sizes[0]);
   if (shape == "cylinder" && (st = want(2))) return core::make_cylinder_tool(sizes[0], sizes[1]);
   if (shape == "ring" && (st = want(2))) return core::make_ring_tool(sizes[0], sizes[1]);
   if (shape == "cone" && (st = want(2))) return core::make_cone_tool(sizes[0], sizes[1]);
   if (!st) return st.error();
-  return core::Error("--tool " + spec + ": unknown shape '" + shape +
+  return Error("--tool " + spec + ": unknown shape '" + shape +
                      "' (sphere, cube, cylinder, ring, cone, or a tool NRRD)");
 }
 
 int run_trace(const TraceOptions& o) {
   auto density = core::read_nrrd_u8(o.volume);
   if (!density) return report(density.error());
-  const core::Status valid = core::Volume::validate(density->dims(), {});
+  const Status valid = core::Volume::validate(density->dims(), {});
   if (!valid) return report(valid.error().in(o.volume));
   auto probe = core::read_probe_file(o.probe);
   if (!probe) return report(probe.error());
   if (!o.friction.empty() && o.friction[1] > o.friction[0])
-    return report(core::Error("--friction: the dynamic coefficient " +
+    return report(Error("--friction: the dynamic coefficient " +
                               std::to_string(o.friction[1]) + " exceeds the static one " +
                               std::to_string(o.friction[0])));
 
@@ -179,14 +179,14 @@ int run_trace(const TraceOptions& o) {
   }
   // The trace's temporary file first: an unwritable output fails before the
   // carved volume is written.
-  core::AtomicFileWriter out(o.output);
+  AtomicFileWriter out(o.output);
   if (!out.ok()) return report(out.error());
   out.write(text);
   if (!o.carved.empty()) {
-    const core::Status carved = core::write_nrrd(o.carved, volume.to_dense());
+    const Status carved = core::write_nrrd(o.carved, volume.to_dense());
     if (!carved) return report(carved.error());
   }
-  const core::Status st = out.commit();
+  const Status st = out.commit();
   if (!st) return report(st.error());
   std::printf("trace       %zu ticks, %lld in contact, max force %.3f N, %lld dabs\n",
               probe->size(), static_cast<long long>(contact_ticks), double(max_force),

@@ -33,7 +33,7 @@ int run_mesh(const MeshOptions& o) {
   auto format = core::mesh_format_for(o.output, o.ascii);
   if (!format) return report(format.error());
   if (o.ascii && *format != core::MeshFormat::kPlyAscii) {
-    return report(core::Error(o.output + ": --ascii applies to .ply output only"));
+    return report(Error(o.output + ": --ascii applies to .ply output only"));
   }
   core::VolumeOptions vo;
   vo.threads = o.threads;
@@ -46,7 +46,7 @@ int run_mesh(const MeshOptions& o) {
   const core::MeshUpdate u = cache.update(*volume);
   const core::Mesh mesh = cache.welded_mesh();
   const auto t2 = clock::now();
-  if (core::Status st = core::write_mesh(o.output, mesh, *format); !st) return report(st.error());
+  if (Status st = core::write_mesh(o.output, mesh, *format); !st) return report(st.error());
   const auto t3 = clock::now();
 
   const core::MeshTopology t = core::check_topology(mesh);

@@ -18,7 +18,7 @@
 
 #include "cli/commands.h"
 #include "cli/number_checks.h"
-#include "sculpt/core/io/output_set.h"
+#include "sculpt/base/output_set.h"
 #include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/core/nurbs/influence.h"
 #include "sculpt/core/nurbs/nurbs_json.h"
@@ -32,8 +32,6 @@ namespace sculpt::station::cli {
 namespace {
 
 namespace nurbs = core::nurbs;
-using core::Result;
-using core::Status;
 
 struct DeformOptions {
   std::string input;
@@ -100,13 +98,13 @@ int run_deform(const DeformOptions& o) {
     return 2;
   }
   if (!finite(o.uv) || !finite(o.pick) || !finite(o.to)) {
-    return report(core::Error("--uv, --pick and --to take finite numbers"));
+    return report(Error("--uv, --pick and --to take finite numbers"));
   }
   if (!o.mesh.empty()) {
     if (auto f = core::mesh_format_for(o.mesh); !f) return report(f.error());
   }
   if (o.refine > 0 && o.influence.rfind("zone:", 0) != 0) {
-    return report(core::Error("--refine: refinement works inside a zone (--influence zone:FILE)"));
+    return report(Error("--refine: refinement works inside a zone (--influence zone:FILE)"));
   }
   Result<nurbs::NurbsSurface> read = nurbs::read_surface_json(o.input);
   if (!read) return report(read.error());
@@ -123,7 +121,7 @@ int run_deform(const DeformOptions& o) {
       std::snprintf(text, sizeof text, "--uv %g,%g: outside the domain [%g, %g] x [%g, %g] of %s",
                     u, v, surface.u_min(), surface.u_max(), surface.v_min(), surface.v_max(),
                     o.input.c_str());
-      return report(core::Error(text));
+      return report(Error(text));
     }
   } else {
     const nurbs::SurfacePoint hit =
@@ -146,7 +144,7 @@ int run_deform(const DeformOptions& o) {
     const glm::dvec3 to(o.to[0], o.to[1], o.to[2]);
     if (path && glm::length(to - target) > 1e-6 * std::max(1.0, glm::length(target))) {
       return report(
-          core::Error(o.path + ": the path ends at " + vec3(target) + ", not at --to " + vec3(to)));
+          Error(o.path + ": the path ends at " + vec3(target) + ", not at --to " + vec3(to)));
     }
     target = to;
   }
@@ -195,7 +193,7 @@ int run_deform(const DeformOptions& o) {
   const double residual = glm::length(nurbs::evaluate(surface, u, v) - target);
 
   // Both outputs or neither (a bad --mesh path must not leave -o written).
-  core::OutputSet outputs;
+  OutputSet outputs;
   if (Status st = nurbs::write_json(outputs.stage(o.output), surface); !st) {
     return report(outputs.named(st.error()));
   }
@@ -238,7 +236,7 @@ struct TessellateOptions {
 int run_tessellate(const TessellateOptions& o) {
   if (o.freeform) {
     if (std::filesystem::path(o.output).extension() != ".obj") {
-      return report(core::Error(o.output + ": --freeform writes OBJ; name the output .obj"));
+      return report(Error(o.output + ": --freeform writes OBJ; name the output .obj"));
     }
   } else if (auto f = core::mesh_format_for(o.output); !f) {
     return report(f.error());
@@ -266,7 +264,7 @@ struct InvertOptions {
 };
 
 int run_invert(const InvertOptions& o) {
-  if (!finite(o.point)) return report(core::Error("--point takes finite numbers"));
+  if (!finite(o.point)) return report(Error("--point takes finite numbers"));
   Result<nurbs::NurbsSurface> s = nurbs::read_surface_json(o.input);
   if (!s) return report(s.error());
   const nurbs::SurfacePoint r = nurbs::closest_point(*s, {o.point[0], o.point[1], o.point[2]});

@@ -30,7 +30,7 @@ int run_offset(const OffsetOptions& o) {
   const core::DenseGrid<float> moved =
       core::offset_distance(core::surface_distance(in->phi, o.threads), o.by);
   const bool as_float = o.sdf || !in->from_density;
-  const core::Status st =
+  const Status st =
       as_float ? core::write_nrrd(o.output, moved)
                : core::write_nrrd(o.output, core::density_from_distance_field(moved));
   if (!st) return report(st.error());

@@ -20,7 +20,7 @@
 
 #include "cli/commands.h"
 #include "cli/number_checks.h"
-#include "sculpt/hal/device/device_registry.h"
+#include "sculpt/hal/registry/device_registry.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/sim/replay/sim_backend.h"
 #include "sculpt/sim/session/session_file.h"
@@ -111,7 +111,7 @@ int run_record(const RecordOptions& o) {
   hal::InputFrame frame;
   bool gone = false;
   std::vector<sim::SessionRecord> batch;
-  auto drain = [&]() -> core::Status {
+  auto drain = [&]() -> Status {
     batch.clear();
     // Commands first, so a command and a report of the same time keep the
     // order the station saw them in; then a stable merge by time.
@@ -126,13 +126,13 @@ int run_record(const RecordOptions& o) {
                        return a.t_ns() < b.t_ns();
                      });
     for (const sim::SessionRecord& r : batch) {
-      if (core::Status st = writer->append(r); !st) return st;
+      if (Status st = writer->append(r); !st) return st;
     }
     return writer->sync_if_due();
   };
   while (!g_stop.load() && !gone) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    if (core::Status st = drain(); !st) return report(st.error());
+    if (Status st = drain(); !st) return report(st.error());
     frame.clear();
     registry.poll(frame, 0);
     for (const hal::InputEvent& e : frame.events)
@@ -140,9 +140,9 @@ int run_record(const RecordOptions& o) {
     if (o.seconds > 0 && std::chrono::duration<double>(clock::now() - start).count() >= o.seconds)
       break;
   }
-  if (core::Status st = drain(); !st) return report(st.error());
+  if (Status st = drain(); !st) return report(st.error());
   const int64_t records = writer->records();
-  if (core::Status st = writer->close(); !st) return report(st.error());
+  if (Status st = writer->close(); !st) return report(st.error());
   std::printf("recorded %lld records in %.1f s%s\n", static_cast<long long>(records),
               std::chrono::duration<double>(clock::now() - start).count(),
               gone ? " (the device was unplugged)" : "");

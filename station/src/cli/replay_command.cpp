@@ -13,15 +13,15 @@
 #include "cli/commands.h"
 #include "cli/number_checks.h"
 #include "sculpt/core/distance/surface_normals.h"
-#include "sculpt/core/io/atomic_file.h"
-#include "sculpt/core/io/output_set.h"
+#include "sculpt/base/atomic_file.h"
+#include "sculpt/base/output_set.h"
 #include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/core/util/parallel_for.h"
 #include "sculpt/core/volume/volume_io.h"
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/session_replay.h"
 #include "sculpt/station/project/project_file.h"
-#include "sculpt/station/project/session_start.h"
+#include "sculpt/station/app/session_start.h"
 #include "sculpt/station/render/software_renderer.h"
 #include "sculpt/station/window/gl_snapshot.h"
 
@@ -118,10 +118,10 @@ int replay_to_outputs(const ReplayCliOptions& o) {
   };
   // Every output or none: each is staged whole, and all are moved into
   // place once the last one is written.
-  core::OutputSet outputs;
-  const auto failed = [&](const core::Status& st) { return report(outputs.named(st.error())); };
+  OutputSet outputs;
+  const auto failed = [&](const Status& st) { return report(outputs.named(st.error())); };
   if (!o.volume.empty()) {
-    if (core::Status st = core::write_volume_nrrd(outputs.stage(o.volume), volume); !st) {
+    if (Status st = core::write_volume_nrrd(outputs.stage(o.volume), volume); !st) {
       return failed(st);
     }
   }
@@ -133,7 +133,7 @@ int replay_to_outputs(const ReplayCliOptions& o) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   if (mesh_format) {
-    if (core::Status st = core::write_mesh(outputs.stage(o.mesh), mesh, *mesh_format); !st) {
+    if (Status st = core::write_mesh(outputs.stage(o.mesh), mesh, *mesh_format); !st) {
       return failed(st);
     }
   }
@@ -144,33 +144,33 @@ int replay_to_outputs(const ReplayCliOptions& o) {
     RgbImage image;
     if (gl) {
       auto picture = render_mesh_gl(mesh, glm::vec3(volume.dims()), kPictureSize, kPictureSize);
-      if (!picture) return report(core::Error("--png " + o.png + ": " + picture.error().message()));
+      if (!picture) return report(Error("--png " + o.png + ": " + picture.error().message()));
       image = std::move(picture).value();
     } else {
       image = render_mesh(mesh, view_of(mesh, glm::vec3(0.0f), glm::vec3(volume.dims())));
     }
     stats["renderer"] = gl ? "gl" : "software";
-    if (core::Status st = write_png(outputs.stage(o.png), image); !st) return failed(st);
+    if (Status st = write_png(outputs.stage(o.png), image); !st) return failed(st);
   }
   if (!o.project.empty()) {
     const StationSettings& settings = loop.settings();
-    if (core::Status st = save_project(outputs.stage(o.project), volume, settings,
+    if (Status st = save_project(outputs.stage(o.project), volume, settings,
                                        settings.custom_tool ? &loop.tool() : nullptr, {});
         !st) {
       return failed(st);
     }
   }
   if (!o.samples.empty()) {
-    core::AtomicFileWriter out(outputs.stage(o.samples));
+    AtomicFileWriter out(outputs.stage(o.samples));
     out.write(samples_text);
-    if (core::Status st = out.commit(); !st) return failed(st);
+    if (Status st = out.commit(); !st) return failed(st);
   }
   if (!o.stats.empty()) {
-    core::AtomicFileWriter out(outputs.stage(o.stats));
+    AtomicFileWriter out(outputs.stage(o.stats));
     out.write(stats.dump(2) + "\n");
-    if (core::Status st = out.commit(); !st) return failed(st);
+    if (Status st = out.commit(); !st) return failed(st);
   }
-  if (core::Status st = outputs.commit(); !st) return report(st.error());
+  if (Status st = outputs.commit(); !st) return report(st.error());
   std::printf(
       "replayed %s: %lld records, %lld dabs in %lld strokes, %lld triangles, %.2f s (%.1fx real "
       "time)\n",

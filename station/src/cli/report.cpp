@@ -35,7 +35,7 @@ std::string printable(const std::string& message) {
 
 }  // namespace
 
-int report(const core::Error& error) {
+int report(const Error& error) {
   std::cerr << "sculpt: " << printable(error.message()) << "\n";
   return 1;
 }

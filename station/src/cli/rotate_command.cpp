@@ -32,7 +32,7 @@ struct RotateOptions {
 
 int run_rotate(const RotateOptions& o) {
   for (float a : o.euler) {
-    if (!std::isfinite(a)) return report(core::Error("--euler: angles must be finite numbers"));
+    if (!std::isfinite(a)) return report(Error("--euler: angles must be finite numbers"));
   }
   auto tool = core::read_tool_nrrd(o.input);
   if (!tool) return report(tool.error());
@@ -40,7 +40,7 @@ int run_rotate(const RotateOptions& o) {
   constexpr int kMaxToolEdge = 1024;
   if (glm::any(glm::greaterThan(tool->density.dims(), glm::ivec3(kMaxToolEdge)))) {
     return report(
-        core::Error("tool is larger than " + std::to_string(kMaxToolEdge) + " voxels on an edge")
+        Error("tool is larger than " + std::to_string(kMaxToolEdge) + " voxels on an edge")
             .in(o.input));
   }
   if (o.about == "centre") tool->pivot = core::grid_centre(tool->density.dims());
@@ -62,7 +62,7 @@ int run_rotate(const RotateOptions& o) {
   for (uint8_t v : rotated.density.values())
     mass_out += v;
   const core::Tool out{std::move(rotated.density), pivot - glm::vec3(rotated.origin)};
-  if (core::Status st = core::write_tool_nrrd(o.output, out); !st) return report(st.error());
+  if (Status st = core::write_tool_nrrd(o.output, out); !st) return report(st.error());
   std::printf(
       "rotated %dx%dx%d by (%g, %g, %g) deg about (%g, %g, %g), %s%s: %dx%dx%d in %.3f ms\n",
       in_dims.x, in_dims.y, in_dims.z, o.euler[0], o.euler[1], o.euler[2], pivot.x, pivot.y,

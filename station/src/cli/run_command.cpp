@@ -33,14 +33,14 @@ int run_headless(const RunOptions& o) {
   } else if (o.window.device == "auto") {
     session = sim::bundled_session_path("demo");
   } else {
-    return report(core::Error("--device " + o.window.device +
+    return report(Error("--device " + o.window.device +
                               ": a live device needs the window; headless runs replay sessions "
                               "(auto or sim:FILE; record one with `sculpt record`)"));
   }
   std::error_code ec;
   fs::create_directories(o.out_dir, ec);
   if (ec)
-    return report(core::Error(o.out_dir + ": cannot create the output folder: " + ec.message()));
+    return report(Error(o.out_dir + ": cannot create the output folder: " + ec.message()));
   const fs::path dir(o.out_dir);
   ReplayCliOptions r;
   r.session = session;

@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "cli/commands.h"
-#include "sculpt/core/io/atomic_file.h"
+#include "sculpt/base/atomic_file.h"
 #include "sculpt/sim/session/session_file.h"
 #include "sculpt/sim/session/session_text.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
@@ -26,24 +26,24 @@ int to_text(const SessionOptions& o) {
   auto session = sim::read_session_file(o.input, &info);
   if (!session) return report(session.error());
   if (!info.warning.empty()) std::fprintf(stderr, "sculpt: warning: %s\n", info.warning.c_str());
-  core::AtomicFileWriter out(o.output);
+  AtomicFileWriter out(o.output);
   out.write(sim::session_to_text(*session));
-  if (core::Status st = out.commit(); !st) return report(st.error());
+  if (Status st = out.commit(); !st) return report(st.error());
   return 0;
 }
 
 int from_text(const SessionOptions& o) {
   auto session = load_session(o.input);
   if (!session) return report(session.error());
-  if (core::Status st = sim::write_session_file(o.output, *session); !st) return report(st.error());
+  if (Status st = sim::write_session_file(o.output, *session); !st) return report(st.error());
   return 0;
 }
 
 int generate(const SessionOptions& o) {
   const sim::Session session = sim::bundled_session(o.input);
   if (session.records.empty())
-    return report(core::Error("no bundled session named '" + o.input + "' (short, demo, sheet)"));
-  if (core::Status st = sim::write_session_file(o.output, session); !st) return report(st.error());
+    return report(Error("no bundled session named '" + o.input + "' (short, demo, sheet)"));
+  if (Status st = sim::write_session_file(o.output, session); !st) return report(st.error());
   std::printf("wrote %s: %zu records, %.1f s\n", o.output.c_str(), session.records.size(),
               static_cast<double>(session.end_t_ns() - session.start_t_ns()) * 1e-9);
   return 0;

@@ -34,7 +34,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "sculpt/core/io/output_set.h"
+#include "sculpt/base/output_set.h"
 #include "sculpt/core/sculpt/sculptor.h"
 #include "sculpt/core/tool/tool.h"
 #include "sculpt/core/tool/tool_rotation.h"
@@ -86,45 +86,45 @@ struct UndoOp {
 using Op = std::variant<ToolOp, SaveToolOp, SamplingOp, MirrorOp, StrokeOp, core::Dab, UndoOp>;
 
 // Reads field `key` of `j` as a finite number.
-core::Result<double> number(const json& j, const char* key) {
-  if (!j.contains(key)) return core::Error(std::string("missing '") + key + "'");
+Result<double> number(const json& j, const char* key) {
+  if (!j.contains(key)) return Error(std::string("missing '") + key + "'");
   const json& v = j[key];
   if (!v.is_number() || !std::isfinite(v.get<double>())) {
-    return core::Error(std::string("'") + key + "' must be a finite number");
+    return Error(std::string("'") + key + "' must be a finite number");
   }
   return v.get<double>();
 }
 
-core::Result<double> size(const json& j, const char* key) {
+Result<double> size(const json& j, const char* key) {
   auto v = number(j, key);
   if (!v) return v;
   if (*v <= 0.0 || *v > kMaxToolSize) {
-    return core::Error(std::string("'") + key + "' must be in (0, " +
+    return Error(std::string("'") + key + "' must be in (0, " +
                        std::to_string(int(kMaxToolSize)) + "]");
   }
   return v;
 }
 
-core::Result<std::vector<double>> numbers(const json& j, const char* key, size_t n) {
+Result<std::vector<double>> numbers(const json& j, const char* key, size_t n) {
   const std::string what =
       std::string("'") + key + "' must be " + std::to_string(n) + " finite numbers";
-  if (!j.contains(key) || !j[key].is_array() || j[key].size() != n) return core::Error(what);
+  if (!j.contains(key) || !j[key].is_array() || j[key].size() != n) return Error(what);
   std::vector<double> out;
   for (const json& v : j[key]) {
-    if (!v.is_number() || !std::isfinite(v.get<double>())) return core::Error(what);
+    if (!v.is_number() || !std::isfinite(v.get<double>())) return Error(what);
     out.push_back(v.get<double>());
   }
   return out;
 }
 
-core::Result<Op> parse_op(const json& j, glm::ivec3 dims) {
+Result<Op> parse_op(const json& j, glm::ivec3 dims) {
   if (!j.is_object() || !j.contains("op") || !j["op"].is_string()) {
-    return core::Error("expected an object with a string 'op'");
+    return Error("expected an object with a string 'op'");
   }
   const std::string op = j["op"];
   if (op == "tool") {
     if (!j.contains("shape") || !j["shape"].is_string())
-      return core::Error("tool: missing string 'shape'");
+      return Error("tool: missing string 'shape'");
     ToolOp t{j["shape"], 0.0, 0.0, {}, {}};
     const std::pair<const char*, const char*> params[] = {{"sphere", "radius"},
                                                           {"cube", "edge"},
@@ -148,7 +148,7 @@ core::Result<Op> parse_op(const json& j, glm::ivec3 dims) {
     }
     if (t.shape == "file") {
       if (!j.contains("path") || !j["path"].is_string())
-        return core::Error("tool file: missing string 'path'");
+        return Error("tool file: missing string 'path'");
       t.path = j["path"];
       return Op{t};
     }
@@ -160,37 +160,37 @@ core::Result<Op> parse_op(const json& j, glm::ivec3 dims) {
                         glm::ivec3(int(v[3]), int(v[4]), int(v[5]))};
       const core::Box clipped = core::intersect(t.box, core::Box{glm::ivec3(0), dims});
       if (clipped.empty() || clipped != t.box) {
-        return core::Error("tool region: 'box' must be a non-empty box inside the volume");
+        return Error("tool region: 'box' must be a non-empty box inside the volume");
       }
       if (glm::any(glm::greaterThan(t.box.size(), glm::ivec3(kMaxToolEdge)))) {
-        return core::Error("tool region: 'box' is larger than " + std::to_string(kMaxToolEdge) +
+        return Error("tool region: 'box' is larger than " + std::to_string(kMaxToolEdge) +
                            " voxels on an edge");
       }
       for (double x : v) {
         if (x != std::floor(x))
-          return core::Error("tool region: 'box' must be whole voxel indices");
+          return Error("tool region: 'box' must be whole voxel indices");
       }
       return Op{t};
     }
-    return core::Error("tool: unknown shape '" + t.shape +
+    return Error("tool: unknown shape '" + t.shape +
                        "' (sphere, cube, cylinder, ring, cone, file, region)");
   }
   if (op == "save_tool") {
     if (!j.contains("path") || !j["path"].is_string())
-      return core::Error("save_tool: missing string 'path'");
+      return Error("save_tool: missing string 'path'");
     return Op{SaveToolOp{j["path"]}};
   }
   if (op == "sampling") {
     const std::string v = j.value("value", "");
     if (v == "nearest") return Op{SamplingOp{core::Sampling::kNearest}};
     if (v == "trilinear") return Op{SamplingOp{core::Sampling::kTrilinear}};
-    return core::Error("sampling: 'value' must be \"nearest\" or \"trilinear\"");
+    return Error("sampling: 'value' must be \"nearest\" or \"trilinear\"");
   }
   if (op == "mirror") {
     const std::string axis = j.value("axis", "");
     if (axis == "off") return Op{MirrorOp{std::nullopt}};
     if (axis != "x" && axis != "y" && axis != "z")
-      return core::Error("mirror: 'axis' must be x, y, z or off");
+      return Error("mirror: 'axis' must be x, y, z or off");
     auto c = number(j, "centre");
     if (!c) return c.error().in("mirror");
     return Op{MirrorOp{core::MirrorPlane{axis[0] - 'x', static_cast<float>(*c)}}};
@@ -205,17 +205,17 @@ core::Result<Op> parse_op(const json& j, glm::ivec3 dims) {
     const std::string mode = j.value("mode", "add");
     const auto m = core::parse_sculpt_mode(mode);
     if (!m)
-      return core::Error("dab: unknown mode '" + mode +
+      return Error("dab: unknown mode '" + mode +
                          "' (add, subtract, union, difference, smooth)");
     d.mode = *m;
     if (j.contains("strength")) {
       auto s = number(j, "strength");
       if (!s || *s < 0.0 || *s > 1.0)
-        return core::Error("dab: 'strength' must be a number in [0, 1]");
+        return Error("dab: 'strength' must be a number in [0, 1]");
       d.strength = static_cast<float>(*s);
     }
     if (j.contains("euler") && j.contains("quat"))
-      return core::Error("dab: give 'euler' or 'quat', not both");
+      return Error("dab: give 'euler' or 'quat', not both");
     if (j.contains("euler")) {
       auto e = numbers(j, "euler", 3);
       if (!e) return e.error().in("dab");
@@ -225,22 +225,22 @@ core::Result<Op> parse_op(const json& j, glm::ivec3 dims) {
       if (!q) return q.error().in("dab");
       const glm::quat qq(static_cast<float>((*q)[0]), static_cast<float>((*q)[1]),
                          static_cast<float>((*q)[2]), static_cast<float>((*q)[3]));
-      if (!(glm::length(qq) > 1e-6f)) return core::Error("dab: 'quat' must not be zero");
+      if (!(glm::length(qq) > 1e-6f)) return Error("dab: 'quat' must not be zero");
       d.orientation = glm::normalize(qq);
     }
     return Op{d};
   }
-  return core::Error("unknown op '" + op + "'");
+  return Error("unknown op '" + op + "'");
 }
 
 int run_stamp(const StampOptions& o) {
   if (o.input.empty() == o.new_dims.empty()) {
-    return report(core::Error("give either an input volume or --new NX,NY,NZ"));
+    return report(Error("give either an input volume or --new NX,NY,NZ"));
   }
   std::optional<core::Volume> volume;
   if (!o.new_dims.empty()) {
     const glm::ivec3 dims(o.new_dims[0], o.new_dims[1], o.new_dims[2]);
-    if (core::Status st = core::Volume::validate(dims, {}); !st)
+    if (Status st = core::Volume::validate(dims, {}); !st)
       return report(st.error().in("--new"));
     volume.emplace(dims, uint8_t{0});
   } else {
@@ -251,7 +251,7 @@ int run_stamp(const StampOptions& o) {
 
   // Parse the whole script first: a bad line must not leave half a job done.
   std::ifstream in(o.dabs, std::ios::binary);
-  if (!in) return report(core::Error("cannot open the dab script").in(o.dabs));
+  if (!in) return report(Error("cannot open the dab script").in(o.dabs));
   std::vector<std::pair<int, Op>> ops;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
@@ -260,12 +260,12 @@ int run_stamp(const StampOptions& o) {
     if (first == std::string::npos || line[first] == '#') continue;
     const json j = json::parse(line, nullptr, false);
     if (j.is_discarded())
-      return report(core::Error("not valid JSON").in(o.dabs + ":" + std::to_string(n)));
+      return report(Error("not valid JSON").in(o.dabs + ":" + std::to_string(n)));
     auto op = parse_op(j, volume->dims());
     if (!op) return report(op.error().in(o.dabs + ":" + std::to_string(n)));
     ops.emplace_back(n, std::move(op.value()));
   }
-  if (in.bad()) return report(core::Error("read error").in(o.dabs));
+  if (in.bad()) return report(Error("read error").in(o.dabs));
 
   const std::filesystem::path script_dir = std::filesystem::path(o.dabs).parent_path();
   core::Sculptor sculptor(*volume);
@@ -274,7 +274,7 @@ int run_stamp(const StampOptions& o) {
   int dabs = 0;
   // The tools the script saves and the volume appear together, or none of
   // them if a later line fails.
-  core::OutputSet outputs;
+  OutputSet outputs;
   const auto t0 = std::chrono::steady_clock::now();
   for (auto& [n, op] : ops) {
     const std::string where = o.dabs + ":" + std::to_string(n);
@@ -288,7 +288,7 @@ int run_stamp(const StampOptions& o) {
         auto loaded = core::read_tool_nrrd(p.is_absolute() ? p : script_dir / p);
         if (!loaded) return report(loaded.error().in(where));
         if (glm::any(glm::greaterThan(loaded->density.dims(), glm::ivec3(kMaxToolEdge)))) {
-          return report(core::Error("tool is larger than " + std::to_string(kMaxToolEdge) +
+          return report(Error("tool is larger than " + std::to_string(kMaxToolEdge) +
                                     " voxels on an edge")
                             .in(where));
         }
@@ -296,9 +296,9 @@ int run_stamp(const StampOptions& o) {
       }
       sculptor.set_tool(*tool);
     } else if (auto* s = std::get_if<SaveToolOp>(&op)) {
-      if (!tool) return report(core::Error("save_tool before any tool").in(where));
+      if (!tool) return report(Error("save_tool before any tool").in(where));
       const std::filesystem::path p(s->path);
-      if (core::Status st =
+      if (Status st =
               core::write_tool_nrrd(outputs.stage(p.is_absolute() ? p : script_dir / p), *tool);
           !st) {
         return report(outputs.named(st.error()).in(where));
@@ -315,7 +315,7 @@ int run_stamp(const StampOptions& o) {
         std::fprintf(stderr, "sculpt: %s: nothing to %s\n", where.c_str(),
                      u->redo ? "redo" : "undo");
     } else if (auto* d = std::get_if<core::Dab>(&op)) {
-      if (!tool) return report(core::Error("dab before any tool").in(where));
+      if (!tool) return report(Error("dab before any tool").in(where));
       total += sculptor.dab(*d);
       ++dabs;
     }
@@ -323,10 +323,10 @@ int run_stamp(const StampOptions& o) {
   sculptor.end_stroke();
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  if (core::Status st = core::write_volume_nrrd(outputs.stage(o.output), *volume); !st) {
+  if (Status st = core::write_volume_nrrd(outputs.stage(o.output), *volume); !st) {
     return report(outputs.named(st.error()));
   }
-  if (core::Status st = outputs.commit(); !st) return report(st.error());
+  if (Status st = outputs.commit(); !st) return report(st.error());
 
   std::printf("%d dabs in %.2f ms (%.3f ms per dab): %d bricks changed, %lld voxels changed\n",
               dabs, ms, dabs ? ms / dabs : 0.0, total.bricks_changed,

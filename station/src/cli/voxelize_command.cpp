@@ -31,7 +31,7 @@ struct VoxelizeOptions {
 
 int run_voxelize(const VoxelizeOptions& o) {
   if (2.0f * o.margin >= float(o.size - 2))
-    return report(core::Error("--margin " + std::to_string(o.margin) +
+    return report(Error("--margin " + std::to_string(o.margin) +
                               " leaves no room in --size " + std::to_string(o.size)));
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
@@ -39,7 +39,7 @@ int run_voxelize(const VoxelizeOptions& o) {
   if (!mesh) return report(mesh.error());
   const core::MeshTopology topo = core::check_topology(*mesh);
   if (!topo.closed())
-    return report(core::Error(o.input + ": mesh is not closed (" +
+    return report(Error(o.input + ": mesh is not closed (" +
                               std::to_string(topo.boundary_edges) + " boundary, " +
                               std::to_string(topo.nonmanifold_edges) + " non-manifold, " +
                               std::to_string(topo.misoriented_edges) +
@@ -55,8 +55,8 @@ int run_voxelize(const VoxelizeOptions& o) {
   // voxel on the border would be inside.
   if (field.at(0, 0, 0) < 0.0f)
     return report(
-        core::Error(o.input + ": triangles face inward (wound clockwise seen from outside)"));
-  const core::Status st =
+        Error(o.input + ": triangles face inward (wound clockwise seen from outside)"));
+  const Status st =
       o.sdf ? core::write_nrrd(o.output, field)
             : core::write_nrrd(o.output, core::density_from_distance_field(field));
   if (!st) return report(st.error());

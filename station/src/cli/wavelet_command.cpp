@@ -29,7 +29,7 @@ int run_wavelet(const WaveletOptions& o) {
   // A brick must hold every level: 32 holds 5, larger level counts need larger bricks.
   vo.brick_edge = std::max(32, 1 << o.levels);
   if (o.lod > o.levels) {
-    return report(core::Error("--lod " + std::to_string(o.lod) + " exceeds --levels " +
+    return report(Error("--lod " + std::to_string(o.lod) + " exceeds --levels " +
                               std::to_string(o.levels)));
   }
   using clock = std::chrono::steady_clock;
@@ -39,8 +39,8 @@ int run_wavelet(const WaveletOptions& o) {
   const double build_s = std::chrono::duration<double>(clock::now() - t0).count();
 
   if (o.lod >= 0) {
-    if (o.output.empty()) return report(core::Error("--lod needs an output file (-o OUT.nrrd)"));
-    if (core::Status st = core::write_volume_nrrd(o.output, *volume, o.lod); !st)
+    if (o.output.empty()) return report(Error("--lod needs an output file (-o OUT.nrrd)"));
+    if (Status st = core::write_volume_nrrd(o.output, *volume, o.lod); !st)
       return report(st.error());
     const glm::ivec3 d = volume->level_dims(o.lod);
     std::printf("wrote level %d (%dx%dx%d) to %s\n", o.lod, d.x, d.y, d.z, o.output.c_str());
@@ -57,7 +57,7 @@ int run_wavelet(const WaveletOptions& o) {
   std::vector<uint8_t> slice(static_cast<size_t>(d.x) * d.y);
   int64_t mismatches = 0;
   for (int z = 0; z < d.z; ++z) {
-    if (core::Status st = reader->read_slices(1, std::as_writable_bytes(std::span(slice))); !st) {
+    if (Status st = reader->read_slices(1, std::as_writable_bytes(std::span(slice))); !st) {
       return report(st.error());
     }
     for (size_t i = 0; i < slice.size(); ++i)
@@ -89,7 +89,7 @@ int run_wavelet(const WaveletOptions& o) {
   }
   std::printf("round trip  bit-exact\n");
   if (!o.output.empty()) {
-    if (core::Status st = core::write_volume_nrrd(o.output, *volume, 0); !st)
+    if (Status st = core::write_volume_nrrd(o.output, *volume, 0); !st)
       return report(st.error());
   }
   return 0;

@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sculpt/core/io/atomic_file.h"
+#include "sculpt/base/atomic_file.h"
 #include "sculpt/core/nurbs/nurbs_json.h"
 #include "sculpt/core/wavelet/wavelet_pyramid.h"
 
@@ -121,7 +121,7 @@ class Inflater {
 
 }  // namespace
 
-core::Status save_project(const std::filesystem::path& path, const core::Volume& volume,
+Status save_project(const std::filesystem::path& path, const core::Volume& volume,
                           const StationSettings& settings, const core::Tool* custom_tool,
                           const ProjectView& view, const core::nurbs::NurbsSurface* sheet) {
   const glm::ivec3 d = volume.dims();
@@ -175,7 +175,7 @@ core::Status save_project(const std::filesystem::path& path, const core::Volume&
   out.insert(out.end(), packed.begin(), packed.end());
   put(out, static_cast<uint32_t>(crc32(0, out.data(), static_cast<uInt>(out.size()))));
 
-  core::AtomicFileWriter writer(path);
+  AtomicFileWriter writer(path);
   if (!writer.ok()) return writer.error();
   writer.write(out.data(), out.size());
   return writer.commit();
@@ -246,9 +246,9 @@ ProjectView view_of(const json& j) {
 
 }  // namespace
 
-core::Result<Project> load_project(const std::filesystem::path& path) {
+Result<Project> load_project(const std::filesystem::path& path) {
   const std::string name = path.string();
-  auto fail = [&](const std::string& what) { return core::Error(name + ": " + what); };
+  auto fail = [&](const std::string& what) { return Error(name + ": " + what); };
   std::ifstream in(path, std::ios::binary);
   if (!in) return fail("cannot open: " + std::string(std::strerror(errno)));
   const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
@@ -303,7 +303,7 @@ core::Result<Project> load_project(const std::filesystem::path& path) {
   } catch (const std::exception& e) {
     return fail(std::string("bad project description: ") + e.what());
   }
-  if (core::Status st = core::Volume::validate(dims, options); !st)
+  if (Status st = core::Volume::validate(dims, options); !st)
     return fail("volume: " + st.error().message());
   if (project.settings.custom_tool != project.custom_tool.has_value())
     return fail("settings.custom_tool does not match the stored tool");

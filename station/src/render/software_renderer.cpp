@@ -8,7 +8,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "sculpt/core/io/atomic_file.h"
+#include "sculpt/base/atomic_file.h"
 
 namespace sculpt::station {
 namespace {
@@ -138,7 +138,7 @@ double coverage(const RgbImage& image, const SoftwareView& view) {
   return static_cast<double>(covered) / static_cast<double>(pixels);
 }
 
-core::Status write_png(const std::filesystem::path& path, const RgbImage& image) {
+Status write_png(const std::filesystem::path& path, const RgbImage& image) {
   std::vector<uint8_t> bytes;
   auto sink = [](void* context, void* data, int size) {
     auto* out = static_cast<std::vector<uint8_t>*>(context);
@@ -147,9 +147,9 @@ core::Status write_png(const std::filesystem::path& path, const RgbImage& image)
   };
   if (stbi_write_png_to_func(sink, &bytes, image.width, image.height, 3, image.rgb.data(),
                              image.width * 3) == 0) {
-    return core::Error(path.string() + ": PNG encoding failed");
+    return Error(path.string() + ": PNG encoding failed");
   }
-  core::AtomicFileWriter out(path);
+  AtomicFileWriter out(path);
   out.write(bytes.data(), bytes.size());
   return out.commit();
 }

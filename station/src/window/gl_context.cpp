@@ -27,9 +27,9 @@ bool init_glfw() {
 
 }  // namespace
 
-core::Result<std::unique_ptr<GlWindow>> GlWindow::open(int width, int height,
+Result<std::unique_ptr<GlWindow>> GlWindow::open(int width, int height,
                                                        const std::string& title, bool visible) {
-  if (!init_glfw()) return core::Error("cannot start GLFW: " + g_glfw_error);
+  if (!init_glfw()) return Error("cannot start GLFW: " + g_glfw_error);
   glfwDefaultWindowHints();
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
@@ -40,7 +40,7 @@ core::Result<std::unique_ptr<GlWindow>> GlWindow::open(int width, int height,
   // smooth-shaded surface reads well without it.
   glfwWindowHint(GLFW_SAMPLES, 0);
   GLFWwindow* w = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
-  if (w == nullptr) return core::Error("cannot open an OpenGL 3.3 window: " + g_glfw_error);
+  if (w == nullptr) return Error("cannot open an OpenGL 3.3 window: " + g_glfw_error);
   glfwMakeContextCurrent(w);
   return std::unique_ptr<GlWindow>(new GlWindow(w));
 }

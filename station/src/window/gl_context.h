@@ -7,14 +7,14 @@
 #include <vector>
 
 #include "render/gl/gl_api.h"
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 
 namespace sculpt::station {
 
 class GlWindow {
  public:
   /// Initialises GLFW (once per process) and opens the window.
-  static core::Result<std::unique_ptr<GlWindow>> open(int width, int height,
+  static Result<std::unique_ptr<GlWindow>> open(int width, int height,
                                                       const std::string& title, bool visible);
   ~GlWindow();
   GlWindow(const GlWindow&) = delete;

@@ -14,9 +14,9 @@ bool display_available() {
   return (x11 != nullptr && *x11 != '\0') || (wayland != nullptr && *wayland != '\0');
 }
 
-core::Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block, int width,
+Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block, int width,
                                       int height) {
-  if (!display_available()) return core::Error("no display (DISPLAY is not set)");
+  if (!display_available()) return Error("no display (DISPLAY is not set)");
   auto window = GlWindow::open(64, 64, "sculpt snapshot", /*visible=*/false);
   if (!window) return window.error();
   auto renderer = gl::SceneRenderer::create();
@@ -56,7 +56,7 @@ core::Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block, i
   glDeleteRenderbuffers(1, &colour);
   glDeleteRenderbuffers(1, &depth);
   glDeleteFramebuffers(1, &fbo);
-  if (!complete) return core::Error("the OpenGL driver cannot render off screen");
+  if (!complete) return Error("the OpenGL driver cannot render off screen");
   return image;
 }
 

@@ -12,15 +12,15 @@
 #include <nlohmann/json.hpp>
 
 #include "render/gl/scene_renderer.h"
-#include "sculpt/core/io/atomic_file.h"
-#include "sculpt/hal/device/clock.h"
-#include "sculpt/hal/device/device_registry.h"
+#include "sculpt/base/atomic_file.h"
+#include "sculpt/hal/types/clock.h"
+#include "sculpt/hal/registry/device_registry.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/sim/replay/sim_backend.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/station_controller.h"
-#include "sculpt/station/project/session_start.h"
+#include "sculpt/station/app/session_start.h"
 #include "sculpt/station/render/software_renderer.h"
 #include "sculpt/station/view/mesh_raycast.h"
 #include "sculpt/station/view/volume_raycast.h"
@@ -35,7 +35,7 @@ constexpr float kOrbitRadPerPixel = 0.008f;
 constexpr float kKeyMoveVoxPerSecond = 60.0f;
 constexpr int kMaxDrawnLevel = 2;  // coarser than 1/4 resolution looks like a blob
 
-int fail(const core::Error& e) {
+int fail(const Error& e) {
   std::fprintf(stderr, "sculpt run: %s\n", e.message().c_str());
   return 1;
 }
@@ -74,7 +74,7 @@ int64_t solid_voxels(const core::Volume& v) {
   return n;
 }
 
-core::Status write_stats(const std::string& path, const RunFigures& f, const StationController& c) {
+Status write_stats(const std::string& path, const RunFigures& f, const StationController& c) {
   std::vector<double> sorted = f.frame_ms;
   std::sort(sorted.begin(), sorted.end());
   auto at = [&](double q) {
@@ -111,7 +111,7 @@ core::Status write_stats(const std::string& path, const RunFigures& f, const Sta
         {"p90", l.p90_us},
         {"p99", l.p99_us},
         {"max", l.max_us}}}};
-  core::AtomicFileWriter w(path);
+  AtomicFileWriter w(path);
   if (!w.ok()) return w.error();
   w.write(j.dump(2) + "\n");
   return w.commit();
@@ -147,7 +147,7 @@ int run_window(const WindowOptions& o) {
   StationController controller(co);
   controller.set_distance_normals(o.distance_normals);
   if (!o.project.empty()) {
-    if (core::Status st = controller.open(o.project); !st) return fail(st.error());
+    if (Status st = controller.open(o.project); !st) return fail(st.error());
   }
 
   // Devices: readers tap their raw reports into the recorder, which keeps
@@ -160,7 +160,7 @@ int run_window(const WindowOptions& o) {
   auto registry = std::make_unique<hal::DeviceRegistry>(hal::DeviceRegistry::default_backends(),
                                                         *config, reader_options);
   sim::SimBackend* sim_backend = nullptr;
-  auto add_sim = [&](const std::string& file) -> core::Status {
+  auto add_sim = [&](const std::string& file) -> Status {
     auto session = load_session(file);
     if (!session) return session.error();
     // A session plays through the normaliser settings it was recorded with
@@ -185,12 +185,12 @@ int run_window(const WindowOptions& o) {
     return {};
   };
   if (o.device.rfind("sim:", 0) == 0) {
-    if (core::Status st = add_sim(o.device.substr(4)); !st) return fail(st.error());
+    if (Status st = add_sim(o.device.substr(4)); !st) return fail(st.error());
   } else if (o.device == "auto") {
     registry->scan();
     if (registry->open_count() == 0 && o.project.empty()) {
       std::printf("no 3D mouse found: playing the demo session as a live device\n");
-      if (core::Status st = add_sim(sim::bundled_session_path("demo")); !st)
+      if (Status st = add_sim(sim::bundled_session_path("demo")); !st)
         return fail(st.error());
     }
   } else {
@@ -209,7 +209,7 @@ int run_window(const WindowOptions& o) {
   };
   note_devices();
   if (!o.record.empty()) {
-    if (core::Status st = controller.start_recording(o.record, hal::monotonic_ns()); !st)
+    if (Status st = controller.start_recording(o.record, hal::monotonic_ns()); !st)
       return fail(st.error());
   }
 
@@ -361,7 +361,7 @@ int run_window(const WindowOptions& o) {
     if (!o.screenshot.empty() && (o.frames > 0 && frame == o.frames - 1)) {
       RgbImage shot{fb_w, fb_h, {}};
       read_pixels(fb_w, fb_h, shot.rgb);
-      if (core::Status st = write_png(o.screenshot, shot); !st) return fail(st.error());
+      if (Status st = write_png(o.screenshot, shot); !st) return fail(st.error());
     }
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -398,12 +398,12 @@ int run_window(const WindowOptions& o) {
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
   if (controller.recording()) {
-    if (core::Status st = controller.stop_recording(); !st) return fail(st.error());
+    if (Status st = controller.stop_recording(); !st) return fail(st.error());
     std::printf("%s\n", controller.status().c_str());
   }
   controller.finish_autosave();
   if (!o.stats.empty()) {
-    if (core::Status st = write_stats(o.stats, figures, controller); !st) return fail(st.error());
+    if (Status st = write_stats(o.stats, figures, controller); !st) return fail(st.error());
   }
   return 0;
 }

@@ -7,7 +7,7 @@
 #include "sculpt/hal/backends/hidapi_backend.h"
 #include "sculpt/hal/backends/libusb_backend.h"
 #include "sculpt/hal/backends/spnav_backend.h"
-#include "sculpt/hal/device/quirks.h"
+#include "sculpt/hal/types/quirks.h"
 
 namespace sculpt::hal {
 namespace {

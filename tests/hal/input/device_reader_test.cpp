@@ -9,7 +9,7 @@
 
 #include "../parsers/report_bytes.h"
 #include "sculpt/hal/backends/feed_backend.h"
-#include "sculpt/hal/device/quirks.h"
+#include "sculpt/hal/types/quirks.h"
 #include "sculpt/hal/parsers/spacemouse_parser.h"
 
 namespace sculpt::hal {

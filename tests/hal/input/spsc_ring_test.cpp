@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "sculpt/hal/input/input_event.h"
+#include "sculpt/hal/types/input_event.h"
 
 namespace sculpt::hal {
 namespace {

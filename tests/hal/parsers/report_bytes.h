@@ -5,7 +5,7 @@
 #include <initializer_list>
 #include <vector>
 
-#include "sculpt/hal/device/raw_event.h"
+#include "sculpt/hal/types/raw_event.h"
 
 namespace sculpt::hal::test {
 

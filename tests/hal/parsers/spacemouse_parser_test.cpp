@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "report_bytes.h"
-#include "sculpt/hal/device/quirks.h"
+#include "sculpt/hal/types/quirks.h"
 
 namespace sculpt::hal {
 namespace {

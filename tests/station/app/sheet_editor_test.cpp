@@ -37,11 +37,11 @@ TEST(SheetEditor, PlacesAFlatSheetCentredAndFacingTheAxis) {
 
 TEST(SheetEditor, RefusesAGrabAwayFromTheSheet) {
   SheetEditor e;
-  const core::Status none = e.grab({0, 0, 0}, {});
+  const Status none = e.grab({0, 0, 0}, {});
   ASSERT_FALSE(none.ok());
   EXPECT_EQ(none.error().message(), "there is no sheet to grab");
   e = sheet_at({32, 32, 32});
-  const core::Status far = e.grab({32, 32, 50}, {});
+  const Status far = e.grab({32, 32, 50}, {});
   ASSERT_FALSE(far.ok());
   EXPECT_EQ(far.error().message(),
             "the sheet is 18 voxels from the tool; move within 6 to grab it");

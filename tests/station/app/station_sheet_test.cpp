@@ -10,7 +10,7 @@
 #include "sculpt/core/nurbs/point_inversion.h"
 #include "sculpt/sim/session/session_file.h"
 #include "sculpt/station/app/station_controller.h"
-#include "sculpt/station/project/session_start.h"
+#include "sculpt/station/app/session_start.h"
 
 namespace sculpt::station {
 namespace {

@@ -82,7 +82,7 @@ glm::vec3 mode_colour(core::SculptMode mode) {
 
 }  // namespace
 
-core::Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create() {
+Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create() {
   std::unique_ptr<SceneRenderer> r(new SceneRenderer());
   auto lit = ShaderProgram::build(kLitVertex, kLitFragment, "lit");
   if (!lit) return lit.error();

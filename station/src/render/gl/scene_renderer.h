@@ -47,7 +47,7 @@ struct SurfaceSync {
 
 class SceneRenderer {
  public:
-  static core::Result<std::unique_ptr<SceneRenderer>> create();
+  static Result<std::unique_ptr<SceneRenderer>> create();
 
   /// Sends the brick meshes re-made since the last call to the GPU.
   SurfaceSync sync_surface(const core::Volume& volume, const core::MixedLevelMeshCache& surface);

@@ -25,7 +25,7 @@ GLuint compile(GLenum kind, const char* source) {
 
 }  // namespace
 
-core::Result<ShaderProgram> ShaderProgram::build(const char* vertex, const char* fragment,
+Result<ShaderProgram> ShaderProgram::build(const char* vertex, const char* fragment,
                                                  const std::string& name) {
   const GLuint vs = compile(GL_VERTEX_SHADER, vertex);
   const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment);
@@ -36,7 +36,7 @@ core::Result<ShaderProgram> ShaderProgram::build(const char* vertex, const char*
       const std::string log = log_of(s, false);
       glDeleteShader(vs);
       glDeleteShader(fs);
-      return core::Error("shader " + name + " does not compile: " + log);
+      return Error("shader " + name + " does not compile: " + log);
     }
   }
   ShaderProgram p;
@@ -48,7 +48,7 @@ core::Result<ShaderProgram> ShaderProgram::build(const char* vertex, const char*
   glDeleteShader(fs);
   GLint ok = 0;
   glGetProgramiv(p.id_, GL_LINK_STATUS, &ok);
-  if (!ok) return core::Error("shader " + name + " does not link: " + log_of(p.id_, true));
+  if (!ok) return Error("shader " + name + " does not link: " + log_of(p.id_, true));
   return p;
 }
 

@@ -8,14 +8,14 @@
 #include <glm/vec4.hpp>
 
 #include "render/gl/gl_api.h"
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 
 namespace sculpt::station::gl {
 
 class ShaderProgram {
  public:
   /// Compiles and links; the error carries the driver's log.
-  static core::Result<ShaderProgram> build(const char* vertex, const char* fragment,
+  static Result<ShaderProgram> build(const char* vertex, const char* fragment,
                                            const std::string& name);
   ShaderProgram() = default;
   ~ShaderProgram();

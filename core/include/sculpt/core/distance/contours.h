@@ -28,7 +28,7 @@
 #include <glm/vec3.hpp>
 
 #include "sculpt/core/grid/dense_grid.h"
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 
 namespace sculpt::core {
 

@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "sculpt/core/grid/dense_grid.h"
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 
 namespace sculpt::core {
 

@@ -25,7 +25,7 @@
 #include "sculpt/core/distance/distance_shell.h"
 #include "sculpt/core/distance/surface_index.h"
 #include "sculpt/core/grid/dense_grid.h"
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 
 namespace sculpt::core {
 

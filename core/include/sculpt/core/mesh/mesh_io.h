@@ -8,7 +8,7 @@
 #include <filesystem>
 
 #include "sculpt/core/mesh/mesh.h"
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 
 namespace sculpt::core {
 

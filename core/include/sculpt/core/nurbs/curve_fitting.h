@@ -11,7 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "sculpt/core/nurbs/nurbs_curve.h"
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 
 namespace sculpt::core::nurbs {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 
 namespace sculpt::core::nurbs {
 

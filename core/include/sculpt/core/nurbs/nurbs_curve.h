@@ -12,7 +12,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 
 namespace sculpt::core::nurbs {
 

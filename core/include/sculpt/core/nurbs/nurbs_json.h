@@ -26,7 +26,7 @@
 #include "sculpt/core/nurbs/nurbs_curve.h"
 #include "sculpt/core/nurbs/nurbs_surface.h"
 #include "sculpt/core/nurbs/parameter_zone.h"
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 
 namespace sculpt::core::nurbs {
 

@@ -17,7 +17,7 @@
 #include <glm/vec4.hpp>
 
 #include "sculpt/core/nurbs/knot_vector.h"
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 
 namespace sculpt::core::nurbs {
 

@@ -9,7 +9,7 @@
 
 #include <glm/vec2.hpp>
 
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 
 namespace sculpt::core::nurbs {
 

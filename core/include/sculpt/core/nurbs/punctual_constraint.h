@@ -15,7 +15,7 @@
 #include <glm/vec3.hpp>
 
 #include "sculpt/core/nurbs/nurbs_surface.h"
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 
 namespace sculpt::core::nurbs {
 

@@ -16,7 +16,7 @@
 #include "sculpt/core/grid/box.h"
 #include "sculpt/core/grid/dense_grid.h"
 #include "sculpt/core/io/nrrd.h"
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 #include "sculpt/core/volume/volume.h"
 
 namespace sculpt::core {

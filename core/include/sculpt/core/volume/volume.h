@@ -25,7 +25,7 @@
 
 #include "sculpt/core/grid/box.h"
 #include "sculpt/core/grid/dense_grid.h"
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 #include "sculpt/core/volume/brick.h"
 
 namespace sculpt::core {

@@ -15,7 +15,7 @@
 #include <mutex>
 #include <string>
 
-#include "sculpt/hal/device/device.h"
+#include "sculpt/hal/types/device.h"
 
 namespace sculpt::hal {
 
@@ -48,8 +48,8 @@ class FeedBackend final : public Backend {
   explicit FeedBackend(std::string name = "sim") : name_(std::move(name)) {}
   std::string_view name() const override { return name_; }
   BackendStatus status() override { return {}; }
-  core::Result<std::vector<DeviceInfo>> enumerate() override;
-  core::Result<std::unique_ptr<Device>> open(const DeviceInfo& info) override;
+  Result<std::vector<DeviceInfo>> enumerate() override;
+  Result<std::unique_ptr<Device>> open(const DeviceInfo& info) override;
   bool changed() override;
 
   /// Plugs a device in (info.backend is set to this backend's name). Returns

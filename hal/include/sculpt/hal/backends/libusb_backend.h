@@ -8,7 +8,7 @@
 
 #include <memory>
 
-#include "sculpt/hal/device/device.h"
+#include "sculpt/hal/types/device.h"
 
 namespace sculpt::hal {
 

@@ -19,8 +19,8 @@
 #include <thread>
 #include <vector>
 
-#include "sculpt/hal/device/device.h"
-#include "sculpt/hal/input/input_event.h"
+#include "sculpt/hal/types/device.h"
+#include "sculpt/hal/types/input_event.h"
 #include "sculpt/hal/input/motion_pipeline.h"
 #include "sculpt/hal/input/spsc_ring.h"
 

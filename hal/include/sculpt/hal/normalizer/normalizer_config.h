@@ -19,7 +19,7 @@
 #include <string>
 #include <string_view>
 
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 #include "sculpt/hal/normalizer/one_euro_filter.h"
 
 namespace sculpt::hal {
@@ -44,11 +44,11 @@ struct NormalizerConfig {
 
 /// Parses the text form. `name` names the input in errors:
 /// "input.conf:4: curve: expected linear, cubic K or power P, got 'quadratic'".
-core::Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
+Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
                                                        const std::string& name);
 
 /// Reads and parses a config file.
-core::Result<NormalizerConfig> load_normalizer_config(const std::string& path);
+Result<NormalizerConfig> load_normalizer_config(const std::string& path);
 
 /// Where the station looks for the user's file: $SCULPT_INPUT_CONFIG if set,
 /// else $XDG_CONFIG_HOME/sculpt/input.conf, else ~/.config/sculpt/input.conf.
@@ -56,7 +56,7 @@ std::string default_normalizer_config_path();
 
 /// Loads `path` when it exists; a missing file gives the defaults (nothing to
 /// tune yet), a broken one an Error naming file and line.
-core::Result<NormalizerConfig> load_normalizer_config_or_defaults(const std::string& path);
+Result<NormalizerConfig> load_normalizer_config_or_defaults(const std::string& path);
 
 /// The text form of a config (parse_normalizer_config reads it back equal).
 std::string to_text(const NormalizerConfig& config);

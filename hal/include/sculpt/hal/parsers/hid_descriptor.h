@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 
 namespace sculpt::hal {
 
@@ -38,7 +38,7 @@ struct HidLayout {
 
 /// Parses a report descriptor. Errors name the byte offset and what is wrong
 /// ("report descriptor: byte 17: item runs past the end").
-core::Result<HidLayout> parse_hid_descriptor(std::span<const uint8_t> descriptor);
+Result<HidLayout> parse_hid_descriptor(std::span<const uint8_t> descriptor);
 
 /// Reads `bit_size` bits at `bit_offset` of `data` (LSB first, as HID does),
 /// sign-extended when the field's logical minimum is negative. nullopt when the

@@ -5,14 +5,14 @@
 
 #include <memory>
 
-#include "sculpt/core/util/result.h"
-#include "sculpt/hal/device/device_info.h"
+#include "sculpt/base/result.h"
+#include "sculpt/hal/types/device_info.h"
 #include "sculpt/hal/parsers/report_parser.h"
 
 namespace sculpt::hal {
 
 /// Errors name the device: "sim:pad (1234:5678): not a multi-axis controller
 /// (usage page 1 usage 2)".
-core::Result<std::unique_ptr<ReportParser>> make_parser(const DeviceInfo& info);
+Result<std::unique_ptr<ReportParser>> make_parser(const DeviceInfo& info);
 
 }  // namespace sculpt::hal

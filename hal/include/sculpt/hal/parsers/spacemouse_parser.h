@@ -14,7 +14,7 @@
 #include <array>
 #include <bitset>
 
-#include "sculpt/hal/device/quirks.h"
+#include "sculpt/hal/types/quirks.h"
 #include "sculpt/hal/parsers/report_parser.h"
 
 namespace sculpt::hal {

@@ -9,7 +9,7 @@
 
 #include <cstdint>
 
-#include "sculpt/hal/input/input_event.h"
+#include "sculpt/hal/types/input_event.h"
 
 namespace sculpt::hal {
 

@@ -13,7 +13,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "sculpt/hal/input/input_event.h"
+#include "sculpt/hal/types/input_event.h"
 #include "sculpt/hal/pose/tool_pose.h"
 
 namespace sculpt::hal {

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "sculpt/hal/device/device.h"
+#include "sculpt/hal/types/device.h"
 #include "sculpt/sim/session/session.h"
 
 namespace sculpt::sim {
@@ -26,8 +26,8 @@ class SimBackend final : public hal::Backend {
   SimBackend(Session session, std::string path, double speed = 1.0);
   std::string_view name() const override { return "sim"; }
   hal::BackendStatus status() override { return {}; }
-  core::Result<std::vector<hal::DeviceInfo>> enumerate() override;
-  core::Result<std::unique_ptr<hal::Device>> open(const hal::DeviceInfo& info) override;
+  Result<std::vector<hal::DeviceInfo>> enumerate() override;
+  Result<std::unique_ptr<hal::Device>> open(const hal::DeviceInfo& info) override;
   bool changed() override;
 
   /// Whether the device has handed out every record of the session (its

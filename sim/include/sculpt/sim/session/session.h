@@ -10,8 +10,8 @@
 #include <string_view>
 #include <vector>
 
-#include "sculpt/hal/device/device_info.h"
-#include "sculpt/hal/device/raw_event.h"
+#include "sculpt/hal/types/device_info.h"
+#include "sculpt/hal/types/raw_event.h"
 
 namespace sculpt::sim {
 

@@ -33,7 +33,7 @@
 #include <span>
 #include <string>
 
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 #include "sculpt/sim/session/session.h"
 
 namespace sculpt::sim {
@@ -53,15 +53,15 @@ struct SessionReadInfo {
 /// Parses a whole session from memory (`name` names it in messages). Errors:
 /// bad magic, unknown version, damaged header. A damaged tail is dropped and
 /// reported in `info`.
-core::Result<Session> parse_session_bytes(std::span<const uint8_t> bytes, const std::string& name,
+Result<Session> parse_session_bytes(std::span<const uint8_t> bytes, const std::string& name,
                                           SessionReadInfo* info = nullptr);
-core::Result<Session> read_session_file(const std::filesystem::path& path,
+Result<Session> read_session_file(const std::filesystem::path& path,
                                         SessionReadInfo* info = nullptr);
 
 /// The bytes of a whole file (header and records).
 std::vector<uint8_t> serialize_session(const Session& session);
 /// Writes a whole session at once, atomically (for conversions and generators).
-core::Status write_session_file(const std::filesystem::path& path, const Session& session);
+Status write_session_file(const std::filesystem::path& path, const Session& session);
 
 /// Records a live session, append-only (see the top of this file).
 class SessionWriter {
@@ -69,25 +69,25 @@ class SessionWriter {
   static constexpr std::chrono::milliseconds kSyncInterval{250};
 
   /// Creates `path` (replacing it) and writes the header.
-  static core::Result<SessionWriter> create(const std::filesystem::path& path,
+  static Result<SessionWriter> create(const std::filesystem::path& path,
                                             const SessionHeader& header);
   SessionWriter(SessionWriter&& other) noexcept;
   SessionWriter& operator=(SessionWriter&& other) noexcept;
   ~SessionWriter();
 
   /// Appends one record (its time must not be earlier than the previous one's).
-  core::Status append(const SessionRecord& record);
+  Status append(const SessionRecord& record);
   /// Syncs to disk if the last sync is kSyncInterval old; call it every frame
   /// so a quiet device still gets its last records onto the disk.
-  core::Status sync_if_due();
+  Status sync_if_due();
   /// Syncs and closes. Also done by the destructor (errors then unreported).
-  core::Status close();
+  Status close();
   int64_t records() const { return records_; }
 
  private:
   SessionWriter(int fd, std::string name);
-  core::Status write_all(std::span<const uint8_t> bytes);
-  core::Status sync();
+  Status write_all(std::span<const uint8_t> bytes);
+  Status sync();
 
   int fd_ = -1;
   std::string name_;

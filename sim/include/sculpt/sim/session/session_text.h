@@ -32,13 +32,13 @@
 #include <string>
 #include <string_view>
 
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 #include "sculpt/sim/session/session.h"
 
 namespace sculpt::sim {
 
 std::string session_to_text(const Session& session);
 /// Errors name the input and the line: "demo.jsonl:12: report: 'zz' is not hex".
-core::Result<Session> session_from_text(std::string_view text, const std::string& name);
+Result<Session> session_from_text(std::string_view text, const std::string& name);
 
 }  // namespace sculpt::sim

@@ -16,7 +16,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
-#include "sculpt/hal/device/quirks.h"
+#include "sculpt/hal/types/quirks.h"
 #include "sculpt/hal/input/motion_pipeline.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/hal/pose/pose_integrator.h"

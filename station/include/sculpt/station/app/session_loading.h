@@ -4,14 +4,14 @@
 
 #include <filesystem>
 
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 #include "sculpt/sim/session/session.h"
 #include "sculpt/sim/session/session_file.h"
 
 namespace sculpt::station {
 
 /// A damaged tail of a binary file is dropped; `info` says what was lost.
-core::Result<sim::Session> load_session(const std::filesystem::path& path,
+Result<sim::Session> load_session(const std::filesystem::path& path,
                                         sim::SessionReadInfo* info = nullptr);
 
 }  // namespace sculpt::station

@@ -16,7 +16,7 @@
 #include <optional>
 #include <vector>
 
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 #include "sculpt/sim/session/session_file.h"
 
 namespace sculpt::station {
@@ -25,7 +25,7 @@ class SessionRecorder {
  public:
   /// Starts a recording in `path` (replacing it) whose first records are
   /// `opening` (the commands that rebuild the station's current settings).
-  core::Status start(const std::filesystem::path& path, const sim::SessionHeader& header,
+  Status start(const std::filesystem::path& path, const sim::SessionHeader& header,
                      const std::vector<sim::Command>& opening, int64_t now_ns);
   bool recording() const { return writer_.has_value(); }
   /// Keeps raw events from now on for a start() to come: so a recording asked
@@ -47,9 +47,9 @@ class SessionRecorder {
   void release_until(int64_t t_ns) { released_t_ns_ = t_ns; }
   /// Writes the commands and the released raw events, in time order; syncs
   /// when due. An error stops the recording (what was written stays readable).
-  core::Status flush();
+  Status flush();
   /// Flushes and closes; returns the records written.
-  core::Result<int64_t> stop();
+  Result<int64_t> stop();
 
  private:
   // Closes the writer (if any) and drops the raw events waiting.

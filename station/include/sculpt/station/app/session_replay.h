@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "sculpt/core/util/result.h"
-#include "sculpt/hal/input/input_event.h"
+#include "sculpt/base/result.h"
+#include "sculpt/hal/types/input_event.h"
 #include "sculpt/sim/session/session.h"
 #include "sculpt/station/app/station_loop.h"
 
@@ -45,7 +45,7 @@ LatencyStats latency_stats(std::vector<double> us);
 
 /// Replays `session` into `loop`. Errors (the device has no parser, the
 /// normaliser settings do not parse) name `name`.
-core::Result<ReplayResult> replay_session(const sim::Session& session, const std::string& name,
+Result<ReplayResult> replay_session(const sim::Session& session, const std::string& name,
                                           StationLoop& loop, const ReplayOptions& options = {});
 
 }  // namespace sculpt::station

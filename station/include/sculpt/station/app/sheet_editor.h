@@ -28,25 +28,10 @@
 #include "sculpt/core/nurbs/nurbs_surface.h"
 #include "sculpt/core/nurbs/path_deformation.h"
 #include "sculpt/core/nurbs/surface_tessellator.h"
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
+#include "sculpt/station/settings/station_settings.h"
 
 namespace sculpt::station {
-
-/// How far a grab reaches along the sheet (the localisation f of §4.2).
-enum class SheetInfluence : uint8_t {
-  kNatural,   ///< f = R_ij(u,v): the smallest change
-  kGaussian,  ///< natural spread by a Gaussian of `radius` control points
-  kZone,      ///< a circle of `radius` (parameter units) around the grab, refined
-};
-
-struct SheetDragOptions {
-  SheetInfluence influence = SheetInfluence::kGaussian;
-  double radius = 2.0;
-  /// Path points are at least this far apart (voxels).
-  double path_step_vox = 1.0;
-  /// The tip must be this close to the sheet to grab it (voxels).
-  double reach_vox = 6.0;
-};
 
 class SheetEditor {
  public:
@@ -70,7 +55,7 @@ class SheetEditor {
 
   /// Starts dragging the sheet point closest to `tip`; fails, saying why,
   /// when there is no sheet or it is further than options.reach_vox.
-  core::Status grab(glm::dvec3 tip, const SheetDragOptions& options);
+  Status grab(glm::dvec3 tip, const SheetDragOptions& options);
   bool dragging() const { return drag_.has_value(); }
   /// The tip moved (ignored when not dragging).
   void drag(glm::dvec3 tip);

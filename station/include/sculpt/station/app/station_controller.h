@@ -24,7 +24,7 @@
 #include <string>
 #include <utility>
 
-#include "sculpt/hal/device/device_info.h"
+#include "sculpt/hal/types/device_info.h"
 #include "sculpt/hal/input/device_reader.h"
 #include "sculpt/station/app/session_recorder.h"
 #include "sculpt/station/app/session_replay.h"
@@ -149,7 +149,7 @@ class StationController {
   /// The sheet's shell, `thickness_vox` thick, into the material.
   bool sheet_into_material(bool add, int64_t now_ns);
   bool sheet_as_tool(int64_t now_ns);
-  core::Status export_sheet(const std::filesystem::path& stem);
+  Status export_sheet(const std::filesystem::path& stem);
   float sheet_thickness() const { return sheet_thickness_; }
   void set_sheet_thickness(float vox) { sheet_thickness_ = std::clamp(vox, 0.5f, 64.0f); }
 
@@ -195,11 +195,11 @@ class StationController {
   const DeviceStatus& device_status() const { return device_; }
 
   // --- files ---------------------------------------------------------------
-  core::Status save(const std::filesystem::path& path);
-  core::Status open(const std::filesystem::path& path);
-  core::Status export_mesh(const std::filesystem::path& path);
-  core::Status start_recording(const std::filesystem::path& path, int64_t now_ns);
-  core::Status stop_recording();
+  Status save(const std::filesystem::path& path);
+  Status open(const std::filesystem::path& path);
+  Status export_mesh(const std::filesystem::path& path);
+  Status start_recording(const std::filesystem::path& path, int64_t now_ns);
+  Status stop_recording();
   bool recording() const { return recorder_.recording(); }
   /// Periodic work: the recording's flush, the autosave when due.
   void tick(int64_t now_ns);
@@ -210,13 +210,13 @@ class StationController {
 
   /// Saves sensitivity (one factor for all axes) and deadzone to the
   /// normaliser config file; they apply to devices opened afterwards.
-  core::Status save_input_settings(float sensitivity, float deadzone);
+  Status save_input_settings(float sensitivity, float deadzone);
 
   /// One line for the status bar: what the last action did or why it failed.
   const std::string& status() const { return status_; }
 
  private:
-  bool report(const core::Status& status, const std::string& done);
+  bool report(const Status& status, const std::string& done);
   void camera_motion(const hal::InputEvent& e);
   static int64_t report_time(int64_t t_ns, int64_t now_ns);
   void note_dabs(int64_t dabs_before, int64_t t_ns);
@@ -260,7 +260,7 @@ class StationController {
   int hypertextures_ = 0;  // each gets its own noise
   float sheet_thickness_ = 3.0f;
   uint64_t sheet_version_ = 0;  // the sheet's version at the last update_mesh()
-  std::future<core::Status> autosave_;
+  std::future<Status> autosave_;
 };
 
 }  // namespace sculpt::station

@@ -19,32 +19,14 @@
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/sculpt/sculptor.h"
 #include "sculpt/core/volume/volume.h"
-#include "sculpt/hal/input/input_event.h"
+#include "sculpt/hal/types/input_event.h"
 #include "sculpt/hal/pose/pose_integrator.h"
 #include "sculpt/hal/stroke/stroke_sampler.h"
 #include "sculpt/sim/session/session.h"
 #include "sculpt/station/app/sheet_editor.h"
+#include "sculpt/station/settings/station_settings.h"
 
 namespace sculpt::station {
-
-/// What the user has chosen (the UI panel's state).
-struct StationSettings {
-  sim::ToolShape shape = sim::ToolShape::kSphere;
-  /// The tool is not `shape` but a region of the material (tool_from_region)
-  /// or the NURBS sheet's shell; it stays the tool until another is chosen.
-  bool custom_tool = false;
-  core::Box custom_region;  ///< the material's region it came from, voxels (empty: the sheet)
-  float size_a_vox = 8.0f;  ///< sphere radius, cube edge, cylinder/cone radius, ring major radius
-  float size_b_vox = 0.0f;  ///< cylinder/cone height, ring minor radius
-  core::SculptMode mode = core::SculptMode::kAdd;
-  float strength = 1.0f;
-  float spacing = 0.25f;  ///< dab spacing, fraction of the tool's size
-  std::optional<core::MirrorPlane> mirror;
-  /// Device presses grab the NURBS sheet instead of sculpting, and Undo and
-  /// Redo act on the sheet.
-  bool sheet_editing = false;
-  SheetDragOptions sheet_drag;
-};
 
 /// The tool a shape and sizes describe (sizes are clamped to at least 0.5 voxel).
 core::Tool make_tool(sim::ToolShape shape, float size_a_vox, float size_b_vox);

@@ -27,9 +27,9 @@
 
 #include "sculpt/core/nurbs/nurbs_surface.h"
 #include "sculpt/core/tool/tool.h"
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 #include "sculpt/core/volume/volume.h"
-#include "sculpt/station/app/station_loop.h"
+#include "sculpt/station/settings/station_settings.h"
 #include "sculpt/station/view/lod_selector.h"
 
 namespace sculpt::station {
@@ -56,12 +56,12 @@ struct Project {
 inline constexpr uint32_t kProjectVersion = 1;
 
 /// Writes the project atomically (temporary file, fsync, rename).
-core::Status save_project(const std::filesystem::path& path, const core::Volume& volume,
+Status save_project(const std::filesystem::path& path, const core::Volume& volume,
                           const StationSettings& settings, const core::Tool* custom_tool,
                           const ProjectView& view,
                           const core::nurbs::NurbsSurface* sheet = nullptr);
 
 /// Opens a project; errors name the file and what is wrong with it.
-core::Result<Project> load_project(const std::filesystem::path& path);
+Result<Project> load_project(const std::filesystem::path& path);
 
 }  // namespace sculpt::station

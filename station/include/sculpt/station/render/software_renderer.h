@@ -12,7 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "sculpt/core/mesh/mesh.h"
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 
 namespace sculpt::station {
 
@@ -42,6 +42,6 @@ RgbImage render_mesh(const core::Mesh& mesh, const SoftwareView& view);
 double coverage(const RgbImage& image, const SoftwareView& view);
 
 /// Writes a PNG, all or nothing.
-core::Status write_png(const std::filesystem::path& path, const RgbImage& image);
+Status write_png(const std::filesystem::path& path, const RgbImage& image);
 
 }  // namespace sculpt::station

@@ -6,7 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include "sculpt/core/mesh/mesh.h"
-#include "sculpt/core/util/result.h"
+#include "sculpt/base/result.h"
 #include "sculpt/station/render/software_renderer.h"
 
 namespace sculpt::station {
@@ -17,7 +17,7 @@ bool display_available();
 /// Renders `mesh` inside a block of `block_dims` voxels, seen from the
 /// station's default camera, into a width x height picture. Errors when no
 /// display or no OpenGL 3.3 context can be had.
-core::Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block_dims, int width,
+Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block_dims, int width,
                                       int height);
 
 }  // namespace sculpt::station

@@ -1,0 +1,51 @@
+#pragma once
+// What the user has chosen: the tool, the mode, the dab spacing, the sheet's
+// drag options (the UI panel's state). Its own header below app/ and
+// project/: a project saves these and the station loop applies them, so
+// neither of those needs the other to know what a setting is.
+
+#include <cstdint>
+#include <optional>
+
+#include "sculpt/core/grid/box.h"
+#include "sculpt/core/sculpt/sculptor.h"
+#include "sculpt/sim/session/session.h"
+
+namespace sculpt::station {
+
+/// How far a grab reaches along the sheet (the localisation f of §4.2).
+enum class SheetInfluence : uint8_t {
+  kNatural,   ///< f = R_ij(u,v): the smallest change
+  kGaussian,  ///< natural spread by a Gaussian of `radius` control points
+  kZone,      ///< a circle of `radius` (parameter units) around the grab, refined
+};
+
+struct SheetDragOptions {
+  SheetInfluence influence = SheetInfluence::kGaussian;
+  double radius = 2.0;
+  /// Path points are at least this far apart (voxels).
+  double path_step_vox = 1.0;
+  /// The tip must be this close to the sheet to grab it (voxels).
+  double reach_vox = 6.0;
+};
+
+/// What the user has chosen (the UI panel's state).
+struct StationSettings {
+  sim::ToolShape shape = sim::ToolShape::kSphere;
+  /// The tool is not `shape` but a region of the material (tool_from_region)
+  /// or the NURBS sheet's shell; it stays the tool until another is chosen.
+  bool custom_tool = false;
+  core::Box custom_region;  ///< the material's region it came from, voxels (empty: the sheet)
+  float size_a_vox = 8.0f;  ///< sphere radius, cube edge, cylinder/cone radius, ring major radius
+  float size_b_vox = 0.0f;  ///< cylinder/cone height, ring minor radius
+  core::SculptMode mode = core::SculptMode::kAdd;
+  float strength = 1.0f;
+  float spacing = 0.25f;  ///< dab spacing, fraction of the tool's size
+  std::optional<core::MirrorPlane> mirror;
+  /// Device presses grab the NURBS sheet instead of sculpting, and Undo and
+  /// Redo act on the sheet.
+  bool sheet_editing = false;
+  SheetDragOptions sheet_drag;
+};
+
+}  // namespace sculpt::station

@@ -1,0 +1,2 @@
+#include "sculpt/core/volume/volume.h"
+#include "sculpt/hal/pose/pose.h"

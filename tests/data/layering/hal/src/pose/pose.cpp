@@ -1,0 +1,1 @@
+#include "sculpt/hal/parsers/parser.h"
