@@ -106,13 +106,16 @@ void BM_HalReportToPoseThreaded(benchmark::State& state) {
   for (auto _ : state) {
     const int64_t t0 = monotonic_ns();
     feed->push(compact_report(t0, i++));
-    for (;;) {
+    const InputEvent* motion = nullptr;
+    while (motion == nullptr) {
       frame.clear();
       reader.poll(frame, monotonic_ns());
-      if (!frame.motion.empty()) break;
+      for (const InputEvent& e : frame.events) {
+        if (e.kind == InputKind::kMotion) motion = &e;
+      }
     }
-    integrator.update(frame.motion.back());
-    latency.push_back(monotonic_ns() - frame.motion.back().t_ns);
+    integrator.update(*motion);
+    latency.push_back(monotonic_ns() - motion->t_ns);
   }
   reader.stop();
   set_percentiles(state, latency);
@@ -148,8 +151,9 @@ void BM_HalSustained1kHz(benchmark::State& state) {
       std::this_thread::sleep_for(std::chrono::microseconds(16'667));
       frame.clear();
       reader.poll(frame, monotonic_ns());
-      for (const InputEvent& m : frame.motion)
-        integrator.update(m);
+      for (const InputEvent& e : frame.events) {
+        if (e.kind == InputKind::kMotion) integrator.update(e);
+      }
       ++frames;
     }
     device_thread.join();

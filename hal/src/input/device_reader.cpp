@@ -9,7 +9,7 @@ DeviceReader::DeviceReader(uint32_t device_id, std::unique_ptr<Device> device,
     : device_id_(device_id),
       info_(device->info()),
       device_(std::move(device)),
-      pipeline_(std::move(pipeline)),
+      stream_(device_id, std::move(pipeline)),
       options_(options),
       ring_(options.ring_capacity) {}
 
@@ -41,28 +41,23 @@ void DeviceReader::push_blocking(const InputEvent& e) {
 }
 
 void DeviceReader::run() {
-  InputEvent connected;
-  connected.kind = InputKind::kConnected;
-  connected.device_id = device_id_;
-  connected.t_ns = monotonic_ns();
-  push_blocking(connected);
-
   std::vector<InputEvent> out;
   out.reserve(16);
+  stream_.connect(monotonic_ns(), out);
+  push_blocking(out.front());
   RawEvent raw;
-  int64_t last_t_ns = connected.t_ns;
-  while (!stop_.load(std::memory_order_relaxed)) {
+  bool removed = false;
+  int64_t last_t_ns = out.front().t_ns;
+  while (!removed && !stop_.load(std::memory_order_relaxed)) {
     const ReadResult r = device_->read(raw, options_.read_timeout_ms);
     if (r == ReadResult::kTimeout) continue;
     if (options_.on_raw) options_.on_raw(raw);
-    if (r == ReadResult::kRemoved) {
-      last_t_ns = raw.t_ns;
-      break;
-    }
+    removed = r == ReadResult::kRemoved;
+    if (removed) break;  // kDisconnected goes last, after the handle is released
     raw_events_.fetch_add(1, std::memory_order_relaxed);
     last_t_ns = raw.t_ns;
     out.clear();
-    pipeline_.feed(raw, device_id_, out);
+    stream_.feed(raw, out);
     for (const InputEvent& e : out) {
       if (e.kind == InputKind::kMotion) {
         motion_samples_.fetch_add(1, std::memory_order_relaxed);
@@ -76,38 +71,26 @@ void DeviceReader::run() {
   }
   // Release the handle on this thread: it is the only one that touches it.
   device_.reset();
-  InputEvent gone;
-  gone.kind = InputKind::kDisconnected;
-  gone.device_id = device_id_;
-  gone.t_ns = last_t_ns;
+  out.clear();
+  if (removed) {
+    stream_.feed(raw, out);  // kDisconnected at the transport's time
+  } else {
+    stream_.disconnect(last_t_ns, out);
+  }
   // When stopping, the main thread is joining us and not draining: one try.
   if (stop_.load(std::memory_order_relaxed)) {
-    ring_.try_push(gone);
+    ring_.try_push(out.front());
   } else {
-    push_blocking(gone);
+    push_blocking(out.front());
   }
 }
 
 void DeviceReader::poll(InputFrame& frame, int64_t now_ns) {
   InputEvent e;
-  bool have_motion = false;
-  size_t newest_at = 0;
   while (ring_.try_pop(e)) {
-    frame.sequence.push_back(e);
-    if (e.kind == InputKind::kMotion) {
-      if (e.t_ns + options_.late_after_ns < now_ns) ++late_;
-      if (have_motion) {
-        frame.motion[newest_at] = e;
-        ++superseded_;
-      } else {
-        newest_at = frame.motion.size();
-        frame.motion.push_back(e);
-      }
-      have_motion = true;
-      continue;
-    }
-    if (e.kind == InputKind::kDisconnected) finished_ = true;
     frame.events.push_back(e);
+    if (e.kind == InputKind::kMotion && e.t_ns + options_.late_after_ns < now_ns) ++late_;
+    if (e.kind == InputKind::kDisconnected) finished_ = true;
   }
 }
 
@@ -117,7 +100,6 @@ ReaderCounters DeviceReader::counters() const {
   c.motion_samples = motion_samples_.load(std::memory_order_relaxed);
   c.dropped = dropped_.load(std::memory_order_relaxed);
   c.late = late_;
-  c.superseded = superseded_;
   return c;
 }
 

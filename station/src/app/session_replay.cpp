@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
-#include "sculpt/hal/input/motion_pipeline.h"
+#include "sculpt/hal/input/device_stream.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/hal/parsers/make_parser.h"
 #include "sculpt/sim/replay/session_player.h"
@@ -25,38 +25,22 @@ LatencyStats latency_stats(std::vector<double> us) {
   return s;
 }
 
-namespace {
-
-hal::InputEvent lifecycle_event(hal::InputKind kind, int64_t t_ns) {
-  hal::InputEvent e;
-  e.kind = kind;
-  e.t_ns = t_ns;
-  return e;
-}
-
-}  // namespace
-
 Result<ReplayResult> replay_session(const sim::Session& session, const std::string& name,
                                           StationLoop& loop, const ReplayOptions& options) {
   const hal::DeviceInfo& device = session.header.device;
   auto config = hal::parse_normalizer_config(session.header.normalizer_config,
                                              name + " (normaliser settings)");
   if (!config) return config.error();
-  // A re-plugged device gets a new reader, hence a new parser and normaliser
-  // with no memory of the buttons held before: so does its replay.
-  auto make_pipeline = [&]() -> Result<std::unique_ptr<hal::MotionPipeline>> {
-    auto parser = hal::make_parser(device);
-    if (!parser) return Error(name + ": " + parser.error().message());
-    return std::make_unique<hal::MotionPipeline>(std::move(parser).value(), *config);
-  };
-  auto first = make_pipeline();
-  if (!first) return first.error();
-  std::unique_ptr<hal::MotionPipeline> pipeline = std::move(first).value();
-  hal::ParserCounters parsed;
-  auto add_counters = [&](const hal::ParserCounters& c) {
-    parsed.unknown_reports += c.unknown_reports;
-    parsed.short_reports += c.short_reports;
-  };
+  auto first_parser = hal::make_parser(device);
+  if (!first_parser) return Error(name + ": " + first_parser.error().message());
+  // The live reader's stream: the device comes with its first record and
+  // goes with a removal; one plugged back in gets a new parser and
+  // normaliser with no memory of the buttons held before, as live.
+  hal::DeviceStream stream(0, hal::MotionPipeline(std::move(first_parser).value(), *config),
+                           [&device, normalizer = *config] {
+                             return hal::MotionPipeline(hal::make_parser(device).value(),
+                                                        normalizer);  // made once already
+                           });
 
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
@@ -64,7 +48,6 @@ Result<ReplayResult> replay_session(const sim::Session& session, const std::stri
   std::vector<hal::InputEvent> events;
   std::vector<double> latencies_us;
   ReplayResult result;
-  bool connected = false;
   while (const sim::SessionRecord* r = player.next()) {
     ++result.records;
     if (r->kind == sim::SessionRecord::Kind::kCommand) {
@@ -74,18 +57,7 @@ Result<ReplayResult> replay_session(const sim::Session& session, const std::stri
     const auto t0 = clock::now();
     const int64_t dabs_before = loop.counters().dabs;
     events.clear();
-    pipeline->feed(r->event, 0, events);
-    // What the live reader thread adds around the parser: the device comes
-    // (its first record, or the first after a removal) and goes.
-    if (r->event.kind == hal::RawEventKind::kRemoved) {
-      events.push_back(lifecycle_event(hal::InputKind::kDisconnected, r->event.t_ns));
-      connected = false;
-      add_counters(pipeline->parser_counters());
-      pipeline = std::move(make_pipeline()).value();  // the device made one already
-    } else if (!connected) {
-      events.insert(events.begin(), lifecycle_event(hal::InputKind::kConnected, r->event.t_ns));
-      connected = true;
-    }
+    stream.feed(r->event, events);
     for (const hal::InputEvent& e : events) {
       loop.handle(e);
       if (options.on_sample) options.on_sample(e);
@@ -101,7 +73,7 @@ Result<ReplayResult> replay_session(const sim::Session& session, const std::stri
   result.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
   result.session_seconds = static_cast<double>(session.end_t_ns() - session.start_t_ns()) * 1e-9;
   result.dab_latency = latency_stats(std::move(latencies_us));
-  add_counters(pipeline->parser_counters());
+  const hal::ParserCounters parsed = stream.parser_counters();
   result.unknown_reports = parsed.unknown_reports;
   result.short_reports = parsed.short_reports;
   return result;

@@ -447,7 +447,7 @@ void StationController::device_frame(
       command_at(device_commands[next_command].second, device_commands[next_command].first);
     }
   };
-  for (const hal::InputEvent& e : frame.sequence) {
+  for (const hal::InputEvent& e : frame.events) {
     // Connect events carry the reader's clock, not the device's: only
     // reports place commands.
     const bool report = e.kind == hal::InputKind::kMotion || e.kind == hal::InputKind::kButton ||
@@ -489,7 +489,7 @@ void StationController::device_frame(
 }
 
 void StationController::reader_samples(int64_t motion_samples, int64_t now_ns) {
-  // Motion samples the reader decoded (superseded ones included: the device
+  // Motion samples the reader decoded (dropped ones included: the device
   // sent them), averaged over about a second.
   if (rate_since_ns_ == 0 || motion_samples < rate_samples_) {
     rate_since_ns_ = now_ns;

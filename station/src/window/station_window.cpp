@@ -260,7 +260,7 @@ int run_window(const WindowOptions& o) {
     if (sim_backend != nullptr) {
       for (auto& c : sim_backend->take_commands())
         pending_commands.push_back(std::move(c));
-      for (const hal::InputEvent& e : input.sequence) {
+      for (const hal::InputEvent& e : input.events) {
         if (e.kind == hal::InputKind::kMotion || e.kind == hal::InputKind::kButton)
           newest_report_t = std::max(newest_report_t, e.t_ns);  // the device's clock
       }

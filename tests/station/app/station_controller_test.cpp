@@ -208,11 +208,11 @@ TEST(StationController, TheDeviceMovesTheCameraOrTheTool) {
   hal::InputFrame frame;
   hal::InputEvent connected;
   connected.kind = hal::InputKind::kConnected;
-  frame.sequence.push_back(connected);
+  frame.events.push_back(connected);
   hal::InputEvent battery;
   battery.kind = hal::InputKind::kBattery;
   battery.battery_percent = 80;
-  frame.sequence.push_back(battery);
+  frame.events.push_back(battery);
   c.device_frame(frame, 0);
   EXPECT_TRUE(c.device_status().connected);
   EXPECT_EQ(c.device_status().battery_percent, 80);
@@ -226,7 +226,7 @@ TEST(StationController, TheDeviceMovesTheCameraOrTheTool) {
     m.t_ns = i * 10 * kMs;
     m.axes[hal::kRy] = 0.8f;
     m.integral[hal::kRy] = 0.008 * i;
-    f.sequence.push_back(m);
+    f.events.push_back(m);
     c.device_frame(f, m.t_ns);
   }
   EXPECT_NE(c.camera().yaw(), yaw);

@@ -1,16 +1,13 @@
 #pragma once
 // One reader thread per open device: the only code that touches its handle.
-// It reads RawEvents, runs them through the MotionPipeline and pushes the
-// results into a lock-free SPSC ring; the main loop drains the ring with
-// poll(). The first event is kConnected, the last kDisconnected (also when
-// the device vanishes); both and all button events are delivered, motion is
-// state: poll() keeps only the newest sample.
+// It reads RawEvents, runs them through its DeviceStream (kConnected, the
+// MotionPipeline's events, kDisconnected also when the device vanishes) and
+// pushes the results into a lock-free SPSC ring; the main loop drains the
+// ring with poll(), every event in the order the device sent it.
 //
 // Counters: `dropped` motion samples that did not fit the ring (never a button
 // or connect event: the thread waits for room for those); `late` samples
-// older than `late_after_ns` when polled; `superseded` samples replaced by a
-// newer one before the main loop looked (normal when it runs slower than the
-// device).
+// older than `late_after_ns` when polled.
 
 #include <atomic>
 #include <cstdint>
@@ -21,6 +18,7 @@
 
 #include "sculpt/hal/types/device.h"
 #include "sculpt/hal/types/input_event.h"
+#include "sculpt/hal/input/device_stream.h"
 #include "sculpt/hal/input/motion_pipeline.h"
 #include "sculpt/hal/input/spsc_ring.h"
 
@@ -41,23 +39,16 @@ struct ReaderCounters {
   int64_t motion_samples = 0;
   int64_t dropped = 0;
   int64_t late = 0;
-  int64_t superseded = 0;
 };
 
 /// What one poll() gathered.
 struct InputFrame {
-  std::vector<InputEvent> motion;  ///< newest kMotion per device, at most one each
-  std::vector<InputEvent> events;  ///< buttons, battery, connect, disconnect, in order
   /// Every event, motion included, in the order the device sent them: what
   /// the station's loop consumes, so a button acts at the pose it was pressed
   /// at and a stroke follows the device's path sample by sample (a live
   /// session then sculpts exactly what its recording replays to).
-  std::vector<InputEvent> sequence;
-  void clear() {
-    motion.clear();
-    events.clear();
-    sequence.clear();
-  }
+  std::vector<InputEvent> events;
+  void clear() { events.clear(); }
 };
 
 class DeviceReader {
@@ -89,7 +80,7 @@ class DeviceReader {
   uint32_t device_id_;
   DeviceInfo info_;
   std::unique_ptr<Device> device_;  // touched only by the thread once started
-  MotionPipeline pipeline_;
+  DeviceStream stream_;  // touched only by the thread once started
   ReaderOptions options_;
   SpscRing<InputEvent> ring_;
   std::thread thread_;
@@ -97,9 +88,8 @@ class DeviceReader {
   std::atomic<int64_t> raw_events_{0};
   std::atomic<int64_t> motion_samples_{0};
   std::atomic<int64_t> dropped_{0};
-  int64_t late_ = 0;        // main thread only
-  int64_t superseded_ = 0;  // main thread only
-  bool finished_ = false;   // main thread only
+  int64_t late_ = 0;       // main thread only
+  bool finished_ = false;  // main thread only
 };
 
 }  // namespace sculpt::hal

@@ -16,8 +16,16 @@ struct ParserCounters {
   int64_t reports = 0;          ///< RawEvents seen
   int64_t unknown_reports = 0;  ///< report ids this family does not define
   int64_t short_reports = 0;    ///< shorter than their layout: ignored
-  int64_t overlong_reports =
-      0;  ///< longer than their layout (or truncated): the layout part is used
+  /// Longer than their layout (or truncated): the layout part is used.
+  int64_t overlong_reports = 0;
+
+  ParserCounters& operator+=(const ParserCounters& other) {
+    reports += other.reports;
+    unknown_reports += other.unknown_reports;
+    short_reports += other.short_reports;
+    overlong_reports += other.overlong_reports;
+    return *this;
+  }
 };
 
 class ReportParser {
