@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <string>
 
-#include "sculpt/core/distance/mesh_reader.h"
+#include "sculpt/core/mesh/mesh_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;

@@ -1,3 +1,4 @@
+#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/distance/distance_shell.h"
 
 #include <cmath>
@@ -99,8 +100,7 @@ DistanceShell distance_shell(const DenseGrid<float>& phi, const SurfaceIndex& su
                [&](int64_t c) {
                  for (int64_t k = c * chunk; k < std::min(n, (c + 1) * chunk); ++k) {
                    const int32_t i = shell.voxels[k];
-                   const int x = i % d.x, y = (i / d.x) % d.y, z = i / (d.x * d.y);
-                   const SurfaceIndex::Nearest near = surface.nearest({x, y, z});
+                   const SurfaceIndex::Nearest near = surface.nearest(grid_position(i, d));
                    const float dist = std::sqrt(near.distance_squared);
                    shell.closest[k] = near.point;
                    shell.triangle[k] = near.triangle;

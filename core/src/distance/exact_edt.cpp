@@ -173,7 +173,7 @@ void envelope_block(float* dist, int32_t* feat, size_t base, int width, int n, s
 // The z pass over one row of x: run = distance along z to the last seed
 // passed, kNoSeed before the first; forward sets d = run^2, backward keeps
 // the smaller. Written with a 0/1 multiplier and min rather than a branch on
-// the mask, so the loops vectorise (about 3x faster than the branchy form).
+// the mask, so the loops vectorise (the branchy form does not).
 constexpr float kNoSeed = 3.0e38f;  // finite, and its square overflows to +inf
 
 void scan_forward(const uint8_t* __restrict m, float* __restrict run, float* __restrict d, int n,

@@ -1,3 +1,4 @@
+#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/distance/mesh_distance.h"
 
 #include <algorithm>
@@ -155,7 +156,7 @@ DenseGrid<float> mesh_signed_distance(const MeshDistance& md, glm::ivec3 dims, i
           // neighbours: one triangle alone can miss the nearest one by a few
           // hundredths of a voxel far from a curved surface.
           const glm::vec3 p{float(x), float(y), float(z)};
-          const glm::ivec3 sc(s % dims.x, (s / dims.x) % dims.y, s / (dims.x * dims.y));
+          const glm::ivec3 sc = grid_position(s, dims);
           int32_t seen[27];
           int n_seen = 0;
           float best = kInf;

@@ -1,3 +1,4 @@
+#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/distance/narrow_band.h"
 
 #include <algorithm>
@@ -116,13 +117,13 @@ void for_each_brick(const BandTriangle& bt, float band, glm::ivec3 bricks, Visit
       for (int bx = b0.x; bx <= b1.x; ++bx) {
         const glm::vec3 lo = glm::vec3(bx, by, bz) * float(B);
         if (point_box_distance_squared(bt.centre, lo, lo + float(B - 1)) >= ball * ball) continue;
-        visit((int64_t(bz) * bricks.y + by) * bricks.x + bx);
+        visit(static_cast<int64_t>(grid_index({bx, by, bz}, bricks)));
       }
 }
 
 // W voxels of a brick row at once: GCC vector extensions, 8 lanes (one AVX2
 // register) or 4 (one SSE2 or NEON register; GCC splits 8-lane vectors
-// badly without AVX2, 5x slower than 4 lanes).
+// badly without AVX2, far slower than 4 lanes).
 template <int W>
 struct Lanes {
   typedef float F __attribute__((vector_size(4 * W)));

@@ -1,3 +1,4 @@
+#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/distance/signed_distance.h"
 
 #include <cmath>
@@ -35,7 +36,7 @@ constexpr MethodName kMethods[] = {
 };
 
 glm::vec3 voxel_position(glm::ivec3 d, int64_t i) {
-  return glm::vec3(float(i % d.x), float((i / d.x) % d.y), float(i / (int64_t(d.x) * d.y)));
+  return glm::vec3(grid_position(i, d));
 }
 
 void apply_sign(DenseGrid<float>& dist, const DenseGrid<uint8_t>& inside) {

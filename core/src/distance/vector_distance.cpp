@@ -1,3 +1,4 @@
+#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/distance/vector_distance.h"
 
 #include <cmath>
@@ -31,9 +32,8 @@ DenseGrid<float> vector_distance(glm::ivec3 dims, const std::vector<VectorSeed>&
   g.v.assign(n, glm::vec3(kFar));
   g.len2.assign(n, 3.0f * kFar * kFar);
   for (const VectorSeed& s : seeds) {
-    const int x = s.voxel % dims.x, y = (s.voxel / dims.x) % dims.y,
-              z = s.voxel / (dims.x * dims.y);
-    const size_t p = g.index(x + 1, y + 1, z + 1);
+    const glm::ivec3 v = grid_position(s.voxel, dims);
+    const size_t p = g.index(v.x + 1, v.y + 1, v.z + 1);
     g.v[p] = s.to_surface;
     g.len2[p] = glm::dot(s.to_surface, s.to_surface);
   }

@@ -14,214 +14,16 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
-#include "march_cells.h"
-#include "sculpt/core/mesh/mesh_cache.h"
+#include "mesh/cube_tables.h"
+#include "mesh/march_cells.h"
 
 namespace sculpt::core {
 namespace {
 
-// Corner k of a cell sits at (k & 1, (k >> 1) & 1, k >> 2); bit k of a cell's
-// case is set when corner k is inside. Edges 0-3 run along x, 4-7 along y,
-// 8-11 along z.
-constexpr std::array<std::array<uint8_t, 2>, 12> kEdgeCorners = {{{0, 1},
-                                                                  {2, 3},
-                                                                  {4, 5},
-                                                                  {6, 7},
-                                                                  {0, 2},
-                                                                  {1, 3},
-                                                                  {4, 6},
-                                                                  {5, 7},
-                                                                  {0, 4},
-                                                                  {1, 5},
-                                                                  {2, 6},
-                                                                  {3, 7}}};
+using detail::corner_offset;
+using detail::kEdgeOrigin;
+using detail::kFixedTriangles;
 
-constexpr glm::ivec3 corner_offset(int k) {
-  return {k & 1, (k >> 1) & 1, k >> 2};
-}
-// Lower corner of each edge.
-constexpr std::array<glm::ivec3, 12> kEdgeOrigin = {
-    corner_offset(0), corner_offset(2), corner_offset(4), corner_offset(6),
-    corner_offset(0), corner_offset(1), corner_offset(4), corner_offset(5),
-    corner_offset(0), corner_offset(1), corner_offset(2), corner_offset(3)};
-
-// The triangle table is generated rather than typed in: for every case and
-// every way of resolving its ambiguous faces, the surface's boundary on each
-// face is a set of segments fixed by that face alone, so neighbouring cells
-// agree on it; chaining the segments gives closed loops, fanned into
-// triangles. Resolving each face by its own data (the asymptotic decider) is
-// what makes the surface free of holes.
-// Most cells of a smooth surface make one to four triangles: the march
-// writes that many before it looks at the count (see build_tables).
-constexpr uint32_t kFixedTriangles = 4;
-
-struct Tables {
-  // Per face: corners in counter-clockwise order seen from outside the cell,
-  // and the edge from corner i to corner i+1.
-  std::array<std::array<uint8_t, 4>, 6> face_corners{};
-  std::array<std::array<uint8_t, 4>, 6> face_edges{};
-  // Per case: ambiguous faces (bit f) and where its entries start; entry
-  // first_entry[c] + d holds the triangles for decision bits d (bit j: the
-  // j-th ambiguous face connects its inside corners).
-  std::array<uint8_t, 256> ambiguous{};
-  std::array<uint32_t, 256> first_entry{};
-  std::vector<uint32_t> entry_begin;  // into tri_edges, one past the last entry too
-  std::vector<uint8_t> tri_edges;     // three cell edges per triangle; 12 + k: centre k
-  // Centre vertices of an entry: centre_masks[centre_begin[entry] + k] holds
-  // the edges whose vertices centre k averages.
-  std::vector<uint32_t> centre_begin;
-  // Per entry: the cell edges whose vertices it uses.
-  std::vector<uint16_t> entry_edges;
-  std::vector<uint16_t> centre_masks;
-  // Most triangles and centre vertices of any entry, to size a row's output.
-  uint32_t max_triangles = 0;
-  uint32_t max_centres = 0;
-};
-
-bool edges_share_face(const Tables& t, int e1, int e2) {
-  for (const auto& fe : t.face_edges) {
-    const bool has1 = std::find(fe.begin(), fe.end(), e1) != fe.end();
-    const bool has2 = std::find(fe.begin(), fe.end(), e2) != fe.end();
-    if (has1 && has2) return true;
-  }
-  return false;
-}
-
-int edge_between(int a, int b) {
-  for (int e = 0; e < 12; ++e) {
-    if ((kEdgeCorners[e][0] == a && kEdgeCorners[e][1] == b) ||
-        (kEdgeCorners[e][0] == b && kEdgeCorners[e][1] == a))
-      return e;
-  }
-  assert(false);
-  return -1;
-}
-
-Tables build_tables() {
-  Tables t;
-  for (int f = 0; f < 6; ++f) {
-    const int axis = f / 2, side = f % 2;
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    // (u, v, +axis) is right-handed: counter-clockwise in (u, v) faces +axis.
-    std::array<glm::ivec2, 4> uv = {{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
-    if (side == 0) uv = {{{0, 0}, {0, 1}, {1, 1}, {1, 0}}};
-    for (int i = 0; i < 4; ++i) {
-      glm::ivec3 p(0);
-      p[axis] = side;
-      p[u] = uv[i].x;
-      p[v] = uv[i].y;
-      t.face_corners[f][i] = static_cast<uint8_t>(p.x + 2 * p.y + 4 * p.z);
-    }
-    for (int i = 0; i < 4; ++i) {
-      t.face_edges[f][i] =
-          static_cast<uint8_t>(edge_between(t.face_corners[f][i], t.face_corners[f][(i + 1) % 4]));
-    }
-  }
-  t.entry_begin.push_back(0);
-  t.centre_begin.push_back(0);
-  for (int c = 0; c < 256; ++c) {
-    auto inside = [c](int corner) { return ((c >> corner) & 1) != 0; };
-    std::vector<int> amb_faces;
-    for (int f = 0; f < 6; ++f) {
-      const auto& fc = t.face_corners[f];
-      if (inside(fc[0]) == inside(fc[2]) && inside(fc[1]) == inside(fc[3]) &&
-          inside(fc[0]) != inside(fc[1])) {
-        t.ambiguous[c] |= static_cast<uint8_t>(1 << f);
-        amb_faces.push_back(f);
-      }
-    }
-    t.first_entry[c] = static_cast<uint32_t>(t.entry_begin.size() - 1);
-    for (int d = 0; d < (1 << amb_faces.size()); ++d) {
-      // next[e]: the edge the surface's boundary reaches after edge e.
-      std::array<int, 12> next;
-      next.fill(-1);
-      for (int f = 0; f < 6; ++f) {
-        const auto& fc = t.face_corners[f];
-        bool connect = false;
-        for (size_t j = 0; j < amb_faces.size(); ++j)
-          if (amb_faces[j] == f) connect = ((d >> j) & 1) != 0;
-        for (int i = 0; i < 4; ++i) {
-          // Walking the face counter-clockwise, a segment runs from an
-          // outside-to-inside crossing to an inside-to-outside one, so the
-          // loops wind counter-clockwise seen from outside the material.
-          if (inside(fc[i]) || !inside(fc[(i + 1) % 4])) continue;
-          const int step = connect ? 3 : 1;  // previous or next crossing
-          for (int k = 1, j = (i + step) % 4; k < 4; ++k, j = (j + step) % 4) {
-            if (inside(fc[j]) && !inside(fc[(j + 1) % 4])) {
-              next[t.face_edges[f][i]] = t.face_edges[f][j];
-              break;
-            }
-          }
-        }
-      }
-      std::array<bool, 12> done{};
-      for (int e0 = 0; e0 < 12; ++e0) {
-        if (next[e0] < 0 || done[e0]) continue;
-        std::vector<int> loop;
-        for (int e = e0; !done[e]; e = next[e]) {
-          done[e] = true;
-          loop.push_back(e);
-          assert(next[e] >= 0);
-        }
-        // Fan from an apex none of whose diagonals lies on a cell face: such
-        // a diagonal could coincide with one in the cell across that face
-        // (only on faces crossed four times), giving an edge in four
-        // triangles. Loops with no such apex fan from a vertex at their centre.
-        const size_t len = loop.size();
-        int apex = -1;
-        for (size_t a = 0; a < len && apex < 0; ++a) {
-          bool ok = true;
-          for (size_t k = 2; k + 1 < len && ok; ++k) {
-            ok = !edges_share_face(t, loop[a], loop[(a + k) % len]);
-          }
-          if (ok) apex = static_cast<int>(a);
-        }
-        if (apex >= 0) {
-          for (size_t k = 1; k + 1 < len; ++k) {
-            t.tri_edges.push_back(static_cast<uint8_t>(loop[static_cast<size_t>(apex)]));
-            t.tri_edges.push_back(static_cast<uint8_t>(loop[(apex + k) % len]));
-            t.tri_edges.push_back(static_cast<uint8_t>(loop[(apex + k + 1) % len]));
-          }
-        } else {
-          const auto centre =
-              static_cast<uint8_t>(12 + t.centre_masks.size() - t.centre_begin.back());
-          assert(centre < 16);
-          uint16_t mask = 0;
-          for (int e : loop)
-            mask |= static_cast<uint16_t>(1u << e);
-          t.centre_masks.push_back(mask);
-          for (size_t k = 0; k < len; ++k) {
-            t.tri_edges.push_back(centre);
-            t.tri_edges.push_back(static_cast<uint8_t>(loop[k]));
-            t.tri_edges.push_back(static_cast<uint8_t>(loop[(k + 1) % len]));
-          }
-        }
-      }
-      uint16_t edges = 0;
-      for (size_t k = t.entry_begin.back(); k < t.tri_edges.size(); ++k) {
-        if (t.tri_edges[k] < 12) edges |= static_cast<uint16_t>(1u << t.tri_edges[k]);
-      }
-      for (size_t k = t.centre_begin.back(); k < t.centre_masks.size(); ++k)
-        edges |= t.centre_masks[k];
-      t.entry_edges.push_back(edges);
-      t.max_triangles = std::max(
-          t.max_triangles, static_cast<uint32_t>((t.tri_edges.size() - t.entry_begin.back()) / 3));
-      t.max_centres = std::max(
-          t.max_centres, static_cast<uint32_t>(t.centre_masks.size() - t.centre_begin.back()));
-      t.entry_begin.push_back(static_cast<uint32_t>(t.tri_edges.size()));
-      t.centre_begin.push_back(static_cast<uint32_t>(t.centre_masks.size()));
-    }
-  }
-  // The march writes kFixedTriangles triangles of every entry before it
-  // counts them; the last entry's may read past its end.
-  t.tri_edges.resize(t.tri_edges.size() + 3 * kFixedTriangles, 0);
-  return t;
-}
-
-const Tables& tables() {
-  static const Tables t = build_tables();
-  return t;
-}
 
 // The slot table holding edge e's vertex: x edges of the cell's lower and
 // upper z plane (0, 1), y edges likewise (2, 3), z edges (4).
@@ -352,7 +154,7 @@ template <class T, class SeamKey>
 void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float iso,
                  const SeamKey& seam_key, BrickMesh& out) {
   out.clear();
-  const Tables& tab = tables();
+  const detail::CubeTables& tab = detail::cube_tables();
   if (n.x <= 0 || n.y <= 0 || n.z <= 0) return;
   const glm::ivec3 dims = n + 3;
   const int64_t sx = dims.x, sxy = int64_t{dims.x} * dims.y;
@@ -634,47 +436,6 @@ void march_block(const MarchBlock& block, BrickMesh& out) {
            static_cast<uint64_t>(axis);
   };
   march_cells(block.voxels, n, block.origin, block.level, block.iso, key, out);
-}
-
-Mesh weld_brick_meshes(const std::vector<const BrickMesh*>& bricks) {
-  Mesh out;
-  size_t vertices = 0, triangles = 0;
-  for (const BrickMesh* b : bricks) {
-    vertices += b->mesh.positions.size();
-    triangles += b->mesh.triangles.size();
-  }
-  out.positions.reserve(vertices);
-  out.normals.reserve(vertices);
-  out.triangles.reserve(triangles);
-  std::unordered_map<uint64_t, uint32_t> seam;
-  std::vector<uint32_t> remap;
-  for (const BrickMesh* b : bricks) {
-    const Mesh& m = b->mesh;
-    remap.resize(m.positions.size());
-    auto next_seam = b->seams.begin();
-    for (size_t v = 0; v < m.positions.size(); ++v) {
-      const auto next = static_cast<uint32_t>(out.positions.size());
-      if (next_seam != b->seams.end() && next_seam->vertex == v) {
-        auto [it, inserted] = seam.try_emplace(next_seam->key, next);
-        ++next_seam;
-        remap[v] = it->second;
-        if (!inserted) continue;
-      } else {
-        remap[v] = next;
-      }
-      out.positions.push_back(m.positions[v]);
-      out.normals.push_back(m.normals[v]);
-    }
-    for (const glm::uvec3& t : m.triangles)
-      out.triangles.emplace_back(remap[t.x], remap[t.y], remap[t.z]);
-  }
-  return out;
-}
-
-Mesh marching_cubes(const Volume& volume, int level, const MarchingCubesOptions& options) {
-  MeshCache cache(level, options);
-  cache.update(volume);
-  return cache.welded_mesh();
 }
 
 namespace detail {

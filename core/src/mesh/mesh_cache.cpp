@@ -1,3 +1,4 @@
+#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/mesh/mesh_cache.h"
 
 #include <algorithm>
@@ -31,9 +32,9 @@ namespace {
 
 constexpr uint32_t kAllOffsets = (1u << 27) - 1;
 
-// parallel_for wakes pooled threads (a few microseconds) rather than
-// starting them, so even the few bricks of one dab (each 50-150 us of
-// decoding or marching) are worth sharing.
+// parallel_for wakes pooled threads rather than starting them, so even the
+// few bricks of one dab (each far longer to decode or march than a wake-up)
+// are worth sharing.
 constexpr int64_t kParallelMinBricks = 2;
 
 int threads_for(int64_t items, int threads) {
@@ -328,10 +329,7 @@ MeshUpdate MeshCache::update(const Volume& volume) {
                      (volume.brick_edge() >> level_) != m_;
   if (first) reset(volume);
   const auto count = static_cast<int64_t>(bricks_.size());
-  auto coord = [&](int64_t i) {
-    return glm::ivec3(static_cast<int>(i % grid_.x), static_cast<int>((i / grid_.x) % grid_.y),
-                      static_cast<int>(i / (int64_t{grid_.x} * grid_.y)));
-  };
+  auto coord = [&](int64_t i) { return grid_position(i, grid_); };
   std::vector<int64_t> changed;
   for (int64_t i = 0; i < count; ++i) {
     if (first || volume.brick_version(coord(i)) != bricks_[static_cast<size_t>(i)].version) {
@@ -422,6 +420,12 @@ Mesh MeshCache::welded_mesh() const {
   for (const CachedBrick& cb : bricks_)
     if (!cb.mesh.empty()) meshes.push_back(&cb.mesh);
   return weld_brick_meshes(meshes);
+}
+
+Mesh marching_cubes(const Volume& volume, int level, const MarchingCubesOptions& options) {
+  MeshCache cache(level, options);
+  cache.update(volume);
+  return cache.welded_mesh();
 }
 
 }  // namespace sculpt::core

@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "march_cells.h"
+#include "mesh/march_cells.h"
 
 namespace sculpt::core {
 namespace {

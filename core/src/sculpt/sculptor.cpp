@@ -1,3 +1,4 @@
+#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/sculpt/sculptor.h"
 
 #include <algorithm>
@@ -141,8 +142,7 @@ Sculptor::Sculptor(Volume& volume, const SculptorOptions& options)
     : volume_(volume), options_(options), history_(options.undo_max_bytes) {}
 
 Sculptor::DecodedBrick& Sculptor::decoded_brick(glm::ivec3 b, DabStats& stats) {
-  const glm::ivec3 g = volume_.brick_grid();
-  const int64_t index = (int64_t{b.z} * g.y + b.y) * g.x + b.x;
+  const auto index = static_cast<int64_t>(grid_index(b, volume_.brick_grid()));
   auto it = decoded_.find(index);
   if (it == decoded_.end()) {
     if (decoded_.size() >= options_.decoded_bricks) {

@@ -1,3 +1,4 @@
+#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/sculpt/undo_history.h"
 
 #include <vector>
@@ -13,8 +14,7 @@ void UndoHistory::begin_stroke() {
 
 void UndoHistory::before_change(const Volume& volume, glm::ivec3 b) {
   if (!open_) return;
-  const glm::ivec3 g = volume.brick_grid();
-  const int64_t index = (int64_t{b.z} * g.y + b.y) * g.x + b.x;
+  const auto index = static_cast<int64_t>(grid_index(b, volume.brick_grid()));
   if (!current_bricks_.insert(index).second) return;
   const Brick& brick = volume.brick(b);
   current_.bytes += brick.memory_bytes();

@@ -28,8 +28,8 @@ void drain(std::atomic<int64_t>& next, int64_t count, const std::function<void(i
 }
 
 // Threads kept asleep between loops. Starting threads for every call cost
-// 30-60 us each, as much as re-meshing a brick, and a dab's re-mesh is a few
-// bricks; waking a sleeping worker costs a few microseconds.
+// about as much as re-meshing a brick, and a dab's re-mesh is a few bricks;
+// waking a sleeping worker costs far less.
 class WorkerPool {
  public:
   // Runs the loop with up to `helpers` pool threads beside the caller, or

@@ -81,12 +81,6 @@ Volume::Volume(glm::ivec3 dims, uint8_t fill, const VolumeOptions& options)
   dirty_flags_.assign(count, 0);
 }
 
-glm::ivec3 Volume::brick_coord(int64_t index) const {
-  const int64_t per_slice = int64_t{grid_.x} * grid_.y;
-  return {static_cast<int>(index % grid_.x), static_cast<int>((index / grid_.x) % grid_.y),
-          static_cast<int>(index / per_slice)};
-}
-
 glm::ivec3 Volume::level_dims(int level) const {
   const int s = 1 << level;
   return {ceil_div(dims_.x, s), ceil_div(dims_.y, s), ceil_div(dims_.z, s)};

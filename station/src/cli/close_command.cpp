@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/field_options.h"
 #include "cli/number_checks.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/morphology.h"
@@ -32,9 +33,7 @@ int run_close(const CloseOptions& o) {
   if (!in) return report(in.error());
   const core::DenseGrid<float> closed = core::close_distance(in->phi, o.radius, o.threads);
   const bool as_float = o.sdf || !in->from_density;
-  const Status st =
-      as_float ? core::write_nrrd(o.output, closed)
-               : core::write_nrrd(o.output, core::density_from_distance_field(closed));
+  const Status st = write_field(o.output, closed, as_float);
   if (!st) return report(st.error());
   int64_t inside_before = 0, inside_after = 0;
   for (size_t i = 0; i < closed.size(); ++i) {
@@ -45,8 +44,7 @@ int run_close(const CloseOptions& o) {
               static_cast<long long>(inside_before), static_cast<long long>(inside_after));
   std::printf("time        %.3f s\n",
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  std::printf("wrote       %s (%s)\n", o.output.c_str(),
-              as_float ? "float32 signed distance" : "uint8 density");
+  std::printf("wrote       %s (%s)\n", o.output.c_str(), field_kind(as_float));
   return 0;
 }
 
@@ -62,7 +60,7 @@ void add_close_command(CLI::App& app, Action& action) {
       ->required()
       ->check(finite_range(0.001f, 1024.0f));
   cmd->add_flag("--sdf", o->sdf, "write the float32 signed distance");
-  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(finite_range(0, 1024));
+  add_threads_option(cmd, o->threads);
   cmd->callback([o, &action] { action = [o] { return run_close(*o); }; });
 }
 

@@ -10,12 +10,14 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/field_options.h"
 #include "cli/number_checks.h"
 #include "sculpt/core/distance/contours.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/distance_normals.h"
 #include "sculpt/core/io/nrrd.h"
 #include "sculpt/core/mesh/marching_cubes.h"
+#include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/mesh/mesh_io.h"
 
 namespace sculpt::station::cli {
@@ -43,11 +45,11 @@ int run_contours(const ContoursOptions& o) {
   auto stack = core::read_contours(o.input);
   if (!stack) return report(stack.error());
   const core::DenseGrid<float> field = core::contour_distance_field(*stack, o.threads);
-  const core::DenseGrid<uint8_t> density = core::density_from_distance_field(field);
   Status st;
   if (volume_out) {
-    st = o.sdf ? core::write_nrrd(out, field) : core::write_nrrd(out, density);
+    st = write_field(out, field, o.sdf);
   } else {
+    const core::DenseGrid<uint8_t> density = core::density_from_distance_field(field);
     core::VolumeOptions vo;
     vo.threads = o.threads;
     const core::Volume volume = core::Volume::from_dense(density, vo);
@@ -78,7 +80,7 @@ void add_contours_command(CLI::App& app, Action& action) {
   cmd->add_option("input", o->input, "contour text file (sculpt-contours 1)")->required();
   cmd->add_option("-o,--output", o->output, "output: .nrrd, .ply, .obj or .stl")->required();
   cmd->add_flag("--sdf", o->sdf, "write the float32 signed distance (.nrrd only)");
-  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(finite_range(0, 1024));
+  add_threads_option(cmd, o->threads);
   cmd->callback([o, &action] { action = [o] { return run_contours(*o); }; });
 }
 

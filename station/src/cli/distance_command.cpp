@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include "cli/field_options.h"
 #include "cli/number_checks.h"
 #include "sculpt/core/distance/distance_comparison.h"
 #include "sculpt/core/distance/distance_io.h"
@@ -137,7 +138,7 @@ void add_distance_command(CLI::App& app, Action& action) {
   cmd->add_option("--sizes", o->sizes, "--table sizes, comma separated (default 128,256)");
   cmd->add_option("--methods", o->methods,
                   "--table methods, comma separated (default all but brute)");
-  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(finite_range(0, 1024));
+  add_threads_option(cmd, o->threads);
   cmd->callback([o, &action] { action = [o] { return run_distance(*o); }; });
 }
 

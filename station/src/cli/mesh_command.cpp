@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/field_options.h"
 #include "cli/number_checks.h"
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/mesh/mesh_io.h"
@@ -83,7 +84,7 @@ void add_mesh_command(CLI::App& app, Action& action) {
   cmd->add_option("--lod", o->lod, "level of detail: 0 = full resolution .. 5 = 1/32")
       ->check(finite_range(0, 5));
   cmd->add_flag("--ascii", o->ascii, "ASCII instead of binary PLY");
-  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(finite_range(0, 1024));
+  add_threads_option(cmd, o->threads);
   cmd->callback([o, &action] { action = [o] { return run_mesh(*o); }; });
 }
 

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/field_options.h"
 #include "cli/number_checks.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/morphology.h"
@@ -30,9 +31,7 @@ int run_offset(const OffsetOptions& o) {
   const core::DenseGrid<float> moved =
       core::offset_distance(core::surface_distance(in->phi, o.threads), o.by);
   const bool as_float = o.sdf || !in->from_density;
-  const Status st =
-      as_float ? core::write_nrrd(o.output, moved)
-               : core::write_nrrd(o.output, core::density_from_distance_field(moved));
+  const Status st = write_field(o.output, moved, as_float);
   if (!st) return report(st.error());
   int64_t before = 0, after = 0;
   for (size_t i = 0; i < moved.size(); ++i) {
@@ -41,8 +40,7 @@ int run_offset(const OffsetOptions& o) {
   }
   std::printf("offset      by %+.3g voxels: %lld -> %lld inside voxels\n", double(o.by),
               static_cast<long long>(before), static_cast<long long>(after));
-  std::printf("wrote       %s (%s)\n", o.output.c_str(),
-              as_float ? "float32 signed distance" : "uint8 density");
+  std::printf("wrote       %s (%s)\n", o.output.c_str(), field_kind(as_float));
   return 0;
 }
 
@@ -58,7 +56,7 @@ void add_offset_command(CLI::App& app, Action& action) {
       ->required()
       ->check(finite_range(-1024.0f, 1024.0f));
   cmd->add_flag("--sdf", o->sdf, "write the float32 signed distance");
-  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(finite_range(0, 1024));
+  add_threads_option(cmd, o->threads);
   cmd->callback([o, &action] { action = [o] { return run_offset(*o); }; });
 }
 

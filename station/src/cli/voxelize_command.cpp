@@ -12,10 +12,11 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/field_options.h"
 #include "cli/number_checks.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/mesh_distance.h"
-#include "sculpt/core/distance/mesh_reader.h"
+#include "sculpt/core/mesh/mesh_reader.h"
 #include "sculpt/core/io/nrrd.h"
 
 namespace sculpt::station::cli {
@@ -56,9 +57,7 @@ int run_voxelize(const VoxelizeOptions& o) {
   if (field.at(0, 0, 0) < 0.0f)
     return report(
         Error(o.input + ": triangles face inward (wound clockwise seen from outside)"));
-  const Status st =
-      o.sdf ? core::write_nrrd(o.output, field)
-            : core::write_nrrd(o.output, core::density_from_distance_field(field));
+  const Status st = write_field(o.output, field, o.sdf);
   if (!st) return report(st.error());
   auto sec = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
   std::printf("mesh        %zu vertices, %zu triangles, closed\n", mesh->positions.size(),
@@ -66,8 +65,7 @@ int run_voxelize(const VoxelizeOptions& o) {
   std::printf("mapping     grid = mesh * %.6g + (%.6g, %.6g, %.6g)\n", double(map.scale),
               double(map.offset.x), double(map.offset.y), double(map.offset.z));
   std::printf("time        read %.3f s, distance %.3f s\n", sec(t0, t1), sec(t1, t2));
-  std::printf("wrote       %s (%d^3, %s)\n", o.output.c_str(), o.size,
-              o.sdf ? "float32 signed distance" : "uint8 density");
+  std::printf("wrote       %s (%d^3, %s)\n", o.output.c_str(), o.size, field_kind(o.sdf));
   return 0;
 }
 
@@ -85,7 +83,7 @@ void add_voxelize_command(CLI::App& app, Action& action) {
   cmd->add_option("--margin", o->margin, "voxels between the mesh and the grid's faces (default 4)")
       ->check(finite_range(0.0f, 256.0f));
   cmd->add_flag("--sdf", o->sdf, "write the float32 signed distance instead of uint8 density");
-  cmd->add_option("--threads", o->threads, "threads (0 = all cores)")->check(finite_range(0, 1024));
+  add_threads_option(cmd, o->threads);
   cmd->callback([o, &action] { action = [o] { return run_voxelize(*o); }; });
 }
 

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sculpt/base/atomic_file.h"
+#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/nurbs/nurbs_json.h"
 #include "sculpt/core/wavelet/wavelet_pyramid.h"
 
@@ -68,7 +69,7 @@ class Deflater {
  public:
   explicit Deflater(std::vector<uint8_t>& out) : out_(out) {
     // Level 1: the zero runs of detail bands compress nearly as well as at
-    // level 9, several times faster (saves and autosaves must be quick).
+    // level 9, in a fraction of the time (saves and autosaves must be quick).
     deflateInit(&z_, 1);
   }
   ~Deflater() { deflateEnd(&z_); }
@@ -147,8 +148,7 @@ Status save_project(const std::filesystem::path& path, const core::Volume& volum
     const glm::ivec3 grid = volume.brick_grid();
     std::vector<uint8_t> le;
     for (int64_t i = 0; i < volume.brick_count(); ++i) {
-      const glm::ivec3 b(static_cast<int>(i % grid.x), static_cast<int>(i / grid.x % grid.y),
-                         static_cast<int>(i / (int64_t{grid.x} * grid.y)));
+      const glm::ivec3 b = core::grid_position(i, grid);
       const core::Brick& brick = volume.brick(b);
       if (brick.is_uniform()) {
         const uint8_t rec[2] = {kUniformBrick, brick.uniform_value()};
@@ -317,8 +317,7 @@ Result<Project> load_project(const std::filesystem::path& path) {
   core::WaveletPyramid pyramid(e, options.levels);
   const glm::ivec3 grid = volume->brick_grid();
   for (int64_t i = 0; i < volume->brick_count(); ++i) {
-    const glm::ivec3 b(static_cast<int>(i % grid.x), static_cast<int>(i / grid.x % grid.y),
-                       static_cast<int>(i / (int64_t{grid.x} * grid.y)));
+    const glm::ivec3 b = core::grid_position(i, grid);
     uint8_t tag;
     if (!inflater.read(&tag, 1)) return fail("damaged (volume data cut short)");
     if (tag == kUniformBrick) {

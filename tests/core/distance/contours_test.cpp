@@ -6,6 +6,7 @@
 
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/mesh/marching_cubes.h"
+#include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/volume/volume.h"
 
 namespace sculpt::core {

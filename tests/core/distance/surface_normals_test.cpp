@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "sculpt/core/mesh/marching_cubes.h"
+#include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 
 namespace sculpt::core {

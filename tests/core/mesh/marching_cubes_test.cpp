@@ -2,6 +2,7 @@
 // manifold, of the right genus, the right size and facing outward.
 
 #include "sculpt/core/mesh/marching_cubes.h"
+#include "sculpt/core/mesh/mesh_cache.h"
 
 #include <cmath>
 #include <numbers>

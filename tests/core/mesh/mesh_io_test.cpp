@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "sculpt/core/mesh/marching_cubes.h"
+#include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 
 namespace sculpt::core {

@@ -7,6 +7,7 @@
 
 #include "sculpt/core/distance/surface_normals.h"
 #include "sculpt/core/mesh/marching_cubes.h"
+#include "sculpt/core/mesh/mesh_cache.h"
 
 namespace sculpt::station::gl {
 namespace {

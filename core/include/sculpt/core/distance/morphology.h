@@ -10,14 +10,14 @@ namespace sculpt::core {
 /// The signed distance field of phi's zero level (exact, shell init).
 DenseGrid<float> surface_distance(const DenseGrid<float>& phi, int threads = 0);
 
-/// The surface moved outward by `by` voxels (inward when negative): the
-/// distance field of the offset surface, D - by.
-DenseGrid<float> offset_distance(const DenseGrid<float>& distance, float by);
+/// The surface moved outward by `by_vox` voxels (inward when negative): the
+/// distance field of the offset surface, D - by_vox.
+DenseGrid<float> offset_distance(const DenseGrid<float>& distance, float by_vox);
 
-/// True closing by `radius` voxels: D = distance to the surface; the dilated
-/// surface is {D = radius}; D' = distance to that surface, re-computed; the
-/// closed surface is {D' = -radius}. Returns D' + radius (negative inside the
+/// True closing by `radius_vox` voxels: D = distance to the surface; the dilated
+/// surface is {D = radius_vox}; D' = distance to that surface, re-computed; the
+/// closed surface is {D' = -radius_vox}. Returns D' + radius_vox (negative inside the
 /// closed shape). `phi` is any level function (negative inside).
-DenseGrid<float> close_distance(const DenseGrid<float>& phi, float radius, int threads = 0);
+DenseGrid<float> close_distance(const DenseGrid<float>& phi, float radius_vox, int threads = 0);
 
 }  // namespace sculpt::core

@@ -8,6 +8,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/distance/mesh_distance.h"
 #include "sculpt/core/grid/dense_grid.h"
 
@@ -59,8 +60,7 @@ struct NarrowBand {
   /// The grid voxel of value `k` of slot `s`.
   glm::ivec3 voxel(int32_t s, int k) const {
     const int32_t b = slot_brick[size_t(s)];
-    const glm::ivec3 brick(b % bricks.x, (b / bricks.x) % bricks.y, b / (bricks.x * bricks.y));
-    return brick * kBrick + glm::ivec3(k % kBrick, (k / kBrick) % kBrick, k / (kBrick * kBrick));
+    return grid_position(b, bricks) * kBrick + grid_position(k, glm::ivec3(kBrick));
   }
   /// The band as a dense grid (+infinity outside it).
   DenseGrid<float> dense_distance(int threads = 0) const;

@@ -15,12 +15,17 @@
 // level meet at the brick faces (what joins bricks of different levels, see
 // mixed_level_mesh.h). The price: a level-k surface sits (2^k - 1) / 2 voxels
 // toward -x, -y, -z from the level-0 one.
+//
+// This file marches blocks of cells (march_block); the whole-volume surface,
+// cached per brick, is MeshCache (mesh_cache.h), and joining brick meshes is
+// brick_mesh.h.
 
 #include <cstdint>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "sculpt/core/mesh/brick_mesh.h"
 #include "sculpt/core/mesh/mesh.h"
 #include "sculpt/core/volume/volume.h"
 
@@ -31,31 +36,6 @@ struct MarchingCubesOptions {
   float iso = 127.5f;
   /// Threads for whole-volume extraction (0 = all cores).
   int threads = 0;
-};
-
-/// The mesh of one brick's cells, before welding with its neighbours.
-struct BrickMesh {
-  Mesh mesh;
-  /// A vertex on a cell edge shared with another brick's cells, and the key
-  /// of that edge in the whole level. Welding merges vertices by key.
-  struct Seam {
-    uint32_t vertex = 0;
-    uint64_t key = 0;
-    friend bool operator==(const Seam&, const Seam&) = default;
-  };
-  /// The brick's seam vertices, by increasing vertex index. Most vertices
-  /// are inside the brick, so only these carry a key.
-  std::vector<Seam> seams;
-  static constexpr uint64_t kNotSeam = ~uint64_t{0};
-
-  bool empty() const { return mesh.triangles.empty(); }
-  void clear() {
-    mesh.positions.clear();
-    mesh.normals.clear();
-    mesh.triangles.clear();
-    seams.clear();
-  }
-  friend bool operator==(const BrickMesh&, const BrickMesh&) = default;
 };
 
 /// A block of cells to march, with its voxels.
@@ -76,12 +56,5 @@ struct MarchBlock {
 /// Marches the cells of `block` into `out` (cleared first). No heap
 /// allocation beyond the growth of `out` and of per-thread scratch.
 void march_block(const MarchBlock& block, BrickMesh& out);
-
-/// The whole surface of `volume` at `level`, welded across bricks.
-Mesh marching_cubes(const Volume& volume, int level = 0, const MarchingCubesOptions& options = {});
-
-/// Welds brick meshes (in the given order) into one mesh: vertices on shared
-/// cell edges become one vertex.
-Mesh weld_brick_meshes(const std::vector<const BrickMesh*>& bricks);
 
 }  // namespace sculpt::core

@@ -27,6 +27,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/mesh/marching_cubes.h"
 #include "sculpt/core/mesh/mesh.h"
 #include "sculpt/core/volume/volume.h"
@@ -70,9 +71,7 @@ class MeshCache {
     uint32_t any_outside = 0;
     BrickMesh mesh;
   };
-  size_t index(glm::ivec3 b) const {
-    return (static_cast<size_t>(b.z) * grid_.y + b.y) * grid_.x + b.x;
-  }
+  size_t index(glm::ivec3 b) const { return grid_index(b, grid_); }
   void reset(const Volume& volume);
   void classify(std::span<const uint8_t> voxels, CachedBrick& cb) const;
   // Decodes brick b; returns the bit (dz+1)*9 + (dy+1)*3 + (dx+1) for each
@@ -100,5 +99,8 @@ class MeshCache {
   int m_ = 0;  // brick edge at this level
   std::vector<CachedBrick> bricks_;
 };
+
+/// The whole surface of `volume` at `level`, welded across bricks.
+Mesh marching_cubes(const Volume& volume, int level = 0, const MarchingCubesOptions& options = {});
 
 }  // namespace sculpt::core

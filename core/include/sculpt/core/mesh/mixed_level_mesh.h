@@ -35,6 +35,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/mesh/marching_cubes.h"
 #include "sculpt/core/mesh/mesh.h"
 #include "sculpt/core/mesh/mesh_cache.h"
@@ -111,9 +112,7 @@ class MixedLevelMeshCache {
     uint64_t version = 0;
     std::vector<uint8_t> voxels;  // (edge >> level)^3
   };
-  size_t index(glm::ivec3 b) const {
-    return (static_cast<size_t>(b.z) * grid_.y + b.y) * grid_.x + b.x;
-  }
+  size_t index(glm::ivec3 b) const { return grid_index(b, grid_); }
   bool in_grid(glm::ivec3 b) const;
   int level_of(glm::ivec3 b) const { return levels_[index(b)]; }
   // The neighbourhood radius a brick at `level` reads (halo two voxels up).

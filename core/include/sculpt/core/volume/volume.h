@@ -23,6 +23,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/grid/box.h"
 #include "sculpt/core/grid/dense_grid.h"
 #include "sculpt/base/result.h"
@@ -126,10 +127,8 @@ class Volume {
   uint64_t content_hash() const;
 
  private:
-  size_t brick_index(glm::ivec3 b) const {
-    return (static_cast<size_t>(b.z) * grid_.y + b.y) * grid_.x + b.x;
-  }
-  glm::ivec3 brick_coord(int64_t index) const;
+  size_t brick_index(glm::ivec3 b) const { return grid_index(b, grid_); }
+  glm::ivec3 brick_coord(int64_t index) const { return grid_position(index, grid_); }
   // Repeats the last in-volume voxel into the part of a border brick that lies
   // outside the volume.
   void pad_outside(glm::ivec3 b, std::span<uint8_t> voxels) const;

@@ -12,7 +12,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "cli/run_sculpt.h"
+#include "run_sculpt.h"
 #include "scratch_dir.h"
 #include "sculpt/core/nurbs/nurbs_json.h"
 

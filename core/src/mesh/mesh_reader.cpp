@@ -1,4 +1,4 @@
-#include "sculpt/core/distance/mesh_reader.h"
+#include "sculpt/core/mesh/mesh_reader.h"
 
 #include <algorithm>
 #include <bit>

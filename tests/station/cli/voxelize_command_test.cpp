@@ -5,10 +5,11 @@
 
 #include <filesystem>
 
-#include "cli/run_sculpt.h"
+#include "run_sculpt.h"
 #include "scratch_dir.h"
 #include "sculpt/core/io/nrrd.h"
 #include "sculpt/core/mesh/marching_cubes.h"
+#include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/volume/volume.h"
 
 namespace sculpt::station::test {

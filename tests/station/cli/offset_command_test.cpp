@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "cli/run_sculpt.h"
+#include "run_sculpt.h"
 #include "scratch_dir.h"
 #include "sculpt/core/io/nrrd.h"
 #include "sculpt/core/shapes/analytic_shapes.h"

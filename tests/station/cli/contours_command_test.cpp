@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "cli/run_sculpt.h"
+#include "run_sculpt.h"
 #include "scratch_dir.h"
 #include "sculpt/core/io/nrrd.h"
 
