@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/vector_relational.hpp>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
@@ -136,7 +137,17 @@ Result<Tool> read_tool_nrrd(const std::filesystem::path& path, const NrrdLimits&
       return Error("sculpt_pivot: expected 3 finite numbers, got '" + line.substr(key.size()) + "'")
           .in(path.string());
     }
-    tool.pivot = {v[0], v[1], v[2]};
+    // A pivot far outside the grid rotates the tool out of float precision
+    // (`sculpt rotate` wrote "sizes: 0 0 0"): at most the grid's own size
+    // beyond each face.
+    const glm::vec3 dims(tool.density.dims());
+    const glm::vec3 pivot(v[0], v[1], v[2]);
+    if (glm::any(glm::lessThan(pivot, -dims)) || glm::any(glm::greaterThan(pivot, 2.0f * dims))) {
+      return Error("sculpt_pivot: " + line.substr(key.size()) +
+                   " is farther than the grid's size outside the grid")
+          .in(path.string());
+    }
+    tool.pivot = pivot;
   }
   return tool;
 }

@@ -95,6 +95,14 @@ class PreparedTool {
   uint8_t core_value_ = 0;
 };
 
+// The rotation kernels' batch layouts, private to the library.
+namespace rotation {
+struct Lines;
+struct Span;
+struct SpanRun;
+struct Spans;
+}  // namespace rotation
+
 /// The inverse map of one placement in fixed point, over the rotated box.
 class RotationFrame {
  public:
@@ -127,67 +135,23 @@ class RotationFrame {
   /// x0[y], x1[y] (both 0 when the row misses).
   void reach_spans(int z, int16_t* x0, int16_t* x1) const;
 
-  /// A stretch of samples along x: the first one's position (16.16, padded
-  /// tool voxels), the count, and where the values go.
-  struct Line {
-    int32_t s[3];
-    int n;
-    uint8_t* out;
-  };
-  /// A batch of lines, one array per field (the planner writes eight rows'
-  /// lines with vector stores): the kernels' input.
-  struct Lines {
-    static constexpr int kCapacity = 256;
-    int32_t s0[kCapacity], s1[kCapacity], s2[kCapacity], n[kCapacity];
-    uint8_t* out[kCapacity];
-    int count = 0;
-    void add(const Line& line) {
-      s0[count] = line.s[0];
-      s1[count] = line.s[1];
-      s2[count] = line.s[2];
-      n[count] = line.n;
-      out[count] = line.out;
-      ++count;
-    }
-  };
-
-  /// A plane's rows y0 .. y0 + n - 1 (box-relative), whose spans go to
-  /// index `at` on (a multiple of 8) of the planner's arrays.
-  struct SpanRun {
-    int y0, z, n, at;
-  };
-
  private:
-  // A box-relative row's stretch within the reach ball, [x0, x1) inside
-  // [0, box().size().x) (empty: x0 = x1 = 0), and within it the core
-  // stretch [c0, c1) (empty: c0 = c1 = x1).
-  struct Span {
-    int32_t x0, x1, c0, c1;
-  };
-  // Spans of up to kSpanRows rows, one array per field (the planner's
-  // vector loads and stores use them eight at a time).
-  static constexpr int kSpanRows = 512;
-  struct Spans {
-    int32_t x0[kSpanRows], x1[kSpanRows], c0[kSpanRows], c1[kSpanRows];
-    Span row(int i) const { return {x0[i], x1[i], c0[i], c1[i]}; }
-  };
-  // The spans of the runs' rows. Each run takes its rows rounded up to a
-  // multiple of 8 from `at`, within kSpanRows.
-  void spans(const SpanRun* runs, int count, Spans& out) const;
-  // Box-relative row (y, z) whose first sample (x = 0) is at row_s, x
-  // offsets [x0, x1) written from out[0]: fills the core stretch and adds
-  // the stretches left to sample (at most 2) to lines.
-  void plan_row(const int32_t row_s[3], int x0, int x1, Span span, uint8_t* out,
-                Lines& lines) const;
-  // Rows i .. i + m - 1 (m <= 8) of `sp`, whole (x offsets [0, width)), the
-  // first at row_s and writing from out (a row apart): plan_row() for each.
-  void plan_rows(const int32_t row_s[3], const Spans& sp, int i, int m, uint8_t* out,
-                 Lines& lines) const;
-  // Narrows a line to its samples within the tool's support; false if none.
-  bool clip_line(Line& line) const;
-  // Samples the lines into their outputs, none of which reaches `end`; the
-  // kernel may rewrite (unchanged) bytes past a line's end before `end`.
-  void sample_lines(const PreparedTool& tool, const Lines& lines, const uint8_t* end) const;
+  // The stages of sample_row() and sample_box(); their batch types and
+  // kernels are in core/src/tool/rotation_kernels.h.
+
+  // The spans of the runs' rows.
+  void spans(const rotation::SpanRun* runs, int count, rotation::Spans& out) const;
+  // rotation::plan_row() with this frame's steps and core value, its lines
+  // clipped to the tool's support when they may leave it.
+  void plan_row(const int32_t row_s[3], int x0, int x1, rotation::Span span, uint8_t* out,
+                rotation::Lines& lines) const;
+  // plan_row() for rows i .. i + m - 1 (m <= 8) of `sp`, whole, the first at
+  // row_s and writing from out (a row apart).
+  void plan_rows(const int32_t row_s[3], const rotation::Spans& sp, int i, int m, uint8_t* out,
+                 rotation::Lines& lines) const;
+  // Narrows lines[from ..] to their samples within the tool's support and
+  // drops those with none.
+  void clip_lines(rotation::Lines& lines, int from) const;
 
   Box box_;
   Sampling sampling_;

@@ -1,0 +1,98 @@
+// PreparedTool: a reference tool made ready for rotation (tool_rotation.h).
+// Everything the rotation kernels would otherwise test or recompute per
+// sample is settled here once per tool: the zero padding that removes bounds
+// tests, the reach and core radii that bound what must be sampled, and the
+// per-cell tables of the two trilinear kernels.
+
+#include "sculpt/core/tool/tool_rotation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+namespace sculpt::core {
+
+PreparedTool::PreparedTool(Tool tool) : tool_(std::move(tool)) {
+  const glm::ivec3 d = tool_.density.dims();
+  const glm::ivec3 pd = d + 2 * kPad;
+  padded_dims_ = pd;
+  const size_t count = static_cast<size_t>(voxel_count(pd));
+  // Slack after the grid, for reads wider than a byte.
+  padded_.assign(count + 4, 0);
+  const size_t px = pd.x;
+  const size_t pxy = px * pd.y;
+  // The core value: the voxel nearest the pivot's; no core if that is outside.
+  const glm::ivec3 centre(glm::floor(tool_.pivot + 0.5f));
+  const bool centred = tool_.density.in_bounds(centre.x, centre.y, centre.z);
+  const uint8_t u = centred ? tool_.density.at(centre.x, centre.y, centre.z) : 0;
+  // A sample at t reads voxels w with |t_i - w_i| <= m on every axis (m = 0.5
+  // nearest, < 1 trilinear): it can be non-zero only within
+  // |w - pivot| + m per axis of a non-zero voxel w, and reads only u closer
+  // than |w - pivot| - m per axis to every voxel w != u. Per axis, not
+  // sqrt(3) m along the radius: a thinner shell left to sample.
+  constexpr double kMargin[2] = {0.5, 1.0};
+  double reach2[2] = {0.0, 0.0};
+  double other2[2] = {centred ? 1e300 : 0.0, centred ? 1e300 : 0.0};
+  const glm::dvec3 pivot(tool_.pivot);
+  if (u != 0) {
+    // Outside the grid reads 0: the layers at -1 and d on each axis.
+    for (int i = 0; i < 3; ++i) {
+      const double gap = std::min(pivot[i] + 1.0, d[i] - pivot[i]);
+      for (int k = 0; k < 2; ++k) {
+        const double g = std::max(0.0, gap - kMargin[k]);
+        other2[k] = std::min(other2[k], g * g);
+      }
+    }
+  }
+  for (int z = 0; z < d.z; ++z)
+    for (int y = 0; y < d.y; ++y)
+      for (int x = 0; x < d.x; ++x) {
+        const uint8_t v = tool_.density.at(x, y, z);
+        padded_[(z + kPad) * pxy + (y + kPad) * px + (x + kPad)] = v;
+        if (v == 0 && v == u) continue;
+        const glm::dvec3 r = glm::abs(glm::dvec3(x, y, z) - pivot);
+        for (int k = 0; k < 2; ++k) {
+          if (v != 0) {
+            const glm::dvec3 far = r + kMargin[k];
+            reach2[k] = std::max(reach2[k], glm::dot(far, far));
+          }
+          if (v != u) {
+            const glm::dvec3 near = glm::max(r - kMargin[k], 0.0);
+            other2[k] = std::min(other2[k], glm::dot(near, near));
+          }
+        }
+      }
+  for (int k = 0; k < 2; ++k) {
+    reach_vox_[k] = static_cast<float>(std::sqrt(reach2[k]));
+    core_radius_vox_[k] = centred ? static_cast<float>(std::sqrt(other2[k])) : 0.0f;
+  }
+  core_value_ = u;
+
+  // Cells whose 8 corners are equal: their trilinear sample is that value
+  // whatever the weights. The last layer has no +1 neighbours and is never
+  // sampled (samples floor to at most dims + 2).
+  cells_.assign(count, 0);
+  corners_.assign(count, 0);
+  for (int z = 0; z + 1 < pd.z; ++z)
+    for (int y = 0; y + 1 < pd.y; ++y)
+      for (int x = 0; x + 1 < pd.x; ++x) {
+        const size_t i = z * pxy + y * px + x;
+        const uint8_t* p = &padded_[i];
+        const uint8_t v = p[0];
+        if (p[1] == v && p[px] == v && p[px + 1] == v && p[pxy] == v && p[pxy + 1] == v &&
+            p[pxy + px] == v && p[pxy + px + 1] == v) {
+          cells_[i] = static_cast<uint16_t>(0x100 | v);
+        }
+        uint64_t c = 0;
+        // y varies fastest, then x, then z (see corners()).
+        const size_t offsets[8] = {0, px, 1, px + 1, pxy, pxy + px, pxy + 1, pxy + px + 1};
+        for (int k = 0; k < 8; ++k)
+          c |= static_cast<uint64_t>(p[offsets[k]]) << (8 * k);
+        corners_[i] = c;
+      }
+}
+
+}  // namespace sculpt::core
