@@ -2,6 +2,7 @@
 #include "sculpt/core/distance/mesh_distance.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 
@@ -181,13 +182,25 @@ DenseGrid<float> mesh_signed_distance(const MeshDistance& md, glm::ivec3 dims, i
   return out;
 }
 
-VoxelizeMapping fit_mesh_to_grid(const Mesh& mesh, int n, float margin) {
+Result<VoxelizeMapping> fit_mesh_to_grid(const Mesh& mesh, int n, float margin) {
   const auto [lo, hi] = mesh_bounds(mesh);
   const glm::vec3 size = hi - lo;
   const float longest = std::max({size.x, size.y, size.z});
+  // A mesh of extent 1e-38 maps by a scale of infinity; one at 1e38 has a
+  // centre that overflows. Either way the grid would hold no surface.
+  if (!(longest >= kMinMeshExtent) || !std::isfinite(longest)) {
+    char text[96];
+    std::snprintf(text, sizeof text, "its extent %.3g is outside [%.3g, %.3g]", double(longest),
+                  double(kMinMeshExtent), double(std::numeric_limits<float>::max()));
+    return Error(text);
+  }
   VoxelizeMapping m;
-  m.scale = longest > 0.0f ? (float(n - 1) - 2.0f * margin) / longest : 1.0f;
-  m.offset = glm::vec3(float(n - 1) * 0.5f) - (lo + hi) * 0.5f * m.scale;
+  m.scale = (float(n - 1) - 2.0f * margin) / longest;
+  m.offset = glm::vec3(float(n - 1) * 0.5f) - (lo * 0.5f + hi * 0.5f) * m.scale;
+  if (!std::isfinite(m.scale) || !std::isfinite(m.offset.x) || !std::isfinite(m.offset.y) ||
+      !std::isfinite(m.offset.z)) {
+    return Error("its position cannot be mapped to the grid in float precision");
+  }
   return m;
 }
 

@@ -10,6 +10,7 @@
 
 #include "nurbs/knot_refinement.h"
 #include "sculpt/core/nurbs/knot_vector.h"
+#include "sculpt/core/nurbs/nurbs_limits.h"
 
 namespace sculpt::core::nurbs {
 namespace {
@@ -19,10 +20,6 @@ double binomial(int n, int k) {
   for (int i = 1; i <= k; ++i)
     b = b * (n - k + i) / i;
   return b;
-}
-
-bool finite(glm::dvec3 p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
 }
 
 }  // namespace
@@ -35,24 +32,8 @@ Status validate(const NurbsCurve& curve) {
   if (Status st = validate_knots(curve.knots, curve.degree, curve.count()); !st) {
     return Error("knots: " + st.error().message());
   }
-  for (size_t i = 0; i < curve.points.size(); ++i) {
-    if (!finite(curve.points[i])) {
-      return Error("control_points[" + std::to_string(i) + "] is not finite");
-    }
-  }
-  if (!curve.weights.empty()) {
-    if (curve.weights.size() != curve.points.size()) {
-      return Error("expected " + std::to_string(curve.points.size()) +
-                   " weights (one per control point), got " + std::to_string(curve.weights.size()));
-    }
-    for (size_t i = 0; i < curve.weights.size(); ++i) {
-      if (!(curve.weights[i] > 0.0) || !std::isfinite(curve.weights[i])) {
-        return Error("weights[" + std::to_string(i) + "] = " + std::to_string(curve.weights[i]) +
-                     " is not a positive number");
-      }
-    }
-  }
-  return {};
+  if (Status st = check_control_points(curve.points); !st) return st;
+  return check_weights(curve.weights, curve.points.size());
 }
 
 glm::dvec3 evaluate(const NurbsCurve& curve, double t) {

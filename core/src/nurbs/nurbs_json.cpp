@@ -289,10 +289,14 @@ std::string to_json(const ParameterZone& z) {
   return t + "]\n}\n";
 }
 
+// Only what the readers accept is written: a result that left the limits
+// (nurbs_limits.h) or went non-finite is refused, never saved as NaN.
 Status write_json(const std::filesystem::path& path, const NurbsSurface& s) {
+  if (Status st = validate(s); !st) return st.error().in(path.string() + ": not written");
   return write_text(path, to_json(s));
 }
 Status write_json(const std::filesystem::path& path, const NurbsCurve& c) {
+  if (Status st = validate(c); !st) return st.error().in(path.string() + ": not written");
   return write_text(path, to_json(c));
 }
 Status write_json(const std::filesystem::path& path, const ParameterZone& z) {

@@ -12,13 +12,10 @@
 #include <glm/geometric.hpp>
 
 #include "nurbs/knot_refinement.h"
+#include "sculpt/core/nurbs/nurbs_limits.h"
 
 namespace sculpt::core::nurbs {
 namespace {
-
-bool finite(glm::dvec3 p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
 
 constexpr size_t kW = kMaxDegree + 1;
 
@@ -42,23 +39,8 @@ Status validate(const NurbsSurface& s) {
                  std::to_string(s.count_u) + " x count_v " + std::to_string(s.count_v) + "), got " +
                  std::to_string(s.points.size()));
   }
-  for (size_t i = 0; i < s.points.size(); ++i) {
-    if (!finite(s.points[i]))
-      return Error("control_points[" + std::to_string(i) + "] is not finite");
-  }
-  if (!s.weights.empty()) {
-    if (s.weights.size() != expected) {
-      return Error("expected " + std::to_string(expected) +
-                   " weights (one per control point), got " + std::to_string(s.weights.size()));
-    }
-    for (size_t i = 0; i < s.weights.size(); ++i) {
-      if (!(s.weights[i] > 0.0) || !std::isfinite(s.weights[i])) {
-        return Error("weights[" + std::to_string(i) + "] = " + std::to_string(s.weights[i]) +
-                     " is not a positive number");
-      }
-    }
-  }
-  return {};
+  if (Status st = check_control_points(s.points); !st) return st;
+  return check_weights(s.weights, expected);
 }
 
 namespace {

@@ -45,7 +45,9 @@ int run_voxelize(const VoxelizeOptions& o) {
                               std::to_string(topo.nonmanifold_edges) + " non-manifold, " +
                               std::to_string(topo.misoriented_edges) +
                               " mis-oriented edges): inside and outside are undefined"));
-  const core::VoxelizeMapping map = core::fit_mesh_to_grid(*mesh, o.size, o.margin);
+  const Result<core::VoxelizeMapping> fitted = core::fit_mesh_to_grid(*mesh, o.size, o.margin);
+  if (!fitted) return report(fitted.error().in(o.input));
+  const core::VoxelizeMapping& map = *fitted;
   const core::Mesh placed = core::transform_mesh(*mesh, map);
   const auto t1 = clock::now();
   const core::MeshDistance md(placed);

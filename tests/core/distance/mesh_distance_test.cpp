@@ -298,7 +298,7 @@ TEST(MeshDistance, FullFieldIsSignedEverywhere) {
 
 TEST(MeshDistance, FitMappingCentresTheMesh) {
   const Mesh m = icosphere_like(1.0f, glm::vec3(5, 5, 5), 1);
-  const VoxelizeMapping map = fit_mesh_to_grid(m, 64, 4.0f);
+  const VoxelizeMapping map = fit_mesh_to_grid(m, 64, 4.0f).value();
   const Mesh t = transform_mesh(m, map);
   glm::vec3 lo(1e9f), hi(-1e9f);
   for (auto p : t.positions) {
@@ -307,6 +307,18 @@ TEST(MeshDistance, FitMappingCentresTheMesh) {
   }
   EXPECT_NEAR(lo.x, 4.0f, 1e-4f);
   EXPECT_NEAR(hi.x, 59.0f, 1e-4f);
+}
+
+// Reproducer from the hardening review: a mesh 1e-38 across mapped by a
+// scale of infinity (and one near FLT_MAX by an overflowing centre).
+TEST(MeshDistance, FitRefusesMeshesFloatCannotPlace) {
+  const Result<VoxelizeMapping> tiny =
+      fit_mesh_to_grid(icosphere_like(1e-38f, glm::vec3(0.0f), 1), 64, 4.0f);
+  ASSERT_FALSE(tiny.ok());
+  EXPECT_NE(tiny.error().message().find("extent"), std::string::npos);
+  const Result<VoxelizeMapping> far =
+      fit_mesh_to_grid(icosphere_like(1.0f, glm::vec3(3e38f, 0.0f, 0.0f), 1), 64, 4.0f);
+  EXPECT_FALSE(far.ok());
 }
 
 }  // namespace

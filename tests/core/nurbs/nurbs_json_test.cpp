@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <filesystem>
 #include <fstream>
 
 #include "nurbs_fixtures.h"
@@ -87,6 +89,40 @@ TEST(NurbsJson, BadFilesNameTheFieldAndTheFile) {
   std::ofstream(dir.path() / "bad.json") << "{\"degree_u\": 3}";
   Result<NurbsSurface> bad = read_surface_json(dir.path() / "bad.json");
   EXPECT_NE(bad.error().message().find("bad.json: missing"), std::string::npos);
+}
+
+// Reproducer from the hardening review: weights of 1e308 passed as finite,
+// the homogeneous points overflowed and `nurbs deform` wrote NaN that this
+// reader then refused. Weights and coordinates are now bounded where read,
+// and a writer refuses what the reader would.
+TEST(NurbsJson, WeightsAndCoordinatesAreBoundedAndNeverWrittenNonFinite) {
+  const std::string huge_weight =
+      R"({"degree": 2, "knots": [0,0,0,1,1,1], "control_points": [[0,0,0],[1,0,0],[1,1,0]], "weights": [1, 1e308, 1]})";
+  EXPECT_NE(parse_curve_json(huge_weight).error().message().find("weights[1] = 1e+308 is not in"),
+            std::string::npos);
+  const std::string far_point =
+      R"({"degree": 1, "knots": [0,0,1,1], "control_points": [[0,0,0],[2e9,0,0]]})";
+  EXPECT_NE(parse_curve_json(far_point).error().message().find("control_points[1]"),
+            std::string::npos);
+  // At the limits, evaluation stays finite.
+  const std::string at_limits =
+      R"({"degree": 1, "knots": [0,0,1,1], "control_points": [[1e9,-1e9,1e9],[-1e9,1e9,-1e9]], "weights": [1e9, 1e-9]})";
+  Result<NurbsCurve> c = parse_curve_json(at_limits);
+  ASSERT_TRUE(c.ok()) << c.error().message();
+  for (double t : {0.0, 1e-12, 0.5, 1.0}) {
+    const glm::dvec3 p = evaluate(*c, t);
+    EXPECT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) << t;
+  }
+
+  sculpt::test::ScratchDir dir;
+  NurbsCurve nan_curve = *c;
+  nan_curve.points[0].x = std::nan("");
+  const Status written = write_json(dir.path() / "nan.json", nan_curve);
+  ASSERT_FALSE(written.ok());
+  EXPECT_NE(written.error().message().find("nan.json: not written: control_points[0]"),
+            std::string::npos)
+      << written.error().message();
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "nan.json"));
 }
 
 TEST(NurbsObj, FreeFormSurfaceAndCurve) {

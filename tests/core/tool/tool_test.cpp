@@ -89,6 +89,32 @@ TEST(Tool, BadPivotLineIsReportedWithTheFileName) {
   std::filesystem::remove(path);
 }
 
+// Reproducer from the hardening review: `sculpt rotate` of a tool whose
+// pivot sat 1e30 voxels away wrote a volume of sizes 0 0 0 with exit 0.
+TEST(Tool, PivotFarOutsideTheGridIsRefused) {
+  const auto path = temp_path("far.nrrd");
+  for (const char* pivot : {"1e30 0 0", "-3 0.5 0.5", "0.5 0.5 4"}) {
+    {
+      std::ofstream out(path, std::ios::binary);
+      out << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 1 1 1\nencoding: raw\nsculpt_pivot:="
+          << pivot << "\n\n";
+      out.put('\x7f');
+    }
+    auto t = read_tool_nrrd(path);
+    ASSERT_FALSE(t.ok()) << pivot;
+    EXPECT_NE(t.error().message().find("farther than the grid's size"), std::string::npos)
+        << t.error().message();
+  }
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 1 1 1\nencoding: raw\nsculpt_pivot:=-1 2 "
+           "0.5\n\n";
+    out.put('\x7f');
+  }
+  EXPECT_TRUE(read_tool_nrrd(path).ok()) << "a pivot one grid size out is a tool's handle";
+  std::filesystem::remove(path);
+}
+
 TEST(Tool, MirrorTwiceIsIdentityAndMovesThePivot) {
   Tool t = make_cone_tool(4.0f, 9.0f);
   t.pivot = {1.0f, 2.0f, 3.0f};

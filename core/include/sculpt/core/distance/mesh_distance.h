@@ -11,6 +11,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "sculpt/base/result.h"
 #include "sculpt/core/grid/dense_grid.h"
 #include "sculpt/core/mesh/mesh.h"
 
@@ -46,9 +47,12 @@ struct VoxelizeMapping {
   glm::vec3 offset{0.0f};
 };
 
+/// The smallest longest side of a mesh that can be fitted (its units).
+inline constexpr float kMinMeshExtent = 1e-20f;
 /// The mapping that centres the mesh's bounding box in an n^3 grid, its
-/// longest side spanning n - 1 - 2 * margin voxels.
-VoxelizeMapping fit_mesh_to_grid(const Mesh& mesh, int n, float margin);
+/// longest side spanning n - 1 - 2 * margin voxels; an error when the mesh
+/// is too small or too far out for float arithmetic to place it.
+Result<VoxelizeMapping> fit_mesh_to_grid(const Mesh& mesh, int n, float margin);
 /// A copy of `mesh` with positions mapped.
 Mesh transform_mesh(const Mesh& mesh, const VoxelizeMapping& mapping);
 

@@ -61,7 +61,8 @@ Tool mirror_tool(const Tool& tool, int axis);
 ///   sculpt_pivot:=X Y Z
 /// (voxel units). NRRD readers ignore key/value pairs, so a tool file is an
 /// ordinary volume for every other command and program. A file without the
-/// line gets its centre as pivot.
+/// line gets its centre as pivot; a pivot more than the grid's size outside
+/// the grid is refused.
 Result<Tool> read_tool_nrrd(const std::filesystem::path& path, const NrrdLimits& limits = {});
 Status write_tool_nrrd(const std::filesystem::path& path, const Tool& tool);
 
