@@ -32,7 +32,23 @@ HAL_LAYERS = [
     {"backends", "input"},
     {"registry"},
 ]
+# The station without a screen (sculpt::station_app): these folders see no
+# window, GL renderer or command line, and no GL, GLFW or ImGui header.
+STATION_APP_FOLDERS = {"app", "project", "view", "settings", "render"}
+STATION_SCREEN_FOLDERS = {"window", "render/gl", "cli"}
+SCREEN_HEADERS = re.compile(r"^(GLFW/|GL/|imgui|backends/imgui|glad/)")
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^">]+)[">]')
+
+
+def folder_of(parts):
+    """The folder of a path's parts below a module's src/ or include/sculpt/<module>/:
+    the first part, except that render/gl is a folder of its own (the GL
+    renderer beside the software one)."""
+    if len(parts) < 2:
+        return ""
+    if parts[0] == "render" and len(parts) > 2 and parts[1] == "gl":
+        return "render/gl"
+    return parts[0]
 
 
 def module_folder_of_file(path):
@@ -40,9 +56,9 @@ def module_folder_of_file(path):
     parts = path.split(os.sep)
     module = parts[0]
     if len(parts) > 4 and parts[1] == "include":
-        return module, parts[4] if len(parts) > 5 else ""
+        return module, folder_of(parts[4:])
     if len(parts) > 2 and parts[1] == "src":
-        return module, parts[2] if len(parts) > 3 else ""
+        return module, folder_of(parts[2:])
     return module, ""
 
 
@@ -53,9 +69,9 @@ def module_folder_of_include(target, src_module):
     headers are named from its src/ folder ("render/gl/shader.h")."""
     parts = target.split("/")
     if parts[0] == "sculpt" and len(parts) > 2 and parts[1] in MODULES:
-        return parts[1], parts[2] if len(parts) > 3 else ""
+        return parts[1], folder_of(parts[2:])
     if os.path.exists(os.path.join(src_module, "src", target)):
-        return src_module, parts[0] if len(parts) > 1 else ""
+        return src_module, folder_of(parts)
     return None
 
 
@@ -85,16 +101,21 @@ def main():
                         match = INCLUDE.match(line)
                         if not match:
                             continue
+                        where = f"{path}:{number}: includes {match.group(1)}"
+                        station_app = src_module == "station" and src_folder in STATION_APP_FOLDERS
+                        if station_app and SCREEN_HEADERS.match(match.group(1)):
+                            problems.append(f"{where}: station/{src_folder} is screen-free")
                         named = module_folder_of_include(match.group(1), src_module)
                         if named is None:
                             continue
                         dst_module, dst_folder = named
-                        where = f"{path}:{number}: includes {match.group(1)}"
                         if dst_module != src_module:
                             module_edges[src_module].add(dst_module)
                             if dst_module not in ALLOWED.get(src_module, set()):
                                 problems.append(f"{where}: {src_module} may not see {dst_module}")
                             continue
+                        if station_app and dst_module == "station" and dst_folder in STATION_SCREEN_FOLDERS:
+                            problems.append(f"{where}: station/{src_folder} may not see station/{dst_folder}")
                         if dst_folder == src_folder:
                             continue
                         folder_edges[(src_module, src_folder)].add((dst_module, dst_folder))

@@ -1,7 +1,5 @@
 #include "sculpt/station/app/station_controller.h"
 
-#include <GLFW/glfw3.h>  // key codes only: this file opens no window
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -36,143 +34,6 @@ constexpr uint16_t kSpaceMouseVendor = 0x256f;
 constexpr uint16_t kSpaceMouseProduct = 0xc635;
 
 }  // namespace
-
-std::optional<Action> shortcut(int key, int mods) {
-  const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0;
-  const bool shift = (mods & GLFW_MOD_SHIFT) != 0;
-  if (ctrl) {
-    switch (key) {
-      case GLFW_KEY_Z:
-        return shift ? Action::kRedo : Action::kUndo;
-      case GLFW_KEY_Y:
-        return Action::kRedo;
-      case GLFW_KEY_S:
-        return Action::kSave;
-      case GLFW_KEY_E:
-        return shift ? Action::kExportSheet : Action::kExportMesh;
-      case GLFW_KEY_T:
-        return shift ? Action::kSheetAsTool : Action::kUseSculptureAsTool;
-      case GLFW_KEY_B:
-        return shift ? Action::kSheetSubtractFromMaterial : Action::kSheetAddToMaterial;
-      case GLFW_KEY_H:
-        return Action::kHypertexture;
-      default:
-        return std::nullopt;
-    }
-  }
-  switch (key) {
-    case GLFW_KEY_TAB:
-      return Action::kToggleAddSubtract;
-    case GLFW_KEY_M:
-      return Action::kSmooth;
-    case GLFW_KEY_1:
-      return Action::kToolSphere;
-    case GLFW_KEY_2:
-      return Action::kToolCube;
-    case GLFW_KEY_3:
-      return Action::kToolCylinder;
-    case GLFW_KEY_4:
-      return Action::kToolRing;
-    case GLFW_KEY_5:
-      return Action::kToolCone;
-    case GLFW_KEY_RIGHT_BRACKET:
-      return Action::kToolBigger;
-    case GLFW_KEY_LEFT_BRACKET:
-      return Action::kToolSmaller;
-    case GLFW_KEY_EQUAL:
-      return Action::kStronger;
-    case GLFW_KEY_MINUS:
-      return Action::kWeaker;
-    case GLFW_KEY_X:
-      return Action::kToggleMirror;
-    case GLFW_KEY_C:
-      return Action::kToggleDeviceTarget;
-    case GLFW_KEY_R:
-      return Action::kToggleRecording;
-    case GLFW_KEY_F:
-      return Action::kFrameView;
-    case GLFW_KEY_Q:
-      return shift ? Action::kTiltToolUp : Action::kTurnToolLeft;
-    case GLFW_KEY_E:
-      return shift ? Action::kTiltToolDown : Action::kTurnToolRight;
-    case GLFW_KEY_N:
-      return shift ? Action::kRemoveSheet : Action::kNewSheet;
-    case GLFW_KEY_G:
-      return Action::kToggleSheetEditing;
-    default:
-      return std::nullopt;
-  }
-}
-
-const char* shortcut_label(Action action) {
-  switch (action) {
-    case Action::kUndo:
-      return "Ctrl+Z";
-    case Action::kRedo:
-      return "Ctrl+Y, Ctrl+Shift+Z";
-    case Action::kToggleAddSubtract:
-      return "Tab";
-    case Action::kSmooth:
-      return "M";
-    case Action::kToolSphere:
-      return "1";
-    case Action::kToolCube:
-      return "2";
-    case Action::kToolCylinder:
-      return "3";
-    case Action::kToolRing:
-      return "4";
-    case Action::kToolCone:
-      return "5";
-    case Action::kToolBigger:
-      return "]";
-    case Action::kToolSmaller:
-      return "[";
-    case Action::kStronger:
-      return "=";
-    case Action::kWeaker:
-      return "-";
-    case Action::kToggleMirror:
-      return "X";
-    case Action::kToggleDeviceTarget:
-      return "C";
-    case Action::kToggleRecording:
-      return "R";
-    case Action::kSave:
-      return "Ctrl+S";
-    case Action::kExportMesh:
-      return "Ctrl+E";
-    case Action::kUseSculptureAsTool:
-      return "Ctrl+T";
-    case Action::kHypertexture:
-      return "Ctrl+H";
-    case Action::kFrameView:
-      return "F";
-    case Action::kTurnToolLeft:
-      return "Q";
-    case Action::kTurnToolRight:
-      return "E";
-    case Action::kTiltToolUp:
-      return "Shift+Q";
-    case Action::kTiltToolDown:
-      return "Shift+E";
-    case Action::kNewSheet:
-      return "N";
-    case Action::kRemoveSheet:
-      return "Shift+N";
-    case Action::kToggleSheetEditing:
-      return "G";
-    case Action::kSheetAddToMaterial:
-      return "Ctrl+B";
-    case Action::kSheetSubtractFromMaterial:
-      return "Ctrl+Shift+B";
-    case Action::kSheetAsTool:
-      return "Ctrl+Shift+T";
-    case Action::kExportSheet:
-      return "Ctrl+Shift+E";
-  }
-  return "";
-}
 
 StationController::StationController(ControllerOptions options)
     : options_(std::move(options)), loop_(options_.loop) {
@@ -562,9 +423,8 @@ ProjectView StationController::view() const {
 
 Status StationController::save(const std::filesystem::path& path) {
   const StationSettings& s = loop_.settings();
-  Status st =
-      save_project(path, loop_.volume(), s, s.custom_tool ? &loop_.tool() : nullptr, view(),
-                   loop_.sheet().has_sheet() ? &loop_.sheet().surface() : nullptr);
+  Status st = save_project(path, loop_.volume(), s, s.custom_tool ? &loop_.tool() : nullptr, view(),
+                           loop_.sheet().has_sheet() ? &loop_.sheet().surface() : nullptr);
   if (st) saved_generation_ = generation_;
   report(st, "saved " + path.string());
   return st;
@@ -661,8 +521,7 @@ Status StationController::start_recording(const std::filesystem::path& path, int
       return saved;
     }
   }
-  Status st =
-      recorder_.start(path, header, opening_commands(/*with_block=*/fresh), stamp(now_ns));
+  Status st = recorder_.start(path, header, opening_commands(/*with_block=*/fresh), stamp(now_ns));
   report(st, "recording to " + path.string() +
                  (fresh ? "" : " (starting from this sculpture, saved as " + start.string() + ")"));
   return st;
@@ -693,8 +552,7 @@ void StationController::finish_autosave() {
 
 void StationController::tick(int64_t now_ns) {
   if (recorder_.recording()) {
-    if (Status st = recorder_.flush(); !st)
-      status_ = "recording stopped: " + st.error().message();
+    if (Status st = recorder_.flush(); !st) status_ = "recording stopped: " + st.error().message();
   }
   if (options_.autosave_seconds <= 0 || generation_ == saved_generation_) return;
   if (autosave_.valid() && autosave_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)

@@ -54,7 +54,9 @@ void add_close_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<CloseOptions>();
   CLI::App* cmd =
       app.add_subcommand("close", "True 3D morphological closing on the distance field");
-  cmd->add_option("input", o->input, "uint8 density or float32 NRRD")->required();
+  cmd->add_option("input", o->input, "uint8 density or float32 NRRD")
+      ->required()
+      ->check(input_file());
   cmd->add_option("-o,--output", o->output, "output NRRD")->required();
   cmd->add_option("--radius", o->radius, "closing radius, voxels (> 0)")
       ->required()

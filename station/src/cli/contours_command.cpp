@@ -77,7 +77,9 @@ void add_contours_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<ContoursOptions>();
   CLI::App* cmd =
       app.add_subcommand("contours", "Stack of 2D contours to a closed surface (volume or mesh)");
-  cmd->add_option("input", o->input, "contour text file (sculpt-contours 1)")->required();
+  cmd->add_option("input", o->input, "contour text file (sculpt-contours 1)")
+      ->required()
+      ->check(input_file());
   cmd->add_option("-o,--output", o->output, "output: .nrrd, .ply, .obj or .stl")->required();
   cmd->add_flag("--sdf", o->sdf, "write the float32 signed distance (.nrrd only)");
   add_threads_option(cmd, o->threads);

@@ -55,8 +55,7 @@ int run_table(const DistanceOptions& o) {
       n = std::stoi(word);
     } catch (...) {
     }
-    if (n < 8 || n > 512)
-      return report(Error("--sizes: '" + word + "' is not a size in 8..512"));
+    if (n < 8 || n > 512) return report(Error("--sizes: '" + word + "' is not a size in 8..512"));
     sizes.push_back(n);
   }
   for (const auto& c : cases)
@@ -90,10 +89,10 @@ int run_distance(const DistanceOptions& o) {
   if (!in) return report(in.error());
   const glm::ivec3 d = in->phi.dims();
   if (*method == core::DistanceMethod::kBrute && core::voxel_count(d) > kBruteMaxVoxels)
-    return report(Error(o.input + ": " + std::to_string(d.x) + "x" + std::to_string(d.y) +
-                              "x" + std::to_string(d.z) +
-                              " is too large for --method brute (O(n^2), at most 96^3); use "
-                              "exact or octree"));
+    return report(Error(o.input + ": " + std::to_string(d.x) + "x" + std::to_string(d.y) + "x" +
+                        std::to_string(d.z) +
+                        " is too large for --method brute (O(n^2), at most 96^3); use "
+                        "exact or octree"));
   const auto t1 = clock::now();
   const core::DistanceInput prepared =
       core::prepare_distance_input(std::move(in->phi), *init, o.threads);
@@ -128,7 +127,7 @@ void add_distance_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<DistanceOptions>();
   CLI::App* cmd = app.add_subcommand(
       "distance", "Signed distance field of a volume's surface (float32, voxels, negative inside)");
-  cmd->add_option("input", o->input, "uint8 density or float32 NRRD volume");
+  cmd->add_option("input", o->input, "uint8 density or float32 NRRD volume")->check(input_file());
   cmd->add_option("-o,--output", o->output, "output float32 NRRD");
   cmd->add_option(
       "--method", o->method,

@@ -18,12 +18,12 @@
 
 #include "cli/commands.h"
 #include "cli/number_checks.h"
+#include "sculpt/base/atomic_file.h"
 #include "sculpt/core/haptics/distance_patch.h"
 #include "sculpt/core/haptics/haptic_renderer.h"
 #include "sculpt/core/haptics/press_dab.h"
 #include "sculpt/core/haptics/probe_file.h"
 #include "sculpt/core/haptics/tool_proxy.h"
-#include "sculpt/base/atomic_file.h"
 #include "sculpt/core/io/nrrd.h"
 #include "sculpt/core/sculpt/sculptor.h"
 
@@ -67,8 +67,7 @@ Result<core::Tool> tool_from_spec(const std::string& spec) {
   }
   const auto want = [&](size_t n) -> Status {
     if (sizes.size() == n) return {};
-    return Error("--tool " + spec + ": " + shape + " takes " + std::to_string(n) +
-                       " size(s)");
+    return Error("--tool " + spec + ": " + shape + " takes " + std::to_string(n) + " size(s)");
   };
   Status st;
   if (shape == "sphere" && (st = want(1))) return core::make_sphere_tool(sizes[0]);
@@ -78,7 +77,7 @@ Result<core::Tool> tool_from_spec(const std::string& spec) {
   if (shape == "cone" && (st = want(2))) return core::make_cone_tool(sizes[0], sizes[1]);
   if (!st) return st.error();
   return Error("--tool " + spec + ": unknown shape '" + shape +
-                     "' (sphere, cube, cylinder, ring, cone, or a tool NRRD)");
+               "' (sphere, cube, cylinder, ring, cone, or a tool NRRD)");
 }
 
 int run_trace(const TraceOptions& o) {
@@ -89,9 +88,8 @@ int run_trace(const TraceOptions& o) {
   auto probe = core::read_probe_file(o.probe);
   if (!probe) return report(probe.error());
   if (!o.friction.empty() && o.friction[1] > o.friction[0])
-    return report(Error("--friction: the dynamic coefficient " +
-                              std::to_string(o.friction[1]) + " exceeds the static one " +
-                              std::to_string(o.friction[0])));
+    return report(Error("--friction: the dynamic coefficient " + std::to_string(o.friction[1]) +
+                        " exceeds the static one " + std::to_string(o.friction[0])));
 
   std::optional<core::Tool> tool;
   if (!o.tool.empty()) {
@@ -203,9 +201,10 @@ void add_haptics_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<TraceOptions>();
   CLI::App* cmd = haptics->add_subcommand(
       "trace", "Run the haptic tick along a device path and write the force at each step");
-  cmd->add_option("volume", o->volume, "uint8 density NRRD")->required();
+  cmd->add_option("volume", o->volume, "uint8 density NRRD")->required()->check(input_file());
   cmd->add_option("--probe", o->probe, "device path: JSON Lines {\"t\": s, \"at\": [x, y, z]}")
-      ->required();
+      ->required()
+      ->check(input_file());
   cmd->add_option("-o,--output", o->output, "trace, JSON Lines")->required();
   // Beyond 8 voxels the sphere's band makes the patch slow to build: larger
   // tools take --tool's point shell.

@@ -77,7 +77,7 @@ void add_mesh_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<MeshOptions>();
   CLI::App* cmd =
       app.add_subcommand("mesh", "Iso-surface of a volume (marching cubes) to PLY, OBJ or STL");
-  cmd->add_option("input", o->input, "uint8 NRRD volume")->required();
+  cmd->add_option("input", o->input, "uint8 NRRD volume")->required()->check(input_file());
   cmd->add_option("-o,--output", o->output, "output mesh: .ply, .obj or .stl")->required();
   cmd->add_option("--iso", o->iso, "iso-level in density units, 0 <= V < 255 (default 127.5)")
       ->check(finite_range(0.0f, 254.999f));

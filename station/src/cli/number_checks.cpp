@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 namespace sculpt::station::cli {
@@ -31,6 +32,16 @@ CLI::Validator finite_range(double lo, double hi) {
 CLI::Validator finite_positive() {
   return finite_check(
       "above 0", [](double v, double, double) { return v > 0.0; }, 0.0, 0.0);
+}
+
+CLI::Validator input_file() {
+  return CLI::Validator(
+      [](std::string& path) -> std::string {
+        std::error_code ec;
+        if (std::filesystem::is_directory(path, ec)) return path + ": is a directory";
+        return {};
+      },
+      "FILE");
 }
 
 }  // namespace sculpt::station::cli

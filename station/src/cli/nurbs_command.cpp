@@ -317,7 +317,7 @@ void add_nurbs_command(CLI::App& app, Action& action) {
   auto d = std::make_shared<DeformOptions>();
   CLI::App* deform = nurbs_cmd->add_subcommand(
       "deform", "move S(u,v) to a target, straight (equation 2) or along a path curve");
-  deform->add_option("surface", d->input, "surface JSON")->required();
+  deform->add_option("surface", d->input, "surface JSON")->required()->check(input_file());
   deform->add_option("--uv", d->uv, "U,V: parameters of the constrained point")
       ->delimiter(',')
       ->expected(2);
@@ -349,7 +349,7 @@ void add_nurbs_command(CLI::App& app, Action& action) {
   auto t = std::make_shared<TessellateOptions>();
   CLI::App* tess =
       nurbs_cmd->add_subcommand("tessellate", "surface JSON to a mesh (or OBJ free-form)");
-  tess->add_option("surface", t->input, "surface JSON")->required();
+  tess->add_option("surface", t->input, "surface JSON")->required()->check(input_file());
   tess->add_option("-o,--output", t->output, ".obj, .ply or .stl")->required();
   tess->add_option("--per-span", t->per_span, "cells per knot span (default 8)")
       ->check(finite_range(1, 256));
@@ -358,7 +358,7 @@ void add_nurbs_command(CLI::App& app, Action& action) {
 
   auto i = std::make_shared<InvertOptions>();
   CLI::App* inv = nurbs_cmd->add_subcommand("invert", "closest surface point (u, v) to X,Y,Z");
-  inv->add_option("surface", i->input, "surface JSON")->required();
+  inv->add_option("surface", i->input, "surface JSON")->required()->check(input_file());
   inv->add_option("--point", i->point, "X,Y,Z")->required()->delimiter(',')->expected(3);
   inv->callback([i, &action] { action = [i] { return run_invert(*i); }; });
 

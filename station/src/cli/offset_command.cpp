@@ -50,7 +50,9 @@ void add_offset_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<OffsetOptions>();
   CLI::App* cmd =
       app.add_subcommand("offset", "Inflate (D > 0) or deflate (D < 0) a surface by D voxels");
-  cmd->add_option("input", o->input, "uint8 density or float32 NRRD")->required();
+  cmd->add_option("input", o->input, "uint8 density or float32 NRRD")
+      ->required()
+      ->check(input_file());
   cmd->add_option("-o,--output", o->output, "output NRRD")->required();
   cmd->add_option("--by", o->by, "offset D, voxels")
       ->required()

@@ -12,16 +12,16 @@
 
 #include "cli/commands.h"
 #include "cli/number_checks.h"
-#include "sculpt/core/distance/surface_normals.h"
 #include "sculpt/base/atomic_file.h"
 #include "sculpt/base/output_set.h"
+#include "sculpt/core/distance/surface_normals.h"
 #include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/core/util/parallel_for.h"
 #include "sculpt/core/volume/volume_io.h"
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/session_replay.h"
-#include "sculpt/station/project/project_file.h"
 #include "sculpt/station/app/session_start.h"
+#include "sculpt/station/project/project_file.h"
 #include "sculpt/station/render/software_renderer.h"
 #include "sculpt/station/window/gl_snapshot.h"
 
@@ -155,7 +155,7 @@ int replay_to_outputs(const ReplayCliOptions& o) {
   if (!o.project.empty()) {
     const StationSettings& settings = loop.settings();
     if (Status st = save_project(outputs.stage(o.project), volume, settings,
-                                       settings.custom_tool ? &loop.tool() : nullptr, {});
+                                 settings.custom_tool ? &loop.tool() : nullptr, {});
         !st) {
       return failed(st);
     }
@@ -184,7 +184,9 @@ int replay_to_outputs(const ReplayCliOptions& o) {
 void add_replay_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<ReplayCliOptions>();
   CLI::App* cmd = app.add_subcommand("replay", "replay a recorded session through the station");
-  cmd->add_option("session", o->session, "session file (.scs binary or .jsonl text)")->required();
+  cmd->add_option("session", o->session, "session file (.scs binary or .jsonl text)")
+      ->required()
+      ->check(input_file());
   auto* fast = cmd->add_flag("--fast", o->fast, "as fast as possible");
   cmd->add_option("--speed", o->speed, "speed factor (1 = real time)")
       ->check(finite_positive())

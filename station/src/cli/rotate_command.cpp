@@ -15,6 +15,7 @@
 #include <glm/vector_relational.hpp>
 
 #include "cli/commands.h"
+#include "cli/number_checks.h"
 #include "sculpt/core/tool/tool.h"
 #include "sculpt/core/tool/tool_rotation.h"
 
@@ -81,7 +82,8 @@ void add_rotate_command(CLI::App& app, Action& action) {
   CLI::App* cmd =
       app.add_subcommand("rotate", "rotate a tool volume into the bounding box of its rotation");
   cmd->add_option("tool", o->input, "uint8 NRRD tool (optional sculpt_pivot:=X Y Z line)")
-      ->required();
+      ->required()
+      ->check(input_file());
   cmd->add_option("--euler", o->euler, "RX,RY,RZ in degrees, extrinsic x then y then z")
       ->required()
       ->delimiter(',')

@@ -34,13 +34,12 @@ int run_headless(const RunOptions& o) {
     session = sim::bundled_session_path("demo");
   } else {
     return report(Error("--device " + o.window.device +
-                              ": a live device needs the window; headless runs replay sessions "
-                              "(auto or sim:FILE; record one with `sculpt record`)"));
+                        ": a live device needs the window; headless runs replay sessions "
+                        "(auto or sim:FILE; record one with `sculpt record`)"));
   }
   std::error_code ec;
   fs::create_directories(o.out_dir, ec);
-  if (ec)
-    return report(Error(o.out_dir + ": cannot create the output folder: " + ec.message()));
+  if (ec) return report(Error(o.out_dir + ": cannot create the output folder: " + ec.message()));
   const fs::path dir(o.out_dir);
   ReplayCliOptions r;
   r.session = session;
@@ -81,7 +80,7 @@ void add_run_command(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_flag("--headless", o->headless, "no window: replay the session and write --out");
   cmd->add_option("--out", o->out_dir, "headless: folder for the results")->capture_default_str();
-  cmd->add_option("--open", w.project, "window: open this project (.sculpt)");
+  cmd->add_option("--open", w.project, "window: open this project (.sculpt)")->check(input_file());
   cmd->add_option("--record", w.record, "window: record the session to this file (.scs)");
   cmd->add_option("--speed", w.sim_speed, "window, sim devices: play the session this much faster")
       ->check(finite_positive());

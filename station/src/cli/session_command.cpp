@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/number_checks.h"
 #include "sculpt/base/atomic_file.h"
 #include "sculpt/sim/session/session_file.h"
 #include "sculpt/sim/session/session_text.h"
@@ -68,7 +69,7 @@ void add_session_command(CLI::App& app, Action& action) {
         Sub{"generate", "write a bundled scripted session", "short, demo or sheet", generate}}) {
     auto o = std::make_shared<SessionOptions>();
     CLI::App* sub = cmd->add_subcommand(s.name, s.help);
-    sub->add_option("input", o->input, s.in_help)->required();
+    sub->add_option("input", o->input, s.in_help)->required()->check(input_file());
     sub->add_option("output", o->output, "output file")->required();
     sub->callback([o, run = s.run, &action] { action = [o, run] { return run(*o); }; });
   }

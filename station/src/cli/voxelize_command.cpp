@@ -16,8 +16,8 @@
 #include "cli/number_checks.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/mesh_distance.h"
-#include "sculpt/core/mesh/mesh_reader.h"
 #include "sculpt/core/io/nrrd.h"
+#include "sculpt/core/mesh/mesh_reader.h"
 
 namespace sculpt::station::cli {
 namespace {
@@ -32,19 +32,18 @@ struct VoxelizeOptions {
 
 int run_voxelize(const VoxelizeOptions& o) {
   if (2.0f * o.margin >= float(o.size - 2))
-    return report(Error("--margin " + std::to_string(o.margin) +
-                              " leaves no room in --size " + std::to_string(o.size)));
+    return report(Error("--margin " + std::to_string(o.margin) + " leaves no room in --size " +
+                        std::to_string(o.size)));
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
   auto mesh = core::read_mesh(o.input);
   if (!mesh) return report(mesh.error());
   const core::MeshTopology topo = core::check_topology(*mesh);
   if (!topo.closed())
-    return report(Error(o.input + ": mesh is not closed (" +
-                              std::to_string(topo.boundary_edges) + " boundary, " +
-                              std::to_string(topo.nonmanifold_edges) + " non-manifold, " +
-                              std::to_string(topo.misoriented_edges) +
-                              " mis-oriented edges): inside and outside are undefined"));
+    return report(Error(o.input + ": mesh is not closed (" + std::to_string(topo.boundary_edges) +
+                        " boundary, " + std::to_string(topo.nonmanifold_edges) + " non-manifold, " +
+                        std::to_string(topo.misoriented_edges) +
+                        " mis-oriented edges): inside and outside are undefined"));
   const Result<core::VoxelizeMapping> fitted = core::fit_mesh_to_grid(*mesh, o.size, o.margin);
   if (!fitted) return report(fitted.error().in(o.input));
   const core::VoxelizeMapping& map = *fitted;
@@ -57,8 +56,7 @@ int run_voxelize(const VoxelizeOptions& o) {
   // A mesh wound clockwise (inward normals) reads as inside-out: every
   // voxel on the border would be inside.
   if (field.at(0, 0, 0) < 0.0f)
-    return report(
-        Error(o.input + ": triangles face inward (wound clockwise seen from outside)"));
+    return report(Error(o.input + ": triangles face inward (wound clockwise seen from outside)"));
   const Status st = write_field(o.output, field, o.sdf);
   if (!st) return report(st.error());
   auto sec = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
@@ -77,7 +75,7 @@ void add_voxelize_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<VoxelizeOptions>();
   CLI::App* cmd = app.add_subcommand(
       "voxelize", "Closed mesh (OBJ/PLY/STL) to a density or signed distance volume");
-  cmd->add_option("input", o->input, "mesh: .obj, .ply or .stl")->required();
+  cmd->add_option("input", o->input, "mesh: .obj, .ply or .stl")->required()->check(input_file());
   cmd->add_option("-o,--output", o->output, "output NRRD")->required();
   cmd->add_option("--size", o->size, "grid edge N (N^3 voxels, 8..1024)")
       ->required()

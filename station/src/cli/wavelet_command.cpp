@@ -29,8 +29,8 @@ int run_wavelet(const WaveletOptions& o) {
   // A brick must hold every level: 32 holds 5, larger level counts need larger bricks.
   vo.brick_edge = std::max(32, 1 << o.levels);
   if (o.lod > o.levels) {
-    return report(Error("--lod " + std::to_string(o.lod) + " exceeds --levels " +
-                              std::to_string(o.levels)));
+    return report(
+        Error("--lod " + std::to_string(o.lod) + " exceeds --levels " + std::to_string(o.levels)));
   }
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
@@ -89,8 +89,7 @@ int run_wavelet(const WaveletOptions& o) {
   }
   std::printf("round trip  bit-exact\n");
   if (!o.output.empty()) {
-    if (Status st = core::write_volume_nrrd(o.output, *volume, 0); !st)
-      return report(st.error());
+    if (Status st = core::write_volume_nrrd(o.output, *volume, 0); !st) return report(st.error());
   }
   return 0;
 }
@@ -101,7 +100,7 @@ void add_wavelet_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<WaveletOptions>();
   CLI::App* cmd = app.add_subcommand(
       "wavelet", "3D Haar wavelet volume: extract a level, or verify the round trip");
-  cmd->add_option("input", o->input, "uint8 NRRD volume")->required();
+  cmd->add_option("input", o->input, "uint8 NRRD volume")->required()->check(input_file());
   cmd->add_option("--levels", o->levels, "wavelet levels (1..7)")->check(finite_range(0, 7));
   cmd->add_option("--lod", o->lod, "level to write (0 = the input)")->check(finite_range(0, 7));
   cmd->add_option("-o,--output", o->output, "output NRRD");

@@ -3,6 +3,7 @@
 #include <zlib.h>
 
 #include <array>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/nurbs/nurbs_json.h"
 #include "sculpt/core/wavelet/wavelet_pyramid.h"
+#include "sculpt/sim/session/command_limits.h"
 
 namespace sculpt::station {
 namespace {
@@ -123,8 +125,8 @@ class Inflater {
 }  // namespace
 
 Status save_project(const std::filesystem::path& path, const core::Volume& volume,
-                          const StationSettings& settings, const core::Tool* custom_tool,
-                          const ProjectView& view, const core::nurbs::NurbsSurface* sheet) {
+                    const StationSettings& settings, const core::Tool* custom_tool,
+                    const ProjectView& view, const core::nurbs::NurbsSurface* sheet) {
   const glm::ivec3 d = volume.dims();
   json j = {
       {"volume",
@@ -191,56 +193,139 @@ T get(const uint8_t* p) {
   return v;
 }
 
-glm::vec3 vec_of(const json& j) {
-  if (!j.is_array() || j.size() != 3) throw std::string("expected three numbers");
-  return {j[0].get<float>(), j[1].get<float>(), j[2].get<float>()};
+// Checked readers of the description's fields. A field of the wrong type or
+// out of its range throws "PATH: what is wrong" (caught by parse_project):
+// nlohmann's get<int>() of 1e300 is undefined behaviour, and a tool size of
+// 1e30 would take all the machine's memory when the project opens.
+[[noreturn]] void bad(const std::string& path, const std::string& what) {
+  throw path + ": " + what;
+}
+
+std::string range_text(double lo, double hi) {
+  char text[64];
+  std::snprintf(text, sizeof text, "[%.9g, %.9g]", lo, hi);
+  return text;
+}
+
+const json& field(const json& j, const char* key, const std::string& path) {
+  if (!j.is_object()) bad(path, "expected an object");
+  const auto it = j.find(key);
+  if (it == j.end()) bad(path + "." + key, "missing");
+  return *it;
+}
+
+int64_t whole_in(const json& j, int64_t lo, int64_t hi, const std::string& path) {
+  if (!j.is_number_integer()) bad(path, "expected a whole number");
+  // Unsigned values above INT64_MAX read as negative here and fail the range.
+  const auto v = j.is_number_unsigned() && j.get<uint64_t>() > uint64_t(INT64_MAX)
+                     ? int64_t{-1} - int64_t{INT64_MAX}
+                     : j.get<int64_t>();
+  if (v < lo || v > hi) bad(path, "not in " + range_text(double(lo), double(hi)));
+  return v;
+}
+
+int int_in(const json& j, int lo, int hi, const std::string& path) {
+  return static_cast<int>(whole_in(j, lo, hi, path));
+}
+
+double number_in(const json& j, double lo, double hi, const std::string& path) {
+  if (!j.is_number()) bad(path, "expected a number");
+  const double v = j.get<double>();
+  if (!(v >= lo && v <= hi)) bad(path, "not in " + range_text(lo, hi));
+  return v;
+}
+
+float float_in(const json& j, double lo, double hi, const std::string& path) {
+  return static_cast<float>(number_in(j, lo, hi, path));
+}
+
+bool flag(const json& j, const std::string& path) {
+  if (!j.is_boolean()) bad(path, "expected true or false");
+  return j.get<bool>();
+}
+
+std::string text_of(const json& j, const std::string& path) {
+  if (!j.is_string()) bad(path, "expected a string");
+  return j.get<std::string>();
+}
+
+const json& array_of(const json& j, size_t n, const std::string& path) {
+  if (!j.is_array() || j.size() != n) bad(path, "expected " + std::to_string(n) + " values");
+  return j;
+}
+
+// Positions in the scene, voxels: the session's coordinate limit.
+constexpr double kMaxCoordinate = sim::kMaxCoordinateVox;
+
+glm::vec3 position_of(const json& j, const std::string& path) {
+  const json& a = array_of(j, 3, path);
+  return {float_in(a[0], -kMaxCoordinate, kMaxCoordinate, path + "[0]"),
+          float_in(a[1], -kMaxCoordinate, kMaxCoordinate, path + "[1]"),
+          float_in(a[2], -kMaxCoordinate, kMaxCoordinate, path + "[2]")};
+}
+
+glm::ivec3 dims_of(const json& j, int hi, const std::string& path) {
+  const json& a = array_of(j, 3, path);
+  return {int_in(a[0], 1, hi, path + "[0]"), int_in(a[1], 1, hi, path + "[1]"),
+          int_in(a[2], 1, hi, path + "[2]")};
 }
 
 StationSettings settings_of(const json& j) {
+  const std::string at = "settings";
   StationSettings s;
-  const auto shape = sim::parse_tool_shape(j.at("shape").get<std::string>());
-  if (!shape) throw std::string("settings.shape: unknown tool shape");
+  const auto shape = sim::parse_tool_shape(text_of(field(j, "shape", at), at + ".shape"));
+  if (!shape) bad(at + ".shape", "unknown tool shape");
   s.shape = *shape;
-  s.size_a_vox = j.at("size").at(0).get<float>();
-  s.size_b_vox = j.at("size").at(1).get<float>();
-  const auto mode = sim::parse_sculpt_mode_id(j.at("mode").get<std::string>());
-  if (!mode) throw std::string("settings.mode: unknown mode");
+  const json& size = array_of(field(j, "size", at), 2, at + ".size");
+  // Sizes as the sessions bound them (command_limits.h); 0 for an unused one.
+  s.size_a_vox = float_in(size[0], 0.0, sim::kMaxToolSizeVox, at + ".size[0]");
+  s.size_b_vox = float_in(size[1], 0.0, sim::kMaxToolSizeVox, at + ".size[1]");
+  const auto mode = sim::parse_sculpt_mode_id(text_of(field(j, "mode", at), at + ".mode"));
+  if (!mode) bad(at + ".mode", "unknown mode");
   s.mode = static_cast<core::SculptMode>(*mode);
-  s.strength = j.at("strength").get<float>();
-  s.spacing = j.at("spacing").get<float>();
-  s.custom_tool = j.at("custom_tool").get<bool>();
-  const json& r = j.at("custom_region");
-  s.custom_region = core::Box{{r.at(0).get<int>(), r.at(1).get<int>(), r.at(2).get<int>()},
-                              {r.at(3).get<int>(), r.at(4).get<int>(), r.at(5).get<int>()}};
-  const json& m = j.at("mirror");
+  s.strength = float_in(field(j, "strength", at), 0.0, 1.0, at + ".strength");
+  s.spacing = float_in(field(j, "spacing", at), 1e-3, sim::kMaxSpacing, at + ".spacing");
+  s.custom_tool = flag(field(j, "custom_tool", at), at + ".custom_tool");
+  const json& r = array_of(field(j, "custom_region", at), 6, at + ".custom_region");
+  int corner[6];
+  for (int i = 0; i < 6; ++i)
+    corner[i] = int_in(r[size_t(i)], 0, int(kMaxCoordinate),
+                       at + ".custom_region[" + std::to_string(i) + "]");
+  s.custom_region = core::Box{{corner[0], corner[1], corner[2]}, {corner[3], corner[4], corner[5]}};
+  const json& m = field(j, "mirror", at);
   if (!m.is_null()) {
-    const int axis = m.at("axis").get<int>();
-    if (axis < 0 || axis > 2) throw std::string("settings.mirror.axis: not 0, 1 or 2");
-    s.mirror = core::MirrorPlane{axis, m.at("at").get<float>()};
+    const int axis = int_in(field(m, "axis", at + ".mirror"), 0, 2, at + ".mirror.axis");
+    s.mirror = core::MirrorPlane{axis, float_in(field(m, "at", at + ".mirror"), -kMaxCoordinate,
+                                                kMaxCoordinate, at + ".mirror.at")};
   }
-  s.sheet_editing = j.value("sheet_editing", false);
-  const int influence = j.value("sheet_influence", static_cast<int>(s.sheet_drag.influence));
-  if (influence < 0 || influence > 2) throw std::string("settings.sheet_influence: not 0, 1 or 2");
-  s.sheet_drag.influence = static_cast<SheetInfluence>(influence);
-  s.sheet_drag.radius = j.value("sheet_radius", s.sheet_drag.radius);
-  if (!(s.sheet_drag.radius >= 0 && s.sheet_drag.radius <= 64))
-    throw std::string("settings.sheet_radius: out of range");
-  if (!(s.spacing > 0) || !(s.strength >= 0 && s.strength <= 1))
-    throw std::string("settings: strength or spacing out of range");
+  // Projects written before the sheet existed have none of these.
+  if (j.contains("sheet_editing"))
+    s.sheet_editing = flag(j["sheet_editing"], at + ".sheet_editing");
+  if (j.contains("sheet_influence"))
+    s.sheet_drag.influence =
+        static_cast<SheetInfluence>(int_in(j["sheet_influence"], 0, 2, at + ".sheet_influence"));
+  if (j.contains("sheet_radius"))
+    s.sheet_drag.radius = number_in(j["sheet_radius"], 0.0, 64.0, at + ".sheet_radius");
   return s;
 }
 
 ProjectView view_of(const json& j) {
+  const std::string at = "view";
   ProjectView v;
-  v.camera_target = vec_of(j.at("camera_target"));
-  v.camera_yaw = j.at("camera_yaw").get<float>();
-  v.camera_pitch = j.at("camera_pitch").get<float>();
-  v.camera_distance = j.at("camera_distance").get<float>();
-  const json& l = j.at("lod");
-  v.lod.full_detail_distance = l.at("full_detail_distance").get<float>();
-  v.lod.max_level = l.at("max_level").get<int>();
-  v.lod.frame_budget_ms = l.at("frame_budget_ms").get<double>();
-  v.lod.fixed_level = l.at("fixed_level").get<int>();
+  v.camera_target = position_of(field(j, "camera_target", at), at + ".camera_target");
+  // Angles are radians, wrapped by the camera; any finite turn is a view.
+  v.camera_yaw = float_in(field(j, "camera_yaw", at), -1e6, 1e6, at + ".camera_yaw");
+  v.camera_pitch = float_in(field(j, "camera_pitch", at), -1e6, 1e6, at + ".camera_pitch");
+  v.camera_distance =
+      float_in(field(j, "camera_distance", at), 1e-3, kMaxCoordinate, at + ".camera_distance");
+  const json& l = field(j, "lod", at);
+  const std::string lod = at + ".lod";
+  v.lod.full_detail_distance = float_in(field(l, "full_detail_distance", lod), 0.0, kMaxCoordinate,
+                                        lod + ".full_detail_distance");
+  v.lod.max_level = int_in(field(l, "max_level", lod), 0, 16, lod + ".max_level");
+  v.lod.frame_budget_ms =
+      number_in(field(l, "frame_budget_ms", lod), 0.0, 1000.0, lod + ".frame_budget_ms");
+  v.lod.fixed_level = int_in(field(l, "fixed_level", lod), -1, 16, lod + ".fixed_level");
   return v;
 }
 
@@ -248,11 +333,18 @@ ProjectView view_of(const json& j) {
 
 Result<Project> load_project(const std::filesystem::path& path) {
   const std::string name = path.string();
-  auto fail = [&](const std::string& what) { return Error(name + ": " + what); };
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return Error(name + ": is a directory");
   std::ifstream in(path, std::ios::binary);
-  if (!in) return fail("cannot open: " + std::string(std::strerror(errno)));
+  if (!in) return Error(name + ": cannot open: " + std::string(std::strerror(errno)));
   const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
                                    std::istreambuf_iterator<char>());
+  if (in.bad()) return Error(name + ": read failed");
+  return parse_project(bytes, name);
+}
+
+Result<Project> parse_project(std::span<const uint8_t> bytes, const std::string& name) {
+  auto fail = [&](const std::string& what) { return Error(name + ": " + what); };
   const size_t fixed = kMagic.size() + 4 + 4;
   if (bytes.size() < fixed + 8 + 4 || !std::equal(kMagic.begin(), kMagic.end(), bytes.begin()))
     return fail("not a sculpt project file");
@@ -274,22 +366,19 @@ Result<Project> load_project(const std::filesystem::path& path) {
   core::VolumeOptions options;
   try {
     const json j = json::parse(bytes.begin() + fixed, bytes.begin() + fixed + n);
-    const json& v = j.at("volume");
-    dims = glm::ivec3(v.at("dims").at(0).get<int>(), v.at("dims").at(1).get<int>(),
-                      v.at("dims").at(2).get<int>());
-    options.brick_edge = v.at("brick_edge").get<int>();
-    options.levels = v.at("levels").get<int>();
-    content_hash = v.at("content_hash").get<uint64_t>();
-    project.settings = settings_of(j.at("settings"));
-    project.view = view_of(j.at("view"));
-    if (const json& t = j.at("tool"); !t.is_null()) {
-      tool_dims = glm::ivec3(t.at("dims").at(0).get<int>(), t.at("dims").at(1).get<int>(),
-                             t.at("dims").at(2).get<int>());
-      if (glm::any(glm::lessThan(tool_dims, glm::ivec3(1))) ||
-          glm::any(glm::greaterThan(tool_dims, glm::ivec3(1024))))
-        throw std::string("tool.dims out of range");
+    const json& v = field(j, "volume", "description");
+    dims = dims_of(field(v, "dims", "volume"), int(kMaxCoordinate), "volume.dims");
+    options.brick_edge = int_in(field(v, "brick_edge", "volume"), 1, 1024, "volume.brick_edge");
+    options.levels = int_in(field(v, "levels", "volume"), 0, 16, "volume.levels");
+    const json& hash = field(v, "content_hash", "volume");
+    if (!hash.is_number_unsigned()) bad("volume.content_hash", "expected a whole number");
+    content_hash = hash.get<uint64_t>();
+    project.settings = settings_of(field(j, "settings", "description"));
+    project.view = view_of(field(j, "view", "description"));
+    if (const json& t = field(j, "tool", "description"); !t.is_null()) {
+      tool_dims = dims_of(field(t, "dims", "tool"), 1024, "tool.dims");
       core::Tool tool;
-      tool.pivot = vec_of(t.at("pivot"));
+      tool.pivot = position_of(field(t, "pivot", "tool"), "tool.pivot");
       project.custom_tool = std::move(tool);
     }
     // Projects written before the sheet existed have no "sheet".

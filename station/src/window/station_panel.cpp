@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "sculpt/station/window/keymap.h"
+
 namespace sculpt::station {
 namespace {
 

@@ -13,17 +13,18 @@
 
 #include "render/gl/scene_renderer.h"
 #include "sculpt/base/atomic_file.h"
-#include "sculpt/hal/types/clock.h"
-#include "sculpt/hal/registry/device_registry.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
+#include "sculpt/hal/registry/device_registry.h"
+#include "sculpt/hal/types/clock.h"
 #include "sculpt/sim/replay/sim_backend.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
 #include "sculpt/station/app/session_loading.h"
-#include "sculpt/station/app/station_controller.h"
 #include "sculpt/station/app/session_start.h"
+#include "sculpt/station/app/station_controller.h"
 #include "sculpt/station/render/software_renderer.h"
 #include "sculpt/station/view/mesh_raycast.h"
 #include "sculpt/station/view/volume_raycast.h"
+#include "sculpt/station/window/keymap.h"
 #include "window/gl_context.h"
 #include "window/station_panel.h"
 
@@ -190,8 +191,7 @@ int run_window(const WindowOptions& o) {
     registry->scan();
     if (registry->open_count() == 0 && o.project.empty()) {
       std::printf("no 3D mouse found: playing the demo session as a live device\n");
-      if (Status st = add_sim(sim::bundled_session_path("demo")); !st)
-        return fail(st.error());
+      if (Status st = add_sim(sim::bundled_session_path("demo")); !st) return fail(st.error());
     }
   } else {
     auto id = registry->open_device(o.device);

@@ -1,7 +1,5 @@
 #include "sculpt/station/app/station_controller.h"
 
-#include <GLFW/glfw3.h>  // key codes
-
 #include <gtest/gtest.h>
 
 #include "scratch_dir.h"
@@ -33,19 +31,6 @@ void stroke(StationController& c, int64_t& t, float z) {
     c.pointer_move({20.0f + static_cast<float>(i), 52.0f, z}, t += kMs);
   c.pointer_up(t += kMs);
   c.update_mesh(t);
-}
-
-TEST(StationShortcuts, MapKeysToActions) {
-  EXPECT_EQ(shortcut(GLFW_KEY_Z, GLFW_MOD_CONTROL), Action::kUndo);
-  EXPECT_EQ(shortcut(GLFW_KEY_Z, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT), Action::kRedo);
-  EXPECT_EQ(shortcut(GLFW_KEY_Y, GLFW_MOD_CONTROL), Action::kRedo);
-  EXPECT_EQ(shortcut(GLFW_KEY_S, GLFW_MOD_CONTROL), Action::kSave);
-  EXPECT_EQ(shortcut(GLFW_KEY_TAB, 0), Action::kToggleAddSubtract);
-  EXPECT_EQ(shortcut(GLFW_KEY_3, 0), Action::kToolCylinder);
-  EXPECT_EQ(shortcut(GLFW_KEY_H, GLFW_MOD_CONTROL), Action::kHypertexture);
-  EXPECT_EQ(shortcut(GLFW_KEY_Z, 0), std::nullopt);
-  EXPECT_EQ(shortcut(GLFW_KEY_Q, GLFW_MOD_CONTROL), std::nullopt);
-  EXPECT_STREQ(shortcut_label(Action::kUndo), "Ctrl+Z");
 }
 
 TEST(StationController, SwitchesToolsModesAndSizes) {

@@ -1,16 +1,14 @@
 // The NURBS sheet in the station: what the panel's sheet section, its
 // shortcuts and the mouse do, and that a recording replays it bit for bit.
 
-#include <GLFW/glfw3.h>  // key codes
-
 #include <gtest/gtest.h>
 
 #include "scratch_dir.h"
 #include "sculpt/core/nurbs/nurbs_json.h"
 #include "sculpt/core/nurbs/point_inversion.h"
 #include "sculpt/sim/session/session_file.h"
-#include "sculpt/station/app/station_controller.h"
 #include "sculpt/station/app/session_start.h"
+#include "sculpt/station/app/station_controller.h"
 
 namespace sculpt::station {
 namespace {
@@ -42,20 +40,6 @@ void drag(StationController& c, int64_t& t, glm::vec3 from, glm::vec3 by, int st
   for (int i = 1; i <= steps; ++i)
     c.pointer_move(from + by * (static_cast<float>(i) / static_cast<float>(steps)), t += kMs);
   c.pointer_up(t += kMs);
-}
-
-TEST(StationSheet, ShortcutsReachTheSheetAndTurnTheTool) {
-  EXPECT_EQ(shortcut(GLFW_KEY_N, 0), Action::kNewSheet);
-  EXPECT_EQ(shortcut(GLFW_KEY_N, GLFW_MOD_SHIFT), Action::kRemoveSheet);
-  EXPECT_EQ(shortcut(GLFW_KEY_G, 0), Action::kToggleSheetEditing);
-  EXPECT_EQ(shortcut(GLFW_KEY_B, GLFW_MOD_CONTROL), Action::kSheetAddToMaterial);
-  EXPECT_EQ(shortcut(GLFW_KEY_B, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT),
-            Action::kSheetSubtractFromMaterial);
-  EXPECT_EQ(shortcut(GLFW_KEY_T, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT), Action::kSheetAsTool);
-  EXPECT_EQ(shortcut(GLFW_KEY_E, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT), Action::kExportSheet);
-  EXPECT_EQ(shortcut(GLFW_KEY_Q, 0), Action::kTurnToolLeft);
-  EXPECT_EQ(shortcut(GLFW_KEY_E, GLFW_MOD_SHIFT), Action::kTiltToolDown);
-  EXPECT_STREQ(shortcut_label(Action::kNewSheet), "N");
 }
 
 TEST(StationSheet, KeysTurnAndTiltTheTool) {

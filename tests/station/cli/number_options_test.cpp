@@ -29,5 +29,27 @@ TEST(NumberOptions, NanAndInfinityAreRefusedWithTheOptionNamed) {
   }
 }
 
+// Reproducer from the hardening review: a folder given as an input file was
+// opened and reported as an empty session, "not a NRRD file" or an unknown
+// mesh extension, or (run --open) ignored.
+TEST(InputPaths, AFolderGivenAsAnInputFileIsNamedAsOne) {
+  const std::string folder = SCULPT_TEST_DATA_DIR;
+  // Each command with the folder where it reads its input.
+  const std::string commands[] = {"replay " + folder,
+                                  "wavelet " + folder,
+                                  "mesh " + folder + " -o /nonexistent/m.ply",
+                                  "session to-text " + folder + " -o /nonexistent/s.jsonl",
+                                  "contours " + folder + " -o /nonexistent/c.nrrd",
+                                  "voxelize " + folder + " --size 32 -o /nonexistent/v.nrrd",
+                                  "nurbs tessellate " + folder + " -o /nonexistent/t.obj",
+                                  "rotate " + folder + " --euler 1,2,3 -o /nonexistent/r.nrrd"};
+  for (const std::string& command : commands) {
+    const CommandResult r = run_sculpt(command);
+    EXPECT_EQ(r.exit_code, 1) << command;
+    EXPECT_EQ(line_count(r.err), 1) << command << r.err;
+    EXPECT_NE(r.err.find(folder + ": is a directory"), std::string::npos) << command << r.err;
+  }
+}
+
 }  // namespace
 }  // namespace sculpt::station::test

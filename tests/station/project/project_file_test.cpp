@@ -4,7 +4,9 @@
 #include <iterator>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include "crc32.h"
 #include "scratch_dir.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 
@@ -126,6 +128,74 @@ TEST_F(ProjectFile, RefusesDamagedFilesWithOneClearError) {
   auto missing = load_project(dir_.path() / "none.sculpt");
   ASSERT_FALSE(missing.ok());
   EXPECT_NE(missing.error().message().find("cannot open"), std::string::npos);
+}
+
+// A project whose description says `edit` (a JSON pointer and a value),
+// sealed with a valid checksum: what a hostile or buggy writer could hand
+// us, past the CRC.
+std::vector<uint8_t> with_description_edit(const std::vector<char>& good,
+                                           const std::string& pointer,
+                                           const nlohmann::json& value) {
+  auto u32 = [&](size_t at) {
+    uint32_t v = 0;
+    for (int i = 0; i < 4; ++i)
+      v |= uint32_t(uint8_t(good[at + size_t(i)])) << (8 * i);
+    return v;
+  };
+  const uint32_t n = u32(12);
+  nlohmann::json j = nlohmann::json::parse(good.begin() + 16, good.begin() + 16 + n);
+  j[nlohmann::json::json_pointer(pointer)] = value;
+  const std::string text = j.dump();
+  std::vector<uint8_t> out(good.begin(), good.begin() + 12);
+  for (int i = 0; i < 4; ++i)
+    out.push_back(uint8_t(text.size() >> (8 * i)));
+  out.insert(out.end(), text.begin(), text.end());
+  out.insert(out.end(), good.begin() + 16 + n, good.end() - 4);
+  const uint32_t crc = sculpt::test::crc32_of(out);
+  for (int i = 0; i < 4; ++i)
+    out.push_back(uint8_t(crc >> (8 * i)));
+  return out;
+}
+
+// Reproducers from the hardening review: fields past the checksum were read
+// with nlohmann's get<int>() (undefined for 1e300) and tool sizes, poses and
+// spacings were never bounded (a size of 1e30 exhausts memory when used).
+TEST_F(ProjectFile, EveryDescriptionFieldIsTypedAndBounded) {
+  const auto path = dir_.path() / "f.sculpt";
+  ASSERT_TRUE(save_project(path, volume_, settings(), nullptr, {}).ok());
+  const std::vector<char> good = bytes_of(path);
+  ASSERT_TRUE(parse_project(with_description_edit(good, "/settings/strength", 0.5), "x").ok());
+  struct Case {
+    const char* pointer;
+    nlohmann::json value;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"/volume/dims/0", 1e300, "volume.dims[0]: expected a whole number"},
+      {"/volume/dims/1", -5, "volume.dims[1]: not in"},
+      {"/volume/brick_edge", "32", "volume.brick_edge: expected a whole number"},
+      {"/settings/size/0", 1e30, "settings.size[0]: not in [0, 256]"},
+      {"/settings/spacing", 0, "settings.spacing: not in"},
+      {"/settings/strength", nullptr, "settings.strength: expected a number"},
+      {"/settings/custom_region/3", int64_t{4'000'000'000}, "settings.custom_region[3]: not in"},
+      {"/settings/mirror/axis", 7, "settings.mirror.axis: not in [0, 2]"},
+      {"/settings/custom_tool", 1, "settings.custom_tool: expected true or false"},
+      {"/view/camera_target/2", 1e30, "view.camera_target[2]: not in"},
+      {"/view/camera_distance", -1, "view.camera_distance: not in"},
+      {"/view/lod/max_level", uint64_t{1} << 63, "view.lod.max_level: not in"},
+      {"/settings/shape", 3, "settings.shape: expected a string"},
+  };
+  for (const Case& c : cases) {
+    const Result<Project> p = parse_project(with_description_edit(good, c.pointer, c.value), "f");
+    ASSERT_FALSE(p.ok()) << c.pointer;
+    EXPECT_NE(p.error().message().find(std::string("f: ") + c.message), std::string::npos)
+        << c.pointer << ": " << p.error().message();
+  }
+  const auto folder = dir_.path() / "folder.sculpt";
+  std::filesystem::create_directory(folder);
+  const Result<Project> dir = load_project(folder);
+  ASSERT_FALSE(dir.ok());
+  EXPECT_NE(dir.error().message().find("folder.sculpt: is a directory"), std::string::npos);
 }
 
 TEST_F(ProjectFile, AFailedSaveLeavesTheOldFileWhole) {

@@ -24,8 +24,8 @@
 #include <string>
 #include <utility>
 
-#include "sculpt/hal/types/device_info.h"
 #include "sculpt/hal/input/device_reader.h"
+#include "sculpt/hal/types/device_info.h"
 #include "sculpt/station/app/session_recorder.h"
 #include "sculpt/station/app/session_replay.h"
 #include "sculpt/station/app/station_loop.h"
@@ -73,11 +73,6 @@ enum class Action {
   kSheetAsTool,
   kExportSheet,
 };
-
-/// The action of a key (GLFW key code and modifier bits), if any.
-std::optional<Action> shortcut(int glfw_key, int glfw_mods);
-/// "Ctrl+Z" and the like, for the panel's tooltips.
-const char* shortcut_label(Action action);
 
 struct DeviceStatus {
   bool connected = false;

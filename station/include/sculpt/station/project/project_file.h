@@ -22,12 +22,14 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <span>
+#include <string>
 
 #include <glm/vec3.hpp>
 
+#include "sculpt/base/result.h"
 #include "sculpt/core/nurbs/nurbs_surface.h"
 #include "sculpt/core/tool/tool.h"
-#include "sculpt/base/result.h"
 #include "sculpt/core/volume/volume.h"
 #include "sculpt/station/settings/station_settings.h"
 #include "sculpt/station/view/lod_selector.h"
@@ -57,11 +59,13 @@ inline constexpr uint32_t kProjectVersion = 1;
 
 /// Writes the project atomically (temporary file, fsync, rename).
 Status save_project(const std::filesystem::path& path, const core::Volume& volume,
-                          const StationSettings& settings, const core::Tool* custom_tool,
-                          const ProjectView& view,
-                          const core::nurbs::NurbsSurface* sheet = nullptr);
+                    const StationSettings& settings, const core::Tool* custom_tool,
+                    const ProjectView& view, const core::nurbs::NurbsSurface* sheet = nullptr);
 
 /// Opens a project; errors name the file and what is wrong with it.
 Result<Project> load_project(const std::filesystem::path& path);
+/// A project from its bytes; errors start with `name` (load_project() and
+/// the fuzz target read through this).
+Result<Project> parse_project(std::span<const uint8_t> bytes, const std::string& name);
 
 }  // namespace sculpt::station

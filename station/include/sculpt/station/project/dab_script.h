@@ -1,0 +1,85 @@
+#pragma once
+// Dab scripts (`sculpt stamp --dabs`): JSON Lines of sculpting operations,
+// the scripting face of the discrete tools ("Discrete tools for virtual
+// sculpture" §3). One object per line, each with an "op"; blank lines and
+// lines starting with '#' are skipped:
+//   {"op":"tool","shape":"sphere","radius":8}        also cube (edge), cylinder
+//   (radius, height), ring (major, minor), cone (radius, height),
+//   file (path, relative to the script), region (box [x0,y0,z0,x1,y1,z1] of
+//   the volume as it is now: the sculpture becomes the tool)
+//   {"op":"save_tool","path":"t.nrrd"}               the current tool, with pivot
+//   {"op":"sampling","value":"trilinear"}            or "nearest"
+//   {"op":"mirror","axis":"x","centre":63.5}         axis "off" disables
+//   {"op":"begin"} ... {"op":"end"}                  a stroke (one undo step)
+//   {"op":"dab","at":[x,y,z],"mode":"add","strength":1,"euler":[rx,ry,rz]}
+//        mode add|subtract|union|difference|smooth (default add), strength in
+//        [0, 1] (default 1), rotation as "euler" (degrees, extrinsic xyz) or
+//        "quat" [w,x,y,z] (default none)
+//   {"op":"undo"}, {"op":"redo"}
+// Every field is checked where it is read (README "File formats" lists the
+// limits); the whole script is read before anything is applied, and an
+// error names the script, the line and the field.
+
+#include <istream>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "sculpt/base/result.h"
+#include "sculpt/core/grid/box.h"
+#include "sculpt/core/sculpt/sculptor.h"
+#include "sculpt/core/tool/tool_rotation.h"
+#include "sculpt/sim/session/command_limits.h"
+
+namespace sculpt::station::dab_script {
+
+/// Largest built-in tool size accepted, in voxels: the sessions' limit
+/// (command_limits.h), so a script and a recording accept the same tools.
+inline constexpr double kMaxToolSize = sim::kMaxToolSizeVox;
+
+/// Largest tool grid edge accepted from a file or a region, in voxels: the
+/// rotation cache indexes rows with 16-bit offsets, and a tool that large
+/// would be a volume, not a tool.
+inline constexpr int kMaxToolEdge = 1024;
+
+/// A tool: a built-in `shape` of sizes a, b (voxels), a tool file at
+/// `path`, or a `box` of the volume (shape "region").
+struct ToolOp {
+  std::string shape;
+  double a = 0.0, b = 0.0;
+  std::string path;
+  core::Box box;
+};
+struct SaveToolOp {
+  std::string path;
+};
+struct SamplingOp {
+  core::Sampling sampling;
+};
+struct MirrorOp {
+  std::optional<core::MirrorPlane> plane;
+};
+struct StrokeOp {
+  bool begin;
+};
+struct UndoOp {
+  bool redo;
+};
+using Op = std::variant<ToolOp, SaveToolOp, SamplingOp, MirrorOp, StrokeOp, core::Dab, UndoOp>;
+
+/// One operation and the script line it came from (1-based).
+struct Line {
+  int number = 0;
+  Op op;
+};
+
+/// The operations of a script read from `in`, for a volume of `volume_dims`
+/// voxels; errors are "NAME:LINE: what is wrong".
+Result<std::vector<Line>> parse(std::istream& in, const std::string& name, glm::ivec3 volume_dims);
+/// parse() of the file at `path`.
+Result<std::vector<Line>> read(const std::string& path, glm::ivec3 volume_dims);
+
+}  // namespace sculpt::station::dab_script

@@ -1,0 +1,222 @@
+#include "sculpt/station/project/dab_script.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/vector_relational.hpp>
+#include <nlohmann/json.hpp>
+
+#include "sculpt/sim/session/session.h"
+
+namespace sculpt::station::dab_script {
+namespace {
+
+using json = nlohmann::json;
+
+// Reads optional string field `key` of `j`, `fallback` when absent; an error
+// in our words when present but not a string (json::value() would throw the
+// library's own message, naming no line).
+Result<std::string> text(const json& j, const char* key, const char* fallback) {
+  if (!j.contains(key)) return std::string(fallback);
+  if (!j[key].is_string()) return Error(std::string("'") + key + "' must be a string");
+  return j[key].get<std::string>();
+}
+
+// Reads field `key` of `j` as a finite number.
+Result<double> number(const json& j, const char* key) {
+  if (!j.contains(key)) return Error(std::string("missing '") + key + "'");
+  const json& v = j[key];
+  if (!v.is_number() || !std::isfinite(v.get<double>())) {
+    return Error(std::string("'") + key + "' must be a finite number");
+  }
+  return v.get<double>();
+}
+
+Result<double> size(const json& j, const char* key) {
+  auto v = number(j, key);
+  if (!v) return v;
+  if (*v <= 0.0 || *v > kMaxToolSize) {
+    return Error(std::string("'") + key + "' must be in (0, " + std::to_string(int(kMaxToolSize)) +
+                 "]");
+  }
+  return v;
+}
+
+Result<std::vector<double>> numbers(const json& j, const char* key, size_t n) {
+  const std::string what =
+      std::string("'") + key + "' must be " + std::to_string(n) + " finite numbers";
+  if (!j.contains(key) || !j[key].is_array() || j[key].size() != n) return Error(what);
+  std::vector<double> out;
+  for (const json& v : j[key]) {
+    if (!v.is_number() || !std::isfinite(v.get<double>())) return Error(what);
+    out.push_back(v.get<double>());
+  }
+  return out;
+}
+
+Result<Op> parse_op(const json& j, glm::ivec3 dims) {
+  if (!j.is_object() || !j.contains("op") || !j["op"].is_string()) {
+    return Error("expected an object with a string 'op'");
+  }
+  const std::string op = j["op"];
+  if (op == "tool") {
+    if (!j.contains("shape") || !j["shape"].is_string())
+      return Error("tool: missing string 'shape'");
+    ToolOp t{j["shape"], 0.0, 0.0, {}, {}};
+    const std::pair<const char*, const char*> params[] = {{"sphere", "radius"},
+                                                          {"cube", "edge"},
+                                                          {"cylinder", "radius"},
+                                                          {"ring", "major"},
+                                                          {"cone", "radius"}};
+    for (const auto& [shape, first] : params) {
+      if (t.shape != shape) continue;
+      auto a = size(j, first);
+      if (!a) return a.error().in("tool " + t.shape);
+      t.a = *a;
+      const char* second = t.shape == "ring"                              ? "minor"
+                           : (t.shape == "cylinder" || t.shape == "cone") ? "height"
+                                                                          : nullptr;
+      if (second != nullptr) {
+        auto b = size(j, second);
+        if (!b) return b.error().in("tool " + t.shape);
+        t.b = *b;
+      }
+      return Op{t};
+    }
+    if (t.shape == "file") {
+      if (!j.contains("path") || !j["path"].is_string())
+        return Error("tool file: missing string 'path'");
+      t.path = j["path"];
+      return Op{t};
+    }
+    if (t.shape == "region") {
+      auto b = numbers(j, "box", 6);
+      if (!b) return b.error().in("tool region");
+      const std::vector<double>& v = *b;
+      for (int a = 0; a < 6; ++a) {
+        // Checked before the conversion to int, which is undefined out of range.
+        if (v[a] < 0.0 || v[a] > dims[a % 3])
+          return Error("tool region: 'box' must be a non-empty box inside the volume");
+      }
+      t.box = core::Box{glm::ivec3(int(v[0]), int(v[1]), int(v[2])),
+                        glm::ivec3(int(v[3]), int(v[4]), int(v[5]))};
+      const core::Box clipped = core::intersect(t.box, core::Box{glm::ivec3(0), dims});
+      if (clipped.empty() || clipped != t.box) {
+        return Error("tool region: 'box' must be a non-empty box inside the volume");
+      }
+      if (glm::any(glm::greaterThan(t.box.size(), glm::ivec3(kMaxToolEdge)))) {
+        return Error("tool region: 'box' is larger than " + std::to_string(kMaxToolEdge) +
+                     " voxels on an edge");
+      }
+      for (double x : v) {
+        if (x != std::floor(x)) return Error("tool region: 'box' must be whole voxel indices");
+      }
+      return Op{t};
+    }
+    return Error("tool: unknown shape '" + t.shape +
+                 "' (sphere, cube, cylinder, ring, cone, file, region)");
+  }
+  if (op == "save_tool") {
+    if (!j.contains("path") || !j["path"].is_string())
+      return Error("save_tool: missing string 'path'");
+    return Op{SaveToolOp{j["path"]}};
+  }
+  if (op == "sampling") {
+    const Result<std::string> value = text(j, "value", "");
+    if (!value) return value.error().in("sampling");
+    const std::string& v = *value;
+    if (v == "nearest") return Op{SamplingOp{core::Sampling::kNearest}};
+    if (v == "trilinear") return Op{SamplingOp{core::Sampling::kTrilinear}};
+    return Error("sampling: 'value' must be \"nearest\" or \"trilinear\"");
+  }
+  if (op == "mirror") {
+    const Result<std::string> axis_text = text(j, "axis", "");
+    if (!axis_text) return axis_text.error().in("mirror");
+    const std::string& axis = *axis_text;
+    if (axis == "off") return Op{MirrorOp{std::nullopt}};
+    if (axis != "x" && axis != "y" && axis != "z")
+      return Error("mirror: 'axis' must be x, y, z or off");
+    auto c = number(j, "centre");
+    if (!c) return c.error().in("mirror");
+    if (std::fabs(*c) > sim::kMaxCoordinateVox)
+      return Error("mirror: 'centre' is farther than " +
+                   std::to_string(int(sim::kMaxCoordinateVox)) + " voxels");
+    return Op{MirrorOp{core::MirrorPlane{axis[0] - 'x', static_cast<float>(*c)}}};
+  }
+  if (op == "begin" || op == "end") return Op{StrokeOp{op == "begin"}};
+  if (op == "undo" || op == "redo") return Op{UndoOp{op == "redo"}};
+  if (op == "dab") {
+    core::Dab d;
+    auto at = numbers(j, "at", 3);
+    if (!at) return at.error().in("dab");
+    // A tool reaches at most its size past the volume: a dab farther out
+    // changes nothing, and one at 1e30 would only lose float precision.
+    for (int a = 0; a < 3; ++a) {
+      const double margin = kMaxToolSize + 1.0;
+      if ((*at)[a] < -margin || (*at)[a] > dims[a] + margin)
+        return Error("dab: 'at' is more than " + std::to_string(int(margin)) +
+                     " voxels outside the volume");
+    }
+    d.position_vox = glm::vec3((*at)[0], (*at)[1], (*at)[2]);
+    const Result<std::string> mode_text = text(j, "mode", "add");
+    if (!mode_text) return mode_text.error().in("dab");
+    const std::string& mode = *mode_text;
+    const auto m = core::parse_sculpt_mode(mode);
+    if (!m)
+      return Error("dab: unknown mode '" + mode + "' (add, subtract, union, difference, smooth)");
+    d.mode = *m;
+    if (j.contains("strength")) {
+      auto s = number(j, "strength");
+      if (!s || *s < 0.0 || *s > 1.0) return Error("dab: 'strength' must be a number in [0, 1]");
+      d.strength = static_cast<float>(*s);
+    }
+    if (j.contains("euler") && j.contains("quat"))
+      return Error("dab: give 'euler' or 'quat', not both");
+    if (j.contains("euler")) {
+      auto e = numbers(j, "euler", 3);
+      if (!e) return e.error().in("dab");
+      d.orientation = glm::quat_cast(core::euler_xyz_deg(glm::vec3((*e)[0], (*e)[1], (*e)[2])));
+    } else if (j.contains("quat")) {
+      auto q = numbers(j, "quat", 4);
+      if (!q) return q.error().in("dab");
+      const glm::quat qq(static_cast<float>((*q)[0]), static_cast<float>((*q)[1]),
+                         static_cast<float>((*q)[2]), static_cast<float>((*q)[3]));
+      if (!(glm::length(qq) > 1e-6f)) return Error("dab: 'quat' must not be zero");
+      d.orientation = glm::normalize(qq);
+    }
+    return Op{d};
+  }
+  return Error("unknown op '" + op + "'");
+}
+
+}  // namespace
+
+Result<std::vector<Line>> parse(std::istream& in, const std::string& name, glm::ivec3 volume_dims) {
+  std::vector<Line> lines;
+  std::string text;
+  for (int n = 1; std::getline(in, text); ++n) {
+    const std::string where = name + ":" + std::to_string(n);
+    if (!text.empty() && text.back() == '\r') text.pop_back();
+    const size_t first = text.find_first_not_of(" \t");
+    if (first == std::string::npos || text[first] == '#') continue;
+    const json j = json::parse(text, nullptr, false);
+    if (j.is_discarded()) return Error("not valid JSON").in(where);
+    auto op = parse_op(j, volume_dims);
+    if (!op) return op.error().in(where);
+    lines.push_back(Line{n, std::move(op.value())});
+  }
+  if (in.bad()) return Error("read error").in(name);
+  return lines;
+}
+
+Result<std::vector<Line>> read(const std::string& path, glm::ivec3 volume_dims) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return Error("is a directory").in(path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Error("cannot open the dab script").in(path);
+  return parse(in, path, volume_dims);
+}
+
+}  // namespace sculpt::station::dab_script

@@ -1,0 +1,39 @@
+// The keyboard shortcuts: GLFW key codes to the controller's actions.
+
+#include "sculpt/station/window/keymap.h"
+
+#include <GLFW/glfw3.h>
+#include <gtest/gtest.h>
+
+namespace sculpt::station {
+namespace {
+
+TEST(StationShortcuts, MapKeysToActions) {
+  EXPECT_EQ(shortcut(GLFW_KEY_Z, GLFW_MOD_CONTROL), Action::kUndo);
+  EXPECT_EQ(shortcut(GLFW_KEY_Z, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT), Action::kRedo);
+  EXPECT_EQ(shortcut(GLFW_KEY_Y, GLFW_MOD_CONTROL), Action::kRedo);
+  EXPECT_EQ(shortcut(GLFW_KEY_S, GLFW_MOD_CONTROL), Action::kSave);
+  EXPECT_EQ(shortcut(GLFW_KEY_TAB, 0), Action::kToggleAddSubtract);
+  EXPECT_EQ(shortcut(GLFW_KEY_3, 0), Action::kToolCylinder);
+  EXPECT_EQ(shortcut(GLFW_KEY_H, GLFW_MOD_CONTROL), Action::kHypertexture);
+  EXPECT_EQ(shortcut(GLFW_KEY_Z, 0), std::nullopt);
+  EXPECT_EQ(shortcut(GLFW_KEY_Q, GLFW_MOD_CONTROL), std::nullopt);
+  EXPECT_STREQ(shortcut_label(Action::kUndo), "Ctrl+Z");
+}
+
+TEST(StationShortcuts, ReachTheSheetAndTurnTheTool) {
+  EXPECT_EQ(shortcut(GLFW_KEY_N, 0), Action::kNewSheet);
+  EXPECT_EQ(shortcut(GLFW_KEY_N, GLFW_MOD_SHIFT), Action::kRemoveSheet);
+  EXPECT_EQ(shortcut(GLFW_KEY_G, 0), Action::kToggleSheetEditing);
+  EXPECT_EQ(shortcut(GLFW_KEY_B, GLFW_MOD_CONTROL), Action::kSheetAddToMaterial);
+  EXPECT_EQ(shortcut(GLFW_KEY_B, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT),
+            Action::kSheetSubtractFromMaterial);
+  EXPECT_EQ(shortcut(GLFW_KEY_T, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT), Action::kSheetAsTool);
+  EXPECT_EQ(shortcut(GLFW_KEY_E, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT), Action::kExportSheet);
+  EXPECT_EQ(shortcut(GLFW_KEY_Q, 0), Action::kTurnToolLeft);
+  EXPECT_EQ(shortcut(GLFW_KEY_E, GLFW_MOD_SHIFT), Action::kTiltToolDown);
+  EXPECT_STREQ(shortcut_label(Action::kNewSheet), "N");
+}
+
+}  // namespace
+}  // namespace sculpt::station
