@@ -1,5 +1,6 @@
-// libFuzzer target: the NRRD reader (header, raw and gzip data), through a
-// file as users give it. Seeds: corpus/nrrd.
+// libFuzzer target: the NRRD reader (header; raw, gzip, bzip2, ascii and hex
+// data; every voxel type, also mapped to density through a window), through
+// a file as users give it. Seeds: corpus/nrrd.
 
 #include <unistd.h>
 
@@ -23,5 +24,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   auto f32 = sculpt::core::read_nrrd_f32(path, limits);
   if (u8.ok() && sculpt::core::voxel_count(u8->dims()) > limits.max_voxels) __builtin_trap();
   (void)f32;
+  const sculpt::core::DensityWindow window{-1000.0, 1000.0};
+  auto mapped = sculpt::core::read_nrrd_density(path, &window, limits);
+  if (mapped.ok() && sculpt::core::voxel_count(mapped->dims()) > limits.max_voxels)
+    __builtin_trap();
   return 0;
 }

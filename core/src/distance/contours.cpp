@@ -10,47 +10,19 @@
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
 
+#include "sculpt/core/distance/polygon_distance.h"
 #include "sculpt/core/distance/signed_distance.h"
 
 namespace sculpt::core {
 namespace {
 
 constexpr int kMaxDim = 2048;
+// The grid's voxels: the level function and the 3D transform hold a few
+// float grids of this size (2 GB at the limit).
+constexpr int64_t kMaxVoxels = int64_t{1} << 27;
 
 Error at_line(int line, const std::string& what) {
   return Error("line " + std::to_string(line) + ": " + what);
-}
-
-float segment_distance2(glm::vec2 p, glm::vec2 a, glm::vec2 b) {
-  const glm::vec2 ab = b - a;
-  const float len2 = glm::dot(ab, ab);
-  const float t = len2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
-  const glm::vec2 d = p - (a + t * ab);
-  return glm::dot(d, d);
-}
-
-// Exact 2D signed distance of one slice's polygons, negative inside.
-std::vector<float> slice_field(glm::ivec2 dims, const std::vector<const Contour*>& polys) {
-  std::vector<float> f(size_t(dims.x) * dims.y);
-  for (int y = 0; y < dims.y; ++y)
-    for (int x = 0; x < dims.x; ++x) {
-      const glm::vec2 p{float(x), float(y)};
-      float best = std::numeric_limits<float>::infinity();
-      bool inside = false;
-      for (const Contour* c : polys) {
-        const auto& v = c->points;
-        for (size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
-          best = std::min(best, segment_distance2(p, v[j], v[i]));
-          // Even-odd crossing of the ray +x from p.
-          if ((v[i].y > p.y) != (v[j].y > p.y) &&
-              p.x < (v[j].x - v[i].x) * (p.y - v[i].y) / (v[j].y - v[i].y) + v[i].x)
-            inside = !inside;
-        }
-      }
-      const float d = std::sqrt(best);
-      f[size_t(y) * dims.x + x] = inside ? -d : d;
-    }
-  return f;
 }
 
 }  // namespace
@@ -80,6 +52,8 @@ Result<ContourStack> parse_contours(const std::string& text) {
           glm::any(glm::lessThan(s.dims, glm::ivec3(2))) ||
           glm::any(glm::greaterThan(s.dims, glm::ivec3(kMaxDim))))
         return at_line(n, "dims needs three integers in 2.." + std::to_string(kMaxDim));
+      if (int64_t{s.dims.x} * s.dims.y * s.dims.z > kMaxVoxels)
+        return at_line(n, "dims: more than " + std::to_string(kMaxVoxels) + " voxels (512^3)");
       have_dims = true;
     } else if (tag == "contour") {
       if (!have_dims) return at_line(n, "contour before dims");
@@ -99,6 +73,10 @@ Result<ContourStack> parse_contours(const std::string& text) {
       std::istringstream ps(line);
       if (!(ps >> p.x >> p.y) || !std::isfinite(p.x) || !std::isfinite(p.y))
         return at_line(n, "expected a point 'X Y'");
+      // Inside the slice: the distance is then linear in the contour's size
+      // (polygon_distance.h), and a contour outside the grid draws nothing.
+      if (p.x < 0.0f || p.y < 0.0f || p.x > float(s.dims.x - 1) || p.y > float(s.dims.y - 1))
+        return at_line(n, "point outside the slice (0..dims-1)");
       open->points.push_back(p);
     }
   }
@@ -124,8 +102,12 @@ DenseGrid<float> contour_level_function(const ContourStack& stack) {
   for (const Contour& c : stack.contours)
     by_slice[c.slice].push_back(&c);
   std::map<int, std::vector<float>> fields;
-  for (const auto& [z, polys] : by_slice)
-    fields[z] = slice_field({d.x, d.y}, polys);
+  for (const auto& [z, contours] : by_slice) {
+    std::vector<const std::vector<glm::vec2>*> polygons;
+    for (const Contour* c : contours)
+      polygons.push_back(&c->points);
+    fields[z] = polygon_signed_distance({d.x, d.y}, polygons);
+  }
   DenseGrid<float> phi(d);
   const size_t slice = size_t(d.x) * d.y;
   const int first = fields.begin()->first, last = fields.rbegin()->first;

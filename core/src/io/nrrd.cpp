@@ -1,12 +1,11 @@
 #include "sculpt/core/io/nrrd.h"
 
-#include <zlib.h>
-
 #include <algorithm>
 #include <bit>
 #include <cassert>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <map>
@@ -14,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "io/nrrd_sources.h"
 #include "sculpt/base/atomic_file.h"
 
 namespace sculpt::core {
@@ -41,11 +41,28 @@ struct FileCloser {
 using File = std::unique_ptr<std::FILE, FileCloser>;
 
 Result<NrrdType> parse_type(const std::string& value) {
+  // Every spelling the NRRD format defines for these types.
   const std::string v = lower(value);
-  if (v == "uchar" || v == "unsigned char" || v == "uint8" || v == "uint8_t")
-    return NrrdType::kUInt8;
+  for (const char* name : {"uchar", "unsigned char", "uint8", "uint8_t"})
+    if (v == name) return NrrdType::kUInt8;
+  for (const char* name :
+       {"short", "short int", "signed short", "signed short int", "int16", "int16_t"})
+    if (v == name) return NrrdType::kInt16;
+  for (const char* name : {"ushort", "unsigned short", "unsigned short int", "uint16", "uint16_t"})
+    if (v == name) return NrrdType::kUInt16;
   if (v == "float") return NrrdType::kFloat32;
-  return Error("type '" + value + "' is not supported (uint8 or float)");
+  if (v == "double") return NrrdType::kFloat64;
+  return Error("type '" + value + "' is not supported (uint8, int16, uint16, float or double)");
+}
+
+Result<NrrdEncoding> parse_encoding(const std::string& value) {
+  const std::string v = lower(value);
+  if (v == "raw") return NrrdEncoding::kRaw;
+  if (v == "gzip" || v == "gz") return NrrdEncoding::kGzip;
+  if (v == "bzip2" || v == "bz2") return NrrdEncoding::kBzip2;
+  if (v == "ascii" || v == "txt" || v == "text") return NrrdEncoding::kAscii;
+  if (v == "hex") return NrrdEncoding::kHex;
+  return Error("encoding '" + value + "' is not supported (raw, gzip, bzip2, ascii or hex)");
 }
 
 Result<glm::ivec3> parse_sizes(const std::string& value, const NrrdLimits& limits) {
@@ -110,13 +127,11 @@ Result<NrrdHeader> parse_header(const std::vector<std::string>& lines,
   h.dims = *parsed_sizes;
   auto encoding = need("encoding");
   if (!encoding) return encoding.error();
-  const std::string enc = lower(*encoding);
-  if (enc == "gzip" || enc == "gz") {
-    h.gzip = true;
-  } else if (enc != "raw") {
-    return Error("encoding '" + *encoding + "' is not supported (raw or gzip)");
-  }
-  if (nrrd_type_size(h.type) > 1) {
+  auto parsed_encoding = parse_encoding(*encoding);
+  if (!parsed_encoding) return parsed_encoding.error();
+  h.encoding = *parsed_encoding;
+  // Text gives each value in its own digits: no byte order.
+  if (nrrd_type_size(h.type) > 1 && h.encoding != NrrdEncoding::kAscii) {
     auto endian = need("endian");
     if (!endian) return endian.error();
     const std::string e = lower(*endian);
@@ -146,64 +161,47 @@ Result<NrrdHeader> parse_header(const std::vector<std::string>& lines,
 }  // namespace
 
 const char* nrrd_type_name(NrrdType type) {
-  return type == NrrdType::kUInt8 ? "uint8" : "float";
+  switch (type) {
+    case NrrdType::kUInt8:
+      return "uint8";
+    case NrrdType::kInt16:
+      return "int16";
+    case NrrdType::kUInt16:
+      return "uint16";
+    case NrrdType::kFloat32:
+      return "float";
+    case NrrdType::kFloat64:
+      return "double";
+  }
+  return "?";
 }
 size_t nrrd_type_size(NrrdType type) {
-  return type == NrrdType::kUInt8 ? 1 : 4;
+  switch (type) {
+    case NrrdType::kUInt8:
+      return 1;
+    case NrrdType::kInt16:
+    case NrrdType::kUInt16:
+      return 2;
+    case NrrdType::kFloat32:
+      return 4;
+    case NrrdType::kFloat64:
+      return 8;
+  }
+  return 1;
 }
 
 struct NrrdReader::Impl {
   NrrdHeader header;
   std::string name;  // the path as the user gave it, for messages
   File file;
+  std::unique_ptr<detail::NrrdSource> source;
   int64_t slices_left = 0;
   bool failed = false;
-  // gzip state
-  z_stream zs{};
-  bool zs_open = false;
-  bool zs_done = false;
-  std::vector<unsigned char> in_buffer;
-
-  ~Impl() {
-    if (zs_open) inflateEnd(&zs);
-  }
+  std::vector<std::byte> typed;  // read_density_slices(): the values as stored
 
   Status fail(const std::string& what) {
     failed = true;
     return Error(name + ": " + what);
-  }
-
-  Status read_raw(std::span<std::byte> out) {
-    const size_t got = std::fread(out.data(), 1, out.size(), file.get());
-    if (got != out.size()) return fail("truncated data (unexpected end of file)");
-    return {};
-  }
-
-  Status read_gzip(std::span<std::byte> out) {
-    zs.next_out = reinterpret_cast<Bytef*>(out.data());
-    size_t want = out.size();
-    while (want > 0) {
-      // zlib counts in uInt; feed large outputs in pieces.
-      const uInt chunk = static_cast<uInt>(std::min<size_t>(want, 1u << 30));
-      zs.avail_out = chunk;
-      while (zs.avail_out > 0) {
-        if (zs_done) return fail("truncated gzip data (the stream ends before the sizes say)");
-        if (zs.avail_in == 0) {
-          const size_t got = std::fread(in_buffer.data(), 1, in_buffer.size(), file.get());
-          if (got == 0) return fail("truncated gzip data (unexpected end of file)");
-          zs.next_in = in_buffer.data();
-          zs.avail_in = static_cast<uInt>(got);
-        }
-        const int rc = inflate(&zs, Z_NO_FLUSH);
-        if (rc == Z_STREAM_END) {
-          zs_done = true;
-        } else if (rc != Z_OK) {
-          return fail(std::string("corrupt gzip data (zlib: ") + (zs.msg ? zs.msg : "error") + ")");
-        }
-      }
-      want -= chunk;
-    }
-    return {};
   }
 };
 
@@ -267,33 +265,36 @@ Result<NrrdReader> NrrdReader::open(const std::filesystem::path& path, const Nrr
     impl->file = std::move(file);
   }
 
-  if (header->gzip) {
-    if (inflateInit2(&impl->zs, 15 + 32) != Z_OK)
-      return Error(name + ": cannot start gzip decoding");
-    impl->zs_open = true;
-    impl->in_buffer.resize(1 << 16);
-  } else {
-    // Raw data must be exactly as long as the sizes say: checked before any
-    // allocation, so a lying header cannot make us reserve gigabytes.
+  const NrrdEncoding encoding = header->encoding;
+  if (encoding != NrrdEncoding::kGzip && encoding != NrrdEncoding::kBzip2) {
+    // Checked before any allocation, so a lying header cannot make us
+    // reserve gigabytes: raw data is exactly as long as the sizes say, hex
+    // has two digits per byte, ascii at least a digit and a separator per
+    // value (the last one's separator may be missing).
     std::error_code ec;
     const auto file_size =
         static_cast<int64_t>(std::filesystem::file_size(impl->header.data_path, ec));
     if (ec) return Error(name + ": cannot read the data's size: " + ec.message());
-    const int64_t expected =
-        voxel_count(header->dims) * static_cast<int64_t>(nrrd_type_size(header->type));
+    const int64_t voxels = voxel_count(header->dims);
+    const int64_t bytes = voxels * static_cast<int64_t>(nrrd_type_size(header->type));
     const int64_t available = file_size - impl->header.data_offset;
     const std::string shape = std::to_string(header->dims.x) + "x" +
                               std::to_string(header->dims.y) + "x" +
                               std::to_string(header->dims.z) + " " + nrrd_type_name(header->type);
-    if (available < expected) {
-      return Error(name + ": truncated data: " + shape + " needs " + std::to_string(expected) +
+    const int64_t least = encoding == NrrdEncoding::kRaw   ? bytes
+                          : encoding == NrrdEncoding::kHex ? 2 * bytes
+                                                           : 2 * voxels - 1;
+    if (available < least) {
+      return Error(name + ": truncated data: " + shape + " needs " +
+                   (encoding == NrrdEncoding::kRaw ? "" : "at least ") + std::to_string(least) +
                    " bytes, the file holds " + std::to_string(std::max<int64_t>(available, 0)));
     }
-    if (available > expected) {
-      return Error(name + ": " + std::to_string(available - expected) + " bytes more data than " +
+    if (encoding == NrrdEncoding::kRaw && available > bytes) {
+      return Error(name + ": " + std::to_string(available - bytes) + " bytes more data than " +
                    shape + " needs (wrong sizes or type?)");
     }
   }
+  impl->source = detail::make_nrrd_source(encoding, header->type, impl->file.get());
   return NrrdReader(std::move(impl));
 }
 
@@ -303,37 +304,16 @@ Status NrrdReader::read_slices(int slices, std::span<std::byte> out) {
   const size_t elem = nrrd_type_size(s.header.type);
   assert(slices <= s.slices_left);
   assert(out.size() == static_cast<size_t>(slices) * s.header.dims.x * s.header.dims.y * elem);
-  Status st = s.header.gzip ? s.read_gzip(out) : s.read_raw(out);
-  if (!st) return st;
+  if (Status st = s.source->read(out); !st) return s.fail(st.error().message());
   s.slices_left -= slices;
   const bool host_big_endian = std::endian::native == std::endian::big;
-  if (elem > 1 && s.header.big_endian != host_big_endian) {
+  if (elem > 1 && s.header.encoding != NrrdEncoding::kAscii &&
+      s.header.big_endian != host_big_endian) {
     for (size_t i = 0; i < out.size(); i += elem)
       std::reverse(out.begin() + i, out.begin() + i + elem);
   }
-  if (s.slices_left == 0 && s.header.gzip && !s.zs_done) {
-    // The stream must end exactly where the sizes say.
-    std::byte extra;
-    s.zs.next_out = reinterpret_cast<Bytef*>(&extra);
-    s.zs.avail_out = 1;
-    if (s.zs.avail_in == 0) {
-      const size_t got = std::fread(s.in_buffer.data(), 1, s.in_buffer.size(), s.file.get());
-      s.zs.next_in = s.in_buffer.data();
-      s.zs.avail_in = static_cast<uInt>(got);
-    }
-    const int rc = inflate(&s.zs, Z_NO_FLUSH);
-    if (rc != Z_STREAM_END || s.zs.avail_out == 0) {
-      return s.fail("gzip data is longer than the sizes say (wrong sizes or type?)");
-    }
-    s.zs_done = true;
-  }
-  if (s.slices_left == 0 && s.header.gzip) {
-    // Nothing may follow the stream: bytes there are a second stream or a
-    // damaged file, and ignoring them would read a different volume.
-    char more;
-    if (s.zs.avail_in > 0 || std::fread(&more, 1, 1, s.file.get()) == 1) {
-      return s.fail("bytes follow the gzip data (a damaged or concatenated file)");
-    }
+  if (s.slices_left == 0) {
+    if (Status st = s.source->finish(); !st) return s.fail(st.error().message());
   }
   return {};
 }
@@ -341,11 +321,125 @@ Status NrrdReader::read_slices(int slices, std::span<std::byte> out) {
 namespace {
 
 template <class T>
+double value_at(const std::byte* p) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  return static_cast<double>(v);
+}
+
+// Value i of `typed` (host order) as a double.
+double typed_value(NrrdType type, const std::byte* typed, size_t i) {
+  switch (type) {
+    case NrrdType::kUInt8:
+      return value_at<uint8_t>(typed + i);
+    case NrrdType::kInt16:
+      return value_at<int16_t>(typed + 2 * i);
+    case NrrdType::kUInt16:
+      return value_at<uint16_t>(typed + 2 * i);
+    case NrrdType::kFloat32:
+      return value_at<float>(typed + 4 * i);
+    case NrrdType::kFloat64:
+      return value_at<double>(typed + 8 * i);
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+Status NrrdReader::read_density_slices(int slices, const DensityWindow* window,
+                                       std::span<uint8_t> out) {
+  Impl& s = *impl_;
+  const NrrdType type = s.header.type;
+  if (window == nullptr) {
+    if (type != NrrdType::kUInt8) {
+      return s.fail(std::string("holds ") + nrrd_type_name(type) +
+                    " voxels: map them to density with --window LO,HI or --data-iso V");
+    }
+    return read_slices(slices, std::as_writable_bytes(out));
+  }
+  s.typed.resize(out.size() * nrrd_type_size(type));
+  if (Status st = read_slices(slices, s.typed); !st) return st;
+  const double lo = window->lo, scale = 255.0 / (window->hi - window->lo);
+  for (size_t i = 0; i < out.size(); ++i) {
+    const double v = typed_value(type, s.typed.data(), i);
+    if (!std::isfinite(v)) return s.fail("a voxel value is not a finite number");
+    out[i] = static_cast<uint8_t>(std::clamp(std::round((v - lo) * scale), 0.0, 255.0));
+  }
+  return {};
+}
+
+Result<DensityWindow> window_around(const std::filesystem::path& path, double iso,
+                                    const NrrdLimits& limits) {
+  auto reader = NrrdReader::open(path, limits);
+  if (!reader) return reader.error();
+  const NrrdHeader& h = reader->header();
+  const size_t slice = static_cast<size_t>(h.dims.x) * static_cast<size_t>(h.dims.y);
+  std::vector<std::byte> typed(slice * nrrd_type_size(h.type));
+  double lo = iso, hi = iso;
+  for (int z = 0; z < h.dims.z; ++z) {
+    if (Status st = reader->read_slices(1, typed); !st) return st.error();
+    for (size_t i = 0; i < slice; ++i) {
+      const double v = typed_value(h.type, typed.data(), i);
+      if (!std::isfinite(v)) return Error(path.string() + ": a voxel value is not a finite number");
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  }
+  const double half = std::max({iso - lo, hi - iso, 1e-6 * std::max(1.0, std::fabs(iso))});
+  return DensityWindow{iso - half, iso + half};
+}
+
+Result<DenseGrid<uint8_t>> read_nrrd_density(const std::filesystem::path& path,
+                                             const DensityWindow* window,
+                                             const NrrdLimits& limits) {
+  auto reader = NrrdReader::open(path, limits);
+  if (!reader) return reader.error();
+  const NrrdHeader& h = reader->header();
+  // A slab at a time, so data that ends early stops the read before the
+  // declared size is reserved.
+  std::vector<uint8_t> values;
+  const size_t slice = static_cast<size_t>(h.dims.x) * static_cast<size_t>(h.dims.y);
+  const int slab = static_cast<int>(std::max<size_t>(1, (size_t{64} << 20) / slice));
+  for (int z = 0; z < h.dims.z; z += slab) {
+    const int n = std::min(slab, h.dims.z - z);
+    const size_t at = values.size();
+    values.resize(at + slice * static_cast<size_t>(n));
+    if (Status st = reader->read_density_slices(n, window, std::span(values).subspan(at)); !st)
+      return st.error();
+  }
+  DenseGrid<uint8_t> grid(h.dims);
+  grid.values() = std::move(values);
+  return grid;
+}
+
+namespace {
+
+// A double volume as float (distance fields written by other tools).
+Result<DenseGrid<float>> read_doubles(NrrdReader& reader) {
+  const NrrdHeader& h = reader.header();
+  const size_t slice = static_cast<size_t>(h.dims.x) * static_cast<size_t>(h.dims.y);
+  std::vector<double> doubles(slice);
+  std::vector<float> values;
+  for (int z = 0; z < h.dims.z; ++z) {
+    if (Status st = reader.read_slices(1, std::as_writable_bytes(std::span(doubles))); !st)
+      return st.error();
+    for (double d : doubles)
+      values.push_back(static_cast<float>(d));
+  }
+  DenseGrid<float> grid(h.dims);
+  grid.values() = std::move(values);
+  return grid;
+}
+
+template <class T>
 Result<DenseGrid<T>> read_whole(const std::filesystem::path& path, const NrrdLimits& limits,
                                 NrrdType want) {
   auto reader = NrrdReader::open(path, limits);
   if (!reader) return reader.error();
   const NrrdHeader& h = reader->header();
+  if constexpr (std::is_same_v<T, float>) {
+    if (h.type == NrrdType::kFloat64) return read_doubles(*reader);
+  }
   if (h.type != want) {
     return Error(path.string() + ": holds " + nrrd_type_name(h.type) + " voxels, expected " +
                  nrrd_type_name(want));

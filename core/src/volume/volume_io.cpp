@@ -9,12 +9,13 @@
 namespace sculpt::core {
 
 Result<Volume> read_volume_nrrd(const std::filesystem::path& path, const VolumeOptions& options,
-                                const NrrdLimits& limits) {
+                                const NrrdLimits& limits, const DensityWindow* window) {
   auto reader = NrrdReader::open(path, limits);
   if (!reader) return reader.error();
   const NrrdHeader& h = reader->header();
-  if (h.type != NrrdType::kUInt8) {
-    return Error(path.string() + ": holds float voxels, expected a uint8 density volume");
+  if (h.type != NrrdType::kUInt8 && window == nullptr) {
+    return Error(path.string() + ": holds " + nrrd_type_name(h.type) +
+                 " voxels: map them to density with --window LO,HI or --data-iso V");
   }
   if (Status st = Volume::validate(h.dims, options); !st) return st.error().in(path.string());
 
@@ -26,8 +27,7 @@ Result<Volume> read_volume_nrrd(const std::filesystem::path& path, const VolumeO
   for (int z0 = 0; z0 < h.dims.z; z0 += e) {
     const int n = std::min(e, h.dims.z - z0);
     slab.resize(slice * n);
-    if (Status st = reader->read_slices(n, std::as_writable_bytes(std::span(slab))); !st)
-      return st.error();
+    if (Status st = reader->read_density_slices(n, window, slab); !st) return st.error();
     DenseGrid<uint8_t> grid(glm::ivec3(h.dims.x, h.dims.y, n));
     grid.values().swap(slab);
     volume.write(glm::ivec3(0, 0, z0), grid);

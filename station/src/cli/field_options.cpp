@@ -1,18 +1,49 @@
 #include "cli/field_options.h"
 
+#include <cmath>
+
 #include "cli/number_checks.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/io/nrrd.h"
 
 namespace sculpt::station::cli {
 
+void add_density_options(CLI::App* command, DensityOptions& options) {
+  command
+      ->add_option("--window", options.window,
+                   "LO,HI: map other voxels than uint8 to density, LO and below 0, HI and above "
+                   "255, linear between")
+      ->delimiter(',')
+      ->expected(2)
+      ->check(finite_range(-1e30, 1e30));
+  command
+      ->add_option("--data-iso", options.data_iso,
+                   "V: map other voxels than uint8 to density by the narrowest window centred on "
+                   "V that holds all of them (V becomes the surface)")
+      ->check(finite_range(-1e30, 1e30))
+      ->excludes("--window");
+}
+
+Result<std::optional<core::DensityWindow>> density_window(const DensityOptions& options,
+                                                          const std::string& path) {
+  if (options.window.size() == 2) {
+    if (!(options.window[1] > options.window[0])) return Error("--window: HI must be above LO");
+    return std::optional(core::DensityWindow{options.window[0], options.window[1]});
+  }
+  if (std::isfinite(options.data_iso)) {
+    auto window = core::window_around(path, options.data_iso);
+    if (!window) return window.error();
+    return std::optional(*window);
+  }
+  return std::optional<core::DensityWindow>();
+}
+
 CLI::Option* add_threads_option(CLI::App* command, int& threads) {
   return command->add_option("--threads", threads, "threads (0 = all cores)")
       ->check(finite_range(0, 1024));
 }
 
-Status write_field(const std::string& path, const core::DenseGrid<float>& field,
-                   bool as_distance) {
+Status write_field(const std::string& path, const core::DenseGrid<float>& field, bool as_distance) {
   return as_distance ? core::write_nrrd(path, field)
                      : core::write_nrrd(path, core::density_from_distance_field(field));
 }

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/field_options.h"
 #include "cli/number_checks.h"
 #include "sculpt/base/atomic_file.h"
 #include "sculpt/core/haptics/distance_patch.h"
@@ -32,6 +33,7 @@ namespace {
 
 struct TraceOptions {
   std::string volume, probe, output;
+  DensityOptions density;
   float radius_vox = 1.0f;
   float stiffness_n_per_mm = 1.0f;
   float voxel_mm = 0.5f;
@@ -81,7 +83,9 @@ Result<core::Tool> tool_from_spec(const std::string& spec) {
 }
 
 int run_trace(const TraceOptions& o) {
-  auto density = core::read_nrrd_u8(o.volume);
+  const auto window = density_window(o.density, o.volume);
+  if (!window) return report(window.error());
+  auto density = core::read_nrrd_density(o.volume, window->has_value() ? &**window : nullptr);
   if (!density) return report(density.error());
   const Status valid = core::Volume::validate(density->dims(), {});
   if (!valid) return report(valid.error().in(o.volume));
@@ -201,7 +205,10 @@ void add_haptics_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<TraceOptions>();
   CLI::App* cmd = haptics->add_subcommand(
       "trace", "Run the haptic tick along a device path and write the force at each step");
-  cmd->add_option("volume", o->volume, "uint8 density NRRD")->required()->check(input_file());
+  cmd->add_option("volume", o->volume, "density NRRD (uint8, or any type with --window)")
+      ->required()
+      ->check(input_file());
+  add_density_options(cmd, o->density);
   cmd->add_option("--probe", o->probe, "device path: JSON Lines {\"t\": s, \"at\": [x, y, z]}")
       ->required()
       ->check(input_file());

@@ -27,6 +27,7 @@ struct MeshOptions {
   int lod = 0;
   bool ascii = false;
   int threads = 0;
+  DensityOptions density;
 };
 
 int run_mesh(const MeshOptions& o) {
@@ -40,7 +41,9 @@ int run_mesh(const MeshOptions& o) {
   vo.threads = o.threads;
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
-  auto volume = core::read_volume_nrrd(o.input, vo);
+  const auto window = density_window(o.density, o.input);
+  if (!window) return report(window.error());
+  auto volume = core::read_volume_nrrd(o.input, vo, {}, window->has_value() ? &**window : nullptr);
   if (!volume) return report(volume.error());
   const auto t1 = clock::now();
   core::MeshCache cache(o.lod, core::MarchingCubesOptions{o.iso, o.threads});
@@ -77,7 +80,10 @@ void add_mesh_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<MeshOptions>();
   CLI::App* cmd =
       app.add_subcommand("mesh", "Iso-surface of a volume (marching cubes) to PLY, OBJ or STL");
-  cmd->add_option("input", o->input, "uint8 NRRD volume")->required()->check(input_file());
+  cmd->add_option("input", o->input, "NRRD volume (uint8 density, or any type with --window)")
+      ->required()
+      ->check(input_file());
+  add_density_options(cmd, o->density);
   cmd->add_option("-o,--output", o->output, "output mesh: .ply, .obj or .stl")->required();
   cmd->add_option("--iso", o->iso, "iso-level in density units, 0 <= V < 255 (default 127.5)")
       ->check(finite_range(0.0f, 254.999f));

@@ -17,6 +17,7 @@
 #include <glm/vector_relational.hpp>
 
 #include "cli/commands.h"
+#include "cli/field_options.h"
 #include "cli/number_checks.h"
 #include "sculpt/base/output_set.h"
 #include "sculpt/core/sculpt/sculptor.h"
@@ -39,6 +40,7 @@ struct StampOptions {
   std::vector<int> new_dims;
   std::string dabs;
   std::string output;
+  DensityOptions density;
 };
 
 int run_stamp(const StampOptions& o) {
@@ -51,7 +53,9 @@ int run_stamp(const StampOptions& o) {
     if (Status st = core::Volume::validate(dims, {}); !st) return report(st.error().in("--new"));
     volume.emplace(dims, uint8_t{0});
   } else {
-    auto v = core::read_volume_nrrd(o.input);
+    const auto window = density_window(o.density, o.input);
+    if (!window) return report(window.error());
+    auto v = core::read_volume_nrrd(o.input, {}, {}, window->has_value() ? &**window : nullptr);
     if (!v) return report(v.error());
     volume.emplace(std::move(v.value()));
   }
@@ -147,7 +151,9 @@ void add_stamp_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<StampOptions>();
   CLI::App* cmd =
       app.add_subcommand("stamp", "apply a JSON Lines script of tools and dabs to a volume");
-  cmd->add_option("input", o->input, "uint8 NRRD volume to sculpt")->check(input_file());
+  cmd->add_option("input", o->input, "NRRD volume to sculpt (uint8, or any type with --window)")
+      ->check(input_file());
+  add_density_options(cmd, o->density);
   cmd->add_option("--new", o->new_dims, "start from an empty volume of NX,NY,NZ voxels")
       ->delimiter(',')
       ->expected(3);

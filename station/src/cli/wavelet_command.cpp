@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/field_options.h"
 #include "cli/number_checks.h"
 #include "sculpt/core/volume/volume_io.h"
 
@@ -21,6 +22,7 @@ struct WaveletOptions {
   std::string output;
   int levels = 5;
   int lod = -1;
+  DensityOptions density;
 };
 
 int run_wavelet(const WaveletOptions& o) {
@@ -34,7 +36,10 @@ int run_wavelet(const WaveletOptions& o) {
   }
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
-  auto volume = core::read_volume_nrrd(o.input, vo);
+  const auto window = density_window(o.density, o.input);
+  if (!window) return report(window.error());
+  const core::DensityWindow* mapping = window->has_value() ? &**window : nullptr;
+  auto volume = core::read_volume_nrrd(o.input, vo, {}, mapping);
   if (!volume) return report(volume.error());
   const double build_s = std::chrono::duration<double>(clock::now() - t0).count();
 
@@ -57,7 +62,7 @@ int run_wavelet(const WaveletOptions& o) {
   std::vector<uint8_t> slice(static_cast<size_t>(d.x) * d.y);
   int64_t mismatches = 0;
   for (int z = 0; z < d.z; ++z) {
-    if (Status st = reader->read_slices(1, std::as_writable_bytes(std::span(slice))); !st) {
+    if (Status st = reader->read_density_slices(1, mapping, slice); !st) {
       return report(st.error());
     }
     for (size_t i = 0; i < slice.size(); ++i)
@@ -100,7 +105,10 @@ void add_wavelet_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<WaveletOptions>();
   CLI::App* cmd = app.add_subcommand(
       "wavelet", "3D Haar wavelet volume: extract a level, or verify the round trip");
-  cmd->add_option("input", o->input, "uint8 NRRD volume")->required()->check(input_file());
+  cmd->add_option("input", o->input, "NRRD volume (uint8 density, or any type with --window)")
+      ->required()
+      ->check(input_file());
+  add_density_options(cmd, o->density);
   cmd->add_option("--levels", o->levels, "wavelet levels (1..7)")->check(finite_range(0, 7));
   cmd->add_option("--lod", o->lod, "level to write (0 = the input)")->check(finite_range(0, 7));
   cmd->add_option("-o,--output", o->output, "output NRRD");

@@ -48,6 +48,14 @@ TEST(Contours, ParseErrorsNameTheLine) {
   auto few = parse_contours("sculpt-contours 1\ndims 8 8 4\ncontour 1\n1 1\n2 2\nend\n");
   ASSERT_FALSE(few.ok());
   EXPECT_NE(few.error().message().find("fewer than 3"), std::string::npos);
+  // A point outside its slice (the linear-time distance needs them inside),
+  // and a grid too big for its float fields (2048^3 was 34 GB).
+  auto outside = parse_contours("sculpt-contours 1\ndims 8 8 4\ncontour 1\n1 1\n9 2\n");
+  ASSERT_FALSE(outside.ok());
+  EXPECT_NE(outside.error().message().find("line 5: point outside the slice"), std::string::npos);
+  auto huge = parse_contours("sculpt-contours 1\ndims 2048 2048 2048\n");
+  ASSERT_FALSE(huge.ok());
+  EXPECT_NE(huge.error().message().find("line 2: dims: more than"), std::string::npos);
 }
 
 }  // namespace

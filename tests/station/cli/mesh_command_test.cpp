@@ -4,7 +4,10 @@
 
 #include "scratch_dir.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include "run_sculpt.h"
 #include "sculpt/core/io/nrrd.h"
@@ -36,6 +39,40 @@ TEST_F(MeshCommandTest, WritesEachFormatClosed) {
       run_sculpt("mesh " + path("in.nrrd") + " --ascii --lod 1 -o " + path("a.ply"));
   ASSERT_EQ(ascii.exit_code, 0) << ascii.err;
   EXPECT_EQ(read_text(path("a.ply")).rfind("ply\nformat ascii 1.0\n", 0), 0u);
+}
+
+// A 16-bit CT-like volume (a ball of 1000 in -1000 around it): refused
+// without a mapping, meshed closed with --window or --data-iso.
+TEST_F(MeshCommandTest, SixteenBitVolumesAreMeshedThroughAWindow) {
+  std::string data;
+  const int n = 40;
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const double r =
+            std::sqrt(double((x - 20) * (x - 20) + (y - 20) * (y - 20) + (z - 20) * (z - 20)));
+        const auto v =
+            static_cast<int16_t>(std::clamp(1000.0 - 400.0 * (r - 12.0), -1000.0, 1000.0));
+        data.append(reinterpret_cast<const char*>(&v), 2);
+      }
+  std::ofstream(dir_ / "ct.nrrd", std::ios::binary)
+      << "NRRD0004\ntype: short\ndimension: 3\nsizes: 40 40 40\nendian: little\nencoding: raw\n\n"
+      << data;
+  const CommandResult refused = run_sculpt("mesh " + path("ct.nrrd") + " -o " + path("r.ply"));
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find("holds int16 voxels: map them to density with --window"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(fs::exists(dir_ / "r.ply"));
+  for (const char* mapping : {" --window -1000,1000", " --data-iso 0"}) {
+    const CommandResult r =
+        run_sculpt("mesh " + path("ct.nrrd") + mapping + " -o " + path("ct.ply"));
+    ASSERT_EQ(r.exit_code, 0) << mapping << r.err;
+    EXPECT_NE(r.out.find("closed"), std::string::npos) << r.out;
+  }
+  const CommandResult both =
+      run_sculpt("mesh " + path("ct.nrrd") + " --window 0,1 --data-iso 0 -o " + path("b.ply"));
+  EXPECT_NE(both.exit_code, 0);
 }
 
 TEST_F(MeshCommandTest, BadInputIsOneLineNamingItAndNoOutput) {

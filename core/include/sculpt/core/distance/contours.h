@@ -8,13 +8,17 @@
 //   sculpt-contours 1            first line, the format and its version
 //   dims NX NY NZ                the output grid, voxels
 //   contour Z                    a closed polygon in slice z = Z (integer)
-//   X Y                          its vertices in voxel units, at least 3;
+//   X Y                          its vertices in voxel units, at least 3,
+//                                inside the slice (0..NX-1, 0..NY-1);
 //   ...                          the last joins the first
 //   end                          closes the contour
 // Several contours may share a slice (branches, holes: even-odd rule).
 //
-// Method: each slice that has contours gets its exact 2D signed distance
-// (to the polygon edges, sign by the even-odd rule); between two such slices
+// dims: 2..2048 per side, at most 2^27 voxels.
+//
+// Method: each slice that has contours gets its 2D signed distance (to the
+// polygon edges, sign by the even-odd rule; exact within two voxels of the
+// contour, linear time: polygon_distance.h); between two such slices
 // the field is interpolated linearly in z (shape-based interpolation); below
 // the first and above the last the shape ends within one slice (a flat cap).
 // The result's zero level is a closed surface; its exact 3D distance field is
@@ -27,8 +31,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "sculpt/core/grid/dense_grid.h"
 #include "sculpt/base/result.h"
+#include "sculpt/core/grid/dense_grid.h"
 
 namespace sculpt::core {
 

@@ -2,12 +2,17 @@
 // NRRD volumes (http://teem.sourceforge.net/nrrd/format.html), the project's
 // volume format: 3D, uint8 density or float32 distance, x fastest.
 //
-// Reading accepts attached or detached ("data file: NAME") data, raw or gzip
-// encoding, little or big endian, and ignores fields it does not need (space,
-// spacings, kinds, key/value pairs). Everything is checked against the header
-// before anything large is allocated: sizes against NrrdLimits, raw data
-// against the file's length. Writing produces NRRD0004, raw, little endian,
-// through AtomicFileWriter (no partial file on failure).
+// Reading accepts what the reference library writes: attached or detached
+// ("data file: NAME") data; raw, gzip, bzip2, ascii or hex encoding; uint8,
+// int16, uint16, float or double voxels, little or big endian; and ignores
+// fields it does not need (space, spacings, kinds, key/value pairs).
+// Everything is checked against the header before anything large is
+// allocated: sizes against NrrdLimits, raw and text data against the file's
+// length; compressed data is read a slab at a time, so a stream that ends
+// early stops the read before the declared size is reserved. A volume of
+// other voxels than uint8 becomes density through a DensityWindow (CT data
+// is 16-bit). Writing produces NRRD0004, raw, little endian, through
+// AtomicFileWriter (no partial file on failure).
 
 #include <cstdint>
 #include <filesystem>
@@ -16,14 +21,15 @@
 
 #include <glm/vec3.hpp>
 
-#include "sculpt/core/grid/dense_grid.h"
 #include "sculpt/base/result.h"
+#include "sculpt/core/grid/dense_grid.h"
 
 namespace sculpt::core {
 
-enum class NrrdType { kUInt8, kFloat32 };
+enum class NrrdType { kUInt8, kInt16, kUInt16, kFloat32, kFloat64 };
+enum class NrrdEncoding { kRaw, kGzip, kBzip2, kAscii, kHex };
 
-/// Name of a type as NRRD writes it ("uint8", "float").
+/// Name of a type as NRRD writes it ("uint8", "int16", "uint16", "float", "double").
 const char* nrrd_type_name(NrrdType type);
 size_t nrrd_type_size(NrrdType type);
 
@@ -32,10 +38,18 @@ struct NrrdLimits {
   int64_t max_voxels = int64_t{1} << 32;
 };
 
+/// How the values of a volume become density: `lo` and below 0, `hi` and
+/// above 255, linear between (rounded). The command line's --window LO,HI,
+/// or --data-iso V (window_around()).
+struct DensityWindow {
+  double lo = 0.0;
+  double hi = 255.0;
+};
+
 struct NrrdHeader {
   glm::ivec3 dims{0};
   NrrdType type = NrrdType::kUInt8;
-  bool gzip = false;
+  NrrdEncoding encoding = NrrdEncoding::kRaw;
   bool big_endian = false;
   /// Where the data is: the file itself or a detached data file.
   std::filesystem::path data_path;
@@ -58,6 +72,10 @@ class NrrdReader {
   /// header's type, host byte order) into `out`. Errors on truncated or
   /// corrupt data; after an error the reader is spent.
   Status read_slices(int slices, std::span<std::byte> out);
+  /// The next `slices` z-slices as density: uint8 voxels as they are when
+  /// `window` is null, any type through `window` otherwise (null for other
+  /// types is an error naming the options that map them).
+  Status read_density_slices(int slices, const DensityWindow* window, std::span<uint8_t> out);
 
  private:
   struct Impl;
@@ -65,10 +83,21 @@ class NrrdReader {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Reads a whole uint8 volume. A float32 file is refused with a clear error.
+/// --data-iso V: the narrowest window centred on `iso` that holds every value
+/// of the file, so none is clamped and the surface stays where the data puts
+/// it (to 1/255 of the window). Reads the file once for its range.
+Result<DensityWindow> window_around(const std::filesystem::path& path, double iso,
+                                    const NrrdLimits& limits = {});
+/// A whole volume as density (read_density_slices()).
+Result<DenseGrid<uint8_t>> read_nrrd_density(const std::filesystem::path& path,
+                                             const DensityWindow* window,
+                                             const NrrdLimits& limits = {});
+
+/// Reads a whole uint8 volume. Other types are refused with a clear error.
 Result<DenseGrid<uint8_t>> read_nrrd_u8(const std::filesystem::path& path,
                                         const NrrdLimits& limits = {});
-/// Reads a whole float32 volume. A uint8 file is refused with a clear error.
+/// Reads a whole float32 volume (double voxels are rounded to float). Other
+/// types are refused with a clear error.
 Result<DenseGrid<float>> read_nrrd_f32(const std::filesystem::path& path,
                                        const NrrdLimits& limits = {});
 

@@ -9,9 +9,11 @@
 
 namespace sculpt::core {
 
-/// Reads a uint8 NRRD into a volume.
+/// Reads a NRRD into a volume: uint8 voxels as they are, any type through
+/// `window` (nrrd.h: DensityWindow).
 Result<Volume> read_volume_nrrd(const std::filesystem::path& path,
-                                const VolumeOptions& options = {}, const NrrdLimits& limits = {});
+                                const VolumeOptions& options = {}, const NrrdLimits& limits = {},
+                                const DensityWindow* window = nullptr);
 /// Writes level `level` of the volume (ceil(dims / 2^level) voxels) as uint8 NRRD.
 Status write_volume_nrrd(const std::filesystem::path& path, const Volume& volume, int level = 0);
 

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# The long fuzzing run, apart from CI's 30-60 s per target: every libFuzzer
+# target to a million executions (or RUNS), seeded from its corpus, new
+# inputs kept in a scratch folder. Prints each target's executions and
+# whether it found anything; exits 1 on the first finding (its input is
+# left in the current folder as crash-*/leak-*/timeout-*).
+#
+#   bash scripts/fuzz-long.sh [BUILD_DIR] [RUNS]
+# BUILD_DIR holds a fuzz build (default build-fuzz; see .ci/run for the
+# configure line).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build-fuzz}
+runs=${2:-1000000}
+targets="session_file session_text nrrd probe_file hid_report mesh_file text_formats dab_script project_file"
+for target in $targets; do
+  case $target in
+    session_file) seeds=sim/sessions ;;
+    *) seeds=tests/fuzz/corpus/$target ;;
+  esac
+  work=$(mktemp -d)
+  start=$(date +%s)
+  if ! "$build/bin/${target}_fuzz" "$work" "$seeds" -runs="$runs" -rss_limit_mb=2048 \
+       -print_final_stats=1 > "$work.log" 2>&1; then
+    tail -n 40 "$work.log"
+    echo "fuzz-long: $target found an input that fails (above)"
+    exit 1
+  fi
+  done_runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$work.log" | grep -o '[0-9]*$')
+  echo "$target: $done_runs executions, no finding ($(( $(date +%s) - start )) s)"
+  rm -rf "$work" "$work.log"
+done
