@@ -20,14 +20,21 @@
 
 #include "cli/commands.h"
 #include "cli/number_checks.h"
-#include "sculpt/hal/registry/device_registry.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
+#include "sculpt/hal/registry/device_registry.h"
 #include "sculpt/sim/replay/sim_backend.h"
 #include "sculpt/sim/session/session_file.h"
 #include "sculpt/station/app/session_loading.h"
 
 namespace sculpt::station::cli {
 namespace {
+
+// How often the raw events the reader thread tapped are appended to the
+// file. Each append is one write(2): once there, a killed process loses
+// nothing (the kernel has it), so SIGKILL loses at most this much; the file
+// is synced every SessionWriter::kSyncInterval for power cuts.
+constexpr std::chrono::milliseconds kDrainInterval{10};
+static_assert(kDrainInterval <= sim::SessionWriter::kSyncInterval);
 
 struct RecordOptions {
   std::string device;
@@ -131,7 +138,7 @@ int run_record(const RecordOptions& o) {
     return writer->sync_if_due();
   };
   while (!g_stop.load() && !gone) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    std::this_thread::sleep_for(kDrainInterval);
     if (Status st = drain(); !st) return report(st.error());
     frame.clear();
     registry.poll(frame, 0);
