@@ -1,5 +1,7 @@
 #include "sculpt/hal/pose/pose_integrator.h"
 
+#include <glm/common.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -14,6 +16,13 @@ void PoseIntegrator::reset(ToolPose start) {
   pose_ = start;
   position_ = glm::dvec3(start.position);
   have_time_ = false;
+}
+
+void PoseIntegrator::clamp_position(glm::vec3 lo, glm::vec3 hi) {
+  const glm::dvec3 clamped = glm::clamp(position_, glm::dvec3(lo), glm::dvec3(hi));
+  if (clamped == position_) return;
+  position_ = clamped;
+  pose_.position = glm::vec3(clamped);
 }
 
 const ToolPose& PoseIntegrator::update(const InputEvent& m) {

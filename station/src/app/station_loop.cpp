@@ -4,6 +4,7 @@
 
 #include "sculpt/core/distance/hypertexture.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
+#include "sculpt/sim/session/command_limits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -300,6 +301,11 @@ void StationLoop::handle(const hal::InputEvent& e) {
     case hal::InputKind::kMotion: {
       ++counters_.motion_samples;
       integrator_.update(e);
+      // A tool reaches at most its largest size past the volume: farther out
+      // it sculpts nothing, and a device held at full push would otherwise
+      // drive the pose (and the stroke's dabs behind it) out without bound.
+      const glm::vec3 margin(sim::kMaxToolSizeVox + 1.0f);
+      integrator_.clamp_position(-margin, glm::vec3(volume_->dims()) + margin);
       tool_moved();
       break;
     }

@@ -13,8 +13,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "sculpt/hal/types/input_event.h"
 #include "sculpt/hal/pose/tool_pose.h"
+#include "sculpt/hal/types/input_event.h"
 
 namespace sculpt::hal {
 
@@ -41,6 +41,11 @@ class PoseIntegrator {
   const ToolPose& update(const InputEvent& motion);
   const ToolPose& pose() const { return pose_; }
   /// Restarts from `start`; the next sample only sets the time.
+  /// Keeps the position inside [lo, hi] (world units) without forgetting
+  /// the time of the last sample: the station bounds the tool to a margin
+  /// around the volume, so a device held at full deflection cannot drive it
+  /// (and the stroke behind it) out to infinity.
+  void clamp_position(glm::vec3 lo, glm::vec3 hi);
   void reset(ToolPose start);
 
  private:
