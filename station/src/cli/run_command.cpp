@@ -82,6 +82,9 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_option("--out", o->out_dir, "headless: folder for the results")->capture_default_str();
   cmd->add_option("--open", w.project, "window: open this project (.sculpt)")->check(input_file());
   cmd->add_option("--record", w.record, "window: record the session to this file (.scs)");
+  cmd->add_flag("--loop", w.sim_loop,
+                "window, sim devices: play the session over and over (soak runs; never "
+                "'replayed', so stop it with --frames or a signal)");
   cmd->add_option("--speed", w.sim_speed, "window, sim devices: play the session this much faster")
       ->check(finite_positive());
   cmd->add_option("--frames", w.frames, "window: stop after this many frames")

@@ -178,7 +178,8 @@ int run_window(const WindowOptions& o) {
     *config = *recorded;
     registry = std::make_unique<hal::DeviceRegistry>(std::vector<std::unique_ptr<hal::Backend>>{},
                                                      *config, reader_options);
-    auto backend = std::make_unique<sim::SimBackend>(std::move(session).value(), file, o.sim_speed);
+    auto backend = std::make_unique<sim::SimBackend>(std::move(session).value(), file, o.sim_speed,
+                                                     o.sim_loop);
     sim_backend = backend.get();
     registry->add_backend(std::move(backend), /*first=*/true);
     auto id = registry->open_device("sim");

@@ -1,5 +1,7 @@
 #include "sculpt/sim/replay/sim_backend.h"
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "sculpt/sim/synth/bundled_sessions.h"
@@ -62,6 +64,29 @@ TEST(SimBackend, ReadHonoursItsTimeoutDuringAPauseInTheRecording) {
   hal::RawEvent e;
   EXPECT_EQ((*device)->read(e, 10), hal::ReadResult::kEvent);
   EXPECT_EQ((*device)->read(e, 10), hal::ReadResult::kTimeout);  // returns, does not sleep an hour
+}
+
+TEST(SimBackend, ALoopingDevicePlaysTheSessionAgainWithTimeGoingOn) {
+  Session s;
+  s.header.device.vendor_id = 0x256f;
+  s.header.device.product_id = 0xc635;
+  for (int i = 0; i < 3; ++i)
+    s.records.push_back(SessionRecord::of(hal::RawEvent::sync(int64_t{i} * 1000)));
+  SimBackend backend(s, "loop.scs", /*speed=*/1e6, /*loop=*/true);
+  auto device = backend.open(backend.enumerate()->front());
+  ASSERT_TRUE(device.ok());
+  std::vector<int64_t> times;
+  hal::RawEvent e;
+  for (int reads = 0; reads < 200 && times.size() < 9; ++reads) {
+    if ((*device)->read(e, 5) == hal::ReadResult::kEvent) times.push_back(e.t_ns);
+  }
+  ASSERT_EQ(times.size(), 9u) << "three rounds of three";
+  // Each round follows the last a second after its end (2000 ns long).
+  const int64_t round = 2000 + 1'000'000'000;
+  EXPECT_EQ(times[3], round);
+  EXPECT_EQ(times[8], 2 * round + 2000);
+  EXPECT_TRUE(std::is_sorted(times.begin(), times.end()));
+  EXPECT_FALSE(backend.played()) << "a looping device is never played out";
 }
 
 }  // namespace

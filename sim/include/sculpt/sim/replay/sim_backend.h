@@ -22,8 +22,10 @@ namespace sculpt::sim {
 
 class SimBackend final : public hal::Backend {
  public:
-  /// Plays `session` (read from `path`) at `speed`.
-  SimBackend(Session session, std::string path, double speed = 1.0);
+  /// Plays `session` (read from `path`) at `speed`; with `loop`, over and
+  /// over (each round's times follow the last's a second after its end, so
+  /// time keeps increasing): the soak test's endless sculptor.
+  SimBackend(Session session, std::string path, double speed = 1.0, bool loop = false);
   std::string_view name() const override { return "sim"; }
   hal::BackendStatus status() override { return {}; }
   Result<std::vector<hal::DeviceInfo>> enumerate() override;

@@ -16,6 +16,7 @@ struct WindowOptions {
   /// auto (a device if one is attached, else the demo session), sim:FILE,
   /// or a device id as `sculpt devices` prints it.
   std::string device = "auto";
+  bool sim_loop = false;            ///< sim devices: play the session over and over (the soak)
   double sim_speed = 1.0;           ///< sim devices: play this much faster
   std::string project;              ///< open this project first
   std::string record;               ///< start recording to this session file
