@@ -5,15 +5,20 @@
 # whether it found anything; exits 1 on the first finding (its input is
 # left in the current folder as crash-*/leak-*/timeout-*).
 #
-#   bash scripts/fuzz-long.sh [BUILD_DIR] [RUNS]
+#   bash scripts/fuzz-long.sh [BUILD_DIR] [RUNS] [TARGET...]
 # BUILD_DIR holds a fuzz build (default build-fuzz; see .ci/run for the
 # configure line).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build-fuzz}
 runs=${2:-1000000}
-targets="session_file session_text nrrd probe_file hid_report mesh_file text_formats dab_script project_file"
-for target in $targets; do
+shift $(( $# < 2 ? $# : 2 ))
+targets=("$@")
+if ((${#targets[@]} == 0)); then
+  targets=(session_file session_text nrrd probe_file hid_report mesh_file text_formats dab_script
+           project_file)
+fi
+for target in "${targets[@]}"; do
   case $target in
     session_file) seeds=sim/sessions ;;
     *) seeds=tests/fuzz/corpus/$target ;;

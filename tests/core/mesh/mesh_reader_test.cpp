@@ -53,5 +53,22 @@ TEST(MeshReader, AFaceIndexThatIsNotAWholeNumberIsRefused) {
   }
 }
 
+// Found by fuzzing: a 240-byte PLY declaring 622,222,222 vertices of no
+// properties stored them all (1.6 GB) before anything was checked.
+TEST(MeshReader, AnElementCountTheDataCannotHoldIsRefusedBeforeStoring) {
+  const auto found = read_mesh(SCULPT_TEST_DATA_DIR "/mesh/fuzz_oom_vertex_count.ply");
+  ASSERT_FALSE(found.ok());
+  EXPECT_NE(found.error().message().find("fuzz_oom_vertex_count.ply"), std::string::npos);
+  sculpt::test::ScratchDir dir;
+  const auto many = dir.path() / "many.ply";
+  std::ofstream(many, std::ios::binary)
+      << "ply\nformat ascii 1.0\nelement vertex 1000000\nproperty float x\nend_header\n0 1 2\n";
+  const auto r = read_mesh(many);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message().find("1000000 instances, but the data holds only 6 bytes"),
+            std::string::npos)
+      << r.error().message();
+}
+
 }  // namespace
 }  // namespace sculpt::core
