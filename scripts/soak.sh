@@ -14,8 +14,7 @@ minutes=${1:-60}
 speed=${2:-4}
 out=${3:-soak-rss.csv}
 seconds=$(( minutes * 60 ))
-run=(build/bin/sculpt run --device sim:sim/sessions/demo.scs --loop --speed "$speed" --hidden
-     --stats soak-stats.json)
+run=(build/bin/sculpt run --device sim:sim/sessions/demo.scs --loop --speed "$speed" --hidden)
 if [[ -z "${DISPLAY:-}" ]]; then run=(xvfb-run -a -s "-screen 0 1280x800x24" "${run[@]}"); fi
 "${run[@]}" > soak.log 2>&1 &
 launcher=$!
