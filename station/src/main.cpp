@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i)
       command += std::string(" ") + argv[i];
     return cli::report(sculpt::Error("out of memory running `" + command +
-                                           "`: an input asks for more than this machine holds"));
+                                     "`: an input asks for more than this machine holds"));
   } catch (const std::exception& e) {
     // Out of memory and the like: still one line and a clean exit.
     return cli::report(sculpt::Error(e.what()));

@@ -14,12 +14,12 @@
 #include <vector>
 
 #include "sculpt/hal/backends/feed_backend.h"
-#include "sculpt/hal/types/clock.h"
-#include "sculpt/hal/types/quirks.h"
 #include "sculpt/hal/input/device_reader.h"
 #include "sculpt/hal/input/spsc_ring.h"
 #include "sculpt/hal/parsers/spacemouse_parser.h"
 #include "sculpt/hal/pose/pose_integrator.h"
+#include "sculpt/hal/types/clock.h"
+#include "sculpt/hal/types/quirks.h"
 
 namespace sculpt::hal {
 namespace {

@@ -9,9 +9,9 @@
 #include <span>
 #include <vector>
 
-#include "sculpt/hal/types/raw_event.h"
 #include "sculpt/hal/parsers/hid_descriptor.h"
 #include "sculpt/hal/parsers/hid_descriptor_parser.h"
+#include "sculpt/hal/types/raw_event.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace sculpt::hal;

@@ -1,5 +1,5 @@
-#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/distance/distance_shell.h"
+#include "sculpt/core/grid/grid_index.h"
 
 #include <cmath>
 

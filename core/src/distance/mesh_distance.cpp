@@ -1,9 +1,9 @@
-#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/distance/mesh_distance.h"
+#include "sculpt/core/grid/grid_index.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include <glm/common.hpp>

@@ -1,5 +1,5 @@
-#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/distance/narrow_band.h"
+#include "sculpt/core/grid/grid_index.h"
 
 #include <algorithm>
 #include <atomic>

@@ -15,17 +15,17 @@ namespace sculpt::core::detail {
 // case is set when corner k is inside. Edges 0-3 run along x, 4-7 along y,
 // 8-11 along z.
 inline constexpr std::array<std::array<uint8_t, 2>, 12> kEdgeCorners = {{{0, 1},
-                                                                  {2, 3},
-                                                                  {4, 5},
-                                                                  {6, 7},
-                                                                  {0, 2},
-                                                                  {1, 3},
-                                                                  {4, 6},
-                                                                  {5, 7},
-                                                                  {0, 4},
-                                                                  {1, 5},
-                                                                  {2, 6},
-                                                                  {3, 7}}};
+                                                                         {2, 3},
+                                                                         {4, 5},
+                                                                         {6, 7},
+                                                                         {0, 2},
+                                                                         {1, 3},
+                                                                         {4, 6},
+                                                                         {5, 7},
+                                                                         {0, 4},
+                                                                         {1, 5},
+                                                                         {2, 6},
+                                                                         {3, 7}}};
 
 constexpr glm::ivec3 corner_offset(int k) {
   return {k & 1, (k >> 1) & 1, k >> 2};

@@ -24,7 +24,6 @@ using detail::corner_offset;
 using detail::kEdgeOrigin;
 using detail::kFixedTriangles;
 
-
 // The slot table holding edge e's vertex: x edges of the cell's lower and
 // upper z plane (0, 1), y edges likewise (2, 3), z edges (4).
 constexpr std::array<uint8_t, 12> kEdgeSlotTable = {0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4, 4};

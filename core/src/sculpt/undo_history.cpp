@@ -1,5 +1,5 @@
-#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/sculpt/undo_history.h"
+#include "sculpt/core/grid/grid_index.h"
 
 #include <vector>
 

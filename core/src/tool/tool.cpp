@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include <glm/vector_relational.hpp>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "sculpt/base/atomic_file.h"
 #include "sculpt/core/shapes/analytic_shapes.h"

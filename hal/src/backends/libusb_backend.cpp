@@ -148,7 +148,7 @@ class LibusbBackend final : public Backend {
     const ssize_t n = libusb_get_device_list(ctx_, &list);
     if (n < 0)
       return Error(std::string("libusb: cannot list devices: ") +
-                         libusb_error_name(static_cast<int>(n)));
+                   libusb_error_name(static_cast<int>(n)));
     std::vector<DeviceInfo> out;
     for (ssize_t i = 0; i < n; ++i) {
       libusb_device* dev = list[i];
@@ -205,24 +205,22 @@ class LibusbBackend final : public Backend {
     const int r = found ? libusb_open(found, &h) : LIBUSB_ERROR_NO_DEVICE;
     libusb_free_device_list(list, 1);
     if (r == LIBUSB_ERROR_ACCESS) {
-      return Error(info.id() +
-                         ": no permission; install the udev rules (see README: Devices)");
+      return Error(info.id() + ": no permission; install the udev rules (see README: Devices)");
     }
     if (r != 0) return Error(info.id() + ": cannot open: " + libusb_error_name(r));
     bool reattach = false;
     if (libusb_kernel_driver_active(h, interface) == 1) {
       if (const int d = libusb_detach_kernel_driver(h, interface); d != 0) {
         libusb_close(h);
-        return Error(info.id() +
-                           ": cannot detach the kernel driver: " + libusb_error_name(d));
+        return Error(info.id() + ": cannot detach the kernel driver: " + libusb_error_name(d));
       }
       reattach = true;
     }
     if (const int c = libusb_claim_interface(h, interface); c != 0) {
       if (reattach) libusb_attach_kernel_driver(h, interface);
       libusb_close(h);
-      return Error(info.id() + ": cannot claim interface " + std::to_string(interface) +
-                         ": " + libusb_error_name(c));
+      return Error(info.id() + ": cannot claim interface " + std::to_string(interface) + ": " +
+                   libusb_error_name(c));
     }
     DeviceInfo opened = info;
     // GET_DESCRIPTOR(Report) on the interface: standard request to an interface.

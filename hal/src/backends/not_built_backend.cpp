@@ -9,9 +9,7 @@ class NotBuiltBackend final : public Backend {
       : name_(std::move(name)), note_(std::move(note)) {}
   std::string_view name() const override { return name_; }
   BackendStatus status() override { return {BackendState::kNotBuilt, note_}; }
-  Result<std::vector<DeviceInfo>> enumerate() override {
-    return Error(name_ + ": " + note_);
-  }
+  Result<std::vector<DeviceInfo>> enumerate() override { return Error(name_ + ": " + note_); }
   Result<std::unique_ptr<Device>> open(const DeviceInfo& info) override {
     return Error(info.id() + ": " + name_ + " backend " + note_);
   }

@@ -60,8 +60,7 @@ std::string fmt(float v) {
 
 }  // namespace
 
-Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
-                                                       const std::string& name) {
+Result<NormalizerConfig> parse_normalizer_config(std::string_view text, const std::string& name) {
   NormalizerConfig c;
   int line_no = 0;
   size_t pos = 0;
@@ -89,7 +88,7 @@ Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
       float v = 0;
       if (!parse_float(value, v) || v < lo || v > hi) {
         return Error(where + k + ": expected a number in [" + fmt(lo) + ", " + fmt(hi) +
-                           "], got '" + std::string(value) + "'");
+                     "], got '" + std::string(value) + "'");
       }
       out = v;
       return {};
@@ -115,7 +114,7 @@ Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
         arr[a] = v;
       } else {
         return Error(where + "unknown axis '" + std::string(sub) +
-                           "' (want translation, rotation, tx, ty, tz, rx, ry or rz)");
+                     "' (want translation, rotation, tx, ty, tz, rx, ry or rz)");
       }
     } else if (key == "curve") {
       const auto w = words(value);
@@ -129,9 +128,8 @@ Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
                  c.curve_param >= 1.0f && c.curve_param <= 4.0f) {
         c.curve = CurveKind::kPower;
       } else {
-        return Error(where +
-                           "curve: expected linear, cubic K (0..1) or power P (1..4), got '" +
-                           std::string(value) + "'");
+        return Error(where + "curve: expected linear, cubic K (0..1) or power P (1..4), got '" +
+                     std::string(value) + "'");
       }
     } else if (key == "map") {
       const auto w = words(value);
@@ -162,7 +160,7 @@ Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
         c.lock = AxisLock::kRotation;
       else
         return Error(where + "lock: expected none, translation or rotation, got '" +
-                           std::string(value) + "'");
+                     std::string(value) + "'");
     } else if (key == "dominant" || key == "filter") {
       bool on = false;
       if (value == "on")

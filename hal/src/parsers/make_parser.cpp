@@ -1,9 +1,9 @@
 #include "sculpt/hal/parsers/make_parser.h"
 
-#include "sculpt/hal/types/quirks.h"
 #include "sculpt/hal/parsers/axis_event_parser.h"
 #include "sculpt/hal/parsers/hid_descriptor_parser.h"
 #include "sculpt/hal/parsers/spacemouse_parser.h"
+#include "sculpt/hal/types/quirks.h"
 
 namespace sculpt::hal {
 
@@ -25,8 +25,8 @@ Result<std::unique_ptr<ReportParser>> make_parser(const DeviceInfo& info) {
   if (!layout) return layout.error().in(who);
   if (!layout->is_multi_axis_controller()) {
     return Error(who + ": not a multi-axis controller (usage page " +
-                       std::to_string(layout->usage_page) + " usage " +
-                       std::to_string(layout->usage) + ", want page 1 usage 8 with axes)");
+                 std::to_string(layout->usage_page) + " usage " + std::to_string(layout->usage) +
+                 ", want page 1 usage 8 with axes)");
   }
   return std::unique_ptr<ReportParser>(
       std::make_unique<HidDescriptorParser>(std::move(layout).value()));

@@ -5,8 +5,8 @@
 #include "sculpt/hal/backends/hidapi_backend.h"
 #include "sculpt/hal/backends/libusb_backend.h"
 #include "sculpt/hal/backends/spnav_backend.h"
-#include "sculpt/hal/types/quirks.h"
 #include "sculpt/hal/parsers/make_parser.h"
+#include "sculpt/hal/types/quirks.h"
 
 namespace sculpt::hal {
 namespace {
@@ -140,7 +140,7 @@ Result<uint32_t> DeviceRegistry::open_device(const std::string& id) {
       if (open != open_keys_.end()) return open->second;
       if (!info.accessible) {
         return Error("--device " + id +
-                           ": no permission; install the udev rules (see README: Devices)");
+                     ": no permission; install the udev rules (see README: Devices)");
       }
       auto started = start_reader(*backend, info);
       if (!started) return started.error().in("--device " + id);
@@ -153,7 +153,7 @@ Result<uint32_t> DeviceRegistry::open_device(const std::string& id) {
     for (auto& backend : backends_)
       known += (known.empty() ? "" : ", ") + std::string(backend->name());
     return Error("--device " + id + ": unknown backend '" + head + "' (have " + known +
-                       ", or give vvvv:pppp)");
+                 ", or give vvvv:pppp)");
   }
   std::string joined;
   for (const std::string& w : why)

@@ -212,7 +212,7 @@ std::string decode_record(uint8_t kind, uint8_t flags, int64_t t, std::span<cons
 }  // namespace
 
 Result<Session> parse_session_bytes(std::span<const uint8_t> bytes, const std::string& name,
-                                          SessionReadInfo* info) {
+                                    SessionReadInfo* info) {
   if (bytes.size() < sizeof(kSessionMagic) ||
       std::memcmp(bytes.data(), kSessionMagic, sizeof(kSessionMagic)) != 0) {
     return Error(name + ": not a sculpt session file (bad magic)");
@@ -220,20 +220,17 @@ Result<Session> parse_session_bytes(std::span<const uint8_t> bytes, const std::s
   Reader r(bytes.subspan(sizeof(kSessionMagic)));
   uint16_t version, flags;
   uint32_t n;
-  if (!r.num(version) || !r.num(flags) || !r.num(n))
-    return Error(name + ": truncated header");
+  if (!r.num(version) || !r.num(flags) || !r.num(n)) return Error(name + ": truncated header");
   if (version != kSessionVersion) {
     return Error(name + ": session version " + std::to_string(version) +
-                       " is not supported (this build reads " + std::to_string(kSessionVersion) +
-                       ")");
+                 " is not supported (this build reads " + std::to_string(kSessionVersion) + ")");
   }
   if (n > kMaxHeaderBytes)
     return Error(name + ": header length " + std::to_string(n) + " is absurd");
   std::span<const uint8_t> fields;
   uint32_t header_crc;
   if (!r.bytes(n, fields) || !r.num(header_crc)) return Error(name + ": truncated header");
-  if (crc(fields) != header_crc)
-    return Error(name + ": header checksum mismatch (damaged file)");
+  if (crc(fields) != header_crc) return Error(name + ": header checksum mismatch (damaged file)");
 
   Session s;
   Reader f(fields);
@@ -299,8 +296,7 @@ Result<Session> read_session_file(const std::filesystem::path& path, SessionRead
   // from exhausting memory. An hour at 1 kHz is about 100 MB.
   constexpr uintmax_t kMaxSessionBytes = uintmax_t{4} << 30;
   if (size > kMaxSessionBytes)
-    return Error(path.string() + ": too large for a session (" + std::to_string(size) +
-                       " bytes)");
+    return Error(path.string() + ": too large for a session (" + std::to_string(size) + " bytes)");
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error(path.string() + ": cannot open: " + std::strerror(errno));
   std::vector<uint8_t> bytes(static_cast<size_t>(size));
@@ -324,7 +320,7 @@ Status write_session_file(const std::filesystem::path& path, const Session& sess
 }
 
 Result<SessionWriter> SessionWriter::create(const std::filesystem::path& path,
-                                                  const SessionHeader& header) {
+                                            const SessionHeader& header) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) return Error(path.string() + ": cannot create: " + std::strerror(errno));
   SessionWriter w(fd, path.string());

@@ -8,8 +8,7 @@
 
 namespace sculpt::station {
 
-Result<sim::Session> load_session(const std::filesystem::path& path,
-                                        sim::SessionReadInfo* info) {
+Result<sim::Session> load_session(const std::filesystem::path& path, sim::SessionReadInfo* info) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error(path.string() + ": cannot open: " + std::strerror(errno));
   char magic[sizeof(sim::kSessionMagic)] = {};

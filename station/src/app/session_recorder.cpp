@@ -4,9 +4,8 @@
 
 namespace sculpt::station {
 
-Status SessionRecorder::start(const std::filesystem::path& path,
-                                    const sim::SessionHeader& header,
-                                    const std::vector<sim::Command>& opening, int64_t now_ns) {
+Status SessionRecorder::start(const std::filesystem::path& path, const sim::SessionHeader& header,
+                              const std::vector<sim::Command>& opening, int64_t now_ns) {
   if (writer_) {
     if (auto stopped = stop(); !stopped) return stopped.error();
   }

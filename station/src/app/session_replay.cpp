@@ -26,7 +26,7 @@ LatencyStats latency_stats(std::vector<double> us) {
 }
 
 Result<ReplayResult> replay_session(const sim::Session& session, const std::string& name,
-                                          StationLoop& loop, const ReplayOptions& options) {
+                                    StationLoop& loop, const ReplayOptions& options) {
   const hal::DeviceInfo& device = session.header.device;
   auto config = hal::parse_normalizer_config(session.header.normalizer_config,
                                              name + " (normaliser settings)");

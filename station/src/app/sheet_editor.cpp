@@ -91,10 +91,9 @@ Status SheetEditor::grab(glm::dvec3 tip, const SheetDragOptions& options) {
   if (drag_) release();
   const nurbs::SurfacePoint hit = nurbs::closest_point(*surface_, tip);
   if (!(hit.distance <= options.reach_vox)) {
-    return Error("the sheet is " +
-                       std::to_string(static_cast<int>(std::lround(hit.distance))) +
-                       " voxels from the tool; move within " +
-                       std::to_string(static_cast<int>(options.reach_vox)) + " to grab it");
+    return Error("the sheet is " + std::to_string(static_cast<int>(std::lround(hit.distance))) +
+                 " voxels from the tool; move within " +
+                 std::to_string(static_cast<int>(options.reach_vox)) + " to grab it");
   }
   nurbs::NurbsSurface start = *surface_;
   std::vector<double> f;

@@ -27,8 +27,8 @@ bool init_glfw() {
 
 }  // namespace
 
-Result<std::unique_ptr<GlWindow>> GlWindow::open(int width, int height,
-                                                       const std::string& title, bool visible) {
+Result<std::unique_ptr<GlWindow>> GlWindow::open(int width, int height, const std::string& title,
+                                                 bool visible) {
   if (!init_glfw()) return Error("cannot start GLFW: " + g_glfw_error);
   glfwDefaultWindowHints();
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);

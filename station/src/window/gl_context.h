@@ -14,8 +14,8 @@ namespace sculpt::station {
 class GlWindow {
  public:
   /// Initialises GLFW (once per process) and opens the window.
-  static Result<std::unique_ptr<GlWindow>> open(int width, int height,
-                                                      const std::string& title, bool visible);
+  static Result<std::unique_ptr<GlWindow>> open(int width, int height, const std::string& title,
+                                                bool visible);
   ~GlWindow();
   GlWindow(const GlWindow&) = delete;
   GlWindow& operator=(const GlWindow&) = delete;

@@ -14,8 +14,7 @@ bool display_available() {
   return (x11 != nullptr && *x11 != '\0') || (wayland != nullptr && *wayland != '\0');
 }
 
-Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block, int width,
-                                      int height) {
+Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block, int width, int height) {
   if (!display_available()) return Error("no display (DISPLAY is not set)");
   auto window = GlWindow::open(64, 64, "sculpt snapshot", /*visible=*/false);
   if (!window) return window.error();

@@ -9,8 +9,8 @@
 
 #include "../parsers/report_bytes.h"
 #include "sculpt/hal/backends/feed_backend.h"
-#include "sculpt/hal/types/quirks.h"
 #include "sculpt/hal/parsers/spacemouse_parser.h"
+#include "sculpt/hal/types/quirks.h"
 
 namespace sculpt::hal {
 namespace {

@@ -15,8 +15,7 @@ namespace {
 MotionPipeline spacemouse_pipeline() {
   NormalizerConfig direct;
   direct.filter = false;
-  return MotionPipeline(std::make_unique<SpaceMouseParser>(*find_quirks(0x046d, 0xc626)),
-                        direct);
+  return MotionPipeline(std::make_unique<SpaceMouseParser>(*find_quirks(0x046d, 0xc626)), direct);
 }
 
 RawEvent removal(int64_t t_ns) {
@@ -28,7 +27,8 @@ RawEvent removal(int64_t t_ns) {
 
 std::vector<InputKind> kinds(const std::vector<InputEvent>& events) {
   std::vector<InputKind> k;
-  for (const InputEvent& e : events) k.push_back(e.kind);
+  for (const InputEvent& e : events)
+    k.push_back(e.kind);
   return k;
 }
 
@@ -47,12 +47,13 @@ TEST(DeviceStream, BracketsTheEventsWithConnectAndDisconnectAndReplugsWithAFresh
   stream.feed(test::report_at(21, {3, 0x01}), out);
   stream.feed(test::report_at(22, {99}), out);  // a report id the family lacks
   EXPECT_EQ(kinds(out), (std::vector<InputKind>{InputKind::kConnected, InputKind::kButton,
-                                                 InputKind::kButton, InputKind::kDisconnected,
-                                                 InputKind::kConnected, InputKind::kButton}));
+                                                InputKind::kButton, InputKind::kDisconnected,
+                                                InputKind::kConnected, InputKind::kButton}));
   EXPECT_EQ(out[0].t_ns, 10);
   EXPECT_EQ(out[3].t_ns, 12) << "the removal's own time";
   EXPECT_EQ(out[4].t_ns, 20);
-  for (const InputEvent& e : out) EXPECT_EQ(e.device_id, 5u);
+  for (const InputEvent& e : out)
+    EXPECT_EQ(e.device_id, 5u);
   EXPECT_TRUE(out[5].pressed);
   EXPECT_EQ(pipelines_made, 1);
   EXPECT_TRUE(stream.connected());
@@ -67,7 +68,7 @@ TEST(DeviceStream, ConnectsOnceAndDisconnectsWhenTheReaderStops) {
   stream.feed(test::report_at(102, {3, 0x01}), out);
   stream.disconnect(103, out);
   EXPECT_EQ(kinds(out), (std::vector<InputKind>{InputKind::kConnected, InputKind::kButton,
-                                                 InputKind::kDisconnected}));
+                                                InputKind::kDisconnected}));
   EXPECT_FALSE(stream.connected());
 }
 

@@ -9,10 +9,10 @@
 #include <gtest/gtest.h>
 
 #include "multi_axis_descriptor.h"
-#include "sculpt/hal/types/quirks.h"
 #include "sculpt/hal/parsers/hid_descriptor.h"
 #include "sculpt/hal/parsers/make_parser.h"
 #include "sculpt/hal/parsers/spacemouse_parser.h"
+#include "sculpt/hal/types/quirks.h"
 
 namespace sculpt::hal {
 namespace {

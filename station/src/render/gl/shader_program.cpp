@@ -26,7 +26,7 @@ GLuint compile(GLenum kind, const char* source) {
 }  // namespace
 
 Result<ShaderProgram> ShaderProgram::build(const char* vertex, const char* fragment,
-                                                 const std::string& name) {
+                                           const std::string& name) {
   const GLuint vs = compile(GL_VERTEX_SHADER, vertex);
   const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment);
   for (GLuint s : {vs, fs}) {

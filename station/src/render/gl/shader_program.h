@@ -16,7 +16,7 @@ class ShaderProgram {
  public:
   /// Compiles and links; the error carries the driver's log.
   static Result<ShaderProgram> build(const char* vertex, const char* fragment,
-                                           const std::string& name);
+                                     const std::string& name);
   ShaderProgram() = default;
   ~ShaderProgram();
   ShaderProgram(ShaderProgram&& other) noexcept;

@@ -5,8 +5,8 @@
 
 #include <filesystem>
 
-#include "sculpt/core/grid/dense_grid.h"
 #include "sculpt/base/result.h"
+#include "sculpt/core/grid/dense_grid.h"
 
 namespace sculpt::core {
 

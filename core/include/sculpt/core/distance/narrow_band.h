@@ -8,9 +8,9 @@
 
 #include <glm/vec3.hpp>
 
-#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/distance/mesh_distance.h"
 #include "sculpt/core/grid/dense_grid.h"
+#include "sculpt/core/grid/grid_index.h"
 
 namespace sculpt::core {
 

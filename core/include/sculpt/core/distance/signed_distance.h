@@ -22,10 +22,10 @@
 #include <optional>
 #include <string>
 
+#include "sculpt/base/result.h"
 #include "sculpt/core/distance/distance_shell.h"
 #include "sculpt/core/distance/surface_index.h"
 #include "sculpt/core/grid/dense_grid.h"
-#include "sculpt/base/result.h"
 
 namespace sculpt::core {
 

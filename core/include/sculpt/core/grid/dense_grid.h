@@ -10,8 +10,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/grid/box.h"
+#include "sculpt/core/grid/grid_index.h"
 
 namespace sculpt::core {
 
@@ -28,9 +28,7 @@ class DenseGrid {
   glm::ivec3 dims() const { return dims_; }
   size_t size() const { return data_.size(); }
   /// Linear index of voxel (x, y, z).
-  size_t index(int x, int y, int z) const {
-    return grid_index({x, y, z}, dims_);
-  }
+  size_t index(int x, int y, int z) const { return grid_index({x, y, z}, dims_); }
   bool in_bounds(int x, int y, int z) const {
     return x >= 0 && y >= 0 && z >= 0 && x < dims_.x && y < dims_.y && z < dims_.z;
   }

@@ -7,8 +7,8 @@
 
 #include <filesystem>
 
-#include "sculpt/core/mesh/mesh.h"
 #include "sculpt/base/result.h"
+#include "sculpt/core/mesh/mesh.h"
 
 namespace sculpt::core {
 

@@ -10,8 +10,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "sculpt/core/nurbs/nurbs_curve.h"
 #include "sculpt/base/result.h"
+#include "sculpt/core/nurbs/nurbs_curve.h"
 
 namespace sculpt::core::nurbs {
 

@@ -16,9 +16,9 @@
 
 #include <vector>
 
+#include "sculpt/base/result.h"
 #include "sculpt/core/nurbs/nurbs_surface.h"
 #include "sculpt/core/nurbs/parameter_zone.h"
-#include "sculpt/base/result.h"
 
 namespace sculpt::core::nurbs {
 

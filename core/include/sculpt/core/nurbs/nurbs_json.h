@@ -23,10 +23,10 @@
 #include <filesystem>
 #include <string>
 
+#include "sculpt/base/result.h"
 #include "sculpt/core/nurbs/nurbs_curve.h"
 #include "sculpt/core/nurbs/nurbs_surface.h"
 #include "sculpt/core/nurbs/parameter_zone.h"
-#include "sculpt/base/result.h"
 
 namespace sculpt::core::nurbs {
 

@@ -12,9 +12,9 @@
 #include <filesystem>
 #include <string>
 
+#include "sculpt/base/result.h"
 #include "sculpt/core/nurbs/nurbs_curve.h"
 #include "sculpt/core/nurbs/nurbs_surface.h"
-#include "sculpt/base/result.h"
 
 namespace sculpt::core::nurbs {
 

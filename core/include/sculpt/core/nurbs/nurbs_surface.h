@@ -16,8 +16,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "sculpt/core/nurbs/knot_vector.h"
 #include "sculpt/base/result.h"
+#include "sculpt/core/nurbs/knot_vector.h"
 
 namespace sculpt::core::nurbs {
 

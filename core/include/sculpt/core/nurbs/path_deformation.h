@@ -31,10 +31,10 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
+#include "sculpt/base/result.h"
 #include "sculpt/core/nurbs/nurbs_curve.h"
 #include "sculpt/core/nurbs/nurbs_surface.h"
 #include "sculpt/core/nurbs/rigid_motion.h"
-#include "sculpt/base/result.h"
 
 namespace sculpt::core::nurbs {
 

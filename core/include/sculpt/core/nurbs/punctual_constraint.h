@@ -14,8 +14,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "sculpt/core/nurbs/nurbs_surface.h"
 #include "sculpt/base/result.h"
+#include "sculpt/core/nurbs/nurbs_surface.h"
 
 namespace sculpt::core::nurbs {
 

@@ -13,10 +13,10 @@
 
 #include <glm/vec3.hpp>
 
+#include "sculpt/base/result.h"
 #include "sculpt/core/grid/box.h"
 #include "sculpt/core/grid/dense_grid.h"
 #include "sculpt/core/io/nrrd.h"
-#include "sculpt/base/result.h"
 #include "sculpt/core/volume/volume.h"
 
 namespace sculpt::core {

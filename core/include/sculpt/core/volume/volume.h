@@ -23,10 +23,10 @@
 
 #include <glm/vec3.hpp>
 
-#include "sculpt/core/grid/grid_index.h"
+#include "sculpt/base/result.h"
 #include "sculpt/core/grid/box.h"
 #include "sculpt/core/grid/dense_grid.h"
-#include "sculpt/base/result.h"
+#include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/volume/brick.h"
 
 namespace sculpt::core {

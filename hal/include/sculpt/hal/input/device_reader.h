@@ -16,11 +16,11 @@
 #include <thread>
 #include <vector>
 
-#include "sculpt/hal/types/device.h"
-#include "sculpt/hal/types/input_event.h"
 #include "sculpt/hal/input/device_stream.h"
 #include "sculpt/hal/input/motion_pipeline.h"
 #include "sculpt/hal/input/spsc_ring.h"
+#include "sculpt/hal/types/device.h"
+#include "sculpt/hal/types/input_event.h"
 
 namespace sculpt::hal {
 
@@ -80,7 +80,7 @@ class DeviceReader {
   uint32_t device_id_;
   DeviceInfo info_;
   std::unique_ptr<Device> device_;  // touched only by the thread once started
-  DeviceStream stream_;  // touched only by the thread once started
+  DeviceStream stream_;             // touched only by the thread once started
   ReaderOptions options_;
   SpscRing<InputEvent> ring_;
   std::thread thread_;

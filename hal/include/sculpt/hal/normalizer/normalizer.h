@@ -6,8 +6,8 @@
 // dominant axis, sensitivity, clamp to [-1, 1]. Absolute samples (trackers)
 // get only the map and the filter: a deadzone would bend a position.
 
-#include "sculpt/hal/types/input_event.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
+#include "sculpt/hal/types/input_event.h"
 
 namespace sculpt::hal {
 

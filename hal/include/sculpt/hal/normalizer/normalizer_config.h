@@ -44,8 +44,7 @@ struct NormalizerConfig {
 
 /// Parses the text form. `name` names the input in errors:
 /// "input.conf:4: curve: expected linear, cubic K or power P, got 'quadratic'".
-Result<NormalizerConfig> parse_normalizer_config(std::string_view text,
-                                                       const std::string& name);
+Result<NormalizerConfig> parse_normalizer_config(std::string_view text, const std::string& name);
 
 /// Reads and parses a config file.
 Result<NormalizerConfig> load_normalizer_config(const std::string& path);

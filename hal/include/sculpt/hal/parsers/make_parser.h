@@ -6,8 +6,8 @@
 #include <memory>
 
 #include "sculpt/base/result.h"
-#include "sculpt/hal/types/device_info.h"
 #include "sculpt/hal/parsers/report_parser.h"
+#include "sculpt/hal/types/device_info.h"
 
 namespace sculpt::hal {
 

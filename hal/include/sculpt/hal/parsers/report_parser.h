@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "sculpt/hal/types/raw_event.h"
 #include "sculpt/hal/types/input_event.h"
+#include "sculpt/hal/types/raw_event.h"
 
 namespace sculpt::hal {
 

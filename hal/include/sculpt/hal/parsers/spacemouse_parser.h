@@ -14,8 +14,8 @@
 #include <array>
 #include <bitset>
 
-#include "sculpt/hal/types/quirks.h"
 #include "sculpt/hal/parsers/report_parser.h"
+#include "sculpt/hal/types/quirks.h"
 
 namespace sculpt::hal {
 

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "sculpt/hal/types/device.h"
 #include "sculpt/hal/input/device_reader.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
+#include "sculpt/hal/types/device.h"
 
 namespace sculpt::hal {
 

@@ -54,9 +54,9 @@ struct SessionReadInfo {
 /// bad magic, unknown version, damaged header. A damaged tail is dropped and
 /// reported in `info`.
 Result<Session> parse_session_bytes(std::span<const uint8_t> bytes, const std::string& name,
-                                          SessionReadInfo* info = nullptr);
+                                    SessionReadInfo* info = nullptr);
 Result<Session> read_session_file(const std::filesystem::path& path,
-                                        SessionReadInfo* info = nullptr);
+                                  SessionReadInfo* info = nullptr);
 
 /// The bytes of a whole file (header and records).
 std::vector<uint8_t> serialize_session(const Session& session);
@@ -70,7 +70,7 @@ class SessionWriter {
 
   /// Creates `path` (replacing it) and writes the header.
   static Result<SessionWriter> create(const std::filesystem::path& path,
-                                            const SessionHeader& header);
+                                      const SessionHeader& header);
   SessionWriter(SessionWriter&& other) noexcept;
   SessionWriter& operator=(SessionWriter&& other) noexcept;
   ~SessionWriter();

@@ -16,10 +16,10 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vec3.hpp>
 
-#include "sculpt/hal/types/quirks.h"
 #include "sculpt/hal/input/motion_pipeline.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/hal/pose/pose_integrator.h"
+#include "sculpt/hal/types/quirks.h"
 #include "sculpt/sim/session/session.h"
 
 namespace sculpt::sim {

@@ -12,6 +12,6 @@ namespace sculpt::station {
 
 /// A damaged tail of a binary file is dropped; `info` says what was lost.
 Result<sim::Session> load_session(const std::filesystem::path& path,
-                                        sim::SessionReadInfo* info = nullptr);
+                                  sim::SessionReadInfo* info = nullptr);
 
 }  // namespace sculpt::station

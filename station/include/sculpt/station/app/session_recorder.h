@@ -26,7 +26,7 @@ class SessionRecorder {
   /// Starts a recording in `path` (replacing it) whose first records are
   /// `opening` (the commands that rebuild the station's current settings).
   Status start(const std::filesystem::path& path, const sim::SessionHeader& header,
-                     const std::vector<sim::Command>& opening, int64_t now_ns);
+               const std::vector<sim::Command>& opening, int64_t now_ns);
   bool recording() const { return writer_.has_value(); }
   /// Keeps raw events from now on for a start() to come: so a recording asked
   /// for before the devices open misses none of their first reports.

@@ -46,6 +46,6 @@ LatencyStats latency_stats(std::vector<double> us);
 /// Replays `session` into `loop`. Errors (the device has no parser, the
 /// normaliser settings do not parse) name `name`.
 Result<ReplayResult> replay_session(const sim::Session& session, const std::string& name,
-                                          StationLoop& loop, const ReplayOptions& options = {});
+                                    StationLoop& loop, const ReplayOptions& options = {});
 
 }  // namespace sculpt::station

@@ -24,11 +24,11 @@
 
 #include <glm/vec3.hpp>
 
+#include "sculpt/base/result.h"
 #include "sculpt/core/mesh/mesh.h"
 #include "sculpt/core/nurbs/nurbs_surface.h"
 #include "sculpt/core/nurbs/path_deformation.h"
 #include "sculpt/core/nurbs/surface_tessellator.h"
-#include "sculpt/base/result.h"
 #include "sculpt/station/settings/station_settings.h"
 
 namespace sculpt::station {

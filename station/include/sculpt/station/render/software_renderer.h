@@ -11,8 +11,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "sculpt/core/mesh/mesh.h"
 #include "sculpt/base/result.h"
+#include "sculpt/core/mesh/mesh.h"
 
 namespace sculpt::station {
 

@@ -5,8 +5,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "sculpt/core/mesh/mesh.h"
 #include "sculpt/base/result.h"
+#include "sculpt/core/mesh/mesh.h"
 #include "sculpt/station/render/software_renderer.h"
 
 namespace sculpt::station {
@@ -18,6 +18,6 @@ bool display_available();
 /// station's default camera, into a width x height picture. Errors when no
 /// display or no OpenGL 3.3 context can be had.
 Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block_dims, int width,
-                                      int height);
+                                int height);
 
 }  // namespace sculpt::station
