@@ -14,12 +14,16 @@ minutes=${1:-60}
 speed=${2:-4}
 out=${3:-soak-rss.csv}
 seconds=$(( minutes * 60 ))
-run=(build/bin/sculpt run --device sim:sim/sessions/demo.scs --loop --speed "$speed" --hidden)
+root=$PWD
+# The station autosaves its project into the folder it runs in: a scratch one.
+work=$(mktemp -d)
+run=("$root/build/bin/sculpt" run --device "sim:$root/sim/sessions/demo.scs" --loop --speed "$speed"
+     --hidden)
 if [[ -z "${DISPLAY:-}" ]]; then run=(xvfb-run -a -s "-screen 0 1280x800x24" "${run[@]}"); fi
-"${run[@]}" > soak.log 2>&1 &
+(cd "$work" && exec "${run[@]}") > soak.log 2>&1 &
 launcher=$!
 sleep 5
-pid=$(pgrep -n -f "build/bin/sculpt run --device sim:sim/sessions/demo.scs --loop" || true)
+pid=$(pgrep -n -f "build/bin/sculpt run --device sim:$root/sim/sessions/demo.scs --loop" || true)
 if [[ -z "$pid" ]]; then echo "soak: the station did not start (soak.log)"; cat soak.log; exit 1; fi
 echo "minute,rss_mib" > "$out"
 start=$(date +%s)
@@ -32,6 +36,7 @@ while (( $(date +%s) - start < seconds )); do
 done
 kill -TERM "$pid"
 wait "$launcher" || true
+rm -rf "$work"
 cat "$out"
 python3 - "$out" <<'PY'
 import csv, sys
