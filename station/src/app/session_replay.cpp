@@ -25,6 +25,14 @@ LatencyStats latency_stats(std::vector<double> us) {
   return s;
 }
 
+LatencyStats latency_stats(const LatencyHistogram& us) {
+  return {.count = us.count(),
+          .p50_us = us.quantile_us(0.50),
+          .p90_us = us.quantile_us(0.90),
+          .p99_us = us.quantile_us(0.99),
+          .max_us = us.max_us()};
+}
+
 Result<ReplayResult> replay_session(const sim::Session& session, const std::string& name,
                                     StationLoop& loop, const ReplayOptions& options) {
   const hal::DeviceInfo& device = session.header.device;
@@ -46,7 +54,7 @@ Result<ReplayResult> replay_session(const sim::Session& session, const std::stri
   const auto start = clock::now();
   sim::SessionPlayer player(session, options.speed, options.fast);
   std::vector<hal::InputEvent> events;
-  std::vector<double> latencies_us;
+  LatencyHistogram latencies_us;  // fixed memory however long the session
   ReplayResult result;
   while (const sim::SessionRecord* r = player.next()) {
     ++result.records;
@@ -66,13 +74,14 @@ Result<ReplayResult> replay_session(const sim::Session& session, const std::stri
     if (new_dabs > 0) {
       loop.update_mesh();
       const double us = std::chrono::duration<double, std::micro>(clock::now() - t0).count();
-      latencies_us.insert(latencies_us.end(), static_cast<size_t>(new_dabs), us);
+      for (int64_t i = 0; i < new_dabs; ++i)
+        latencies_us.add(us);
     }
   }
   loop.update_mesh();
   result.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
   result.session_seconds = static_cast<double>(session.end_t_ns() - session.start_t_ns()) * 1e-9;
-  result.dab_latency = latency_stats(std::move(latencies_us));
+  result.dab_latency = latency_stats(latencies_us);
   const hal::ParserCounters parsed = stream.parser_counters();
   result.unknown_reports = parsed.unknown_reports;
   result.short_reports = parsed.short_reports;

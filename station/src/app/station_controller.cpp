@@ -398,7 +398,7 @@ int64_t StationController::update_mesh(int64_t now_ns) {
     const double us = static_cast<double>(now_ns - t) * 1e-3;
     recent_latency_us_.push_back(us);
     if (recent_latency_us_.size() > kRecentDabs) recent_latency_us_.pop_front();
-    all_latency_us_.push_back(us);
+    all_latency_us_.add(us);
   }
   unmeshed_dab_t_ns_.clear();
   return meshed;

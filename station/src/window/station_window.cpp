@@ -13,6 +13,7 @@
 
 #include "render/gl/scene_renderer.h"
 #include "sculpt/base/atomic_file.h"
+#include "sculpt/base/latency_histogram.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/hal/registry/device_registry.h"
 #include "sculpt/hal/types/clock.h"
@@ -60,7 +61,8 @@ extern "C" void on_scroll(GLFWwindow* w, double dx, double dy) {
 
 // Frame and latency figures for --stats.
 struct RunFigures {
-  std::vector<double> frame_ms;
+  LatencyHistogram frame_us;  // fixed memory: the window runs for hours
+  double frames_total_ms = 0;
   int64_t uploads = 0;
   int64_t triangles = 0;  // drawn in the last frame
   // Where the frames' time went, milliseconds summed over all frames.
@@ -76,22 +78,13 @@ int64_t solid_voxels(const core::Volume& v) {
 }
 
 Status write_stats(const std::string& path, const RunFigures& f, const StationController& c) {
-  std::vector<double> sorted = f.frame_ms;
-  std::sort(sorted.begin(), sorted.end());
-  auto at = [&](double q) {
-    return sorted.empty()
-               ? 0.0
-               : sorted[std::min(sorted.size() - 1,
-                                 static_cast<size_t>(q * static_cast<double>(sorted.size())))];
-  };
-  double total = 0;
-  for (double ms : f.frame_ms)
-    total += ms;
-  const double n = std::max<double>(1.0, static_cast<double>(f.frame_ms.size()));
+  auto at = [&](double q) { return f.frame_us.quantile_us(q) * 1e-3; };
+  const double total = f.frames_total_ms;
+  const double n = std::max<double>(1.0, static_cast<double>(f.frame_us.count()));
   const LatencyStats l = c.session_latency();
   const nlohmann::ordered_json j = {
-      {"frames", f.frame_ms.size()},
-      {"fps_mean", total > 0 ? 1000.0 * static_cast<double>(f.frame_ms.size()) / total : 0.0},
+      {"frames", f.frame_us.count()},
+      {"fps_mean", total > 0 ? 1000.0 * static_cast<double>(f.frame_us.count()) / total : 0.0},
       {"frame_ms_p50", at(0.5)},
       {"frame_ms_p90", at(0.9)},
       {"frame_ms_p99", at(0.99)},
@@ -385,7 +378,8 @@ int run_window(const WindowOptions& o) {
     controller.tick(hal::monotonic_ns());
     const int64_t end = hal::monotonic_ns();
     const double ms = static_cast<double>(end - now) * 1e-6;
-    figures.frame_ms.push_back(ms);
+    figures.frame_us.add(ms * 1e3);
+    figures.frames_total_ms += ms;
     figures.uploads += sync.uploaded;
     figures.triangles = sync.triangles;
     controller.lod().frame_done(ms);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "sculpt/base/latency_histogram.h"
 #include "sculpt/base/result.h"
 #include "sculpt/hal/types/input_event.h"
 #include "sculpt/sim/session/session.h"
@@ -40,8 +41,10 @@ struct ReplayResult {
   int64_t short_reports = 0;
 };
 
-/// Percentiles of a set of durations in microseconds.
+/// Percentiles of a set of durations in microseconds (exact).
 LatencyStats latency_stats(std::vector<double> us);
+/// Percentiles of a histogram of them (within its 1.1% resolution).
+LatencyStats latency_stats(const LatencyHistogram& us);
 
 /// Replays `session` into `loop`. Errors (the device has no parser, the
 /// normaliser settings do not parse) name `name`.

@@ -241,7 +241,7 @@ class StationController {
   // Dabs not yet meshed: their report times.
   std::vector<int64_t> unmeshed_dab_t_ns_;
   std::deque<double> recent_latency_us_;
-  std::vector<double> all_latency_us_;
+  LatencyHistogram all_latency_us_;  // fixed memory: the station runs for hours
   // Report rate: the reader's sample count when the current second began.
   int64_t rate_since_ns_ = 0;
   int64_t rate_samples_ = 0;
