@@ -1,5 +1,6 @@
 #include "sculpt/base/atomic_file.h"
 
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -12,10 +13,49 @@
 
 namespace sculpt {
 
+namespace {
+
+// A temporary's name: TARGET.tmp-PID-XXXXXX. The writer's process id lets a
+// later writer of the same target tell a temporary left by a process that
+// was killed (SIGKILL, a power cut: no handler runs) from one still being
+// written, and remove the former: a killed export of a big volume must not
+// leave gigabytes beside the target for ever.
+std::string temp_prefix(const std::filesystem::path& target) {
+  return target.filename().string() + ".tmp-";
+}
+
+bool process_alive(pid_t pid) {
+  return ::kill(pid, 0) == 0 || errno == EPERM;
+}
+
+void remove_stale_temporaries(const std::filesystem::path& target) {
+  const std::string prefix = temp_prefix(target);
+  std::filesystem::path folder = target.parent_path();
+  if (folder.empty()) folder = ".";
+  std::error_code error;
+  for (std::filesystem::directory_iterator it(folder, error), end; !error && it != end;
+       it.increment(error)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() <= prefix.size() + 7 || name.compare(0, prefix.size(), prefix) != 0) continue;
+    // PID-XXXXXX: digits, a dash, mkstemp's six characters.
+    const std::string rest = name.substr(prefix.size());
+    const size_t dash = rest.find('-');
+    if (dash == 0 || dash == std::string::npos || rest.size() - dash != 7) continue;
+    if (rest.find_first_not_of("0123456789") != dash) continue;
+    const long pid = std::strtol(rest.c_str(), nullptr, 10);
+    if (pid <= 0 || pid == ::getpid() || process_alive(static_cast<pid_t>(pid))) continue;
+    std::error_code ignored;
+    std::filesystem::remove(it->path(), ignored);
+  }
+}
+
+}  // namespace
+
 AtomicFileWriter::AtomicFileWriter(std::filesystem::path target) : target_(std::move(target)) {
+  remove_stale_temporaries(target_);
   // mkstemp gives a unique name in the same folder, so rename() is atomic
   // (same file system) and two writers never share a temporary.
-  std::string pattern = target_.string() + ".tmp-XXXXXX";
+  std::string pattern = target_.string() + ".tmp-" + std::to_string(::getpid()) + "-XXXXXX";
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
   const int fd = ::mkstemp(name.data());

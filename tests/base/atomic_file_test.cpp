@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include "scratch_dir.h"
 #include "sculpt/base/output_set.h"
 #include "sculpt/base/temp_files.h"
@@ -102,6 +104,32 @@ TEST_F(AtomicFileTest, ASignalDuringAWriteLeavesNoTemporary) {
       },
       ::testing::KilledBySignal(SIGTERM), "");
   EXPECT_EQ(files_in(dir_), 0u);
+}
+
+TEST_F(AtomicFileTest, TemporariesOfKilledWritersAreRemovedByTheNextWriter) {
+  const fs::path target = dir_ / "volume.nrrd";
+  // A child that dies at once: its pid names a process that no longer runs.
+  const pid_t dead = ::fork();
+  if (dead == 0) ::_exit(0);
+  ASSERT_GT(dead, 0);
+  ::waitpid(dead, nullptr, 0);
+  const std::string dead_name = "volume.nrrd.tmp-" + std::to_string(dead) + "-Ab3dEf";
+  const std::string live_name = "volume.nrrd.tmp-1-Gh5jKl";  // init: always running
+  const std::string other_target = "other.nrrd.tmp-" + std::to_string(dead) + "-Mn7pQr";
+  const std::string not_ours = "volume.nrrd.tmp-notapid";
+  for (const std::string& name : {dead_name, live_name, other_target, not_ours})
+    std::ofstream(dir_ / name) << "left over";
+  {
+    AtomicFileWriter w(target);
+    ASSERT_TRUE(w.ok());
+    w.write("whole");
+    ASSERT_TRUE(w.commit().ok());
+  }
+  EXPECT_FALSE(fs::exists(dir_ / dead_name));    // the killed writer's: gone
+  EXPECT_TRUE(fs::exists(dir_ / live_name));     // a running writer's: kept
+  EXPECT_TRUE(fs::exists(dir_ / other_target));  // another target's: not ours to judge
+  EXPECT_TRUE(fs::exists(dir_ / not_ours));      // not our naming: kept
+  EXPECT_EQ(slurp(target), "whole");
 }
 
 }  // namespace

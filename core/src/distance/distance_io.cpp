@@ -1,5 +1,6 @@
 #include "sculpt/core/distance/distance_io.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "sculpt/core/distance/iso_triangulation.h"
@@ -26,6 +27,15 @@ Result<SurfaceVolume> read_surface_nrrd(const std::filesystem::path& path) {
     out.from_density = false;
   }
   return out;
+}
+
+Status require_surface(const SurfaceVolume& volume, const std::filesystem::path& path) {
+  const auto& phi = volume.phi.values();
+  const bool inside = std::any_of(phi.begin(), phi.end(), [](float v) { return v < 0.0f; });
+  const bool outside = std::any_of(phi.begin(), phi.end(), [](float v) { return v >= 0.0f; });
+  if (inside && outside) return {};
+  return Error(path.string() + ": " + (inside ? "solid throughout" : "holds no material") +
+               ", so it has no surface to measure a distance from");
 }
 
 DenseGrid<uint8_t> density_from_distance_field(const DenseGrid<float>& distance) {

@@ -461,8 +461,27 @@ Result<DenseGrid<T>> read_whole(const std::filesystem::path& path, const NrrdLim
   return grid;
 }
 
+// Our own reader refuses a float volume with NaN or an infinity, and so do
+// most tools downstream: such a volume is a bug upstream, named here rather
+// than written.
+Status check_finite(const std::filesystem::path& path, const DenseGrid<float>& grid) {
+  const auto bad = std::find_if(grid.values().begin(), grid.values().end(),
+                                [](float v) { return !std::isfinite(v); });
+  if (bad == grid.values().end()) return {};
+  const auto i = static_cast<int64_t>(bad - grid.values().begin());
+  const glm::ivec3 d = grid.dims();
+  const int64_t x = i % d.x, y = i / d.x % d.y, z = i / (int64_t{d.x} * d.y);
+  return Error(path.string() + ": voxel (" + std::to_string(x) + ", " + std::to_string(y) + ", " +
+               std::to_string(z) + ") is " + (std::isnan(*bad) ? "NaN" : "infinite") +
+               ", not a finite number; nothing written");
+}
+Status check_finite(const std::filesystem::path&, const DenseGrid<uint8_t>&) {
+  return {};
+}
+
 template <class T>
 Status write_whole(const std::filesystem::path& path, const DenseGrid<T>& grid, NrrdType type) {
+  if (Status finite = check_finite(path, grid); !finite) return finite;
   AtomicFileWriter out(path);
   if (!out.ok()) return out.error();
   out.write(nrrd_header_text(grid.dims(), type));

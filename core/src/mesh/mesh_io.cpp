@@ -4,6 +4,7 @@
 #include <bit>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -166,7 +167,38 @@ Result<MeshFormat> mesh_format_for(const std::filesystem::path& path, bool ascii
   return Error(path.string() + ": unknown mesh format '" + ext + "' (expected .ply, .obj or .stl)");
 }
 
+namespace {
+
+bool finite(glm::vec3 v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// What every format assumes and no reader downstream forgives: finite
+// coordinates (a NaN vertex is a bug upstream, named here rather than
+// written) and triangles that index existing vertices.
+Status check_writable(const std::filesystem::path& path, const Mesh& mesh) {
+  auto fail = [&](const std::string& what) {
+    return Error(path.string() + ": " + what + "; nothing written");
+  };
+  for (size_t v = 0; v < mesh.positions.size(); ++v)
+    if (!finite(mesh.positions[v]))
+      return fail("vertex " + std::to_string(v) + " is not a finite position");
+  for (size_t v = 0; v < mesh.normals.size(); ++v)
+    if (!finite(mesh.normals[v]))
+      return fail("the normal of vertex " + std::to_string(v) + " is not finite");
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const glm::uvec3 tri = mesh.triangles[t];
+    if (std::max({tri.x, tri.y, tri.z}) >= mesh.positions.size())
+      return fail("triangle " + std::to_string(t) + " names a vertex beyond the " +
+                  std::to_string(mesh.positions.size()) + " there are");
+  }
+  return {};
+}
+
+}  // namespace
+
 Status write_mesh(const std::filesystem::path& path, const Mesh& mesh, MeshFormat format) {
+  if (Status writable = check_writable(path, mesh); !writable) return writable;
   if (format == MeshFormat::kStl && mesh.triangles.size() > UINT32_MAX) {
     return Error(path.string() + ": " + std::to_string(mesh.triangles.size()) +
                  " triangles do not fit a binary STL file");

@@ -122,4 +122,12 @@ std::optional<std::string> command_problem(const Command& c) {
   return "unknown command";
 }
 
+Status check_writable(const SessionRecord& r, const std::string& name, int64_t index) {
+  if (r.kind != SessionRecord::Kind::kCommand) return {};
+  const auto why = command_problem(r.command);
+  if (!why) return {};
+  return Error(name + ": record " + std::to_string(index) + ": " +
+               std::string(command_name(r.command.kind)) + ": " + *why + "; not written");
+}
+
 }  // namespace sculpt::sim

@@ -313,6 +313,9 @@ std::vector<uint8_t> serialize_session(const Session& session) {
 }
 
 Status write_session_file(const std::filesystem::path& path, const Session& session) {
+  for (size_t i = 0; i < session.records.size(); ++i)
+    if (Status st = check_writable(session.records[i], path.string(), static_cast<int64_t>(i)); !st)
+      return st;
   AtomicFileWriter out(path);
   const std::vector<uint8_t> bytes = serialize_session(session);
   out.write(bytes.data(), bytes.size());
@@ -374,6 +377,7 @@ Status SessionWriter::sync() {
 Status SessionWriter::append(const SessionRecord& record) {
   if (fd_ < 0) return Error(name_ + ": recording is closed");
   if (record.t_ns() < last_t_ns_) return Error(name_ + ": record goes back in time");
+  if (Status st = check_writable(record, name_, records_); !st) return st;
   std::vector<uint8_t> bytes;
   append_record(record, bytes);
   if (Status st = write_all(bytes); !st) return st;

@@ -31,6 +31,10 @@ int run_close(const CloseOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   auto in = core::read_surface_nrrd(o.input);
   if (!in) return report(in.error());
+  // A float output is a distance field, which does not exist without a
+  // surface; a density output of an empty or solid block is that block.
+  if (o.sdf || !in->from_density)
+    if (Status st = core::require_surface(*in, o.input); !st) return report(st.error());
   const core::DenseGrid<float> closed = core::close_distance(in->phi, o.radius, o.threads);
   const bool as_float = o.sdf || !in->from_density;
   const Status st = write_field(o.output, closed, as_float);

@@ -93,6 +93,7 @@ int run_distance(const DistanceOptions& o) {
                         std::to_string(d.z) +
                         " is too large for --method brute (O(n^2), at most 96^3); use "
                         "exact or octree"));
+  if (Status st = core::require_surface(*in, o.input); !st) return report(st.error());
   const auto t1 = clock::now();
   const core::DistanceInput prepared =
       core::prepare_distance_input(std::move(in->phi), *init, o.threads);

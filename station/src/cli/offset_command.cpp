@@ -28,6 +28,10 @@ struct OffsetOptions {
 int run_offset(const OffsetOptions& o) {
   auto in = core::read_surface_nrrd(o.input);
   if (!in) return report(in.error());
+  // A float output is a distance field, which does not exist without a
+  // surface; a density output of an empty or solid block is that block.
+  if (o.sdf || !in->from_density)
+    if (Status st = core::require_surface(*in, o.input); !st) return report(st.error());
   const core::DenseGrid<float> moved =
       core::offset_distance(core::surface_distance(in->phi, o.threads), o.by);
   const bool as_float = o.sdf || !in->from_density;

@@ -122,6 +122,10 @@ class Inflater {
   z_stream z_{};
 };
 
+// The description's readers, below: save_project() checks with them.
+StationSettings settings_of(const json& j);
+ProjectView view_of(const json& j);
+
 }  // namespace
 
 Status save_project(const std::filesystem::path& path, const core::Volume& volume,
@@ -143,6 +147,16 @@ Status save_project(const std::filesystem::path& path, const core::Volume& volum
     j["tool"] = {{"dims", {t.x, t.y, t.z}}, {"pivot", vec_json(custom_tool->pivot)}};
   }
   const std::string text = j.dump();
+  // Write only what load_project() accepts back: a NaN in the settings or the
+  // view (JSON writes it as null) would make this save, and the autosave
+  // after it, a file that no longer opens.
+  try {
+    const json written = json::parse(text);
+    (void)settings_of(written["settings"]);
+    (void)view_of(written["view"]);
+  } catch (const std::string& what) {
+    return Error(path.string() + ": " + what + ", so it would not load back; nothing written");
+  }
 
   std::vector<uint8_t> packed;
   {

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 
 namespace sculpt::core {
@@ -350,6 +351,20 @@ TEST_F(NrrdTest, FailedWriteLeavesNoFile) {
   ASSERT_FALSE(st.ok());
   EXPECT_NE(st.error().message().find(target.string()), std::string::npos);
   EXPECT_FALSE(fs::exists(target));
+}
+
+TEST_F(NrrdTest, RefusesToWriteNonFiniteVoxelsNamingTheFirst) {
+  for (float bad : {std::nanf(""), std::numeric_limits<float>::infinity()}) {
+    DenseGrid<float> field({3, 4, 5}, 1.5f);
+    field.at(2, 1, 3) = bad;
+    const fs::path target = dir_ / "field.nrrd";
+    const Status st = write_nrrd(target, field);
+    ASSERT_FALSE(st.ok());
+    EXPECT_NE(st.error().message().find(target.string()), std::string::npos);
+    EXPECT_NE(st.error().message().find("voxel (2, 1, 3)"), std::string::npos)
+        << st.error().message();
+    EXPECT_FALSE(fs::exists(target));
+  }
 }
 
 }  // namespace

@@ -3,12 +3,15 @@
 
 #include "sculpt/core/mesh/mesh_io.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include <unistd.h>
 
@@ -124,6 +127,30 @@ TEST_F(MeshIo, BinaryPlyLayoutIsExact) {
   const size_t header_bytes = header.size() + std::string("end_header\n").size();
   const size_t expected = header_bytes + mesh_.positions.size() * 24 + mesh_.triangles.size() * 13;
   EXPECT_EQ(fs::file_size(file), expected);
+}
+
+TEST_F(MeshIo, RefusesNonFiniteCoordinatesAndStrayIndicesInEveryFormat) {
+  Mesh nan_vertex = mesh_;
+  nan_vertex.positions[1].y = std::nanf("");
+  Mesh inf_normal = mesh_;
+  inf_normal.normals[2].z = std::numeric_limits<float>::infinity();
+  Mesh stray_index = mesh_;
+  stray_index.triangles.back().z = static_cast<unsigned>(mesh_.positions.size());
+  const std::pair<const Mesh*, std::string> cases[] = {
+      {&nan_vertex, "vertex 1 is not a finite position"},
+      {&inf_normal, "the normal of vertex 2 is not finite"},
+      {&stray_index, "names a vertex beyond"}};
+  for (MeshFormat format :
+       {MeshFormat::kPlyBinary, MeshFormat::kPlyAscii, MeshFormat::kObj, MeshFormat::kStl}) {
+    for (const auto& [mesh, what] : cases) {
+      const fs::path file = dir_ / "bad.mesh";
+      const Status st = write_mesh(file, *mesh, format);
+      ASSERT_FALSE(st.ok()) << what;
+      EXPECT_NE(st.error().message().find("bad.mesh"), std::string::npos);
+      EXPECT_NE(st.error().message().find(what), std::string::npos) << st.error().message();
+      EXPECT_FALSE(fs::exists(file));
+    }
+  }
 }
 
 }  // namespace

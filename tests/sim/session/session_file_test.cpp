@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -132,6 +133,33 @@ TEST(SessionFile, WriterAppendsAndACrashLosesNothingWritten) {
   const auto back = read_session_file(p);
   ASSERT_TRUE(back.ok());
   EXPECT_EQ(*back, s);
+  fs::remove(p);
+}
+
+TEST(SessionFile, WritersRefuseACommandTheReadersWouldRefuse) {
+  const fs::path p =
+      fs::temp_directory_path() / ("sculpt_bad_command_" + std::to_string(::getpid()) + ".scs");
+  Session s = small_session();
+  Command nan_strength{CommandKind::kStrength};
+  nan_strength.values[0] = std::nanf("");
+  s.records.insert(s.records.begin() + 2, SessionRecord::of(1500, nan_strength));
+  const Status whole = write_session_file(p, s);
+  ASSERT_FALSE(whole.ok());
+  EXPECT_NE(whole.error().message().find("record 2: strength: value 0 is not a finite number"),
+            std::string::npos)
+      << whole.error().message();
+  EXPECT_FALSE(fs::exists(p));
+  {
+    auto w = SessionWriter::create(p, s.header);
+    ASSERT_TRUE(w.ok());
+    ASSERT_TRUE(w->append(s.records[0]).ok());
+    ASSERT_TRUE(w->append(s.records[1]).ok());
+    EXPECT_FALSE(w->append(s.records[2]).ok());  // refused: the file stays readable
+    ASSERT_TRUE(w->append(s.records[3]).ok());
+  }
+  const auto back = read_session_file(p);
+  ASSERT_TRUE(back.ok()) << back.error().message();
+  EXPECT_EQ(back->records.size(), 3u);
   fs::remove(p);
 }
 

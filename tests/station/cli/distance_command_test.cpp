@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 
 #include "run_sculpt.h"
 #include "scratch_dir.h"
@@ -72,6 +73,31 @@ TEST_F(DistanceCommandTest, BadInputIsOneLineNamingItAndNoOutput) {
   const CommandResult no_out = run_sculpt("distance " + path("in.nrrd"));
   EXPECT_EQ(no_out.exit_code, 1);
   EXPECT_EQ(line_count(no_out.err), 1) << no_out.err;
+}
+
+TEST_F(DistanceCommandTest, AVolumeWithoutASurfaceIsRefusedNotWrittenAsInfinity) {
+  // Before: an empty or solid block wrote a field of +-infinity, exit 0.
+  const std::pair<const char*, uint8_t> blocks[] = {{"holds no material", 0},
+                                                    {"solid throughout", 255}};
+  for (const auto& [what, density] : blocks) {
+    ASSERT_TRUE(
+        core::write_nrrd(path("block.nrrd"), core::DenseGrid<uint8_t>(glm::ivec3(12), density))
+            .ok());
+    for (const std::string command :
+         {"distance", "offset --by 2 --sdf", "close --radius 2 --sdf"}) {
+      const CommandResult r =
+          run_sculpt(command + " " + path("block.nrrd") + " -o " + path("d.nrrd"));
+      EXPECT_EQ(r.exit_code, 1) << command;
+      EXPECT_EQ(line_count(r.err), 1) << r.err;
+      EXPECT_NE(r.err.find("block.nrrd: " + std::string(what)), std::string::npos) << r.err;
+      EXPECT_FALSE(fs::exists(path("d.nrrd"))) << command;
+    }
+    // As density, offsetting an empty or solid block is that block.
+    const CommandResult density_out =
+        run_sculpt("offset --by 2 " + path("block.nrrd") + " -o " + path("d.nrrd"));
+    EXPECT_EQ(density_out.exit_code, 0) << density_out.err;
+    fs::remove(path("d.nrrd"));
+  }
 }
 
 TEST_F(DistanceCommandTest, TablePrintsEveryRow) {

@@ -1,7 +1,10 @@
 #include "sculpt/station/project/project_file.h"
 
+#include <cmath>
 #include <fstream>
 #include <iterator>
+#include <limits>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -210,6 +213,26 @@ TEST_F(ProjectFile, AFailedSaveLeavesTheOldFileWhole) {
   for (const auto& e : std::filesystem::directory_iterator(dir_.path()))
     files.push_back(e.path());
   EXPECT_EQ(files.size(), 1u);  // no temporary left behind
+}
+
+TEST_F(ProjectFile, ASaveThatWouldNotLoadBackIsRefusedAndTheOldFileKept) {
+  const auto path = dir_.path() / "e.sculpt";
+  ASSERT_TRUE(save_project(path, volume_, settings(), nullptr, {}).ok());
+  const std::vector<char> before = bytes_of(path);
+  StationSettings nan_strength = settings();
+  nan_strength.strength = std::nanf("");
+  ProjectView far_camera;
+  far_camera.camera_distance = std::numeric_limits<float>::infinity();
+  const std::pair<Status, std::string> saves[] = {
+      {save_project(path, volume_, nan_strength, nullptr, {}), "settings.strength"},
+      {save_project(path, volume_, settings(), nullptr, far_camera), "view.camera_distance"}};
+  for (const auto& [st, field] : saves) {
+    ASSERT_FALSE(st.ok()) << field;
+    EXPECT_NE(st.error().message().find("e.sculpt: " + field), std::string::npos)
+        << st.error().message();
+    EXPECT_NE(st.error().message().find("would not load back"), std::string::npos);
+  }
+  EXPECT_EQ(bytes_of(path), before);
 }
 
 }  // namespace

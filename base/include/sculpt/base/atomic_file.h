@@ -2,7 +2,9 @@
 // Output files that appear whole or not at all (DESIGN.md §7): bytes go to a
 // temporary file beside the target, which is renamed over it on commit(). A
 // writer destroyed without commit() removes the temporary, so a failure or a
-// crash never leaves a partial output under the user's name.
+// crash never leaves a partial output under the user's name. The temporary
+// is TARGET.tmp-PID-XXXXXX; one that a killed process left (no handler runs
+// on SIGKILL) is removed by the next writer of the same target.
 
 #include <cstdio>
 #include <filesystem>

@@ -20,6 +20,10 @@ struct SurfaceVolume {
 /// Reads a uint8 or float32 NRRD; errors name the file.
 Result<SurfaceVolume> read_surface_nrrd(const std::filesystem::path& path);
 
+/// A distance field needs a surface: an error naming `path` when the volume
+/// is empty or solid throughout (its distance would be infinite everywhere).
+Status require_surface(const SurfaceVolume& volume, const std::filesystem::path& path);
+
 /// uint8 density of a signed distance field (analytic_shapes.h ramp).
 DenseGrid<uint8_t> density_from_distance_field(const DenseGrid<float>& distance);
 

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "sculpt/base/result.h"
 #include "sculpt/sim/session/session.h"
 
 namespace sculpt::sim {
@@ -23,5 +24,9 @@ inline constexpr float kMaxSpacing = 16.0f;
 
 /// What is wrong with `c`, in a few words; nothing when it is in range.
 std::optional<std::string> command_problem(const Command& c);
+
+/// The writers' side: a command record the readers would refuse is an error
+/// naming `name` and the record's `index`, so a file we write always opens.
+Status check_writable(const SessionRecord& r, const std::string& name, int64_t index);
 
 }  // namespace sculpt::sim
