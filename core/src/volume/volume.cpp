@@ -225,6 +225,15 @@ DenseGrid<uint8_t> Volume::to_dense(int level) const {
   return out;
 }
 
+void Volume::replace_brick(glm::ivec3 b, Brick brick) {
+  const size_t i = brick_index(b);
+  bricks_[i] = std::move(brick);
+  ++versions_[i];
+  // Its decoded copy among the recent bricks is no longer its voxels.
+  for (int64_t& recent : recent_brick_)
+    if (recent == static_cast<int64_t>(i)) recent = -1;
+}
+
 void Volume::store_brick(glm::ivec3 b, std::span<uint8_t> voxels) {
   const size_t i = brick_index(b);
   pad_outside(b, voxels);

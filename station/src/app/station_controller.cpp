@@ -391,17 +391,28 @@ void StationController::pointer_up(int64_t now_ns) {
 
 int64_t StationController::update_mesh(int64_t now_ns) {
   const int64_t meshed = loop_.update_mesh();
+  surface_submitted(++own_change_);
+  surface_ready(own_change_, now_ns);
+  return meshed;
+}
+
+void StationController::surface_submitted(uint64_t change) {
   // Something to autosave: new dabs, or the sheet moved under the device.
   if (!unmeshed_dab_t_ns_.empty() || loop_.sheet().version() != sheet_version_) ++generation_;
   sheet_version_ = loop_.sheet().version();
-  for (int64_t t : unmeshed_dab_t_ns_) {
-    const double us = static_cast<double>(now_ns - t) * 1e-3;
+  for (int64_t t : unmeshed_dab_t_ns_)
+    meshing_dabs_.push_back({change, t});
+  unmeshed_dab_t_ns_.clear();
+}
+
+void StationController::surface_ready(uint64_t change, int64_t ready_ns) {
+  while (!meshing_dabs_.empty() && meshing_dabs_.front().change <= change) {
+    const double us = static_cast<double>(ready_ns - meshing_dabs_.front().report_t_ns) * 1e-3;
+    meshing_dabs_.pop_front();
     recent_latency_us_.push_back(us);
     if (recent_latency_us_.size() > kRecentDabs) recent_latency_us_.pop_front();
     all_latency_us_.add(us);
   }
-  unmeshed_dab_t_ns_.clear();
-  return meshed;
 }
 
 LatencyStats StationController::recent_latency() const {

@@ -86,6 +86,7 @@ void StationLoop::new_volume(glm::ivec3 dims, uint8_t fill, int clay_margin) {
   sculptor_.reset();
   volume_ = clay_margin > 0 ? std::make_unique<core::Volume>(clay_block(dims, clay_margin))
                             : std::make_unique<core::Volume>(dims, fill);
+  ++volume_generation_;
   sculptor_ = std::make_unique<core::Sculptor>(*volume_);
   apply_tool();
   sculptor_->set_mirror(settings_.mirror);
@@ -98,6 +99,7 @@ void StationLoop::restore(std::unique_ptr<core::Volume> volume, const StationSet
   if (pressed_) release();
   sculptor_.reset();
   volume_ = std::move(volume);
+  ++volume_generation_;
   sculptor_ = std::make_unique<core::Sculptor>(*volume_);
   settings_ = settings;
   settings_.custom_tool = custom_tool.has_value();

@@ -24,6 +24,7 @@
 #include "sculpt/station/app/station_controller.h"
 #include "sculpt/station/render/software_renderer.h"
 #include "sculpt/station/view/mesh_raycast.h"
+#include "sculpt/station/view/surface_mesher.h"
 #include "sculpt/station/view/volume_raycast.h"
 #include "sculpt/station/window/keymap.h"
 #include "window/gl_context.h"
@@ -62,6 +63,7 @@ extern "C" void on_scroll(GLFWwindow* w, double dx, double dy) {
 // Frame and latency figures for --stats.
 struct RunFigures {
   LatencyHistogram frame_us;  // fixed memory: the window runs for hours
+  MesherCounters mesher;
   double frames_total_ms = 0;
   int64_t uploads = 0;
   int64_t triangles = 0;  // drawn in the last frame
@@ -89,6 +91,16 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
       {"frame_ms_p90", at(0.9)},
       {"frame_ms_p99", at(0.99)},
       {"brick_uploads", f.uploads},
+      {"mesher",
+       {{"changes", f.mesher.submits},
+        {"bricks_submitted", f.mesher.bricks_submitted},
+        {"bricks_coalesced", f.mesher.bricks_coalesced},
+        {"pending_bricks_max", f.mesher.pending_bricks_max},
+        {"updates", f.mesher.updates},
+        {"bricks_meshed", f.mesher.bricks_meshed},
+        {"update_ms_p50", f.mesher.update_us.quantile_us(0.5) * 1e-3},
+        {"update_ms_p99", f.mesher.update_us.quantile_us(0.99) * 1e-3},
+        {"update_ms_max", f.mesher.update_us.max_us() * 1e-3}}},
       {"mean_ms",
        {{"input_and_sculpt", f.input_ms / n},
         {"mesh", f.mesh_ms / n},
@@ -219,8 +231,11 @@ int run_window(const WindowOptions& o) {
   StationPanel panel(controller);
 
   // The surface drawn: each brick at the level its distance calls for,
-  // crack-free where levels meet, cached per brick and level.
-  core::MixedLevelMeshCache surface;
+  // crack-free where levels meet, meshed on the mesher's thread from a
+  // mirror of the volume; the frame hands over what changed and draws
+  // what is ready, never waiting for it.
+  SurfaceMesher mesher;
+  SurfaceSnapshot surface;
   RunFigures figures;
   FrameFigures frame_figures;
   hal::InputFrame input;
@@ -332,9 +347,15 @@ int run_window(const WindowOptions& o) {
     controller.lod().set_policy(policy);
     const std::vector<int> levels =
         controller.lod().select(volume.brick_grid(), volume.brick_edge(), camera.eye());
-    surface.update(volume, levels);
-    // Latency: from each dab's report to its surface ready to draw.
-    controller.update_mesh(hal::monotonic_ns());
+    controller.surface_submitted(
+        mesher.submit(volume, controller.loop().volume_generation(), levels));
+    // A picture of a given frame shows everything sculpted before it.
+    if (!o.screenshot.empty() && o.frames > 0 && frame == o.frames - 1) mesher.wait_until_meshed();
+    if (auto delta = mesher.take()) {
+      // Latency: from each dab's report to its surface ready to draw.
+      controller.surface_ready(delta->change, delta->ready_ns);
+      surface.apply(std::move(*delta));
+    }
     const int64_t t_upload = hal::monotonic_ns();
     figures.mesh_ms += static_cast<double>(t_upload - t_mesh) * 1e-6;
     (*renderer)->set_distance_normals(controller.distance_normals());
@@ -387,6 +408,11 @@ int run_window(const WindowOptions& o) {
     frame_figures.fps = frame_figures.frame_ms > 0 ? 1000.0 / frame_figures.frame_ms : 0;
     last_frame = now;
   }
+
+  // The dabs of the last frames count in the latency figures too.
+  mesher.wait_until_meshed();
+  if (auto delta = mesher.take()) controller.surface_ready(delta->change, delta->ready_ns);
+  figures.mesher = mesher.counters();
 
   g_pointer = nullptr;
   ImGui_ImplOpenGL3_Shutdown();

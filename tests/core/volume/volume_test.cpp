@@ -142,6 +142,29 @@ TEST(Volume, RecentlyStoredBricksReadBackAsTheirCoefficientsDecode) {
   }
 }
 
+TEST(Volume, AReplacedBrickReadsAsTheOriginalsAndMovesItsVersion) {
+  // A mirror (the station's mesher) follows the original brick by brick.
+  const VolumeOptions options{.brick_edge = 16, .levels = 4};
+  Volume original = Volume::from_dense(sphere_density(40), options);
+  Volume mirror = original;
+  DenseGrid<uint8_t> patch(glm::ivec3(6), 90);
+  original.write({14, 14, 14}, patch);  // bricks (0..1)^3, now among the recent ones
+  std::vector<uint8_t> stale(16 * 16 * 16);
+  mirror.decode_brick({1, 1, 1}, stale);
+  for (glm::ivec3 b : original.take_dirty_bricks()) {
+    const uint64_t before = mirror.brick_version(b);
+    mirror.replace_brick(b, original.brick(b));
+    EXPECT_GT(mirror.brick_version(b), before);
+  }
+  EXPECT_EQ(mirror.content_hash(), original.content_hash());
+  std::vector<uint8_t> want(stale.size()), got(stale.size());
+  original.decode_brick({1, 1, 1}, want);
+  mirror.decode_brick({1, 1, 1}, got);
+  EXPECT_EQ(got, want);
+  EXPECT_NE(got, stale);
+  EXPECT_TRUE(mirror.take_dirty_bricks().empty());  // a mirror has nothing to re-mesh for us
+}
+
 TEST(Volume, WriteReencodesOnlyTheTouchedBricks) {
   Volume v({100, 100, 100}, 0, small_bricks(32, 5));
   // 10^3 voxels at (28..38) straddle the brick edge at 32 on every axis: 8 bricks.

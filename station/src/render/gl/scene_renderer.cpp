@@ -102,42 +102,32 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create() {
 }
 
 SurfaceSync SceneRenderer::sync_surface(const core::Volume& volume,
-                                        const core::MixedLevelMeshCache& surface) {
+                                        const SurfaceSnapshot& surface) {
   SurfaceSync sync;
   visible_.clear();
-  const glm::ivec3 g = volume.brick_grid();
-  size_t i = 0;
-  for (int z = 0; z < g.z; ++z)
-    for (int y = 0; y < g.y; ++y)
-      for (int x = 0; x < g.x; ++x, ++i) {
-        const glm::ivec3 b(x, y, z);
-        const core::BrickMesh& m = surface.brick_mesh(b);
-        if (m.empty()) {
-          if (auto it = slots_.find(i); it != slots_.end()) slots_.erase(it);
-          continue;
-        }
-        Slot& slot = slots_[i];
-        const uint64_t stamp = surface.brick_mesh_version(b);
-        if (slot.stamp != stamp) {
-          slot.mesh.upload(m.mesh);
-          slot.brick = b;
-          slot.distance_normals = false;
-          slot.stamp = stamp;
-          ++sync.uploaded;
-        }
-        visible_.push_back(&slot.mesh);
-        sync.triangles += slot.mesh.triangles();
-      }
-  if (distance_normals_) refine_normals(volume, surface);
+  const auto& bricks = surface.bricks();
+  std::erase_if(slots_, [&](const auto& slot) { return !bricks.contains(slot.first); });
+  for (const auto& [index, b] : bricks) {
+    Slot& slot = slots_[static_cast<uint64_t>(index)];
+    if (slot.stamp != b.version) {
+      slot.mesh.upload(b.mesh->mesh);
+      slot.source = b.mesh;
+      slot.distance_normals = false;
+      slot.stamp = b.version;
+      ++sync.uploaded;
+    }
+    visible_.push_back(&slot.mesh);
+    sync.triangles += slot.mesh.triangles();
+  }
+  if (distance_normals_) refine_normals(volume);
   return sync;
 }
 
-void SceneRenderer::refine_normals(const core::Volume& volume,
-                                   const core::MixedLevelMeshCache& surface) {
+void SceneRenderer::refine_normals(const core::Volume& volume) {
   const auto start = std::chrono::steady_clock::now();
   for (auto& [index, slot] : slots_) {
     if (slot.distance_normals) continue;
-    core::Mesh smooth = surface.brick_mesh(slot.brick).mesh;
+    core::Mesh smooth = slot.source->mesh;
     core::set_normals_from_surface_distance(volume, smooth);
     slot.mesh.upload(smooth);
     slot.distance_normals = true;

@@ -17,10 +17,11 @@
 
 #include "render/gl/gpu_mesh.h"
 #include "render/gl/shader_program.h"
+#include "sculpt/core/mesh/brick_mesh.h"
 #include "sculpt/core/mesh/mesh_cache.h"
-#include "sculpt/core/mesh/mixed_level_mesh.h"
 #include "sculpt/core/sculpt/sculptor.h"
 #include "sculpt/core/tool/tool.h"
+#include "sculpt/station/view/surface_mesher.h"
 
 namespace sculpt::station::gl {
 
@@ -50,7 +51,8 @@ class SceneRenderer {
   static Result<std::unique_ptr<SceneRenderer>> create();
 
   /// Sends the brick meshes re-made since the last call to the GPU.
-  SurfaceSync sync_surface(const core::Volume& volume, const core::MixedLevelMeshCache& surface);
+  /// `volume` is read for distance normals only.
+  SurfaceSync sync_surface(const core::Volume& volume, const SurfaceSnapshot& surface);
   /// Normals of the brick meshes: the density gradient (false, the mesher's)
   /// or the gradient of the distance to the sub-voxel surface (true;
   /// smoother). A changed brick is first drawn with the mesher's normals and
@@ -72,12 +74,12 @@ class SceneRenderer {
   struct Slot {
     uint64_t stamp = ~uint64_t{0};
     GpuMesh mesh;
-    glm::ivec3 brick{0};
-    bool distance_normals = false;  // re-shaded since the last upload
+    std::shared_ptr<const core::BrickMesh> source;  // what was uploaded
+    bool distance_normals = false;                  // re-shaded since the last upload
   };
   // Re-shades slots with the distance field's normals, in the slots' order,
   // for at most kRefineBudgetNs.
-  void refine_normals(const core::Volume& volume, const core::MixedLevelMeshCache& surface);
+  void refine_normals(const core::Volume& volume);
   void draw_lines(const std::vector<glm::vec3>& points, glm::vec4 colour, const glm::mat4& mvp);
 
   ShaderProgram lit_;

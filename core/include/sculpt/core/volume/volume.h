@@ -109,6 +109,11 @@ class Volume {
   /// `changed` (level-0 volume coordinates): re-encodes only the wavelet
   /// coefficients over that part of the brick. Same stored result.
   void store_brick(glm::ivec3 b, std::span<uint8_t> voxels, const Box& changed);
+  /// Puts a copy of another volume's brick `b` (same brick edge and levels)
+  /// in place of this one's and moves its version on: how a mirror of the
+  /// volume on another thread (the station's mesher) follows the sculpting
+  /// without sharing it. Not marked dirty.
+  void replace_brick(glm::ivec3 b, Brick brick);
   /// Calls `edit(brick_origin, voxels)` on each brick overlapping `region`
   /// with its decoded voxels (edge^3, x fastest; brick_origin is the voxel
   /// index of voxels[0]), then stores it back. The path every sculpting

@@ -181,9 +181,16 @@ class StationController {
   void set_device(const hal::DeviceInfo& info, const std::string& normalizer_text);
 
   // --- after input ------------------------------------------------------
-  /// Re-meshes what changed and notes the latency of every dab made since
-  /// the previous call (report time to mesh ready). Returns bricks meshed.
+  /// Re-meshes what changed (the loop's own mesh, on this thread) and notes
+  /// the latency of every dab made since the previous call (report time to
+  /// mesh ready). Returns bricks meshed.
   int64_t update_mesh(int64_t now_ns);
+  /// The window's way, meshing on another thread (SurfaceMesher): the dabs
+  /// made so far went to the mesher as change `change`...
+  void surface_submitted(uint64_t change);
+  /// ...and the meshes of every change up to `change` were ready at
+  /// `ready_ns`: the latency of their dabs (report to mesh ready).
+  void surface_ready(uint64_t change, int64_t ready_ns);
   /// Latency of the last few hundred dabs, and of all of them.
   LatencyStats recent_latency() const;
   LatencyStats session_latency() const;
@@ -240,6 +247,13 @@ class StationController {
   bool pointer_down_ = false;
   // Dabs not yet meshed: their report times.
   std::vector<int64_t> unmeshed_dab_t_ns_;
+  // Dabs handed to the mesher, waiting for their change's meshes.
+  struct MeshingDab {
+    uint64_t change;
+    int64_t report_t_ns;
+  };
+  std::deque<MeshingDab> meshing_dabs_;
+  uint64_t own_change_ = 0;  // update_mesh()'s change numbers
   std::deque<double> recent_latency_us_;
   LatencyHistogram all_latency_us_;  // fixed memory: the station runs for hours
   // Report rate: the reader's sample count when the current second began.

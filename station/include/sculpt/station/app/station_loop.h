@@ -80,6 +80,9 @@ class StationLoop {
   int64_t update_mesh();
 
   const core::Volume& volume() const { return *volume_; }
+  /// Moves on each time the volume is replaced (a new block, a project or a
+  /// session start restored): a mirror of it starts again from a copy.
+  uint64_t volume_generation() const { return volume_generation_; }
   const core::MeshCache& mesh() const { return mesh_; }
   const hal::ToolPose& pose() const { return integrator_.pose(); }
   const StationSettings& settings() const { return settings_; }
@@ -105,6 +108,7 @@ class StationLoop {
 
   Options options_;
   std::unique_ptr<core::Volume> volume_;
+  uint64_t volume_generation_ = 0;
   std::unique_ptr<core::Sculptor> sculptor_;
   core::Tool tool_;  // what the sculptor holds, kept for drawing
   core::MeshCache mesh_;

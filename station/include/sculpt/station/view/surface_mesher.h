@@ -1,0 +1,135 @@
+#pragma once
+// The surface the window draws, meshed on a thread of its own, so that a big
+// dab's re-meshing (dozens of bricks) never stalls the frame that sculpts or
+// the frame that draws.
+//
+//   sculpting thread --submit()--> [pending bricks] --> mesher thread
+//   render thread    <--take()---- [meshes ready]  <--/
+//
+// The mesher owns a mirror of the volume and a MixedLevelMeshCache over it.
+// submit() copies the bricks the sculpting stored since the previous call
+// (compared by Volume::brick_version) into a pending set and returns at
+// once: it never waits for the mesher. A brick submitted again before the
+// mesher took it replaces its older contents (counted as coalesced), so the
+// pending set is bounded by the volume's brick count and nothing the user
+// sculpted is ever lost, only intermediate states nobody would have seen.
+// take() hands the render thread the brick meshes made since its previous
+// call; it never waits either.
+//
+// Thread safety: submit() from one thread (the one that owns the volume),
+// take() from one thread (the renderer's); both may run while the mesher
+// works.
+
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "sculpt/base/latency_histogram.h"
+#include "sculpt/core/mesh/brick_mesh.h"
+#include "sculpt/core/volume/volume.h"
+
+namespace sculpt::station {
+
+/// One brick's mesh as the mesher published it.
+struct BrickSurface {
+  int64_t index = 0;  ///< brick order: (b.z * grid.y + b.y) * grid.x + b.x
+  glm::ivec3 brick{0};
+  int level = 0;
+  uint64_t version = 0;                         ///< moves on each time the brick's mesh is remade
+  std::shared_ptr<const core::BrickMesh> mesh;  ///< never null
+};
+
+/// What changed in the surface since the previous take().
+struct SurfaceDelta {
+  /// Everything before is gone (a new volume): the bricks listed are all.
+  bool reset = false;
+  std::vector<BrickSurface> bricks;
+  uint64_t change = 0;   ///< the newest submitted change these meshes include
+  int64_t ready_ns = 0;  ///< hal::monotonic_ns() when they were ready
+};
+
+/// The render thread's picture of the surface: the newest mesh of every
+/// brick that has one, kept up to date with the mesher's deltas.
+class SurfaceSnapshot {
+ public:
+  /// Applies a delta; returns the bricks whose mesh changed.
+  int64_t apply(SurfaceDelta delta);
+  const std::unordered_map<int64_t, BrickSurface>& bricks() const { return bricks_; }
+  int64_t triangle_count() const;
+  /// Bumped by every apply() that changed something.
+  uint64_t version() const { return version_; }
+
+ private:
+  std::unordered_map<int64_t, BrickSurface> bricks_;  // by brick index
+  uint64_t version_ = 0;
+};
+
+struct MesherCounters {
+  int64_t submits = 0;             ///< changes handed over
+  int64_t bricks_submitted = 0;    ///< brick copies handed over
+  int64_t bricks_coalesced = 0;    ///< replaced by a newer copy before meshing
+  int64_t updates = 0;             ///< mesh updates run
+  int64_t bricks_meshed = 0;       ///< brick meshes remade
+  int64_t pending_bricks_max = 0;  ///< deepest the pending set got
+  LatencyHistogram update_us;      ///< time of each mesh update
+};
+
+class SurfaceMesher {
+ public:
+  SurfaceMesher();
+  ~SurfaceMesher();
+  SurfaceMesher(const SurfaceMesher&) = delete;
+  SurfaceMesher& operator=(const SurfaceMesher&) = delete;
+
+  /// Hands over what changed in `volume` since the previous call (all of it
+  /// when `generation` differs: a replaced volume) and the level to draw
+  /// each brick at (brick order). Returns the change's number (increasing);
+  /// returns the previous number and does nothing when neither bricks nor
+  /// levels changed.
+  uint64_t submit(const core::Volume& volume, uint64_t generation, const std::vector<int>& levels);
+
+  /// The meshes made since the previous call; nothing when none.
+  std::optional<SurfaceDelta> take();
+
+  /// Waits until every submitted change is meshed and ready to take (tests,
+  /// a screenshot of a given frame, the end of a run).
+  void wait_until_meshed();
+
+  MesherCounters counters() const;
+
+ private:
+  struct Pending {
+    std::optional<core::Volume> reset;                // a whole new volume
+    std::unordered_map<int64_t, core::Brick> bricks;  // by brick index
+    std::vector<int> levels;
+    uint64_t change = 0;
+  };
+  void run();
+  void publish(SurfaceDelta delta);
+
+  // Sculpting side only.
+  uint64_t generation_ = ~uint64_t{0};
+  std::vector<uint64_t> sent_versions_;
+  std::vector<int> sent_levels_;
+  uint64_t change_ = 0;
+
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;    // the mesher: work or stop
+  std::condition_variable meshed_;  // wait_until_meshed()
+  Pending pending_;
+  bool has_pending_ = false;
+  bool busy_ = false;
+  bool stop_ = false;
+  std::optional<SurfaceDelta> ready_;
+  MesherCounters counters_;
+  std::thread thread_;
+};
+
+}  // namespace sculpt::station

@@ -1,0 +1,183 @@
+#include "sculpt/station/view/surface_mesher.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "sculpt/core/mesh/mixed_level_mesh.h"
+#include "sculpt/hal/types/clock.h"
+
+namespace sculpt::station {
+
+SurfaceMesher::SurfaceMesher() : thread_([this] { run(); }) {}
+
+SurfaceMesher::~SurfaceMesher() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+uint64_t SurfaceMesher::submit(const core::Volume& volume, uint64_t generation,
+                               const std::vector<int>& levels) {
+  const bool reset = generation != generation_;
+  const glm::ivec3 grid = volume.brick_grid();
+  std::vector<std::pair<int64_t, const core::Brick*>> changed;
+  if (reset) {
+    generation_ = generation;
+    sent_versions_.assign(static_cast<size_t>(volume.brick_count()), 0);
+  }
+  for (int64_t i = 0; i < volume.brick_count(); ++i) {
+    const glm::ivec3 b = core::grid_position(i, grid);
+    uint64_t& sent = sent_versions_[static_cast<size_t>(i)];
+    if (!reset && sent == volume.brick_version(b)) continue;
+    sent = volume.brick_version(b);
+    if (!reset) changed.emplace_back(i, &volume.brick(b));
+  }
+  if (!reset && changed.empty() && levels == sent_levels_) return change_;
+  sent_levels_ = levels;
+  // Copies made before taking the lock: the mesher is never held up by them.
+  std::optional<core::Volume> whole;
+  if (reset) whole.emplace(volume);
+  std::vector<std::pair<int64_t, core::Brick>> copies;
+  copies.reserve(changed.size());
+  for (const auto& [i, brick] : changed)
+    copies.emplace_back(i, *brick);
+  {
+    std::lock_guard lock(mutex_);
+    Pending& p = pending_;
+    if (whole) {
+      p.reset = std::move(whole);
+      p.bricks.clear();  // the copy holds them
+    }
+    for (auto& [i, brick] : copies) {
+      auto [it, added] = p.bricks.insert_or_assign(i, std::move(brick));
+      if (!added) ++counters_.bricks_coalesced;
+    }
+    p.levels = levels;
+    p.change = ++change_;
+    has_pending_ = true;
+    ++counters_.submits;
+    counters_.bricks_submitted += static_cast<int64_t>(copies.size());
+    counters_.pending_bricks_max =
+        std::max(counters_.pending_bricks_max, static_cast<int64_t>(p.bricks.size()));
+  }
+  wake_.notify_one();
+  return change_;
+}
+
+int64_t SurfaceSnapshot::apply(SurfaceDelta delta) {
+  if (delta.reset) bricks_.clear();
+  int64_t changed = 0;
+  for (BrickSurface& b : delta.bricks) {
+    ++changed;
+    if (b.mesh->empty()) {
+      bricks_.erase(b.index);
+    } else {
+      bricks_.insert_or_assign(b.index, std::move(b));
+    }
+  }
+  if (changed > 0 || delta.reset) ++version_;
+  return changed;
+}
+
+int64_t SurfaceSnapshot::triangle_count() const {
+  int64_t n = 0;
+  for (const auto& [index, b] : bricks_)
+    n += static_cast<int64_t>(b.mesh->mesh.triangles.size());
+  return n;
+}
+
+std::optional<SurfaceDelta> SurfaceMesher::take() {
+  std::lock_guard lock(mutex_);
+  return std::exchange(ready_, std::nullopt);
+}
+
+void SurfaceMesher::wait_until_meshed() {
+  std::unique_lock lock(mutex_);
+  meshed_.wait(lock, [&] { return !has_pending_ && !busy_; });
+}
+
+MesherCounters SurfaceMesher::counters() const {
+  std::lock_guard lock(mutex_);
+  return counters_;
+}
+
+void SurfaceMesher::publish(SurfaceDelta delta) {
+  std::lock_guard lock(mutex_);
+  if (!ready_ || delta.reset) {
+    ready_ = std::move(delta);
+    return;
+  }
+  // Not taken yet: a newer mesh of a brick replaces the older one.
+  SurfaceDelta& merged = *ready_;
+  std::unordered_map<int64_t, size_t> at;
+  for (size_t k = 0; k < merged.bricks.size(); ++k)
+    at[merged.bricks[k].index] = k;
+  for (BrickSurface& b : delta.bricks) {
+    if (auto it = at.find(b.index); it != at.end()) {
+      merged.bricks[it->second] = std::move(b);
+    } else {
+      merged.bricks.push_back(std::move(b));
+    }
+  }
+  merged.change = delta.change;
+  merged.ready_ns = delta.ready_ns;
+}
+
+void SurfaceMesher::run() {
+  std::optional<core::Volume> mirror;
+  core::MixedLevelMeshCache cache;
+  std::vector<uint64_t> published;  // mesh version per brick as last published
+  for (;;) {
+    Pending work;
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [&] { return stop_ || has_pending_; });
+      if (stop_) return;
+      work = std::move(pending_);
+      pending_ = Pending{};
+      has_pending_ = false;
+      busy_ = true;
+    }
+    const int64_t start = hal::monotonic_ns();
+    const bool reset = work.reset.has_value();
+    if (reset) {
+      mirror = std::move(work.reset);
+      cache = core::MixedLevelMeshCache();
+      published.assign(static_cast<size_t>(mirror->brick_count()), 0);
+    }
+    const glm::ivec3 grid = mirror->brick_grid();
+    for (auto& [i, brick] : work.bricks)
+      mirror->replace_brick(core::grid_position(i, grid), std::move(brick));
+    const core::MeshUpdate update = cache.update(*mirror, work.levels);
+
+    SurfaceDelta delta;
+    delta.reset = reset;
+    delta.change = work.change;
+    for (int64_t i = 0; i < mirror->brick_count(); ++i) {
+      const glm::ivec3 b = core::grid_position(i, grid);
+      const uint64_t version = cache.brick_mesh_version(b);
+      if (!reset && published[static_cast<size_t>(i)] == version) continue;
+      published[static_cast<size_t>(i)] = version;
+      const core::BrickMesh& mesh = cache.brick_mesh(b);
+      if (reset && mesh.empty()) continue;
+      delta.bricks.push_back(
+          {i, b, cache.brick_level(b), version, std::make_shared<const core::BrickMesh>(mesh)});
+    }
+    const int64_t end = hal::monotonic_ns();
+    delta.ready_ns = end;
+    publish(std::move(delta));
+    {
+      std::lock_guard lock(mutex_);
+      busy_ = false;
+      ++counters_.updates;
+      counters_.bricks_meshed += update.bricks_meshed;
+      counters_.update_us.add(static_cast<double>(end - start) * 1e-3);
+    }
+    meshed_.notify_all();
+  }
+}
+
+}  // namespace sculpt::station

@@ -1,0 +1,163 @@
+#include "sculpt/station/view/surface_mesher.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <memory>
+#include <random>
+#include <thread>
+#include <vector>
+
+#include "sculpt/core/mesh/mixed_level_mesh.h"
+#include "sculpt/core/sculpt/sculptor.h"
+#include "sculpt/core/shapes/analytic_shapes.h"
+#include "sculpt/core/tool/tool.h"
+
+namespace sculpt::station {
+namespace {
+
+// Per-brick levels that vary across the grid, as a camera's LOD gives them.
+std::vector<int> levels_for(const core::Volume& v, int shift) {
+  std::vector<int> levels(static_cast<size_t>(v.brick_count()));
+  for (size_t i = 0; i < levels.size(); ++i)
+    levels[i] = static_cast<int>((i + static_cast<size_t>(shift)) % 3);
+  return levels;
+}
+
+// The surface a snapshot holds equals the one meshed from scratch: every
+// brick's mesh, brick by brick.
+void expect_same_surface(const SurfaceSnapshot& snapshot, const core::Volume& volume,
+                         const std::vector<int>& levels) {
+  core::MixedLevelMeshCache scratch;
+  scratch.update(volume, levels);
+  int64_t non_empty = 0;
+  for (int64_t i = 0; i < volume.brick_count(); ++i) {
+    const glm::ivec3 b = core::grid_position(i, volume.brick_grid());
+    const core::BrickMesh& want = scratch.brick_mesh(b);
+    const auto it = snapshot.bricks().find(i);
+    if (want.empty()) {
+      EXPECT_TRUE(it == snapshot.bricks().end()) << "brick " << i;
+      continue;
+    }
+    ++non_empty;
+    ASSERT_TRUE(it != snapshot.bricks().end()) << "brick " << i;
+    EXPECT_EQ(it->second.level, levels[static_cast<size_t>(i)]);
+    EXPECT_EQ(it->second.mesh->mesh, want.mesh) << "brick " << i;
+  }
+  EXPECT_GT(non_empty, 8);
+  EXPECT_EQ(static_cast<int64_t>(snapshot.bricks().size()), non_empty);
+}
+
+class Sculpting {
+ public:
+  explicit Sculpting(int n, uint32_t seed)
+      : volume_(std::make_unique<core::Volume>(core::Volume::from_dense(
+            core::sphere_density(n), core::VolumeOptions{.brick_edge = 8, .levels = 3}))),
+        random_(seed) {
+    sculptor_ = std::make_unique<core::Sculptor>(*volume_);
+    sculptor_->set_tool(core::make_sphere_tool(3.0f));
+  }
+  void dab() {
+    std::uniform_real_distribution<float> at(8.0f, static_cast<float>(volume_->dims().x) - 8.0f);
+    core::Dab d;
+    d.position_vox = {at(random_), at(random_), at(random_)};
+    d.mode = random_() % 2 ? core::SculptMode::kAdd : core::SculptMode::kSubtract;
+    sculptor_->dab(d);
+  }
+  void replace(int n) {
+    sculptor_.reset();
+    volume_ = std::make_unique<core::Volume>(core::Volume::from_dense(
+        core::sphere_density(n), core::VolumeOptions{.brick_edge = 8, .levels = 3}));
+    sculptor_ = std::make_unique<core::Sculptor>(*volume_);
+    sculptor_->set_tool(core::make_sphere_tool(2.5f));
+    ++generation_;
+  }
+  const core::Volume& volume() const { return *volume_; }
+  uint64_t generation() const { return generation_; }
+
+ private:
+  std::unique_ptr<core::Volume> volume_;
+  std::unique_ptr<core::Sculptor> sculptor_;
+  std::mt19937 random_;
+  uint64_t generation_ = 1;
+};
+
+TEST(SurfaceMesher, DeltasBuildTheSurfaceMeshedFromScratch) {
+  Sculpting s(64, 7);
+  SurfaceMesher mesher;
+  SurfaceSnapshot snapshot;
+  std::vector<int> levels = levels_for(s.volume(), 0);
+  uint64_t last = mesher.submit(s.volume(), s.generation(), levels);
+  for (int step = 0; step < 60; ++step) {
+    for (int d = 0; d < 1 + step % 3; ++d)
+      s.dab();
+    if (step == 5 || step == 12) levels = levels_for(s.volume(), step);  // the camera moved
+    if (step == 20) {  // a project opened: another volume
+      s.replace(48);
+      levels = levels_for(s.volume(), 1);
+    }
+    const uint64_t change = mesher.submit(s.volume(), s.generation(), levels);
+    EXPECT_GE(change, last);
+    last = change;
+    // Meshed before the next change half the time, taken every third step:
+    // deltas not taken yet are merged.
+    if (step % 2 == 0) mesher.wait_until_meshed();
+    if (step % 3 == 0)
+      if (auto delta = mesher.take()) snapshot.apply(std::move(*delta));
+  }
+  mesher.wait_until_meshed();
+  auto delta = mesher.take();
+  ASSERT_TRUE(delta.has_value());
+  EXPECT_EQ(delta->change, last);
+  snapshot.apply(std::move(*delta));
+  expect_same_surface(snapshot, s.volume(), levels);
+  const MesherCounters c = mesher.counters();
+  EXPECT_GT(c.bricks_submitted, 0);
+  EXPECT_LE(c.updates, c.submits);
+  EXPECT_EQ(c.update_us.count(), c.updates);
+}
+
+TEST(SurfaceMesher, NothingChangedIsNoChange) {
+  Sculpting s(48, 3);
+  SurfaceMesher mesher;
+  const std::vector<int> levels = levels_for(s.volume(), 0);
+  const uint64_t first = mesher.submit(s.volume(), s.generation(), levels);
+  EXPECT_EQ(mesher.submit(s.volume(), s.generation(), levels), first);
+  s.dab();
+  EXPECT_EQ(mesher.submit(s.volume(), s.generation(), levels), first + 1);
+  mesher.wait_until_meshed();
+  EXPECT_EQ(mesher.counters().submits, 2);
+}
+
+// Sculpting and drawing threads hammer the mesher as the window does; run
+// under ThreadSanitizer in CI. The end state must still be exact.
+TEST(SurfaceMesher, ConcurrentSubmitAndTakeEndOnTheExactSurface) {
+  Sculpting s(64, 11);
+  SurfaceMesher mesher;
+  const std::vector<int> levels = levels_for(s.volume(), 2);
+  std::atomic<bool> done{false};
+  SurfaceSnapshot snapshot;
+  std::thread drawer([&] {
+    while (!done.load()) {
+      if (auto delta = mesher.take()) snapshot.apply(std::move(*delta));
+      std::this_thread::yield();
+    }
+  });
+  for (int step = 0; step < 150; ++step) {
+    s.dab();
+    mesher.submit(s.volume(), s.generation(), levels);
+  }
+  mesher.wait_until_meshed();
+  done = true;
+  drawer.join();
+  if (auto delta = mesher.take()) snapshot.apply(std::move(*delta));
+  expect_same_surface(snapshot, s.volume(), levels);
+  const MesherCounters c = mesher.counters();
+  EXPECT_LE(c.submits, 151);  // a dab that changed nothing is no change
+  EXPECT_GT(c.submits, 100);
+  EXPECT_LE(c.bricks_coalesced, c.bricks_submitted);
+  EXPECT_LE(c.pending_bricks_max, s.volume().brick_count());  // bounded by the volume
+}
+
+}  // namespace
+}  // namespace sculpt::station
