@@ -12,6 +12,7 @@
 #include "sculpt/core/mesh/marching_cubes.h"
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/mesh/mesh_io.h"
+#include "sculpt/core/volume/material_bounds.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/sim/synth/session_script.h"
 #include "sculpt/station/app/session_start.h"
@@ -37,7 +38,7 @@ constexpr uint16_t kSpaceMouseProduct = 0xc635;
 
 StationController::StationController(ControllerOptions options)
     : options_(std::move(options)), loop_(options_.loop) {
-  camera_.frame(glm::vec3(0.0f), glm::vec3(loop_.volume().dims()));
+  frame_sculpture();
   device_info_ = sim::scripted_device(kSpaceMouseVendor, kSpaceMouseProduct);
   normalizer_text_ = hal::to_text(hal::NormalizerConfig{});
 }
@@ -68,9 +69,8 @@ void StationController::command(const sim::Command& c, int64_t now_ns) {
 void StationController::command_at(const sim::Command& c, int64_t t_ns) {
   const glm::ivec3 dims = loop_.volume().dims();
   loop_.handle(c);
-  // A new block of another size: look at all of it.
-  if (loop_.volume().dims() != dims)
-    camera_.frame(glm::vec3(0.0f), glm::vec3(loop_.volume().dims()));
+  // A new block of another size: look at what is in it.
+  if (loop_.volume().dims() != dims) frame_sculpture();
   recorder_.command(c, t_ns);
   ++generation_;
 }
@@ -107,35 +107,24 @@ void StationController::redo(int64_t now_ns) {
   status_ = loop_.counters().redos > before ? "redone" : "nothing to redo";
 }
 
+void StationController::frame_sculpture() {
+  // The material, not the block around it (a clay slab or a head fills a
+  // fifth of a 256^3 block's view); an empty block is framed whole.
+  const std::optional<core::Box> bounds = core::material_bounds(loop_.volume());
+  if (bounds) {
+    camera_.frame(glm::vec3(bounds->lo), glm::vec3(bounds->hi));
+  } else {
+    camera_.frame(glm::vec3(0.0f), glm::vec3(loop_.volume().dims()));
+  }
+}
+
 bool StationController::use_sculpture_as_tool(int64_t now_ns) {
-  // The bounds of the material: bricks not uniformly empty, then their voxels.
-  const core::Volume& v = loop_.volume();
-  core::Box bricks{glm::ivec3(v.brick_grid()), glm::ivec3(0)};
-  const glm::ivec3 g = v.brick_grid();
-  for (int z = 0; z < g.z; ++z)
-    for (int y = 0; y < g.y; ++y)
-      for (int x = 0; x < g.x; ++x) {
-        const core::Brick& b = v.brick({x, y, z});
-        if (b.is_uniform() && b.uniform_value() == 0) continue;
-        bricks.lo = glm::min(bricks.lo, glm::ivec3(x, y, z));
-        bricks.hi = glm::max(bricks.hi, glm::ivec3(x, y, z) + 1);
-      }
-  if (bricks.empty()) {
+  const std::optional<core::Box> bounds = core::material_bounds(loop_.volume());
+  if (!bounds) {
     status_ = "no material to make a tool of";
     return false;
   }
-  const core::Box region{glm::min(bricks.lo * v.brick_edge(), v.dims()),
-                         glm::min(bricks.hi * v.brick_edge(), v.dims())};
-  const core::DenseGrid<uint8_t> grid = v.read(region);
-  core::Box tight{region.hi, region.lo};
-  for (int z = 0; z < grid.dims().z; ++z)
-    for (int y = 0; y < grid.dims().y; ++y)
-      for (int x = 0; x < grid.dims().x; ++x) {
-        if (grid.at(x, y, z) == 0) continue;
-        const glm::ivec3 p = region.lo + glm::ivec3(x, y, z);
-        tight.lo = glm::min(tight.lo, p);
-        tight.hi = glm::max(tight.hi, p + 1);
-      }
+  const core::Box tight = *bounds;
   const glm::ivec3 size = tight.size();
   if (std::max({size.x, size.y, size.z}) > kMaxToolEdge) {
     status_ = "the sculpture (" + std::to_string(size.x) + "x" + std::to_string(size.y) + "x" +
@@ -231,7 +220,7 @@ bool StationController::perform(Action action, int64_t now_ns) {
       hypertexture(now_ns);
       return true;
     case Action::kFrameView:
-      camera_.frame(glm::vec3(0.0f), glm::vec3(loop_.volume().dims()));
+      frame_sculpture();
       return true;
     case Action::kTurnToolLeft:
     case Action::kTurnToolRight:

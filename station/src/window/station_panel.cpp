@@ -167,7 +167,7 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
       c_.set_distance_normals(smooth);
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("the gradient of the distance to the sub-voxel surface: smoother shading");
-    if (ImGui::Button("Frame the block")) c_.perform(Action::kFrameView, now);
+    if (ImGui::Button("Frame the sculpture")) c_.perform(Action::kFrameView, now);
     tip(Action::kFrameView);
   }
 

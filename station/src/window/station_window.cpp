@@ -178,7 +178,7 @@ int run_window(const WindowOptions& o) {
     auto started = restore_session_start(file, controller.loop());
     if (!started) return started.error();
     if (*started) {
-      controller.camera().frame(glm::vec3(0.0f), glm::vec3(controller.loop().volume().dims()));
+      controller.frame_sculpture();
     }
     *config = *recorded;
     registry = std::make_unique<hal::DeviceRegistry>(std::vector<std::unique_ptr<hal::Backend>>{},

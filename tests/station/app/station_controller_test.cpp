@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "scratch_dir.h"
+#include "sculpt/core/volume/material_bounds.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/sim/session/session_file.h"
 
@@ -31,6 +32,22 @@ void stroke(StationController& c, int64_t& t, float z) {
     c.pointer_move({20.0f + static_cast<float>(i), 52.0f, z}, t += kMs);
   c.pointer_up(t += kMs);
   c.update_mesh(t);
+}
+
+TEST(StationController, TheCameraFramesTheMaterialNotTheBlock) {
+  test::ScratchDir dir;
+  StationController c(small_block(dir));
+  const std::optional<core::Box> clay = core::material_bounds(c.loop().volume());
+  ASSERT_TRUE(clay.has_value());
+  EXPECT_EQ(c.camera().target(), 0.5f * glm::vec3(clay->lo + clay->hi));
+  OrbitCamera whole_block;
+  whole_block.frame(glm::vec3(0.0f), glm::vec3(c.loop().volume().dims()));
+  EXPECT_LT(c.camera().distance(), 0.8f * whole_block.distance());
+  // After orbiting away, the frame action comes back to it.
+  c.camera().orbit(1.0f, 0.3f);
+  c.camera().pan({40.0f, 10.0f}, 800.0f);
+  EXPECT_TRUE(c.perform(Action::kFrameView, 0));
+  EXPECT_EQ(c.camera().target(), 0.5f * glm::vec3(clay->lo + clay->hi));
 }
 
 TEST(StationController, SwitchesToolsModesAndSizes) {

@@ -127,6 +127,9 @@ class StationController {
   /// The material's bounding box becomes the tool (false, with the reason
   /// in status(), when there is no material or it is too big for a tool).
   bool use_sculpture_as_tool(int64_t now_ns);
+  /// Points the camera at the material (its bounding box), as "frame
+  /// selected" does; an empty block is framed whole. Not recorded.
+  void frame_sculpture();
   /// Bakes a hypertexture skin (distance-field noise, Jones & Satherley
   /// §4.3) into the surface around the tool, over the tool's size.
   void hypertexture(int64_t now_ns);
