@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "mesh/march_cells.h"
+#include "sculpt/core/util/parallel_for.h"
 
 namespace sculpt::core {
 namespace {
@@ -32,10 +33,24 @@ bool MixedLevelMeshCache::in_grid(glm::ivec3 b) const {
 
 const MixedLevelMeshCache::Decoded& MixedLevelMeshCache::decoded(glm::ivec3 b, int k) {
   const uint64_t key = static_cast<uint64_t>(index(b)) * 8 + static_cast<uint64_t>(k);
-  Decoded& d = decoded_[key];
   const uint64_t version = volume_->brick_version(b);
   const int m = edge_ >> k;
   const size_t n = static_cast<size_t>(m) * m * m;
+  if (frozen_) {
+    // Bricks meshed in parallel read what update() decoded for them; the
+    // map is not changed while they run. A read that was not foreseen is
+    // decoded into this thread's scratch (correct, only slower: counted).
+    const auto it = decoded_.find(key);
+    if (it != decoded_.end() && it->second.version == version && it->second.voxels.size() == n)
+      return it->second;
+    thread_local Decoded scratch;
+    scratch.voxels.resize(n);
+    volume_->decode_brick(b, scratch.voxels, k);
+    scratch.version = version;
+    unforeseen_decodes_.add();
+    return scratch;
+  }
+  Decoded& d = decoded_[key];
   if (d.voxels.size() != n || d.version != version) {
     d.voxels.resize(n);
     volume_->decode_brick(b, d.voxels, k);
@@ -124,18 +139,18 @@ int MixedLevelMeshCache::coarsest_level_at(glm::ivec3 x2) const {
   return levels_at(x2).y;
 }
 
-void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb) {
+void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<float>& block) {
   const int k = cb.level;
   const int m = edge_ >> k, s = 1 << k;
   const glm::ivec3 origin = b * m;
   const glm::ivec3 ld = volume_->level_dims(k);
   const int side = m + 3;
-  block_.assign(static_cast<size_t>(side) * side * side, 0.0f);
+  block.assign(static_cast<size_t>(side) * side * side, 0.0f);
   // Plain level-k voxels, row by row, a brick's run at a time.
   for (int z = -1; z <= m + 1; ++z)
     for (int y = -1; y <= m + 1; ++y) {
       const glm::ivec3 p0 = origin + glm::ivec3(-1, y, z);
-      float* row = &block_[(static_cast<size_t>(z + 1) * side + (y + 1)) * side];
+      float* row = &block[(static_cast<size_t>(z + 1) * side + (y + 1)) * side];
       if (p0.y < 0 || p0.z < 0 || p0.y >= ld.y || p0.z >= ld.z) continue;
       for (int x = std::max(0, p0.x); x < std::min(ld.x, p0.x + side);) {
         const glm::ivec3 nb(x / m, p0.y / m, p0.z / m);
@@ -154,14 +169,14 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb) {
         const glm::ivec3 p = origin + glm::ivec3(x, y, z);
         const glm::ivec2 range = levels_at(p * s * 2);
         if (range.x < k || range.y > k)
-          block_[(static_cast<size_t>(z + 1) * side + (y + 1)) * side + (x + 1)] = shared(k, p);
+          block[(static_cast<size_t>(z + 1) * side + (y + 1)) * side + (x + 1)] = shared(k, p);
       }
     }
   bool any_in = false, any_out = false;
   for (int z = 1; z <= m + 1; ++z)
     for (int y = 1; y <= m + 1; ++y)
       for (int x = 1; x <= m + 1; ++x) {
-        const bool in = block_[(static_cast<size_t>(z) * side + y) * side + x] > options_.iso;
+        const bool in = block[(static_cast<size_t>(z) * side + y) * side + x] > options_.iso;
         any_in = any_in || in;
         any_out = any_out || !in;
       }
@@ -188,7 +203,7 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb) {
     if (lambda > k && on_line) return pack_edge(lambda, x / big, axis);
     return pack_edge(k, x / s, axis);
   };
-  detail::march_float_cells(block_.data(), glm::ivec3(m), origin, k, options_.iso, key, cb.mesh);
+  detail::march_float_cells(block.data(), glm::ivec3(m), origin, k, options_.iso, key, cb.mesh);
   stitch(b, k, cb.mesh, cb.stats);
 }
 
@@ -382,6 +397,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         }
       }
   std::vector<int8_t> levels;
+  std::vector<glm::ivec3> stale_bricks;
   for (int z = 0; z < grid_.z; ++z)
     for (int y = 0; y < grid_.y; ++y)
       for (int x = 0; x < grid_.x; ++x) {
@@ -407,10 +423,43 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         ++stats.bricks_changed;
         cb.level = k;
         cb.levels.swap(levels);
-        mesh_brick(b, cb);
-        ++cb.mesh_version;
-        stats.bricks_meshed += cb.mesh.empty() ? 0 : 1;
+        stale_bricks.push_back(b);
       }
+  // Decode what the stale bricks read (their neighbourhood, at every level
+  // found in it), then mesh them in parallel: each writes only its own
+  // cached brick and reads the decoded voxels, which stay as they are.
+  for (glm::ivec3 b : stale_bricks) {
+    const int k = level_of(b);
+    const int r = reach(k);
+    uint8_t used = static_cast<uint8_t>(1u << k);
+    for (int dz = -r; dz <= r; ++dz)
+      for (int dy = -r; dy <= r; ++dy)
+        for (int dx = -r; dx <= r; ++dx)
+          if (const glm::ivec3 nb = b + glm::ivec3(dx, dy, dz); in_grid(nb))
+            used = static_cast<uint8_t>(used | (1u << level_of(nb)));
+    for (int dz = -r; dz <= r; ++dz)
+      for (int dy = -r; dy <= r; ++dy)
+        for (int dx = -r; dx <= r; ++dx) {
+          const glm::ivec3 nb = b + glm::ivec3(dx, dy, dz);
+          if (!in_grid(nb)) continue;
+          for (int l = 0; l <= volume.levels(); ++l)
+            if (used & (1u << l)) decoded(nb, l);
+        }
+  }
+  frozen_ = true;
+  parallel_for(
+      static_cast<int64_t>(stale_bricks.size()),
+      [&](int64_t i) {
+        thread_local std::vector<float> block;
+        const glm::ivec3 b = stale_bricks[static_cast<size_t>(i)];
+        CachedBrick& cb = bricks_[index(b)];
+        mesh_brick(b, cb, block);
+        ++cb.mesh_version;
+      },
+      options_.threads);
+  frozen_ = false;
+  for (glm::ivec3 b : stale_bricks)
+    stats.bricks_meshed += bricks_[index(b)].mesh.empty() ? 0 : 1;
   // Forget decoded bricks at levels no brick around them uses any more.
   std::erase_if(decoded_, [&](const auto& entry) {
     const size_t i = static_cast<size_t>(entry.first / 8);

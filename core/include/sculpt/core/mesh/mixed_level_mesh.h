@@ -27,6 +27,7 @@
 // shapes that stay clear of the volume's low faces by one coarse voxel (the
 // whole-level meshes of marching_cubes.h have no such limit).
 
+#include <atomic>
 #include <cstdint>
 #include <span>
 #include <unordered_map>
@@ -92,6 +93,9 @@ class MixedLevelMeshCache {
   /// Incremented each time update() rebuilds brick b's mesh (0 before the
   /// first): a renderer re-uploads exactly the bricks whose count moved.
   uint64_t brick_mesh_version(glm::ivec3 b) const { return bricks_[index(b)].mesh_version; }
+  /// Reads of parallel meshing that update() did not decode beforehand
+  /// (correct, but slower; 0 unless the neighbourhood rule is broken).
+  int64_t unforeseen_decodes() const { return unforeseen_decodes_.n.load(); }
   /// Stitching figures of the current meshes, summed over bricks.
   MixedLevelStats stats() const;
   int64_t triangle_count() const;
@@ -127,7 +131,8 @@ class MixedLevelMeshCache {
   // level-0 point x2 / 2 (doubled so edge midpoints are integers).
   glm::ivec2 levels_at(glm::ivec3 x2) const;
   int coarsest_level_at(glm::ivec3 x2) const;
-  void mesh_brick(glm::ivec3 b, CachedBrick& cb);
+  // Meshes brick b at cb.level into cb; `block` is the caller's scratch.
+  void mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<float>& block);
   void stitch(glm::ivec3 b, int k, BrickMesh& out, MixedLevelStats& st) const;
 
   MarchingCubesOptions options_;
@@ -140,7 +145,20 @@ class MixedLevelMeshCache {
   std::vector<uint64_t> seen_versions_;            // brick versions as of the last update
   std::unordered_map<uint64_t, Decoded> decoded_;  // key: brick index * 8 + level
   int64_t decodes_ = 0;
-  std::vector<float> block_;
+  // While stale bricks are meshed in parallel: decoded_ is read only.
+  bool frozen_ = false;
+  // A count that copies with the cache (std::atomic alone does not).
+  struct Counter {
+    std::atomic<int64_t> n{0};
+    Counter() = default;
+    Counter(const Counter& o) : n(o.n.load()) {}
+    Counter& operator=(const Counter& o) {
+      n = o.n.load();
+      return *this;
+    }
+    void add() { n.fetch_add(1, std::memory_order_relaxed); }
+  };
+  Counter unforeseen_decodes_;
 };
 
 /// The surface of `volume` with brick b at level brick_levels[i], i the brick
