@@ -16,6 +16,7 @@
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/sim/synth/session_script.h"
 #include "sculpt/station/app/session_start.h"
+#include "sculpt/station/settings/command_codec.h"
 
 namespace sculpt::station {
 namespace {
@@ -76,10 +77,10 @@ void StationController::command_at(const sim::Command& c, int64_t t_ns) {
 }
 
 void StationController::set_tool(sim::ToolShape shape, float a, float b, int64_t now_ns) {
-  command(make_command(sim::CommandKind::kTool, static_cast<uint8_t>(shape), {a, b}), now_ns);
+  command(make_command(sim::CommandKind::kTool, choice_of(shape), {a, b}), now_ns);
 }
 void StationController::set_mode(core::SculptMode mode, int64_t now_ns) {
-  command(make_command(sim::CommandKind::kMode, static_cast<uint8_t>(mode)), now_ns);
+  command(make_command(sim::CommandKind::kMode, choice_of(mode)), now_ns);
 }
 void StationController::set_strength(float s, int64_t now_ns) {
   command(make_command(sim::CommandKind::kStrength, 0, {std::clamp(s, 0.0f, 1.0f)}), now_ns);
@@ -478,9 +479,9 @@ std::vector<sim::Command> StationController::opening_commands(bool with_block) c
                     : make_command(sim::CommandKind::kVolume, sim::kVolumeFill,
                                    {d.x, d.y, d.z, static_cast<float>(o.volume_fill)}));
   }
-  c.push_back(make_command(sim::CommandKind::kTool, static_cast<uint8_t>(s.shape),
-                           {s.size_a_vox, s.size_b_vox}));
-  c.push_back(make_command(sim::CommandKind::kMode, static_cast<uint8_t>(s.mode)));
+  c.push_back(
+      make_command(sim::CommandKind::kTool, choice_of(s.shape), {s.size_a_vox, s.size_b_vox}));
+  c.push_back(make_command(sim::CommandKind::kMode, choice_of(s.mode)));
   c.push_back(make_command(sim::CommandKind::kStrength, 0, {s.strength}));
   c.push_back(make_command(sim::CommandKind::kSpacing, 0, {s.spacing}));
   c.push_back(s.mirror ? make_command(sim::CommandKind::kMirror,

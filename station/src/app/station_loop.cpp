@@ -5,6 +5,7 @@
 #include "sculpt/core/distance/hypertexture.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 #include "sculpt/sim/session/command_limits.h"
+#include "sculpt/station/settings/command_codec.h"
 
 #include <algorithm>
 #include <cmath>
@@ -116,6 +117,7 @@ void StationLoop::apply_tool() {
     tool_ = make_tool(settings_.shape, settings_.size_a_vox, settings_.size_b_vox);
   }
   sculptor_->set_tool(tool_);
+  ++tool_version_;
   reset_sampler();
 }
 
@@ -163,14 +165,14 @@ void StationLoop::handle(const sim::Command& c) {
     case K::kTool:
       // A tool change ends the stroke: the dabs of one stroke share one tool.
       if (pressed_) release();
-      settings_.shape = static_cast<sim::ToolShape>(c.choice);
+      settings_.shape = tool_shape_of_choice(c.choice).value_or(settings_.shape);
       settings_.custom_tool = false;
       settings_.size_a_vox = c.values[0];
       settings_.size_b_vox = c.values[1];
       apply_tool();
       break;
     case K::kMode:
-      settings_.mode = static_cast<core::SculptMode>(c.choice);
+      settings_.mode = sculpt_mode_of_choice(c.choice).value_or(settings_.mode);
       break;
     case K::kStrength:
       settings_.strength = std::clamp(c.values[0], 0.0f, 1.0f);

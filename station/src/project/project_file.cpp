@@ -15,6 +15,7 @@
 #include "sculpt/core/nurbs/nurbs_json.h"
 #include "sculpt/core/wavelet/wavelet_pyramid.h"
 #include "sculpt/sim/session/command_limits.h"
+#include "sculpt/station/settings/command_codec.h"
 
 namespace sculpt::station {
 namespace {
@@ -39,7 +40,7 @@ json vec_json(glm::vec3 v) {
 json settings_json(const StationSettings& s) {
   json j = {{"shape", sim::tool_shape_name(s.shape)},
             {"size", {s.size_a_vox, s.size_b_vox}},
-            {"mode", sim::sculpt_mode_name(static_cast<sim::SculptModeId>(s.mode))},
+            {"mode", sim::sculpt_mode_name(to_session(s.mode))},
             {"strength", s.strength},
             {"spacing", s.spacing},
             {"custom_tool", s.custom_tool},
@@ -296,7 +297,7 @@ StationSettings settings_of(const json& j) {
   s.size_b_vox = float_in(size[1], 0.0, sim::kMaxToolSizeVox, at + ".size[1]");
   const auto mode = sim::parse_sculpt_mode_id(text_of(field(j, "mode", at), at + ".mode"));
   if (!mode) bad(at + ".mode", "unknown mode");
-  s.mode = static_cast<core::SculptMode>(*mode);
+  s.mode = to_core(*mode);
   s.strength = float_in(field(j, "strength", at), 0.0, 1.0, at + ".strength");
   s.spacing = float_in(field(j, "spacing", at), 1e-3, sim::kMaxSpacing, at + ".spacing");
   s.custom_tool = flag(field(j, "custom_tool", at), at + ".custom_tool");

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "sculpt/station/settings/command_codec.h"
 #include "sculpt/station/window/keymap.h"
 
 namespace sculpt::station {
@@ -66,7 +67,8 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
                                                      : "tool: the sculpture");
     if (ImGui::Combo("shape", &shape, kShapes, IM_ARRAYSIZE(kShapes)) &&
         (shape != static_cast<int>(s.shape) || s.custom_tool)) {
-      c_.set_tool(static_cast<sim::ToolShape>(shape), s.size_a_vox, s.size_b_vox, now);
+      const auto picked = tool_shape_of_choice(static_cast<uint8_t>(shape));
+      if (picked) c_.set_tool(*picked, s.size_a_vox, s.size_b_vox, now);
     }
     float a = s.size_a_vox, b = s.size_b_vox;
     ImGui::SliderFloat("size", &a, 1.0f, 64.0f, "%.1f vox");

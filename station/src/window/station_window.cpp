@@ -360,7 +360,7 @@ int run_window(const WindowOptions& o) {
     figures.mesh_ms += static_cast<double>(t_upload - t_mesh) * 1e-6;
     (*renderer)->set_distance_normals(controller.distance_normals());
     const gl::SurfaceSync sync = (*renderer)->sync_surface(volume, surface);
-    (*renderer)->set_tool(controller.loop().tool());
+    (*renderer)->set_tool(controller.loop().tool(), controller.loop().tool_version());
     const SheetEditor& sheet = controller.loop().sheet();
     (*renderer)->set_sheet(sheet.mesh(), sheet.version(),
                            controller.loop().settings().sheet_editing);

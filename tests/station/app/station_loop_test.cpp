@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "sculpt/sim/session/command_limits.h"
+#include "sculpt/station/settings/command_codec.h"
 
 namespace sculpt::station {
 namespace {
@@ -39,6 +40,24 @@ TEST(StationLoop, ADeviceHeldAtFullPushKeepsTheToolNearTheVolume) {
   // The stroke from the centre to the bound, a dab every quarter of the
   // 16-voxel tool: its length over the spacing, not an hour of motion.
   EXPECT_LE(loop.counters().dabs, static_cast<int64_t>((far - 32.0f) / 4.0f) + 2);
+}
+
+TEST(StationLoop, TheToolVersionMovesWithTheToolOnly) {
+  StationLoop::Options o;
+  o.volume_dims = glm::ivec3(48);
+  o.mesh = false;
+  StationLoop loop(o);
+  const uint64_t start = loop.tool_version();
+  sim::Command mode{sim::CommandKind::kMode, choice_of(core::SculptMode::kSubtract)};
+  loop.handle(mode);
+  loop.handle(sim::Command{sim::CommandKind::kPress});
+  loop.handle(sim::Command{sim::CommandKind::kRelease});
+  EXPECT_EQ(loop.tool_version(), start);  // a mode and a dab are not a new tool
+  sim::Command cube{sim::CommandKind::kTool, choice_of(sim::ToolShape::kCube), {6.0f, 0.0f}};
+  loop.handle(cube);
+  EXPECT_GT(loop.tool_version(), start);
+  EXPECT_EQ(loop.settings().shape, sim::ToolShape::kCube);
+  EXPECT_EQ(loop.settings().mode, core::SculptMode::kSubtract);
 }
 
 }  // namespace

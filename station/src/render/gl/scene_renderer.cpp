@@ -158,13 +158,10 @@ void SceneRenderer::set_sheet(const core::Mesh& mesh, uint64_t version, bool edi
   sheet_mesh_.upload(mesh);
 }
 
-void SceneRenderer::set_tool(const core::Tool& tool) {
-  if (tool.density.dims() == tool_.density.dims() && tool.pivot == tool_.pivot &&
-      std::equal(tool.density.data(), tool.density.data() + tool.density.size(),
-                 tool_.density.data())) {
-    return;
-  }
-  tool_ = tool;
+void SceneRenderer::set_tool(const core::Tool& tool, uint64_t version) {
+  if (version == tool_version_) return;
+  tool_version_ = version;
+  tool_pivot_ = tool.pivot;
   const core::Volume v = core::Volume::from_dense(tool.density);
   core::MarchingCubesOptions options;
   options.threads = 1;
@@ -234,7 +231,7 @@ void SceneRenderer::draw(const SceneView& view, const ToolDraw& tool, glm::vec3 
   // The GPU turns the tool's own mesh: the pivot goes to the tool position.
   const glm::mat4 model = glm::translate(glm::mat4(1.0f), tool.position) *
                           glm::mat4_cast(tool.orientation) *
-                          glm::translate(glm::mat4(1.0f), -tool_.pivot);
+                          glm::translate(glm::mat4(1.0f), -tool_pivot_);
   const glm::vec3 colour = mode_colour(tool.mode);
   lit_.set("model", model);
   glEnable(GL_BLEND);

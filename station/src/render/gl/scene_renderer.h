@@ -62,8 +62,9 @@ class SceneRenderer {
   bool distance_normals() const { return distance_normals_; }
   /// Draws this one mesh as the surface instead (pictures of a result).
   void show_mesh(const core::Mesh& mesh);
-  /// Remakes the tool's mesh when the tool changed.
-  void set_tool(const core::Tool& tool);
+  /// Remakes the tool's mesh when `version` differs from the last one given
+  /// (StationLoop::tool_version).
+  void set_tool(const core::Tool& tool, uint64_t version);
   /// The NURBS sheet's mesh (empty: no sheet), uploaded when `version`
   /// differs from the last one given; `editing` draws it highlighted.
   void set_sheet(const core::Mesh& mesh, uint64_t version, bool editing);
@@ -86,7 +87,8 @@ class SceneRenderer {
   ShaderProgram flat_;
   std::unordered_map<uint64_t, Slot> slots_;  // key: brick index
   std::vector<const GpuMesh*> visible_;
-  core::Tool tool_;
+  uint64_t tool_version_ = ~uint64_t{0};
+  glm::vec3 tool_pivot_{0.0f};
   GpuMesh tool_mesh_;
   GpuMesh single_mesh_;
   GpuMesh sheet_mesh_;

@@ -74,6 +74,9 @@ class StationLoop {
   void release_stroke() { release(); }
   /// The tool in use (its reference, unrotated form).
   const core::Tool& tool() const { return tool_; }
+  /// Moves on whenever the tool changes: a renderer remakes the tool's
+  /// mesh when it moved, without comparing every voxel each frame.
+  uint64_t tool_version() const { return tool_version_; }
   /// Diameter of the tool in use, voxels (what dab spacing is relative to).
   float tool_size() const;
   /// Re-meshes what changed since the last call; returns bricks meshed.
@@ -109,6 +112,7 @@ class StationLoop {
   Options options_;
   std::unique_ptr<core::Volume> volume_;
   uint64_t volume_generation_ = 0;
+  uint64_t tool_version_ = 0;
   std::unique_ptr<core::Sculptor> sculptor_;
   core::Tool tool_;  // what the sculptor holds, kept for drawing
   core::MeshCache mesh_;

@@ -1,0 +1,58 @@
+#pragma once
+// The one place a session command's choice byte becomes a core enum and
+// back. Sessions store sim::SculptModeId and sim::ToolShape (the file
+// format's own enums, which sim keeps without depending on core); the
+// station sculpts with core::SculptMode. The lists must keep the same order
+// for a recorded session to keep meaning what it meant: checked here at
+// compile time, and every conversion range-checks instead of casting.
+
+#include <cstdint>
+#include <optional>
+
+#include "sculpt/core/sculpt/sculptor.h"
+#include "sculpt/sim/session/session.h"
+
+namespace sculpt::station {
+
+namespace codec_detail {
+constexpr bool same(core::SculptMode core_mode, sim::SculptModeId session_mode) {
+  return static_cast<int>(core_mode) == static_cast<int>(session_mode);
+}
+}  // namespace codec_detail
+
+static_assert(codec_detail::same(core::SculptMode::kAdd, sim::SculptModeId::kAdd));
+static_assert(codec_detail::same(core::SculptMode::kSubtract, sim::SculptModeId::kSubtract));
+static_assert(codec_detail::same(core::SculptMode::kUnion, sim::SculptModeId::kUnion));
+static_assert(codec_detail::same(core::SculptMode::kDifference, sim::SculptModeId::kDifference));
+static_assert(codec_detail::same(core::SculptMode::kSmooth, sim::SculptModeId::kSmooth));
+// core's last mode is the last the format knows: a mode added to core must
+// be added to the format too.
+static_assert(static_cast<int>(core::SculptMode::kSmooth) + 1 == sim::kSculptModeCount);
+static_assert(static_cast<int>(sim::ToolShape::kCone) + 1 == sim::kToolShapeCount);
+
+constexpr core::SculptMode to_core(sim::SculptModeId mode) {
+  return static_cast<core::SculptMode>(mode);  // same order, checked above
+}
+constexpr sim::SculptModeId to_session(core::SculptMode mode) {
+  return static_cast<sim::SculptModeId>(mode);
+}
+
+/// A command's choice byte as a mode or a tool shape; nothing when it names
+/// none (the session readers refuse such a command before it gets here).
+constexpr std::optional<core::SculptMode> sculpt_mode_of_choice(uint8_t choice) {
+  if (choice >= sim::kSculptModeCount) return std::nullopt;
+  return static_cast<core::SculptMode>(choice);
+}
+constexpr std::optional<sim::ToolShape> tool_shape_of_choice(uint8_t choice) {
+  if (choice >= sim::kToolShapeCount) return std::nullopt;
+  return static_cast<sim::ToolShape>(choice);
+}
+
+constexpr uint8_t choice_of(core::SculptMode mode) {
+  return static_cast<uint8_t>(mode);
+}
+constexpr uint8_t choice_of(sim::ToolShape shape) {
+  return static_cast<uint8_t>(shape);
+}
+
+}  // namespace sculpt::station
