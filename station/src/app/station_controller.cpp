@@ -2,26 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <limits>
 
 #include <glm/gtc/quaternion.hpp>
 
 #include "make_command.h"
-#include "sculpt/base/atomic_file.h"
-#include "sculpt/core/mesh/marching_cubes.h"
-#include "sculpt/core/mesh/mesh_cache.h"
-#include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/core/volume/material_bounds.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/sim/synth/session_script.h"
-#include "sculpt/station/app/session_start.h"
 #include "sculpt/station/settings/command_codec.h"
 
 namespace sculpt::station {
 namespace {
 
-constexpr size_t kRecentDabs = 256;
 // The largest sculpture that becomes a tool: a tool is rotated voxel by voxel
 // at every new orientation, so it must stay small next to the block.
 constexpr int kMaxToolEdge = 96;
@@ -283,8 +276,7 @@ int64_t StationController::report_time(int64_t t_ns, int64_t now_ns) {
 }
 
 void StationController::note_dabs(int64_t dabs_before, int64_t t_ns) {
-  unmeshed_dab_t_ns_.insert(unmeshed_dab_t_ns_.end(),
-                            static_cast<size_t>(loop_.counters().dabs - dabs_before), t_ns);
+  stats_.note_dabs(loop_.counters().dabs - dabs_before, t_ns);
 }
 
 void StationController::device_frame(
@@ -315,7 +307,7 @@ void StationController::device_frame(
       case hal::InputKind::kDisconnected:
         device_.connected = false;
         device_.report_rate_hz = 0;
-        rate_since_ns_ = 0;
+        stats_.restart_report_rate();
         break;
       case hal::InputKind::kBattery:
         device_.battery_percent = e.battery_percent;
@@ -341,19 +333,8 @@ void StationController::device_frame(
 }
 
 void StationController::reader_samples(int64_t motion_samples, int64_t now_ns) {
-  // Motion samples the reader decoded (dropped ones included: the device
-  // sent them), averaged over about a second.
-  if (rate_since_ns_ == 0 || motion_samples < rate_samples_) {
-    rate_since_ns_ = now_ns;
-    rate_samples_ = motion_samples;
-    return;
-  }
-  const int64_t dt = now_ns - rate_since_ns_;
-  if (dt < kSecondNs) return;
-  device_.report_rate_hz =
-      static_cast<double>(motion_samples - rate_samples_) * 1e9 / static_cast<double>(dt);
-  rate_since_ns_ = now_ns;
-  rate_samples_ = motion_samples;
+  if (const double rate = stats_.reader_samples(motion_samples, now_ns); rate >= 0)
+    device_.report_rate_hz = rate;
 }
 
 void StationController::pointer_move(glm::vec3 position, int64_t now_ns) {
@@ -388,213 +369,20 @@ int64_t StationController::update_mesh(int64_t now_ns) {
 
 void StationController::surface_submitted(uint64_t change) {
   // Something to autosave: new dabs, or the sheet moved under the device.
-  if (!unmeshed_dab_t_ns_.empty() || loop_.sheet().version() != sheet_version_) ++generation_;
+  if (stats_.dabs_waiting() || loop_.sheet().version() != sheet_version_) ++generation_;
   sheet_version_ = loop_.sheet().version();
-  for (int64_t t : unmeshed_dab_t_ns_)
-    meshing_dabs_.push_back({change, t});
-  unmeshed_dab_t_ns_.clear();
+  stats_.submitted(change);
 }
 
 void StationController::surface_ready(uint64_t change, int64_t ready_ns) {
-  while (!meshing_dabs_.empty() && meshing_dabs_.front().change <= change) {
-    const double us = static_cast<double>(ready_ns - meshing_dabs_.front().report_t_ns) * 1e-3;
-    meshing_dabs_.pop_front();
-    recent_latency_us_.push_back(us);
-    if (recent_latency_us_.size() > kRecentDabs) recent_latency_us_.pop_front();
-    all_latency_us_.add(us);
-  }
-}
-
-LatencyStats StationController::recent_latency() const {
-  return latency_stats({recent_latency_us_.begin(), recent_latency_us_.end()});
-}
-LatencyStats StationController::session_latency() const {
-  return latency_stats(all_latency_us_);
-}
-
-ProjectView StationController::view() const {
-  ProjectView v;
-  v.camera_target = camera_.target();
-  v.camera_yaw = camera_.yaw();
-  v.camera_pitch = camera_.pitch();
-  v.camera_distance = camera_.distance();
-  v.lod = lod_.policy();
-  return v;
-}
-
-Status StationController::save(const std::filesystem::path& path) {
-  const StationSettings& s = loop_.settings();
-  Status st = save_project(path, loop_.volume(), s, s.custom_tool ? &loop_.tool() : nullptr, view(),
-                           loop_.sheet().has_sheet() ? &loop_.sheet().surface() : nullptr);
-  if (st) saved_generation_ = generation_;
-  report(st, "saved " + path.string());
-  return st;
-}
-
-Status StationController::open(const std::filesystem::path& path) {
-  auto project = load_project(path);
-  if (!project) {
-    report(project.error(), "");
-    return project.error();
-  }
-  finish_autosave();
-  loop_.restore(std::move(project->volume), project->settings, std::move(project->custom_tool),
-                std::move(project->sheet));
-  const ProjectView& v = project->view;
-  camera_.set(v.camera_target, v.camera_yaw, v.camera_pitch, v.camera_distance);
-  lod_.set_policy(v.lod);
-  options_.project = path;
-  ++generation_;
-  saved_generation_ = generation_;
-  status_ = "opened " + path.string();
-  return {};
-}
-
-Status StationController::export_mesh(const std::filesystem::path& path) {
-  auto format = core::mesh_format_for(path);
-  if (!format) {
-    report(format.error(), "");
-    return format.error();
-  }
-  // Full resolution, whatever the view draws.
-  const core::Mesh mesh = options_.loop.mesh ? (loop_.update_mesh(), loop_.mesh().welded_mesh())
-                                             : core::marching_cubes(loop_.volume());
-  Status st = core::write_mesh(path, mesh, *format);
-  report(st, "exported " + path.string());
-  return st;
-}
-
-std::vector<sim::Command> StationController::opening_commands(bool with_block) const {
-  const StationSettings& s = loop_.settings();
-  const hal::ToolPose& p = loop_.pose();
-  std::vector<sim::Command> c;
-  const glm::vec3 d(loop_.volume().dims());
-  const StationLoop::Options& o = options_.loop;
-  // The block the station started with, unless the recording starts from a
-  // saved project (start_recording).
-  if (with_block) {
-    c.push_back(o.clay_margin > 0
-                    ? make_command(sim::CommandKind::kVolume, sim::kVolumeClay,
-                                   {d.x, d.y, d.z, static_cast<float>(o.clay_margin)})
-                    : make_command(sim::CommandKind::kVolume, sim::kVolumeFill,
-                                   {d.x, d.y, d.z, static_cast<float>(o.volume_fill)}));
-  }
-  c.push_back(
-      make_command(sim::CommandKind::kTool, choice_of(s.shape), {s.size_a_vox, s.size_b_vox}));
-  c.push_back(make_command(sim::CommandKind::kMode, choice_of(s.mode)));
-  c.push_back(make_command(sim::CommandKind::kStrength, 0, {s.strength}));
-  c.push_back(make_command(sim::CommandKind::kSpacing, 0, {s.spacing}));
-  c.push_back(s.mirror ? make_command(sim::CommandKind::kMirror,
-                                      static_cast<uint8_t>(s.mirror->axis), {s.mirror->centre_vox})
-                       : make_command(sim::CommandKind::kMirror, sim::kMirrorOff, {0.0f}));
-  const SheetDragOptions& drag = s.sheet_drag;
-  c.push_back(make_command(sim::CommandKind::kSheet, static_cast<uint8_t>(sim::SheetAction::kEdit),
-                           {s.sheet_editing ? 1.0f : 0.0f, static_cast<float>(drag.influence),
-                            static_cast<float>(drag.radius)}));
-  c.push_back(make_command(sim::CommandKind::kToolPose, 0,
-                           {p.position.x, p.position.y, p.position.z, p.orientation.w,
-                            p.orientation.x, p.orientation.y, p.orientation.z}));
-  return c;
-}
-
-Status StationController::start_recording(const std::filesystem::path& path, int64_t now_ns) {
-  sim::SessionHeader header;
-  header.device = device_info_;
-  header.normalizer_config = normalizer_text_;
-  header.created_unix_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                               std::chrono::system_clock::now().time_since_epoch())
-                               .count();
-  // The opening commands rebuild the settings. Unless the station is as it
-  // started, the sculpture (and sheet and tool) is saved beside the session
-  // and replays restore it; a fresh start removes a stale one of that name.
-  const bool fresh = generation_ == 0;
-  const std::filesystem::path start = session_start_path(path);
-  std::error_code ec;
-  if (fresh) {
-    std::filesystem::remove(start, ec);
-  } else {
-    const StationSettings& s = loop_.settings();
-    Status saved =
-        save_project(start, loop_.volume(), s, s.custom_tool ? &loop_.tool() : nullptr, view(),
-                     loop_.sheet().has_sheet() ? &loop_.sheet().surface() : nullptr);
-    if (!saved) {
-      report(saved, "");
-      return saved;
-    }
-  }
-  Status st = recorder_.start(path, header, opening_commands(/*with_block=*/fresh), stamp(now_ns));
-  report(st, "recording to " + path.string() +
-                 (fresh ? "" : " (starting from this sculpture, saved as " + start.string() + ")"));
-  return st;
-}
-
-Status StationController::stop_recording() {
-  auto records = recorder_.stop();
-  if (!records) {
-    report(records.error(), "");
-    return records.error();
-  }
-  status_ = "recorded " + std::to_string(*records) + " records to " + recorder_.path().string();
-  return {};
-}
-
-std::filesystem::path StationController::autosave_path() const {
-  std::filesystem::path p = options_.project;
-  p += ".autosave";
-  return p;
-}
-
-void StationController::finish_autosave() {
-  if (autosave_.valid()) {
-    Status st = autosave_.get();
-    if (!st) status_ = "autosave failed: " + st.error().message();
-  }
+  stats_.ready(change, ready_ns);
 }
 
 void StationController::tick(int64_t now_ns) {
   if (recorder_.recording()) {
     if (Status st = recorder_.flush(); !st) status_ = "recording stopped: " + st.error().message();
   }
-  if (options_.autosave_seconds <= 0 || generation_ == saved_generation_) return;
-  if (autosave_.valid() && autosave_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
-    return;
-  if (now_ns - last_autosave_ns_ < static_cast<int64_t>(options_.autosave_seconds * 1e9)) return;
-  finish_autosave();
-  last_autosave_ns_ = now_ns;
-  saved_generation_ = generation_;
-  ++autosaves_;
-  // A copy of the state is written on another thread, so sculpting goes on
-  // while it is compressed and synced.
-  auto volume = std::make_shared<core::Volume>(loop_.volume());
-  const StationSettings settings = loop_.settings();
-  auto tool = settings.custom_tool ? std::make_shared<core::Tool>(loop_.tool()) : nullptr;
-  auto sheet = loop_.sheet().has_sheet()
-                   ? std::make_shared<core::nurbs::NurbsSurface>(loop_.sheet().surface())
-                   : nullptr;
-  autosave_ = std::async(
-      std::launch::async, [path = autosave_path(), volume, settings, tool, sheet, view = view()] {
-        return save_project(path, *volume, settings, tool.get(), view, sheet.get());
-      });
-}
-
-Status StationController::save_input_settings(float sensitivity, float deadzone) {
-  const std::string& path = options_.normalizer_config_path;
-  if (path.empty()) return Error("no input settings file");
-  auto config = hal::load_normalizer_config_or_defaults(path);
-  if (!config) {
-    report(config.error(), "");
-    return config.error();
-  }
-  config->sensitivity.fill(std::clamp(sensitivity, 0.05f, 20.0f));
-  config->deadzone.fill(std::clamp(deadzone, 0.0f, 0.9f));
-  std::error_code ec;
-  std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
-  AtomicFileWriter writer(path);
-  if (!writer.ok()) return writer.error();
-  writer.write(hal::to_text(*config));
-  Status st = writer.commit();
-  report(st, "saved the input settings to " + path + " (devices opened from now on use them)");
-  return st;
+  autosave_if_due(now_ns);
 }
 
 }  // namespace sculpt::station

@@ -26,6 +26,7 @@
 
 #include "sculpt/hal/input/device_reader.h"
 #include "sculpt/hal/types/device_info.h"
+#include "sculpt/station/app/input_statistics.h"
 #include "sculpt/station/app/session_recorder.h"
 #include "sculpt/station/app/session_replay.h"
 #include "sculpt/station/app/station_loop.h"
@@ -195,8 +196,8 @@ class StationController {
   /// `ready_ns`: the latency of their dabs (report to mesh ready).
   void surface_ready(uint64_t change, int64_t ready_ns);
   /// Latency of the last few hundred dabs, and of all of them.
-  LatencyStats recent_latency() const;
-  LatencyStats session_latency() const;
+  LatencyStats recent_latency() const { return stats_.recent_latency(); }
+  LatencyStats session_latency() const { return stats_.session_latency(); }
   const DeviceStatus& device_status() const { return device_; }
 
   // --- files ---------------------------------------------------------------
@@ -226,6 +227,8 @@ class StationController {
   static int64_t report_time(int64_t t_ns, int64_t now_ns);
   void note_dabs(int64_t dabs_before, int64_t t_ns);
   ProjectView view() const;
+  // Starts an autosave on another thread when one is due (projects file).
+  void autosave_if_due(int64_t now_ns);
   std::vector<sim::Command> opening_commands(bool with_block) const;
 
   ControllerOptions options_;
@@ -248,20 +251,8 @@ class StationController {
   bool has_device_ = false;
   int64_t processed_t_ns_ = std::numeric_limits<int64_t>::min();
   bool pointer_down_ = false;
-  // Dabs not yet meshed: their report times.
-  std::vector<int64_t> unmeshed_dab_t_ns_;
-  // Dabs handed to the mesher, waiting for their change's meshes.
-  struct MeshingDab {
-    uint64_t change;
-    int64_t report_t_ns;
-  };
-  std::deque<MeshingDab> meshing_dabs_;
+  InputStatistics stats_;
   uint64_t own_change_ = 0;  // update_mesh()'s change numbers
-  std::deque<double> recent_latency_us_;
-  LatencyHistogram all_latency_us_;  // fixed memory: the station runs for hours
-  // Report rate: the reader's sample count when the current second began.
-  int64_t rate_since_ns_ = 0;
-  int64_t rate_samples_ = 0;
   int64_t last_camera_t_ns_ = 0;
 
   // Autosave: what the volume was at the last save, and the save in flight.

@@ -1,0 +1,56 @@
+#pragma once
+// What the station measures of its input as it runs: each dab's latency
+// from its device report to its mesh ready to draw, and the device's report
+// rate. The panel shows the recent figures, --stats the whole session's.
+//
+// A dab's latency is known only when the mesher says the change holding it
+// is meshed, so dabs pass three stages: made (note_dabs), handed to the
+// mesher as change N (submitted), and ready (meshed up to change N).
+//
+// Thread safety: one thread (the station's main loop).
+
+#include <cstdint>
+#include <deque>
+#include <vector>
+
+#include "sculpt/base/latency_histogram.h"
+#include "sculpt/station/app/session_replay.h"
+
+namespace sculpt::station {
+
+class InputStatistics {
+ public:
+  /// `count` dabs were made from a report read at `report_t_ns`.
+  void note_dabs(int64_t count, int64_t report_t_ns);
+  /// Whether dabs were made since the last submitted().
+  bool dabs_waiting() const { return !made_t_ns_.empty(); }
+  /// The dabs made so far went to the mesher as change `change`.
+  void submitted(uint64_t change);
+  /// Every change up to `change` was meshed at `ready_ns`.
+  void ready(uint64_t change, int64_t ready_ns);
+
+  /// Latency of the last few hundred dabs (exact), and of all (histogram).
+  LatencyStats recent_latency() const;
+  LatencyStats session_latency() const { return latency_stats(all_us_); }
+
+  /// The reader's count of motion samples so far; returns the report rate
+  /// over about the last second once one has passed, else a negative value.
+  double reader_samples(int64_t motion_samples, int64_t now_ns);
+  /// The device went: the next rate counts from its next samples.
+  void restart_report_rate() { rate_started_ = false; }
+
+ private:
+  struct Meshing {
+    uint64_t change;
+    int64_t report_t_ns;
+  };
+  std::vector<int64_t> made_t_ns_;  // report times of dabs not yet submitted
+  std::deque<Meshing> meshing_;     // submitted, waiting for their meshes
+  std::deque<double> recent_us_;
+  LatencyHistogram all_us_;  // fixed memory: the station runs for hours
+  bool rate_started_ = false;
+  int64_t rate_since_ns_ = 0;
+  int64_t rate_samples_ = 0;
+};
+
+}  // namespace sculpt::station

@@ -1,0 +1,53 @@
+#include "sculpt/station/app/input_statistics.h"
+
+namespace sculpt::station {
+namespace {
+
+constexpr size_t kRecentDabs = 256;
+constexpr int64_t kSecondNs = 1'000'000'000;
+
+}  // namespace
+
+void InputStatistics::note_dabs(int64_t count, int64_t report_t_ns) {
+  made_t_ns_.insert(made_t_ns_.end(), static_cast<size_t>(count), report_t_ns);
+}
+
+void InputStatistics::submitted(uint64_t change) {
+  for (int64_t t : made_t_ns_)
+    meshing_.push_back({change, t});
+  made_t_ns_.clear();
+}
+
+void InputStatistics::ready(uint64_t change, int64_t ready_ns) {
+  while (!meshing_.empty() && meshing_.front().change <= change) {
+    const double us = static_cast<double>(ready_ns - meshing_.front().report_t_ns) * 1e-3;
+    meshing_.pop_front();
+    recent_us_.push_back(us);
+    if (recent_us_.size() > kRecentDabs) recent_us_.pop_front();
+    all_us_.add(us);
+  }
+}
+
+LatencyStats InputStatistics::recent_latency() const {
+  return latency_stats({recent_us_.begin(), recent_us_.end()});
+}
+
+double InputStatistics::reader_samples(int64_t motion_samples, int64_t now_ns) {
+  // Motion samples the reader decoded (dropped ones included: the device
+  // sent them), averaged over about a second.
+  if (!rate_started_ || motion_samples < rate_samples_) {
+    rate_started_ = true;
+    rate_since_ns_ = now_ns;
+    rate_samples_ = motion_samples;
+    return -1.0;
+  }
+  const int64_t dt = now_ns - rate_since_ns_;
+  if (dt < kSecondNs) return -1.0;
+  const double rate =
+      static_cast<double>(motion_samples - rate_samples_) * 1e9 / static_cast<double>(dt);
+  rate_since_ns_ = now_ns;
+  rate_samples_ = motion_samples;
+  return rate;
+}
+
+}  // namespace sculpt::station

@@ -1,0 +1,40 @@
+#include "sculpt/station/app/input_statistics.h"
+
+#include <gtest/gtest.h>
+
+namespace sculpt::station {
+namespace {
+
+constexpr int64_t kMs = 1'000'000;
+
+TEST(InputStatistics, ADabCountsFromItsReportToTheMeshOfItsChange) {
+  InputStatistics s;
+  s.note_dabs(2, 10 * kMs);  // two dabs of one report
+  EXPECT_TRUE(s.dabs_waiting());
+  s.submitted(1);
+  EXPECT_FALSE(s.dabs_waiting());
+  s.note_dabs(1, 12 * kMs);
+  s.submitted(2);
+  s.ready(1, 14 * kMs);  // change 1 meshed: its dabs took 4 ms, change 2's waits
+  EXPECT_EQ(s.session_latency().count, 2);
+  EXPECT_EQ(s.recent_latency().max_us, 4000.0);
+  s.ready(2, 20 * kMs);  // 8 ms
+  EXPECT_EQ(s.session_latency().count, 3);
+  EXPECT_EQ(s.recent_latency().max_us, 8000.0);
+  EXPECT_EQ(s.session_latency().max_us, 8000.0);
+  s.ready(2, 30 * kMs);  // nothing left to count
+  EXPECT_EQ(s.session_latency().count, 3);
+}
+
+TEST(InputStatistics, TheReportRateIsOverAboutASecond) {
+  InputStatistics s;
+  EXPECT_LT(s.reader_samples(0, 0), 0);            // the start
+  EXPECT_LT(s.reader_samples(100, 500 * kMs), 0);  // not a second yet
+  EXPECT_DOUBLE_EQ(s.reader_samples(250, 1000 * kMs), 250.0);
+  s.restart_report_rate();  // unplugged
+  EXPECT_LT(s.reader_samples(260, 1100 * kMs), 0);
+  EXPECT_DOUBLE_EQ(s.reader_samples(360, 2100 * kMs), 100.0);
+}
+
+}  // namespace
+}  // namespace sculpt::station
