@@ -5,9 +5,12 @@
 #
 #   bash scripts/soak.sh [MINUTES] [SPEED] [OUT.csv]
 # Defaults: 60 minutes, speed 4, soak-rss.csv. Needs a build (build/bin/sculpt)
-# and runs under xvfb-run when there is no display. Prints the RSS table and
-# exits 1 when memory grew by more than 10% between the first quarter's end
-# (the bounded caches are full by then) and the end.
+# and runs under xvfb-run when there is no display. Besides the resident
+# memory, the station's own --stats (rewritten every 30 s) give the heap the
+# program holds and what the allocator keeps free, so a growth of RSS can be
+# told apart: held memory (a leak) or allocator fragmentation. Prints the
+# table and exits 1 when the memory held grew by more than 10% between the
+# first quarter's end (the bounded caches are full by then) and the end.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 minutes=${1:-60}
@@ -18,20 +21,29 @@ root=$PWD
 # The station autosaves its project into the folder it runs in: a scratch one.
 work=$(mktemp -d)
 run=("$root/build/bin/sculpt" run --device "sim:$root/sim/sessions/demo.scs" --loop --speed "$speed"
-     --hidden)
+     --hidden --stats "$work/stats.json" --stats-every 30)
 if [[ -z "${DISPLAY:-}" ]]; then run=(xvfb-run -a -s "-screen 0 1280x800x24" "${run[@]}"); fi
 (cd "$work" && exec "${run[@]}") > soak.log 2>&1 &
 launcher=$!
 sleep 5
 pid=$(pgrep -n -f "build/bin/sculpt run --device sim:$root/sim/sessions/demo.scs --loop" || true)
 if [[ -z "$pid" ]]; then echo "soak: the station did not start (soak.log)"; cat soak.log; exit 1; fi
-echo "minute,rss_mib" > "$out"
+echo "minute,rss_mib,heap_held_mib,heap_free_mib" > "$out"
 start=$(date +%s)
 while (( $(date +%s) - start < seconds )); do
   if ! kill -0 "$pid" 2>/dev/null; then echo "soak: the station ended early (soak.log)"; exit 1; fi
   rss_kib=$(awk '/^VmRSS/ {print $2}' "/proc/$pid/status")
   elapsed=$(( $(date +%s) - start ))
-  echo "$(awk -v s="$elapsed" 'BEGIN {printf "%.1f", s / 60}'),$(( rss_kib / 1024 ))" >> "$out"
+  heap=$(python3 - "$work/stats.json" <<'PY'
+import json, sys
+try:
+    h = json.load(open(sys.argv[1]))["heap"]
+    print("%.1f,%.1f" % (h["in_use_mib"], h["free_mib"]))
+except (OSError, ValueError, KeyError):
+    print(",")
+PY
+)
+  echo "$(awk -v s="$elapsed" 'BEGIN {printf "%.1f", s / 60}'),$(( rss_kib / 1024 )),$heap" >> "$out"
   sleep 30
 done
 kill -TERM "$pid"
@@ -40,10 +52,12 @@ rm -rf "$work"
 cat "$out"
 python3 - "$out" <<'PY'
 import csv, sys
-rows = [(float(m), int(r)) for m, r in list(csv.reader(open(sys.argv[1])))[1:]]
-quarter = [r for m, r in rows if m >= rows[-1][0] / 4][0]
-end = rows[-1][1]
-print(f"soak: {rows[-1][0]:.0f} min, RSS {rows[0][1]} MiB at start, {quarter} MiB after a quarter, "
-      f"{end} MiB at the end ({100.0 * (end - quarter) / quarter:+.1f}%)")
-sys.exit(1 if end > 1.1 * quarter else 0)
+rows = [(float(m), int(r), float(h or 0)) for m, r, h, _ in list(csv.reader(open(sys.argv[1])))[1:]]
+last = rows[-1][0]
+_, rss_q, held_q = [row for row in rows if row[0] >= last / 4][0]
+_, rss_end, held_end = rows[-1]
+print(f"soak: {last:.0f} min; RSS {rows[0][1]} MiB at start, {rss_q} after a quarter, {rss_end} at "
+      f"the end ({100.0 * (rss_end - rss_q) / rss_q:+.1f}%); heap held {held_q:.1f} MiB after a "
+      f"quarter, {held_end:.1f} at the end ({100.0 * (held_end - held_q) / max(held_q, 1):+.1f}%)")
+sys.exit(1 if held_end > 1.1 * held_q else 0)
 PY

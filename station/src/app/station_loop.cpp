@@ -88,7 +88,7 @@ void StationLoop::new_volume(glm::ivec3 dims, uint8_t fill, int clay_margin) {
   volume_ = clay_margin > 0 ? std::make_unique<core::Volume>(clay_block(dims, clay_margin))
                             : std::make_unique<core::Volume>(dims, fill);
   ++volume_generation_;
-  sculptor_ = std::make_unique<core::Sculptor>(*volume_);
+  sculptor_ = std::make_unique<core::Sculptor>(*volume_, sculptor_options());
   apply_tool();
   sculptor_->set_mirror(settings_.mirror);
   mesh_ = core::MeshCache(0);
@@ -101,7 +101,7 @@ void StationLoop::restore(std::unique_ptr<core::Volume> volume, const StationSet
   sculptor_.reset();
   volume_ = std::move(volume);
   ++volume_generation_;
-  sculptor_ = std::make_unique<core::Sculptor>(*volume_);
+  sculptor_ = std::make_unique<core::Sculptor>(*volume_, sculptor_options());
   settings_ = settings;
   settings_.custom_tool = custom_tool.has_value();
   if (custom_tool) tool_ = std::move(*custom_tool);
@@ -109,6 +109,12 @@ void StationLoop::restore(std::unique_ptr<core::Volume> volume, const StationSet
   apply_tool();
   sculptor_->set_mirror(settings_.mirror);
   mesh_ = core::MeshCache(0);
+}
+
+core::SculptorOptions StationLoop::sculptor_options() const {
+  core::SculptorOptions o;
+  o.undo_max_bytes = options_.undo_max_bytes;
+  return o;
 }
 
 void StationLoop::apply_tool() {

@@ -87,11 +87,18 @@ void add_run_command(CLI::App& app, Action& action) {
                 "'replayed', so stop it with --frames or a signal)");
   cmd->add_option("--speed", w.sim_speed, "window, sim devices: play the session this much faster")
       ->check(finite_positive());
+  cmd->add_option("--undo-mib", w.undo_mib,
+                  "window: memory for undo, MiB; the oldest strokes go beyond it")
+      ->capture_default_str()
+      ->check(finite_range(1, 65536));
   cmd->add_option("--frames", w.frames, "window: stop after this many frames")
       ->check(finite_positive());
   cmd->add_flag("--until-replayed", w.exit_when_replayed,
                 "window: stop when the sim device goes (its session played, or unplugged in it)");
   cmd->add_option("--stats", w.stats, "window: write frame times and dab latency (JSON) at exit");
+  cmd->add_option("--stats-every", w.stats_every_s,
+                  "window: also rewrite --stats every this many seconds (a long run's monitor)")
+      ->check(finite_range(0.1, 86400));
   cmd->add_option("--screenshot", w.screenshot, "window: PNG of the last frame (with --frames)");
   cmd->add_option_function<std::string>(
          "--normals",

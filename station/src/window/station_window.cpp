@@ -4,6 +4,8 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <malloc.h>
+
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -80,6 +82,9 @@ int64_t solid_voxels(const core::Volume& v) {
 }
 
 Status write_stats(const std::string& path, const RunFigures& f, const StationController& c) {
+  // What the program holds, apart from what the allocator keeps free: a
+  // long run's resident memory can grow by fragmentation alone.
+  const struct mallinfo2 heap = ::mallinfo2();
   auto at = [&](double q) { return f.frame_us.quantile_us(q) * 1e-3; };
   const double total = f.frames_total_ms;
   const double n = std::max<double>(1.0, static_cast<double>(f.frame_us.count()));
@@ -106,6 +111,10 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
         {"mesh", f.mesh_ms / n},
         {"upload", f.upload_ms / n},
         {"draw", f.draw_ms / n}}},
+      {"undo_mib", static_cast<double>(c.loop().sculptor().history().memory_bytes()) / (1 << 20)},
+      {"heap",
+       {{"in_use_mib", static_cast<double>(heap.uordblks + heap.hblkhd) / (1 << 20)},
+        {"free_mib", static_cast<double>(heap.fordblks) / (1 << 20)}}},
       {"dabs", c.loop().counters().dabs},
       {"strokes", c.loop().counters().strokes},
       {"volume_hash", c.loop().volume().content_hash()},
@@ -149,6 +158,7 @@ int run_window(const WindowOptions& o) {
   ControllerOptions co;
   co.loop.mesh = false;      // the window meshes what it draws (below), at its levels
   co.loop.clay_margin = 64;  // a slab of clay to carve, 128 voxels a side
+  co.loop.undo_max_bytes = static_cast<size_t>(o.undo_mib) << 20;
   co.normalizer_config_path = hal::default_normalizer_config_path();
   StationController controller(co);
   controller.set_distance_normals(o.distance_normals);
@@ -241,6 +251,7 @@ int run_window(const WindowOptions& o) {
   hal::InputFrame input;
   int64_t last_scan = hal::monotonic_ns();
   int64_t last_frame = last_scan;
+  int64_t last_stats = last_scan;
   bool replay_done = false;
   std::vector<std::pair<int64_t, sim::Command>> pending_commands;
   int64_t newest_report_t = std::numeric_limits<int64_t>::min();
@@ -397,6 +408,12 @@ int run_window(const WindowOptions& o) {
     figures.draw_ms += static_cast<double>(hal::monotonic_ns() - t_draw) * 1e-6;
 
     controller.tick(hal::monotonic_ns());
+    if (!o.stats.empty() && o.stats_every_s > 0 &&
+        now - last_stats >= static_cast<int64_t>(o.stats_every_s * 1e9)) {
+      figures.mesher = mesher.counters();
+      if (Status st = write_stats(o.stats, figures, controller); !st) return fail(st.error());
+      last_stats = now;
+    }
     const int64_t end = hal::monotonic_ns();
     const double ms = static_cast<double>(end - now) * 1e-6;
     figures.frame_us.add(ms * 1e3);

@@ -58,6 +58,8 @@ class StationLoop {
     /// the latency figure); off for the fastest possible replay.
     bool mesh = true;
     hal::PoseIntegratorConfig pose{};
+    /// The undo history's memory budget: the oldest strokes go beyond it.
+    size_t undo_max_bytes = core::UndoHistory::kDefaultMaxBytes;
   };
   explicit StationLoop(const Options& options);
 
@@ -99,6 +101,7 @@ class StationLoop {
  private:
   void new_volume(glm::ivec3 dims, uint8_t fill, int clay_margin);
   void apply_tool();
+  core::SculptorOptions sculptor_options() const;
   void reset_sampler();
   void move_tool(const float* values, bool keep_stroke);
   void press();

@@ -21,11 +21,13 @@ struct WindowOptions {
   std::string project;              ///< open this project first
   std::string record;               ///< start recording to this session file
   std::string stats;                ///< write frame and latency figures here at exit (JSON)
+  double stats_every_s = 0;         ///< and every this many seconds while running (0: never)
   std::string screenshot;           ///< PNG of the last frame, at exit
   int frames = 0;                   ///< stop after this many frames (0: when closed)
   bool exit_when_replayed = false;  ///< stop when the sim device's session ends
   int lod = -1;                     ///< a fixed level of detail for every brick (-1: automatic)
   bool distance_normals = false;    ///< shade with the distance field's gradient
+  int undo_mib = 256;               ///< the undo history's memory budget
   bool vsync = true;
   bool visible = true;
   int width = 1280;
