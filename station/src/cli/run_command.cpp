@@ -106,6 +106,22 @@ void add_run_command(CLI::App& app, Action& action) {
          "window: shading normals, density (its gradient, the default) or distance (the distance "
          "field's gradient; also in the panel's View section)")
       ->check(CLI::IsMember({"density", "distance"}));
+  cmd->add_option_function<std::string>(
+         "--size",
+         [&w = *o](const std::string& v) {
+           std::sscanf(v.c_str(), "%dx%d", &w.window.width, &w.window.height);
+         },
+         "window: its size in pixels, WIDTHxHEIGHT (default 1280x800)")
+      ->check(
+          [](const std::string& v) -> std::string {
+            int width = 0, height = 0;
+            char end = 0;
+            if (std::sscanf(v.c_str(), "%dx%d%c", &width, &height, &end) != 2 || width < 64 ||
+                height < 64 || width > 16384 || height > 16384)
+              return "expected WIDTHxHEIGHT, each 64 to 16384 pixels";
+            return {};
+          },
+          "WIDTHxHEIGHT");
   cmd->add_option("--lod", w.lod, "window: draw every brick at this level (default: by distance)")
       ->check(finite_range(0, 2));
   cmd->add_flag(

@@ -61,7 +61,7 @@ json view_json(const ProjectView& v) {
           {"camera_pitch", v.camera_pitch},
           {"camera_distance", v.camera_distance},
           {"lod",
-           {{"full_detail_distance", v.lod.full_detail_distance},
+           {{"max_pixel_error", v.lod.max_pixel_error},
             {"max_level", v.lod.max_level},
             {"frame_budget_ms", v.lod.frame_budget_ms},
             {"fixed_level", v.lod.fixed_level}}}};
@@ -335,8 +335,10 @@ ProjectView view_of(const json& j) {
       float_in(field(j, "camera_distance", at), 1e-3, kMaxCoordinate, at + ".camera_distance");
   const json& l = field(j, "lod", at);
   const std::string lod = at + ".lod";
-  v.lod.full_detail_distance = float_in(field(l, "full_detail_distance", lod), 0.0, kMaxCoordinate,
-                                        lod + ".full_detail_distance");
+  // Projects of the distance-only level of detail have "full_detail_distance"
+  // instead: they open with the default error.
+  if (l.contains("max_pixel_error"))
+    v.lod.max_pixel_error = float_in(l["max_pixel_error"], 0.05, 64.0, lod + ".max_pixel_error");
   v.lod.max_level = int_in(field(l, "max_level", lod), 0, 16, lod + ".max_level");
   v.lod.frame_budget_ms =
       number_in(field(l, "frame_budget_ms", lod), 0.0, 1000.0, lod + ".frame_budget_ms");

@@ -20,21 +20,27 @@ void LodSelector::set_policy(const LodPolicy& policy) {
   bias_ = std::clamp(bias_, 0.0f, static_cast<float>(std::max(policy_.max_level, 0)));
 }
 
-std::vector<int> LodSelector::select(glm::ivec3 grid, int edge, glm::vec3 eye) const {
+std::vector<int> LodSelector::select(glm::ivec3 grid, int edge, glm::vec3 eye,
+                                     float focal_px) const {
+  const bool budgeted = policy_.frame_budget_ms > 0;
   std::vector<int> levels(static_cast<size_t>(grid.x) * grid.y * grid.z, 0);
   const int max_level = std::max(policy_.max_level, 0);
   if (policy_.fixed_level >= 0) {
     std::fill(levels.begin(), levels.end(), std::min(policy_.fixed_level, max_level));
     return levels;
   }
-  const float near = std::max(policy_.full_detail_distance, 1.0f);
+  // Level k's voxels span 2^k focal / d pixels at distance d: the coarsest
+  // level within the error is floor(log2(error d / focal)).
+  const float per_voxel = std::max(policy_.max_pixel_error, 1e-3f) / std::max(focal_px, 1e-3f);
+  const glm::vec3 e(static_cast<float>(edge));
   size_t i = 0;
   for (int z = 0; z < grid.z; ++z) {
     for (int y = 0; y < grid.y; ++y) {
       for (int x = 0; x < grid.x; ++x, ++i) {
-        const glm::vec3 centre = (glm::vec3(x, y, z) + 0.5f) * static_cast<float>(edge);
-        const float d = glm::length(centre - eye);
-        const float level = std::log2(std::max(d / near, 1.0f)) + bias_;
+        // The brick's nearest point: its finest detail on screen.
+        const glm::vec3 lo = glm::vec3(x, y, z) * e;
+        const float d = glm::length(glm::clamp(eye, lo, lo + e) - eye);
+        const float level = std::log2(std::max(d * per_voxel, 1.0f)) + (budgeted ? bias_ : 0.0f);
         levels[i] = std::clamp(static_cast<int>(std::floor(level)), 0, max_level);
       }
     }
@@ -43,7 +49,7 @@ std::vector<int> LodSelector::select(glm::ivec3 grid, int edge, glm::vec3 eye) c
 }
 
 bool LodSelector::frame_done(double frame_ms) {
-  if (policy_.fixed_level >= 0) return false;
+  if (policy_.fixed_level >= 0 || policy_.frame_budget_ms <= 0) return false;
   const float old = bias_;
   if (frame_ms > policy_.frame_budget_ms) {
     fast_frames_ = 0;

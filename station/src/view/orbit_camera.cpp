@@ -24,6 +24,10 @@ void OrbitCamera::frame(glm::vec3 lo, glm::vec3 hi) {
   distance_ = std::clamp(1.15f * radius / std::sin(0.5f * kFovY), kMinDistance, kMaxDistance);
 }
 
+float OrbitCamera::focal_length_px(float viewport_height) {
+  return 0.5f * viewport_height / std::tan(0.5f * kFovY);
+}
+
 void OrbitCamera::set(glm::vec3 target, float yaw_rad, float pitch_rad, float distance) {
   target_ = target;
   yaw_ = yaw_rad;

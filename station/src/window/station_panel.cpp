@@ -149,14 +149,15 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     bool automatic = lod.fixed_level < 0;
     bool changed = ImGui::Checkbox("automatic level of detail", &automatic);
     if (automatic) {
-      changed |= ImGui::SliderFloat("full detail within", &lod.full_detail_distance, 50.0f, 2000.0f,
-                                    "%.0f vox");
+      changed |=
+          ImGui::SliderFloat("pixel error", &lod.max_pixel_error, 0.25f, 8.0f, "%.2f px per voxel");
       float budget = static_cast<float>(lod.frame_budget_ms);
-      if (ImGui::SliderFloat("frame budget", &budget, 5.0f, 50.0f, "%.0f ms")) {
+      if (ImGui::SliderFloat("frame budget", &budget, 0.0f, 50.0f,
+                             budget > 0 ? "%.0f ms" : "off")) {
         lod.frame_budget_ms = budget;
         changed = true;
       }
-      ImGui::Text("coarsening bias %.2f", c_.lod().bias());
+      if (lod.frame_budget_ms > 0) ImGui::Text("coarsening bias %.2f", c_.lod().bias());
       if (changed && lod.fixed_level >= 0) lod.fixed_level = -1;
     } else {
       if (lod.fixed_level < 0) lod.fixed_level = 0;

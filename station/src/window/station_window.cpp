@@ -357,11 +357,14 @@ int run_window(const WindowOptions& o) {
     if (frame == 0 && o.lod >= 0) policy.fixed_level = o.lod;
     controller.lod().set_policy(policy);
     const std::vector<int> levels =
-        controller.lod().select(volume.brick_grid(), volume.brick_edge(), camera.eye());
+        controller.lod().select(volume.brick_grid(), volume.brick_edge(), camera.eye(),
+                                OrbitCamera::focal_length_px(static_cast<float>(fb_h)));
     controller.surface_submitted(
         mesher.submit(volume, controller.loop().volume_generation(), levels));
-    // A picture of a given frame shows everything sculpted before it.
-    if (!o.screenshot.empty() && o.frames > 0 && frame == o.frames - 1) mesher.wait_until_meshed();
+    // A picture of a given frame shows everything sculpted before it, and
+    // every brick shaded as it asks.
+    const bool picture_frame = !o.screenshot.empty() && o.frames > 0 && frame == o.frames - 1;
+    if (picture_frame) mesher.wait_until_meshed();
     if (auto delta = mesher.take()) {
       // Latency: from each dab's report to its surface ready to draw.
       controller.surface_ready(delta->change, delta->ready_ns);
@@ -370,7 +373,7 @@ int run_window(const WindowOptions& o) {
     const int64_t t_upload = hal::monotonic_ns();
     figures.mesh_ms += static_cast<double>(t_upload - t_mesh) * 1e-6;
     (*renderer)->set_distance_normals(controller.distance_normals());
-    const gl::SurfaceSync sync = (*renderer)->sync_surface(volume, surface);
+    const gl::SurfaceSync sync = (*renderer)->sync_surface(volume, surface, picture_frame);
     (*renderer)->set_tool(controller.loop().tool(), controller.loop().tool_version());
     const SheetEditor& sheet = controller.loop().sheet();
     (*renderer)->set_sheet(sheet.mesh(), sheet.version(),
@@ -384,7 +387,7 @@ int run_window(const WindowOptions& o) {
                       controller.loop().pressed()};
     (*renderer)->draw({camera.view(), camera.projection(aspect), camera.eye(), fb_w, fb_h}, tool,
                       glm::vec3(volume.dims()));
-    if (!o.screenshot.empty() && (o.frames > 0 && frame == o.frames - 1)) {
+    if (picture_frame) {
       RgbImage shot{fb_w, fb_h, {}};
       read_pixels(fb_w, fb_h, shot.rgb);
       if (Status st = write_png(o.screenshot, shot); !st) return fail(st.error());

@@ -101,8 +101,8 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create() {
   return r;
 }
 
-SurfaceSync SceneRenderer::sync_surface(const core::Volume& volume,
-                                        const SurfaceSnapshot& surface) {
+SurfaceSync SceneRenderer::sync_surface(const core::Volume& volume, const SurfaceSnapshot& surface,
+                                        bool whole) {
   SurfaceSync sync;
   visible_.clear();
   const auto& bricks = surface.bricks();
@@ -119,11 +119,11 @@ SurfaceSync SceneRenderer::sync_surface(const core::Volume& volume,
     visible_.push_back(&slot.mesh);
     sync.triangles += slot.mesh.triangles();
   }
-  if (distance_normals_) refine_normals(volume);
+  if (distance_normals_) refine_normals(volume, whole);
   return sync;
 }
 
-void SceneRenderer::refine_normals(const core::Volume& volume) {
+void SceneRenderer::refine_normals(const core::Volume& volume, bool whole) {
   const auto start = std::chrono::steady_clock::now();
   for (auto& [index, slot] : slots_) {
     if (slot.distance_normals) continue;
@@ -131,7 +131,9 @@ void SceneRenderer::refine_normals(const core::Volume& volume) {
     core::set_normals_from_surface_distance(volume, smooth);
     slot.mesh.upload(smooth);
     slot.distance_normals = true;
-    if (std::chrono::steady_clock::now() - start > std::chrono::nanoseconds(kRefineBudgetNs)) break;
+    if (!whole &&
+        std::chrono::steady_clock::now() - start > std::chrono::nanoseconds(kRefineBudgetNs))
+      break;
   }
 }
 

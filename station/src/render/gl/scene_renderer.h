@@ -51,8 +51,11 @@ class SceneRenderer {
   static Result<std::unique_ptr<SceneRenderer>> create();
 
   /// Sends the brick meshes re-made since the last call to the GPU.
-  /// `volume` is read for distance normals only.
-  SurfaceSync sync_surface(const core::Volume& volume, const SurfaceSnapshot& surface);
+  /// `volume` is read for distance normals only. `whole`: re-shade every
+  /// brick now, however long it takes (a picture of this frame), instead
+  /// of within the frame's budget.
+  SurfaceSync sync_surface(const core::Volume& volume, const SurfaceSnapshot& surface,
+                           bool whole = false);
   /// Normals of the brick meshes: the density gradient (false, the mesher's)
   /// or the gradient of the distance to the sub-voxel surface (true;
   /// smoother). A changed brick is first drawn with the mesher's normals and
@@ -80,7 +83,7 @@ class SceneRenderer {
   };
   // Re-shades slots with the distance field's normals, in the slots' order,
   // for at most kRefineBudgetNs.
-  void refine_normals(const core::Volume& volume);
+  void refine_normals(const core::Volume& volume, bool whole);
   void draw_lines(const std::vector<glm::vec3>& points, glm::vec4 colour, const glm::mat4& mvp);
 
   ShaderProgram lit_;

@@ -1,8 +1,11 @@
 #pragma once
 // Level of detail per brick ("Discrete tools for virtual sculpture" §2.3):
 // a brick far from the camera is drawn from a coarser level of the wavelet
-// pyramid. The level grows by one each time the distance doubles past
-// `full_detail_distance`; a bias, adapted to the measured frame time, trades
+// pyramid, the coarsest whose voxels still span at most `max_pixel_error`
+// pixels on screen, so the picture at automatic level is the full-detail
+// picture to within a pixel (a level chosen by distance alone showed facets
+// and blobby eyes on a head that filled a third of the window). Optionally
+// (a frame budget above 0) a bias adapted to the measured frame time trades
 // detail for speed when frames run over budget and takes it back when they
 // run well under. GL-free, so the policy is tested without a window.
 
@@ -13,14 +16,15 @@
 namespace sculpt::station {
 
 struct LodPolicy {
-  /// Bricks nearer than this (voxels, from the eye to the brick's centre)
-  /// are drawn at full detail when the bias is 0.
-  float full_detail_distance = 400.0f;
+  /// The most pixels one voxel of a brick's level may span on screen (at
+  /// the brick's nearest point; with no bias).
+  float max_pixel_error = 1.0f;
   /// Coarsest level drawn (never above the volume's levels).
   int max_level = 2;
-  /// Frame-time budget, milliseconds: under 16.7 (60 frames per second) with
-  /// room for the frames that run long (a big dab, a re-mesh).
-  double frame_budget_ms = 12.0;
+  /// Frame-time budget, milliseconds, for the adaptive bias; 0: no bias
+  /// (the default: on a software renderer frames run long whatever the
+  /// level, and the bias only coarsened the picture).
+  double frame_budget_ms = 0.0;
   /// A fixed level for every brick instead (-1: automatic).
   int fixed_level = -1;
 };
@@ -32,8 +36,11 @@ class LodSelector {
   void set_policy(const LodPolicy& policy);
 
   /// Levels for a grid of bricks of `brick_edge` voxels, brick index
-  /// (b.z * grid.y + b.y) * grid.x + b.x, seen from `eye`.
-  std::vector<int> select(glm::ivec3 brick_grid, int brick_edge, glm::vec3 eye) const;
+  /// (b.z * grid.y + b.y) * grid.x + b.x, seen from `eye` by a camera of
+  /// `focal_px` (pixels a voxel spans at a distance of one voxel:
+  /// OrbitCamera::focal_length_px).
+  std::vector<int> select(glm::ivec3 brick_grid, int brick_edge, glm::vec3 eye,
+                          float focal_px) const;
 
   /// Feeds the time the last frame took; returns whether the bias changed.
   bool frame_done(double frame_ms);

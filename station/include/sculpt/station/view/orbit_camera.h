@@ -47,6 +47,9 @@ class OrbitCamera {
   glm::mat4 view() const;
   /// Perspective projection; near and far planes follow the distance.
   glm::mat4 projection(float aspect) const;
+  /// Pixels one voxel spans at a distance of one voxel, for a viewport
+  /// `viewport_height` pixels high (level of detail by screen error).
+  static float focal_length_px(float viewport_height);
   /// The ray through a point of the viewport, in normalised device
   /// coordinates (x, y in [-1, 1], y up).
   Ray ray(glm::vec2 ndc, float aspect) const;
