@@ -139,6 +139,25 @@ int MixedLevelMeshCache::coarsest_level_at(glm::ivec3 x2) const {
   return levels_at(x2).y;
 }
 
+bool MixedLevelMeshCache::uniform_around(glm::ivec3 b, int r) const {
+  // Outside the volume reads 0, like an empty uniform brick.
+  int value = -1;
+  for (int dz = -r; dz <= r; ++dz)
+    for (int dy = -r; dy <= r; ++dy)
+      for (int dx = -r; dx <= r; ++dx) {
+        const glm::ivec3 nb = b + glm::ivec3(dx, dy, dz);
+        int v = 0;
+        if (in_grid(nb)) {
+          const Brick& brick = volume_->brick(nb);
+          if (!brick.is_uniform()) return false;
+          v = brick.uniform_value();
+        }
+        if (value >= 0 && v != value) return false;
+        value = v;
+      }
+  return true;
+}
+
 void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<float>& block) {
   const int k = cb.level;
   const int m = edge_ >> k, s = 1 << k;
@@ -365,8 +384,9 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
   decodes_ = 0;
   MeshUpdate stats;
   // Where stored bricks changed (level-0 boxes), at every level some brick
-  // reads them: their kept decoded voxels before and after. A brick no one
-  // read (nothing kept) affects no mesh.
+  // reads them: their kept decoded voxels before and after. A brick with
+  // nothing kept sat among uniform bricks, which were not meshed (nothing
+  // was read): its whole box counts as changed.
   std::vector<Box> changed;
   std::vector<uint8_t> old;
   for (int z = 0; z < grid_.z; ++z)
@@ -376,6 +396,11 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         uint64_t& seen = seen_versions_[index(n)];
         if (seen == volume.brick_version(n)) continue;
         seen = volume.brick_version(n);
+        bool kept = false;
+        for (int k = 0; k <= volume.levels(); ++k)
+          kept = kept ||
+                 decoded_.contains(static_cast<uint64_t>(index(n)) * 8 + static_cast<uint64_t>(k));
+        if (!kept) changed.push_back(Box{n * edge_, (n + 1) * edge_});
         for (int k = 0; k <= volume.levels(); ++k) {
           auto it = decoded_.find(static_cast<uint64_t>(index(n)) * 8 + static_cast<uint64_t>(k));
           if (it == decoded_.end()) continue;
@@ -423,6 +448,13 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         ++stats.bricks_changed;
         cb.level = k;
         cb.levels.swap(levels);
+        if (uniform_around(b, r)) {
+          // No crossing anywhere it reads: no surface, nothing to decode.
+          if (!cb.mesh.empty()) ++cb.mesh_version;
+          cb.mesh.clear();
+          cb.stats = {};
+          continue;
+        }
         stale_bricks.push_back(b);
       }
   // Decode what the stale bricks read (their neighbourhood, at every level

@@ -18,13 +18,19 @@ void InputStatistics::submitted(uint64_t change) {
   made_t_ns_.clear();
 }
 
-void InputStatistics::ready(uint64_t change, int64_t ready_ns) {
+void InputStatistics::ready(uint64_t change, uint64_t full_detail_change, int64_t ready_ns) {
+  auto us = [&](const Meshing& m) { return static_cast<double>(ready_ns - m.report_t_ns) * 1e-3; };
   while (!meshing_.empty() && meshing_.front().change <= change) {
-    const double us = static_cast<double>(ready_ns - meshing_.front().report_t_ns) * 1e-3;
+    const double first = us(meshing_.front());
+    detailing_.push_back(meshing_.front());
     meshing_.pop_front();
-    recent_us_.push_back(us);
+    recent_us_.push_back(first);
     if (recent_us_.size() > kRecentDabs) recent_us_.pop_front();
-    all_us_.add(us);
+    all_us_.add(first);
+  }
+  while (!detailing_.empty() && detailing_.front().change <= full_detail_change) {
+    full_detail_us_.add(us(detailing_.front()));
+    detailing_.pop_front();
   }
 }
 

@@ -363,7 +363,7 @@ void StationController::pointer_up(int64_t now_ns) {
 int64_t StationController::update_mesh(int64_t now_ns) {
   const int64_t meshed = loop_.update_mesh();
   surface_submitted(++own_change_);
-  surface_ready(own_change_, now_ns);
+  surface_ready(own_change_, own_change_, now_ns);
   return meshed;
 }
 
@@ -374,8 +374,9 @@ void StationController::surface_submitted(uint64_t change) {
   stats_.submitted(change);
 }
 
-void StationController::surface_ready(uint64_t change, int64_t ready_ns) {
-  stats_.ready(change, ready_ns);
+void StationController::surface_ready(uint64_t change, uint64_t full_detail_change,
+                                      int64_t ready_ns) {
+  stats_.ready(change, full_detail_change, ready_ns);
 }
 
 void StationController::tick(int64_t now_ns) {

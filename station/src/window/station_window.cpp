@@ -89,6 +89,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
   const double total = f.frames_total_ms;
   const double n = std::max<double>(1.0, static_cast<double>(f.frame_us.count()));
   const LatencyStats l = c.session_latency();
+  const LatencyStats full = c.full_detail_latency();
   const nlohmann::ordered_json j = {
       {"frames", f.frame_us.count()},
       {"fps_mean", total > 0 ? 1000.0 * static_cast<double>(f.frame_us.count()) / total : 0.0},
@@ -101,6 +102,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
         {"bricks_submitted", f.mesher.bricks_submitted},
         {"bricks_coalesced", f.mesher.bricks_coalesced},
         {"pending_bricks_max", f.mesher.pending_bricks_max},
+        {"coarse_first", f.mesher.coarse_first},
         {"updates", f.mesher.updates},
         {"bricks_meshed", f.mesher.bricks_meshed},
         {"update_ms_p50", f.mesher.update_us.quantile_us(0.5) * 1e-3},
@@ -125,7 +127,13 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
         {"p50", l.p50_us},
         {"p90", l.p90_us},
         {"p99", l.p99_us},
-        {"max", l.max_us}}}};
+        {"max", l.max_us}}},
+      {"full_detail_latency_us",
+       {{"count", full.count},
+        {"p50", full.p50_us},
+        {"p90", full.p90_us},
+        {"p99", full.p99_us},
+        {"max", full.max_us}}}};
   AtomicFileWriter w(path);
   if (!w.ok()) return w.error();
   w.write(j.dump(2) + "\n");
@@ -367,7 +375,7 @@ int run_window(const WindowOptions& o) {
     if (picture_frame) mesher.wait_until_meshed();
     if (auto delta = mesher.take()) {
       // Latency: from each dab's report to its surface ready to draw.
-      controller.surface_ready(delta->change, delta->ready_ns);
+      controller.surface_ready(delta->change, delta->full_detail_change, delta->ready_ns);
       surface.apply(std::move(*delta));
     }
     const int64_t t_upload = hal::monotonic_ns();
@@ -431,7 +439,8 @@ int run_window(const WindowOptions& o) {
 
   // The dabs of the last frames count in the latency figures too.
   mesher.wait_until_meshed();
-  if (auto delta = mesher.take()) controller.surface_ready(delta->change, delta->ready_ns);
+  if (auto delta = mesher.take())
+    controller.surface_ready(delta->change, delta->full_detail_change, delta->ready_ns);
   figures.mesher = mesher.counters();
 
   g_pointer = nullptr;

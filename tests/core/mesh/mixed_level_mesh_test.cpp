@@ -235,6 +235,25 @@ TEST(MixedLevelMeshCache, ParallelMeshingEqualsOneThreadAndDecodesEverythingFirs
   }
 }
 
+TEST(MixedLevelMeshCache, MaterialAppearingAmongUniformBricksIsMeshed) {
+  // Uniform neighbourhoods are not meshed (nothing is decoded there), so the
+  // first material put in an empty block must still be seen. Reproducer:
+  // the window showed nothing after the demo's new empty block.
+  Volume v(glm::ivec3(96), 0, VolumeOptions{.brick_edge = 16, .levels = 4});
+  const std::vector<int> levels = levels_by(v, [](glm::ivec3 b) { return b.x % 2; });
+  MixedLevelMeshCache cache;
+  EXPECT_EQ(cache.update(v, levels).bricks_meshed, 0);
+  EXPECT_EQ(cache.triangle_count(), 0);
+  v.write({30, 40, 20}, DenseGrid<uint8_t>(glm::ivec3(20, 12, 30), 255));
+  cache.update(v, levels);
+  EXPECT_GT(cache.triangle_count(), 100);
+  EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, levels));
+  // And gone again.
+  v.write({30, 40, 20}, DenseGrid<uint8_t>(glm::ivec3(20, 12, 30), 0));
+  cache.update(v, levels);
+  EXPECT_EQ(cache.triangle_count(), 0);
+}
+
 TEST(MixedLevelMeshCache, BrickMeshesDrawTheWholeSurface) {
   // What a renderer draws: every brick's own mesh; together (welded by
   // their seam keys) a closed surface, whichever bricks are coarse.

@@ -15,15 +15,27 @@ TEST(InputStatistics, ADabCountsFromItsReportToTheMeshOfItsChange) {
   EXPECT_FALSE(s.dabs_waiting());
   s.note_dabs(1, 12 * kMs);
   s.submitted(2);
-  s.ready(1, 14 * kMs);  // change 1 meshed: its dabs took 4 ms, change 2's waits
+  s.ready(1, 1, 14 * kMs);  // change 1 meshed: its dabs took 4 ms, change 2's waits
   EXPECT_EQ(s.session_latency().count, 2);
   EXPECT_EQ(s.recent_latency().max_us, 4000.0);
-  s.ready(2, 20 * kMs);  // 8 ms
+  s.ready(2, 2, 20 * kMs);  // 8 ms
   EXPECT_EQ(s.session_latency().count, 3);
   EXPECT_EQ(s.recent_latency().max_us, 8000.0);
   EXPECT_EQ(s.session_latency().max_us, 8000.0);
-  s.ready(2, 30 * kMs);  // nothing left to count
+  s.ready(2, 2, 30 * kMs);  // nothing left to count
   EXPECT_EQ(s.session_latency().count, 3);
+}
+
+TEST(InputStatistics, FullDetailCanComeLaterThanTheFirstMesh) {
+  InputStatistics s;
+  s.note_dabs(1, 10 * kMs);
+  s.submitted(1);
+  s.ready(1, 0, 13 * kMs);  // shown coarse after 3 ms
+  EXPECT_EQ(s.session_latency().max_us, 3000.0);
+  EXPECT_EQ(s.full_detail_latency().count, 0);
+  s.ready(1, 1, 40 * kMs);  // full detail after 30 ms
+  EXPECT_EQ(s.session_latency().count, 1);
+  EXPECT_EQ(s.full_detail_latency().max_us, 30000.0);
 }
 
 TEST(InputStatistics, TheReportRateIsOverAboutASecond) {

@@ -12,6 +12,11 @@
 #include "sculpt/core/sculpt/sculptor.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 #include "sculpt/core/tool/tool.h"
+#include "sculpt/sim/synth/bundled_sessions.h"
+#include "sculpt/station/app/session_loading.h"
+#include "sculpt/station/app/session_replay.h"
+#include "sculpt/station/app/station_loop.h"
+#include "sculpt/station/view/lod_selector.h"
 
 namespace sculpt::station {
 namespace {
@@ -115,6 +120,62 @@ TEST(SurfaceMesher, DeltasBuildTheSurfaceMeshedFromScratch) {
   EXPECT_GT(c.bricks_submitted, 0);
   EXPECT_LE(c.updates, c.submits);
   EXPECT_EQ(c.update_us.count(), c.updates);
+}
+
+TEST(SurfaceMesher, ANewVolumeIsShownCoarseFirstThenAtFullDetail) {
+  Sculpting s(64, 5);
+  SurfaceMesher mesher;
+  const std::vector<int> full(static_cast<size_t>(s.volume().brick_count()), 0);
+  const uint64_t change = mesher.submit(s.volume(), s.generation(), full);
+  mesher.wait_until_meshed();
+  const auto delta = mesher.take();
+  ASSERT_TRUE(delta.has_value());
+  EXPECT_TRUE(delta->reset);
+  EXPECT_EQ(delta->change, change);
+  EXPECT_EQ(delta->full_detail_change, change);
+  EXPECT_EQ(mesher.counters().coarse_first, 1);
+  for (const BrickSurface& b : delta->bricks)
+    EXPECT_EQ(b.level, 0);  // the coarse meshes were replaced by the full ones
+  // A dab is not a new volume: straight to full detail.
+  s.dab();
+  mesher.submit(s.volume(), s.generation(), full);
+  mesher.wait_until_meshed();
+  EXPECT_EQ(mesher.counters().coarse_first, 1);
+}
+
+// The window's own sequence: the demo played through the station loop (a
+// new volume, a head, dabs of every size), the mesher fed after every
+// sample at the levels a camera would pick, taken now and then.
+TEST(SurfaceMesher, ThePlayedDemoEndsOnTheSurfaceMeshedFromScratch) {
+  auto session = load_session(sim::bundled_session_path("demo"));
+  ASSERT_TRUE(session.ok());
+  StationLoop::Options o;
+  o.mesh = false;
+  o.clay_margin = 64;  // the window's first block
+  StationLoop loop(o);
+  SurfaceMesher mesher;
+  SurfaceSnapshot snapshot;
+  LodSelector lod;
+  const glm::vec3 eye(128.0f, 128.0f, -400.0f);
+  std::vector<int> levels;
+  int samples = 0;
+  auto feed = [&] {
+    const core::Volume& v = loop.volume();
+    levels = lod.select(v.brick_grid(), v.brick_edge(), eye, 300.0f);
+    mesher.submit(v, loop.volume_generation(), levels);
+    if (++samples % 5 == 0)
+      if (auto delta = mesher.take()) snapshot.apply(std::move(*delta));
+  };
+  feed();
+  ReplayOptions options;
+  options.fast = true;
+  options.on_sample = [&](const hal::InputEvent&) { feed(); };
+  ASSERT_TRUE(replay_session(*session, "demo", loop, options).ok());
+  feed();
+  mesher.wait_until_meshed();
+  if (auto delta = mesher.take()) snapshot.apply(std::move(*delta));
+  EXPECT_GT(snapshot.triangle_count(), 10000);
+  expect_same_surface(snapshot, loop.volume(), levels);
 }
 
 TEST(SurfaceMesher, NothingChangedIsNoChange) {

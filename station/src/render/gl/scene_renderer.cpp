@@ -220,8 +220,14 @@ void SceneRenderer::draw(const SceneView& view, const ToolDraw& tool, glm::vec3 
   lit_.set("eye", view.eye);
   lit_.set("model", glm::mat4(1.0f));
   lit_.set("colour", glm::vec4(kClay, 1.0f));
+  // The clay is closed and its triangles face outward: the back faces are
+  // hidden behind front ones, and a software renderer (llvmpipe) spends
+  // half its time shading them unless they are culled.
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
   for (const GpuMesh* m : visible_)
     m->draw();
+  glDisable(GL_CULL_FACE);  // a sheet is seen from both sides
   if (!sheet_mesh_.empty()) {
     // A sheet is not clay: a cool blue, brighter while it is being edited.
     lit_.set("colour", sheet_editing_ ? glm::vec4(0.35f, 0.62f, 0.95f, 1.0f)

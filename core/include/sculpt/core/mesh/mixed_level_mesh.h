@@ -131,6 +131,9 @@ class MixedLevelMeshCache {
   // level-0 point x2 / 2 (doubled so edge midpoints are integers).
   glm::ivec2 levels_at(glm::ivec3 x2) const;
   int coarsest_level_at(glm::ivec3 x2) const;
+  // Whether every brick within `r` of b (outside the volume: 0) is uniform
+  // with one value: then b's mesh is empty whatever its level.
+  bool uniform_around(glm::ivec3 b, int r) const;
   // Meshes brick b at cb.level into cb; `block` is the caller's scratch.
   void mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<float>& block);
   void stitch(glm::ivec3 b, int k, BrickMesh& out, MixedLevelStats& st) const;

@@ -4,8 +4,9 @@
 // rate. The panel shows the recent figures, --stats the whole session's.
 //
 // A dab's latency is known only when the mesher says the change holding it
-// is meshed, so dabs pass three stages: made (note_dabs), handed to the
-// mesher as change N (submitted), and ready (meshed up to change N).
+// is meshed, so dabs pass four stages: made (note_dabs), handed to the
+// mesher as change N (submitted), first shown (meshed up to change N, maybe
+// coarse), and shown at full detail. Both latencies are kept.
 //
 // Thread safety: one thread (the station's main loop).
 
@@ -26,12 +27,15 @@ class InputStatistics {
   bool dabs_waiting() const { return !made_t_ns_.empty(); }
   /// The dabs made so far went to the mesher as change `change`.
   void submitted(uint64_t change);
-  /// Every change up to `change` was meshed at `ready_ns`.
-  void ready(uint64_t change, int64_t ready_ns);
+  /// At `ready_ns`, every change up to `change` was meshed, and every
+  /// change up to `full_detail_change` at full detail.
+  void ready(uint64_t change, uint64_t full_detail_change, int64_t ready_ns);
 
   /// Latency of the last few hundred dabs (exact), and of all (histogram).
   LatencyStats recent_latency() const;
   LatencyStats session_latency() const { return latency_stats(all_us_); }
+  /// Report to full detail on screen, the whole session.
+  LatencyStats full_detail_latency() const { return latency_stats(full_detail_us_); }
 
   /// The reader's count of motion samples so far; returns the report rate
   /// over about the last second once one has passed, else a negative value.
@@ -46,8 +50,10 @@ class InputStatistics {
   };
   std::vector<int64_t> made_t_ns_;  // report times of dabs not yet submitted
   std::deque<Meshing> meshing_;     // submitted, waiting for their meshes
+  std::deque<Meshing> detailing_;   // shown, waiting for full detail
   std::deque<double> recent_us_;
   LatencyHistogram all_us_;  // fixed memory: the station runs for hours
+  LatencyHistogram full_detail_us_;
   bool rate_started_ = false;
   int64_t rate_since_ns_ = 0;
   int64_t rate_samples_ = 0;

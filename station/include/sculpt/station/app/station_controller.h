@@ -193,11 +193,13 @@ class StationController {
   /// made so far went to the mesher as change `change`...
   void surface_submitted(uint64_t change);
   /// ...and the meshes of every change up to `change` were ready at
-  /// `ready_ns`: the latency of their dabs (report to mesh ready).
-  void surface_ready(uint64_t change, int64_t ready_ns);
+  /// `ready_ns` (up to `full_detail_change` at full detail): the latencies
+  /// of their dabs (report to first mesh, and to full detail).
+  void surface_ready(uint64_t change, uint64_t full_detail_change, int64_t ready_ns);
   /// Latency of the last few hundred dabs, and of all of them.
   LatencyStats recent_latency() const { return stats_.recent_latency(); }
   LatencyStats session_latency() const { return stats_.session_latency(); }
+  LatencyStats full_detail_latency() const { return stats_.full_detail_latency(); }
   const DeviceStatus& device_status() const { return device_; }
 
   // --- files ---------------------------------------------------------------

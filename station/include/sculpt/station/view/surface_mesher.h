@@ -51,7 +51,10 @@ struct SurfaceDelta {
   /// Everything before is gone (a new volume): the bricks listed are all.
   bool reset = false;
   std::vector<BrickSurface> bricks;
-  uint64_t change = 0;   ///< the newest submitted change these meshes include
+  uint64_t change = 0;  ///< the newest submitted change these meshes include
+  /// The newest change whose bricks are all at full detail: a big change
+  /// (a new volume) is shown at once at a coarse level, refined next.
+  uint64_t full_detail_change = 0;
   int64_t ready_ns = 0;  ///< hal::monotonic_ns() when they were ready
 };
 
@@ -78,6 +81,7 @@ struct MesherCounters {
   int64_t updates = 0;             ///< mesh updates run
   int64_t bricks_meshed = 0;       ///< brick meshes remade
   int64_t pending_bricks_max = 0;  ///< deepest the pending set got
+  int64_t coarse_first = 0;        ///< changes shown coarse before full detail
   LatencyHistogram update_us;      ///< time of each mesh update
 };
 
