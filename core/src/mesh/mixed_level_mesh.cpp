@@ -180,8 +180,13 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<
           row[x - p0.x] = src[x - nb.x * m];
       }
     }
-  // Face, edge and corner points: the coarsest sharing level's values.
-  for (int z = 0; z <= m; ++z)
+  // Face, edge and corner points: the coarsest sharing level's values. With
+  // every brick around at this level they are the plain voxels already
+  // read (the common case: levels change only far from the camera), and
+  // the sampling that finds the sharing levels was most of the time.
+  const bool same_level_around =
+      std::all_of(cb.levels.begin(), cb.levels.end(), [k](int8_t l) { return l < 0 || l == k; });
+  for (int z = 0; z <= m && !same_level_around; ++z)
     for (int y = 0; y <= m; ++y) {
       const bool yz_face = z == 0 || y == 0 || z == m || y == m;
       for (int x = 0; x <= m; x += (yz_face ? 1 : m)) {
@@ -210,6 +215,7 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<
       if (a != axis && (p[a] == 0 || p[a] == m)) seam = true;
     if (!seam) return BrickMesh::kNotSeam;
     const glm::ivec3 x = (origin + p) * s;
+    if (same_level_around) return pack_edge(k, x / s, axis);
     glm::ivec3 mid2 = x * 2;
     mid2[axis] += s;
     const int lambda = coarsest_level_at(mid2);
@@ -223,7 +229,15 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<
     return pack_edge(k, x / s, axis);
   };
   detail::march_float_cells(block.data(), glm::ivec3(m), origin, k, options_.iso, key, cb.mesh);
-  stitch(b, k, cb.mesh, cb.stats);
+  // Only a coarser face neighbour leaves gaps for this brick to close.
+  bool coarser_face = false;
+  for (int a = 0; a < 3; ++a)
+    for (int side_sign : {-1, 1}) {
+      glm::ivec3 nb = b;
+      nb[a] += side_sign;
+      coarser_face = coarser_face || (in_grid(nb) && level_of(nb) > k);
+    }
+  if (coarser_face) stitch(b, k, cb.mesh, cb.stats);
 }
 
 void MixedLevelMeshCache::stitch(glm::ivec3 b, int k, BrickMesh& out, MixedLevelStats& st) const {
