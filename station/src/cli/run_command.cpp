@@ -87,6 +87,10 @@ void add_run_command(CLI::App& app, Action& action) {
                 "'replayed', so stop it with --frames or a signal)");
   cmd->add_option("--speed", w.sim_speed, "window, sim devices: play the session this much faster")
       ->check(finite_positive());
+  cmd->add_option("--mesh-threads", w.mesh_threads,
+                  "window: threads meshing the surface's changes (0: all cores)")
+      ->capture_default_str()
+      ->check(finite_range(0, 256));
   cmd->add_option("--undo-mib", w.undo_mib,
                   "window: memory for undo, MiB; the oldest strokes go beyond it")
       ->capture_default_str()

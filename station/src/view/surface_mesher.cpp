@@ -14,7 +14,7 @@ constexpr int kCoarseLevel = 2;
 
 }  // namespace
 
-SurfaceMesher::SurfaceMesher() : thread_([this] { run(); }) {}
+SurfaceMesher::SurfaceMesher(int threads) : threads_(threads), thread_([this] { run(); }) {}
 
 SurfaceMesher::~SurfaceMesher() {
   {
@@ -135,7 +135,8 @@ void SurfaceMesher::publish(SurfaceDelta delta) {
 
 void SurfaceMesher::run() {
   std::optional<core::Volume> mirror;
-  core::MixedLevelMeshCache cache;
+  const core::MarchingCubesOptions options{.threads = threads_};
+  core::MixedLevelMeshCache cache(options);
   std::vector<uint64_t> published;  // mesh version per brick as last published
   uint64_t full_detail_change = 0;
   uint64_t published_versions = 0;  // the versions handed out, across volumes
@@ -154,7 +155,7 @@ void SurfaceMesher::run() {
     const bool reset = work.reset.has_value();
     if (reset) {
       mirror = std::move(work.reset);
-      cache = core::MixedLevelMeshCache();
+      cache = core::MixedLevelMeshCache(options);
       published.assign(static_cast<size_t>(mirror->brick_count()), 0);
     }
     const glm::ivec3 grid = mirror->brick_grid();

@@ -252,7 +252,7 @@ int run_window(const WindowOptions& o) {
   // crack-free where levels meet, meshed on the mesher's thread from a
   // mirror of the volume; the frame hands over what changed and draws
   // what is ready, never waiting for it.
-  SurfaceMesher mesher;
+  SurfaceMesher mesher(o.mesh_threads);
   SurfaceSnapshot surface;
   RunFigures figures;
   FrameFigures frame_figures;

@@ -87,7 +87,9 @@ struct MesherCounters {
 
 class SurfaceMesher {
  public:
-  SurfaceMesher();
+  /// `threads` mesh the changed bricks of one update in parallel (0: all
+  /// cores); the meshes do not depend on it.
+  explicit SurfaceMesher(int threads = 0);
   ~SurfaceMesher();
   SurfaceMesher(const SurfaceMesher&) = delete;
   SurfaceMesher& operator=(const SurfaceMesher&) = delete;
@@ -118,6 +120,7 @@ class SurfaceMesher {
   void run();
   void publish(SurfaceDelta delta);
 
+  const int threads_;
   // Sculpting side only.
   uint64_t generation_ = ~uint64_t{0};
   std::vector<uint64_t> sent_versions_;

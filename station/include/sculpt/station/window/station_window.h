@@ -28,6 +28,7 @@ struct WindowOptions {
   int lod = -1;                     ///< a fixed level of detail for every brick (-1: automatic)
   bool distance_normals = false;    ///< shade with the distance field's gradient
   int undo_mib = 256;               ///< the undo history's memory budget
+  int mesh_threads = 0;             ///< threads meshing the surface's changes (0: all cores)
   bool vsync = true;
   bool visible = true;
   int width = 1280;
