@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -57,6 +58,37 @@ TEST(SurfaceNormals, APieceOfTheMeshGetsTheSameNormalsAsTheWhole) {
   for (size_t k = 0; k < piece.positions.size(); ++k) {
     const glm::vec3 a = whole.normals[k * 7], b = piece.normals[k];
     EXPECT_NEAR(glm::dot(a, b), 1.0f, 1e-5f) << k;
+  }
+}
+
+TEST(SurfaceNormals, ABricksMeshGetsTheWholeMeshsNormalsAtEveryLevel) {
+  // What the window re-shades is one brick's mesh at a time, at that
+  // brick's level: its normals must be those of the whole surface at the
+  // same points, up to the brick's faces, or bricks show as shading squares.
+  const Volume volume = sphere_volume(64, 0.3f);
+  for (int level : {0, 1, 2}) {
+    Mesh whole = marching_cubes(volume, level);
+    set_normals_from_surface_distance(volume, whole);
+    for (const glm::vec3 lo :
+         {glm::vec3(16, 16, 32), glm::vec3(32, 16, 16), glm::vec3(8, 24, 24)}) {
+      Mesh brick;
+      std::vector<size_t> from;
+      for (size_t i = 0; i < whole.positions.size(); ++i) {
+        const glm::vec3 p = whole.positions[i] - lo;
+        if (glm::all(glm::greaterThanEqual(p, glm::vec3(0))) &&
+            glm::all(glm::lessThanEqual(p, glm::vec3(16)))) {
+          brick.positions.push_back(whole.positions[i]);
+          from.push_back(i);
+        }
+      }
+      ASSERT_GT(brick.positions.size(), 4u) << level;
+      brick.normals.assign(brick.positions.size(), glm::vec3(0, 0, 1));
+      set_normals_from_surface_distance(volume, brick);
+      for (size_t k = 0; k < brick.positions.size(); ++k)
+        ASSERT_NEAR(glm::dot(whole.normals[from[k]], brick.normals[k]), 1.0f, 1e-5f)
+            << "level " << level << ", vertex at " << brick.positions[k].x << " "
+            << brick.positions[k].y << " " << brick.positions[k].z;
+    }
   }
 }
 
