@@ -278,6 +278,14 @@ std::string format_trace_line(const TraceLine& line) {
   return out;
 }
 
+bool trace_line_finite(const TraceLine& line) {
+  auto finite = [](glm::vec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+  };
+  return std::isfinite(line.t_s) && finite(line.device_vox) && finite(line.proxy_vox) &&
+         finite(line.force_n) && (!line.torque_nm || finite(*line.torque_nm));
+}
+
 Result<std::vector<TraceLine>> parse_trace_text(std::string_view text, const std::string& name) {
   std::vector<TraceLine> lines;
   const Status s =

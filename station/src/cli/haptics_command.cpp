@@ -160,6 +160,10 @@ int run_trace(const TraceOptions& o) {
       line.contact = tick.proxy.contact;
       normal = tick.proxy.normal;
     }
+    if (!core::trace_line_finite(line)) {
+      return report(Error(o.output + ": tick " + std::to_string(&sample - &probe->front()) +
+                          " has a value that is not a finite number; nothing written"));
+    }
     text += core::format_trace_line(line);
     contact_ticks += line.contact;
     max_force = std::max(max_force, glm::length(line.force_n));

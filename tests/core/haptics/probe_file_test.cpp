@@ -101,6 +101,23 @@ TEST(ProbeFile, NanAndInfinityGetAClearError) {
             "p.jsonl:1: a number is out of range for a double");
 }
 
+TEST(ProbeFile, ATraceLineWithANonFiniteNumberIsCaughtBeforeWriting) {
+  // The trace reader refuses what format_trace_line writes as null.
+  TraceLine line;
+  line.force_n = {0.5f, 0.0f, -1.0f};
+  EXPECT_TRUE(trace_line_finite(line));
+  TraceLine nan_force = line;
+  nan_force.force_n.y = std::nanf("");
+  TraceLine inf_torque = line;
+  inf_torque.torque_nm = glm::vec3(0.0f, std::numeric_limits<float>::infinity(), 0.0f);
+  TraceLine inf_time = line;
+  inf_time.t_s = std::numeric_limits<double>::infinity();
+  for (const TraceLine& bad : {nan_force, inf_torque, inf_time}) {
+    EXPECT_FALSE(trace_line_finite(bad));
+    EXPECT_FALSE(parse_trace_text(format_trace_line(bad), "t").ok());
+  }
+}
+
 TEST(ProbeFile, HostileBytesGiveAnErrorNotACrash) {
   using namespace std::string_literals;
   EXPECT_EQ(probe_error("{\"t\": 0,\0 \"at\": [0, 0, 0]}"s),

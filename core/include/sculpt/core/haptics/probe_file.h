@@ -72,6 +72,9 @@ struct TraceLine {
 /// t_s with 17, so parse_trace_text() gives back the same bits. A non-finite
 /// number (a bug upstream) is written as null, which parse_trace_text() refuses.
 std::string format_trace_line(const TraceLine& line);
+/// Whether every number of `line` is finite (the reader refuses any other,
+/// so a trace with one is refused before it is written).
+bool trace_line_finite(const TraceLine& line);
 /// Parses trace text (format_trace_line()'s output, one line after another);
 /// errors like parse_probe_text()'s. Text without any line is an error.
 Result<std::vector<TraceLine>> parse_trace_text(std::string_view text, const std::string& name);
