@@ -381,7 +381,10 @@ void StationController::surface_ready(uint64_t change, uint64_t full_detail_chan
 
 void StationController::tick(int64_t now_ns) {
   if (recorder_.recording()) {
-    if (Status st = recorder_.flush(); !st) status_ = "recording stopped: " + st.error().message();
+    if (Status st = recorder_.flush(); !st) {
+      recording_error_ = st.error().message();
+      status_ = "recording stopped: " + recording_error_;
+    }
   }
   autosave_if_due(now_ns);
 }

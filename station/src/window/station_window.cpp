@@ -451,6 +451,10 @@ int run_window(const WindowOptions& o) {
     if (Status st = controller.stop_recording(); !st) return fail(st.error());
     std::printf("%s\n", controller.status().c_str());
   }
+  // A recording asked for on the command line that stopped by itself is
+  // not a success: what was written before the failure stays readable.
+  if (!o.record.empty() && !controller.recording_error().empty())
+    return fail(Error("recording stopped early: " + controller.recording_error()));
   controller.finish_autosave();
   if (!o.stats.empty()) {
     if (Status st = write_stats(o.stats, figures, controller); !st) return fail(st.error());

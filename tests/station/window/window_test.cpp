@@ -161,9 +161,12 @@ TEST(StationWindow, RunsTheLiveLoopOnASimDeviceAndTakesAScreenshot) {
   ASSERT_TRUE(again.ok()) << again.error().message();
   StationLoop loop(StationLoop::Options{});
   ASSERT_TRUE(replay_session(*again, "again", loop).ok());
-  EXPECT_EQ(loop.counters().strokes, stats["strokes"].get<int64_t>());
-  EXPECT_EQ(loop.counters().dabs, stats["dabs"].get<int64_t>());
-  EXPECT_EQ(loop.volume().content_hash(), stats["volume_hash"].get<uint64_t>());
+  // What the window said, for when the recording does not replay to it.
+  const std::string said = "window stdout: " + r->out + "\nwindow stderr: " + r->err +
+                           "\nrecording: " + std::to_string(again->records.size()) + " records";
+  EXPECT_EQ(loop.counters().strokes, stats["strokes"].get<int64_t>()) << said;
+  EXPECT_EQ(loop.counters().dabs, stats["dabs"].get<int64_t>()) << said;
+  EXPECT_EQ(loop.volume().content_hash(), stats["volume_hash"].get<uint64_t>()) << said;
   EXPECT_GT(stats["solid_voxels"].get<int64_t>(), 500);
 
   // A project opened in the window and drawn, shaded with the distance

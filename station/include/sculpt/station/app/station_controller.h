@@ -209,6 +209,9 @@ class StationController {
   Status start_recording(const std::filesystem::path& path, int64_t now_ns);
   Status stop_recording();
   bool recording() const { return recorder_.recording(); }
+  /// Why the last recording stopped by itself (a write failed); empty if
+  /// it did not.
+  const std::string& recording_error() const { return recording_error_; }
   /// Periodic work: the recording's flush, the autosave when due.
   void tick(int64_t now_ns);
   /// Waits for an autosave in flight (tests, shutdown).
@@ -244,6 +247,7 @@ class StationController {
   hal::DeviceInfo device_info_;
   std::string normalizer_text_;
   std::string status_;
+  std::string recording_error_;
 
   // A command's time in a recording: just after the newest report processed
   // before it, so the recording orders it among the reports as the station
