@@ -411,13 +411,10 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         if (seen == volume.brick_version(n)) continue;
         seen = volume.brick_version(n);
         bool kept = false;
-        for (int k = 0; k <= volume.levels(); ++k)
-          kept = kept ||
-                 decoded_.contains(static_cast<uint64_t>(index(n)) * 8 + static_cast<uint64_t>(k));
-        if (!kept) changed.push_back(Box{n * edge_, (n + 1) * edge_});
         for (int k = 0; k <= volume.levels(); ++k) {
           auto it = decoded_.find(static_cast<uint64_t>(index(n)) * 8 + static_cast<uint64_t>(k));
           if (it == decoded_.end()) continue;
+          kept = true;
           old.swap(it->second.voxels);
           const std::vector<uint8_t>& now = decoded(n, k).voxels;
           const int m = edge_ >> k;
@@ -434,6 +431,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
             }
           if (hi.x >= 0) changed.push_back(Box{(n * m + lo) << k, (n * m + hi + 1) << k});
         }
+        if (!kept) changed.push_back(Box{n * edge_, (n + 1) * edge_});
       }
   std::vector<int8_t> levels;
   std::vector<glm::ivec3> stale_bricks;

@@ -84,7 +84,6 @@ int64_t SurfaceSnapshot::apply(SurfaceDelta delta) {
       bricks_.insert_or_assign(b.index, std::move(b));
     }
   }
-  if (changed > 0 || delta.reset) ++version_;
   return changed;
 }
 
@@ -194,7 +193,7 @@ void SurfaceMesher::run() {
         if (all && mesh.empty()) continue;
         // Published versions count across volumes (a fresh cache restarts
         // at 1): a renderer's stamp never matches a mesh of another volume.
-        delta.bricks.push_back({i, b, cache.brick_level(b), ++published_versions,
+        delta.bricks.push_back({i, cache.brick_level(b), ++published_versions,
                                 std::make_shared<const core::BrickMesh>(mesh)});
       }
       delta.ready_ns = hal::monotonic_ns();

@@ -40,7 +40,6 @@ namespace sculpt::station {
 /// One brick's mesh as the mesher published it.
 struct BrickSurface {
   int64_t index = 0;  ///< brick order: (b.z * grid.y + b.y) * grid.x + b.x
-  glm::ivec3 brick{0};
   int level = 0;
   uint64_t version = 0;                         ///< moves on each time the brick's mesh is remade
   std::shared_ptr<const core::BrickMesh> mesh;  ///< never null
@@ -66,12 +65,9 @@ class SurfaceSnapshot {
   int64_t apply(SurfaceDelta delta);
   const std::unordered_map<int64_t, BrickSurface>& bricks() const { return bricks_; }
   int64_t triangle_count() const;
-  /// Bumped by every apply() that changed something.
-  uint64_t version() const { return version_; }
 
  private:
   std::unordered_map<int64_t, BrickSurface> bricks_;  // by brick index
-  uint64_t version_ = 0;
 };
 
 struct MesherCounters {
