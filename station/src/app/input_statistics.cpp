@@ -1,5 +1,7 @@
 #include "sculpt/station/app/input_statistics.h"
 
+#include <algorithm>
+
 namespace sculpt::station {
 namespace {
 
@@ -12,14 +14,19 @@ void InputStatistics::note_dabs(int64_t count, int64_t report_t_ns) {
   made_t_ns_.insert(made_t_ns_.end(), static_cast<size_t>(count), report_t_ns);
 }
 
-void InputStatistics::submitted(uint64_t change) {
+void InputStatistics::submitted(uint64_t change, int64_t now_ns) {
   for (int64_t t : made_t_ns_)
     meshing_.push_back({change, t});
   made_t_ns_.clear();
+  // A dab in the air (or one that left the voxels as they were) has nothing
+  // to wait for; without this it would count until the next change meshed.
+  if (change <= ready_change_) ready(ready_change_, full_detail_change_, now_ns);
 }
 
 void InputStatistics::ready(uint64_t change, uint64_t full_detail_change, int64_t ready_ns) {
   auto us = [&](const Meshing& m) { return static_cast<double>(ready_ns - m.report_t_ns) * 1e-3; };
+  ready_change_ = std::max(ready_change_, change);
+  full_detail_change_ = std::max(full_detail_change_, full_detail_change);
   while (!meshing_.empty() && meshing_.front().change <= change) {
     const double first = us(meshing_.front());
     detailing_.push_back(meshing_.front());

@@ -362,16 +362,16 @@ void StationController::pointer_up(int64_t now_ns) {
 
 int64_t StationController::update_mesh(int64_t now_ns) {
   const int64_t meshed = loop_.update_mesh();
-  surface_submitted(++own_change_);
+  surface_submitted(++own_change_, now_ns);
   surface_ready(own_change_, own_change_, now_ns);
   return meshed;
 }
 
-void StationController::surface_submitted(uint64_t change) {
+void StationController::surface_submitted(uint64_t change, int64_t now_ns) {
   // Something to autosave: new dabs, or the sheet moved under the device.
   if (stats_.dabs_waiting() || loop_.sheet().version() != sheet_version_) ++generation_;
   sheet_version_ = loop_.sheet().version();
-  stats_.submitted(change);
+  stats_.submitted(change, now_ns);
 }
 
 void StationController::surface_ready(uint64_t change, uint64_t full_detail_change,

@@ -385,7 +385,7 @@ int run_window(const WindowOptions& o) {
         controller.lod().select(volume.brick_grid(), volume.brick_edge(), camera.eye(),
                                 OrbitCamera::focal_length_px(static_cast<float>(fb_h)));
     controller.surface_submitted(
-        mesher.submit(volume, controller.loop().volume_generation(), levels));
+        mesher.submit(volume, controller.loop().volume_generation(), levels), hal::monotonic_ns());
     // A picture of a given frame shows everything sculpted before it, and
     // every brick shaded as it asks.
     const bool picture_frame = !o.screenshot.empty() && o.frames > 0 && frame == o.frames - 1;

@@ -11,10 +11,10 @@ TEST(InputStatistics, ADabCountsFromItsReportToTheMeshOfItsChange) {
   InputStatistics s;
   s.note_dabs(2, 10 * kMs);  // two dabs of one report
   EXPECT_TRUE(s.dabs_waiting());
-  s.submitted(1);
+  s.submitted(1, 10 * kMs);
   EXPECT_FALSE(s.dabs_waiting());
   s.note_dabs(1, 12 * kMs);
-  s.submitted(2);
+  s.submitted(2, 12 * kMs);
   s.ready(1, 1, 14 * kMs);  // change 1 meshed: its dabs took 4 ms, change 2's waits
   EXPECT_EQ(s.session_latency().count, 2);
   EXPECT_EQ(s.recent_latency().max_us, 4000.0);
@@ -29,13 +29,31 @@ TEST(InputStatistics, ADabCountsFromItsReportToTheMeshOfItsChange) {
 TEST(InputStatistics, FullDetailCanComeLaterThanTheFirstMesh) {
   InputStatistics s;
   s.note_dabs(1, 10 * kMs);
-  s.submitted(1);
+  s.submitted(1, 10 * kMs);
   s.ready(1, 0, 13 * kMs);  // shown coarse after 3 ms
   EXPECT_EQ(s.session_latency().max_us, 3000.0);
   EXPECT_EQ(s.full_detail_latency().count, 0);
   s.ready(1, 1, 40 * kMs);  // full detail after 30 ms
   EXPECT_EQ(s.session_latency().count, 1);
   EXPECT_EQ(s.full_detail_latency().max_us, 30000.0);
+}
+
+TEST(InputStatistics, ADabThatChangedNothingIsShownWhenItIsSubmitted) {
+  InputStatistics s;
+  s.note_dabs(1, 10 * kMs);
+  s.submitted(1, 10 * kMs);
+  s.ready(1, 1, 15 * kMs);
+  s.note_dabs(1, 20 * kMs);  // a dab in the air: the mesher's change stays 1
+  s.submitted(1, 21 * kMs);
+  EXPECT_EQ(s.session_latency().count, 2);
+  EXPECT_EQ(s.full_detail_latency().count, 2);
+  EXPECT_EQ(s.recent_latency().max_us, 5000.0);  // not the 100 ms until the next change
+  s.note_dabs(1, 30 * kMs);
+  s.submitted(2, 31 * kMs);  // a real change waits for its mesh
+  EXPECT_EQ(s.session_latency().count, 2);
+  s.ready(2, 1, 34 * kMs);
+  EXPECT_EQ(s.session_latency().count, 3);
+  EXPECT_EQ(s.full_detail_latency().count, 2);
 }
 
 TEST(InputStatistics, TheReportRateIsOverAboutASecond) {

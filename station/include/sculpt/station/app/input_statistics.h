@@ -25,8 +25,10 @@ class InputStatistics {
   void note_dabs(int64_t count, int64_t report_t_ns);
   /// Whether dabs were made since the last submitted().
   bool dabs_waiting() const { return !made_t_ns_.empty(); }
-  /// The dabs made so far went to the mesher as change `change`.
-  void submitted(uint64_t change);
+  /// At `now_ns`, the dabs made so far went to the mesher as change
+  /// `change`. A change already meshed (the mesher had nothing new: the
+  /// dabs touched no voxel) shows them at once.
+  void submitted(uint64_t change, int64_t now_ns);
   /// At `ready_ns`, every change up to `change` was meshed, and every
   /// change up to `full_detail_change` at full detail.
   void ready(uint64_t change, uint64_t full_detail_change, int64_t ready_ns);
@@ -51,6 +53,8 @@ class InputStatistics {
   std::vector<int64_t> made_t_ns_;  // report times of dabs not yet submitted
   std::deque<Meshing> meshing_;     // submitted, waiting for their meshes
   std::deque<Meshing> detailing_;   // shown, waiting for full detail
+  uint64_t ready_change_ = 0;        // the last ready() figures
+  uint64_t full_detail_change_ = 0;
   std::deque<double> recent_us_;
   LatencyHistogram all_us_;  // fixed memory: the station runs for hours
   LatencyHistogram full_detail_us_;

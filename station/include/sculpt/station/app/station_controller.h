@@ -191,7 +191,7 @@ class StationController {
   int64_t update_mesh(int64_t now_ns);
   /// The window's way, meshing on another thread (SurfaceMesher): the dabs
   /// made so far went to the mesher as change `change`...
-  void surface_submitted(uint64_t change);
+  void surface_submitted(uint64_t change, int64_t now_ns);
   /// ...and the meshes of every change up to `change` were ready at
   /// `ready_ns` (up to `full_detail_change` at full detail): the latencies
   /// of their dabs (report to first mesh, and to full detail).
