@@ -8,6 +8,8 @@
 #include <thread>
 #include <vector>
 
+#include "sculpt/base/thread_times.h"
+
 namespace sculpt::core {
 
 namespace {
@@ -72,6 +74,7 @@ class WorkerPool {
 
  private:
   void work(uint64_t seen) {
+    name_this_thread("pool");
     t_loop_depth = 1;
     std::unique_lock lock(mutex_);
     for (;;) {
@@ -113,6 +116,7 @@ void run_on_fresh_threads(int64_t count, const std::function<void(int64_t)>& bod
                           int64_t workers) {
   std::atomic<int64_t> next{0};
   auto work = [&] {
+    name_this_thread("pool-extra");
     t_loop_depth = 1;
     drain(next, count, body);
   };

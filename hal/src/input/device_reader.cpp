@@ -1,5 +1,6 @@
 #include "sculpt/hal/input/device_reader.h"
 
+#include "sculpt/base/thread_times.h"
 #include "sculpt/hal/types/clock.h"
 
 namespace sculpt::hal {
@@ -19,7 +20,10 @@ DeviceReader::~DeviceReader() {
 
 void DeviceReader::start() {
   if (thread_.joinable()) return;
-  thread_ = std::thread([this] { run(); });
+  thread_ = std::thread([this] {
+    name_this_thread("reader");
+    run();
+  });
 }
 
 void DeviceReader::stop() {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "sculpt/base/thread_times.h"
 #include "sculpt/core/mesh/mixed_level_mesh.h"
 #include "sculpt/hal/types/clock.h"
 
@@ -14,7 +15,11 @@ constexpr int kCoarseLevel = 2;
 
 }  // namespace
 
-SurfaceMesher::SurfaceMesher(int threads) : threads_(threads), thread_([this] { run(); }) {}
+SurfaceMesher::SurfaceMesher(int threads)
+    : threads_(threads), thread_([this] {
+        name_this_thread("mesher");
+        run();
+      }) {}
 
 SurfaceMesher::~SurfaceMesher() {
   {

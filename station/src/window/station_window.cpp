@@ -16,6 +16,7 @@
 #include "render/gl/scene_renderer.h"
 #include "sculpt/base/atomic_file.h"
 #include "sculpt/base/latency_histogram.h"
+#include "sculpt/base/thread_times.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/hal/registry/device_registry.h"
 #include "sculpt/hal/types/clock.h"
@@ -71,6 +72,7 @@ struct RunFigures {
   int64_t triangles = 0;  // drawn in the last frame
   // Where the frames' time went, milliseconds summed over all frames.
   double input_ms = 0, mesh_ms = 0, upload_ms = 0, draw_ms = 0;
+  int64_t started_ns = 0;  // the first frame's start
 };
 
 // Brick by brick, uniform bricks without decoding: --stats-every calls this
@@ -96,6 +98,17 @@ int64_t solid_voxels(const core::Volume& v) {
           n += voxels[(static_cast<size_t>(z) * e + y) * e + x] > 127;
   }
   return n;
+}
+
+// Where each thread's time went since the window started: CPU seconds by
+// thread name (the frame's thread is "sculpt", Mesa's rasterizers
+// "llvmpipe"), and the wall time they shared.
+nlohmann::ordered_json thread_figures(int64_t started_ns) {
+  nlohmann::ordered_json cpu = nlohmann::ordered_json::object();
+  for (const ThreadGroupTime& g : thread_cpu_times())
+    cpu[g.name] = {{"threads", g.threads}, {"cpu_s", g.cpu_s}};
+  return {{"wall_s", static_cast<double>(hal::monotonic_ns() - started_ns) * 1e-9},
+          {"cpu_s", cpu}};
 }
 
 Status write_stats(const std::string& path, const RunFigures& f, const StationController& c) {
@@ -130,6 +143,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
         {"mesh", f.mesh_ms / n},
         {"upload", f.upload_ms / n},
         {"draw", f.draw_ms / n}}},
+      {"threads", thread_figures(f.started_ns)},
       {"undo_mib", static_cast<double>(c.loop().sculptor().history().memory_bytes()) / (1 << 20)},
       {"heap",
        {{"in_use_mib", static_cast<double>(heap.uordblks + heap.hblkhd) / (1 << 20)},
@@ -277,6 +291,7 @@ int run_window(const WindowOptions& o) {
   int64_t last_scan = hal::monotonic_ns();
   int64_t last_frame = last_scan;
   int64_t last_stats = last_scan;
+  figures.started_ns = last_scan;
   bool replay_done = false;
   std::vector<std::pair<int64_t, sim::Command>> pending_commands;
   int64_t newest_report_t = std::numeric_limits<int64_t>::min();
