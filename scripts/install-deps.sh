@@ -7,7 +7,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config git
-  zlib1g-dev libbz2-dev libglm-dev libeigen3-dev
+  zlib1g-dev libbz2-dev libglm-dev libeigen3-dev libmeshoptimizer-dev
   libhidapi-dev libusb-1.0-0-dev libspnav-dev
   libglfw3-dev libgl1-mesa-dri xvfb xauth
   libcli11-dev nlohmann-json3-dev libstb-dev libimgui-dev

@@ -16,8 +16,10 @@ namespace sculpt {
 namespace {
 
 std::string group_name(std::string name) {
-  while (!name.empty() && (name.back() == '\n' || name.back() == ' ')) name.pop_back();
-  while (!name.empty() && std::isdigit(static_cast<unsigned char>(name.back()))) name.pop_back();
+  while (!name.empty() && (name.back() == '\n' || name.back() == ' '))
+    name.pop_back();
+  while (!name.empty() && std::isdigit(static_cast<unsigned char>(name.back())))
+    name.pop_back();
   if (name.size() > 1 && (name.back() == '-' || name.back() == '_')) name.pop_back();
   return name.empty() ? "unnamed" : name;
 }

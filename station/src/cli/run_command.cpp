@@ -91,6 +91,11 @@ void add_run_command(CLI::App& app, Action& action) {
                   "window: threads meshing the surface's changes (0: all cores)")
       ->capture_default_str()
       ->check(finite_range(0, 256));
+  cmd->add_option("--simplify-error", w.simplify_error,
+                  "window: how far simplifying may move the drawn surface, in voxels of each "
+                  "brick's level (0: draw the marching-cubes meshes as they are)")
+      ->capture_default_str()
+      ->check(finite_range(0, 2));
   cmd->add_option("--undo-mib", w.undo_mib,
                   "window: memory for undo, MiB; the oldest strokes go beyond it")
       ->capture_default_str()

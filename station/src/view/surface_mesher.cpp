@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <utility>
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include "sculpt/base/thread_times.h"
+#include "sculpt/core/mesh/brick_simplify.h"
 #include "sculpt/core/mesh/mixed_level_mesh.h"
 #include "sculpt/hal/types/clock.h"
 
@@ -12,13 +16,24 @@ namespace {
 
 // The level a new volume is first shown at.
 constexpr int kCoarseLevel = 2;
+// Simplifying is the least urgent work of the window: it yields the cores
+// to sculpting, meshing and drawing (raising one's own niceness needs no
+// privilege; failing to is harmless).
+constexpr int kSimplifierNice = 10;
 
 }  // namespace
 
-SurfaceMesher::SurfaceMesher(int threads)
-    : threads_(threads), thread_([this] {
+SurfaceMesher::SurfaceMesher(int threads, float simplify_error)
+    : threads_(threads),
+      simplify_error_(simplify_error),
+      thread_([this] {
         name_this_thread("mesher");
         run();
+      }),
+      simplifier_([this] {
+        name_this_thread("simplifier");
+        setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kSimplifierNice);
+        simplify();
       }) {}
 
 SurfaceMesher::~SurfaceMesher() {
@@ -27,7 +42,9 @@ SurfaceMesher::~SurfaceMesher() {
     stop_ = true;
   }
   wake_.notify_all();
+  simplify_wake_.notify_all();
   thread_.join();
+  simplifier_.join();
 }
 
 uint64_t SurfaceMesher::submit(const core::Volume& volume, uint64_t generation,
@@ -106,7 +123,8 @@ std::optional<SurfaceDelta> SurfaceMesher::take() {
 
 void SurfaceMesher::wait_until_meshed() {
   std::unique_lock lock(mutex_);
-  meshed_.wait(lock, [&] { return !has_pending_ && !busy_; });
+  meshed_.wait(lock,
+               [&] { return !has_pending_ && !busy_ && simplify_order_.empty() && !simplifying_; });
 }
 
 MesherCounters SurfaceMesher::counters() const {
@@ -116,6 +134,30 @@ MesherCounters SurfaceMesher::counters() const {
 
 void SurfaceMesher::publish(SurfaceDelta delta) {
   std::lock_guard lock(mutex_);
+  if (delta.reset) {
+    newest_version_.clear();
+    simplify_jobs_.clear();
+    simplify_order_.clear();
+  }
+  for (BrickSurface& b : delta.bricks) {
+    // Versions count across volumes (a fresh cache restarts at 1): a
+    // renderer's stamp never matches a mesh of another volume.
+    b.version = ++versions_;
+    newest_version_[b.index] = b.version;
+    if (simplify_error_ > 0 && !b.mesh->empty()) {
+      if (!simplify_jobs_.contains(b.index)) simplify_order_.push_back(b.index);
+      simplify_jobs_[b.index] = b;  // a newer mesh replaces one not yet simplified
+    } else {
+      simplify_jobs_.erase(b.index);
+    }
+  }
+  last_change_ = delta.change;
+  last_full_detail_change_ = std::max(last_full_detail_change_, delta.full_detail_change);
+  merge_ready(std::move(delta));
+  simplify_wake_.notify_one();
+}
+
+void SurfaceMesher::merge_ready(SurfaceDelta delta) {
   if (!ready_ || delta.reset) {
     ready_ = std::move(delta);
     return;
@@ -141,9 +183,8 @@ void SurfaceMesher::run() {
   std::optional<core::Volume> mirror;
   const core::MarchingCubesOptions options{.threads = threads_};
   core::MixedLevelMeshCache cache(options);
-  std::vector<uint64_t> published;  // mesh version per brick as last published
+  std::vector<uint64_t> published;  // the cache's mesh version per brick as last published
   uint64_t full_detail_change = 0;
-  uint64_t published_versions = 0;  // the versions handed out, across volumes
   for (;;) {
     Pending work;
     {
@@ -196,10 +237,8 @@ void SurfaceMesher::run() {
         published[static_cast<size_t>(i)] = version;
         const core::BrickMesh& mesh = cache.brick_mesh(b);
         if (all && mesh.empty()) continue;
-        // Published versions count across volumes (a fresh cache restarts
-        // at 1): a renderer's stamp never matches a mesh of another volume.
-        delta.bricks.push_back({i, cache.brick_level(b), ++published_versions,
-                                std::make_shared<const core::BrickMesh>(mesh)});
+        delta.bricks.push_back(
+            {i, cache.brick_level(b), 0, std::make_shared<const core::BrickMesh>(mesh)});
       }
       delta.ready_ns = hal::monotonic_ns();
       publish(std::move(delta));
@@ -216,6 +255,55 @@ void SurfaceMesher::run() {
       counters_.update_us.add(static_cast<double>(end - start) * 1e-3);
     }
     meshed_.notify_all();
+  }
+}
+
+void SurfaceMesher::simplify() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    if (simplify_order_.empty()) meshed_.notify_all();
+    simplify_wake_.wait(lock, [&] { return stop_ || !simplify_order_.empty(); });
+    if (stop_) return;
+    const int64_t index = simplify_order_.front();
+    simplify_order_.pop_front();
+    const auto it = simplify_jobs_.find(index);
+    if (it == simplify_jobs_.end()) continue;  // its mesh went empty meanwhile
+    BrickSurface job = std::move(it->second);
+    simplify_jobs_.erase(it);
+    simplifying_ = true;
+    lock.unlock();
+    const int64_t start = hal::monotonic_ns();
+    core::SimplifiedBrick simplified =
+        core::simplify_brick_mesh(*job.mesh, simplify_error_ * static_cast<float>(1 << job.level));
+    const int64_t marched = static_cast<int64_t>(job.mesh->mesh.triangles.size());
+    const int64_t kept = static_cast<int64_t>(simplified.brick.mesh.triangles.size());
+    job.mesh = std::make_shared<const core::BrickMesh>(std::move(simplified.brick));
+    const int64_t end = hal::monotonic_ns();
+    lock.lock();
+    simplifying_ = false;
+    ++counters_.bricks_simplified;
+    counters_.triangles_marched += marched;
+    counters_.triangles_kept += kept;
+    counters_.simplify_error_max =
+        std::max(counters_.simplify_error_max, static_cast<double>(simplified.error));
+    counters_.simplify_us.add(static_cast<double>(end - start) * 1e-3);
+    // The mesher may have remade the brick meanwhile: its newer mesh stays.
+    if (newest_version_[index] != job.version) continue;
+    job.version = ++versions_;
+    newest_version_[index] = job.version;
+    SurfaceDelta delta;
+    // Changes already shown: no dab waits on this delta.
+    delta.change = last_change_;
+    delta.full_detail_change = last_full_detail_change_;
+    delta.ready_ns = end;
+    delta.bricks.push_back(std::move(job));
+    if (ready_) {
+      // Merged into meshes not taken yet, whose figures stay theirs.
+      delta.change = ready_->change;
+      delta.full_detail_change = ready_->full_detail_change;
+      delta.ready_ns = ready_->ready_ns;
+    }
+    merge_ready(std::move(delta));
   }
 }
 

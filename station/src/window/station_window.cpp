@@ -107,8 +107,7 @@ nlohmann::ordered_json thread_figures(int64_t started_ns) {
   nlohmann::ordered_json cpu = nlohmann::ordered_json::object();
   for (const ThreadGroupTime& g : thread_cpu_times())
     cpu[g.name] = {{"threads", g.threads}, {"cpu_s", g.cpu_s}};
-  return {{"wall_s", static_cast<double>(hal::monotonic_ns() - started_ns) * 1e-9},
-          {"cpu_s", cpu}};
+  return {{"wall_s", static_cast<double>(hal::monotonic_ns() - started_ns) * 1e-9}, {"cpu_s", cpu}};
 }
 
 Status write_stats(const std::string& path, const RunFigures& f, const StationController& c) {
@@ -137,7 +136,12 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
         {"bricks_meshed", f.mesher.bricks_meshed},
         {"update_ms_p50", f.mesher.update_us.quantile_us(0.5) * 1e-3},
         {"update_ms_p99", f.mesher.update_us.quantile_us(0.99) * 1e-3},
-        {"update_ms_max", f.mesher.update_us.max_us() * 1e-3}}},
+        {"update_ms_max", f.mesher.update_us.max_us() * 1e-3},
+        {"bricks_simplified", f.mesher.bricks_simplified},
+        {"triangles_marched", f.mesher.triangles_marched},
+        {"triangles_kept", f.mesher.triangles_kept},
+        {"simplify_error_max_vox", f.mesher.simplify_error_max},
+        {"simplify_ms_p99", f.mesher.simplify_us.quantile_us(0.99) * 1e-3}}},
       {"mean_ms",
        {{"input_and_sculpt", f.input_ms / n},
         {"mesh", f.mesh_ms / n},
@@ -283,7 +287,7 @@ int run_window(const WindowOptions& o) {
   // crack-free where levels meet, meshed on the mesher's thread from a
   // mirror of the volume; the frame hands over what changed and draws
   // what is ready, never waiting for it.
-  SurfaceMesher mesher(o.mesh_threads);
+  SurfaceMesher mesher(o.mesh_threads, o.simplify_error);
   SurfaceSnapshot surface;
   RunFigures figures;
   FrameFigures frame_figures;

@@ -8,6 +8,7 @@
 #include <thread>
 #include <vector>
 
+#include "sculpt/core/mesh/brick_simplify.h"
 #include "sculpt/core/mesh/mixed_level_mesh.h"
 #include "sculpt/core/sculpt/sculptor.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
@@ -30,9 +31,10 @@ std::vector<int> levels_for(const core::Volume& v, int shift) {
 }
 
 // The surface a snapshot holds equals the one meshed from scratch: every
-// brick's mesh, brick by brick.
+// brick's mesh, brick by brick, simplified as the mesher does.
 void expect_same_surface(const SurfaceSnapshot& snapshot, const core::Volume& volume,
-                         const std::vector<int>& levels) {
+                         const std::vector<int>& levels,
+                         float simplify_error = SurfaceMesher::kSimplifyError) {
   core::MixedLevelMeshCache scratch;
   scratch.update(volume, levels);
   int64_t non_empty = 0;
@@ -47,7 +49,10 @@ void expect_same_surface(const SurfaceSnapshot& snapshot, const core::Volume& vo
     ++non_empty;
     ASSERT_TRUE(it != snapshot.bricks().end()) << "brick " << i;
     EXPECT_EQ(it->second.level, levels[static_cast<size_t>(i)]);
-    EXPECT_EQ(it->second.mesh->mesh, want.mesh) << "brick " << i;
+    const int level = levels[static_cast<size_t>(i)];
+    const core::SimplifiedBrick simplified =
+        core::simplify_brick_mesh(want, simplify_error * static_cast<float>(1 << level));
+    EXPECT_EQ(it->second.mesh->mesh, simplified.brick.mesh) << "brick " << i;
   }
   EXPECT_GT(non_empty, 8);
   EXPECT_EQ(static_cast<int64_t>(snapshot.bricks().size()), non_empty);
@@ -87,9 +92,9 @@ class Sculpting {
   uint64_t generation_ = 1;
 };
 
-TEST(SurfaceMesher, DeltasBuildTheSurfaceMeshedFromScratch) {
+void deltas_build_the_surface_meshed_from_scratch(float simplify_error) {
   Sculpting s(64, 7);
-  SurfaceMesher mesher;
+  SurfaceMesher mesher(0, simplify_error);
   SurfaceSnapshot snapshot;
   std::vector<int> levels = levels_for(s.volume(), 0);
   uint64_t last = mesher.submit(s.volume(), s.generation(), levels);
@@ -115,11 +120,26 @@ TEST(SurfaceMesher, DeltasBuildTheSurfaceMeshedFromScratch) {
   ASSERT_TRUE(delta.has_value());
   EXPECT_EQ(delta->change, last);
   snapshot.apply(std::move(*delta));
-  expect_same_surface(snapshot, s.volume(), levels);
+  expect_same_surface(snapshot, s.volume(), levels, simplify_error);
   const MesherCounters c = mesher.counters();
   EXPECT_GT(c.bricks_submitted, 0);
   EXPECT_LE(c.updates, c.submits);
   EXPECT_EQ(c.update_us.count(), c.updates);
+  if (simplify_error > 0) {
+    EXPECT_GT(c.bricks_simplified, 0);
+    EXPECT_LT(c.triangles_kept, c.triangles_marched);
+    EXPECT_LE(c.simplify_error_max, 4 * simplify_error);  // level 2 bricks: 4 times
+  } else {
+    EXPECT_EQ(c.bricks_simplified, 0);
+  }
+}
+
+TEST(SurfaceMesher, DeltasBuildTheSurfaceMeshedFromScratch) {
+  deltas_build_the_surface_meshed_from_scratch(SurfaceMesher::kSimplifyError);
+}
+
+TEST(SurfaceMesher, DeltasBuildTheMarchedSurfaceWhenNotSimplifying) {
+  deltas_build_the_surface_meshed_from_scratch(0.0f);
 }
 
 TEST(SurfaceMesher, ANewVolumeIsShownCoarseFirstThenAtFullDetail) {
@@ -176,6 +196,15 @@ TEST(SurfaceMesher, ThePlayedDemoEndsOnTheSurfaceMeshedFromScratch) {
   if (auto delta = mesher.take()) snapshot.apply(std::move(*delta));
   EXPECT_GT(snapshot.triangle_count(), 10000);
   expect_same_surface(snapshot, loop.volume(), levels);
+  // Simplified brick by brick, at the levels the camera gave, the bricks
+  // still meet without a crack: welded, the surface is closed.
+  std::vector<const core::BrickMesh*> parts;
+  for (const auto& [index, brick] : snapshot.bricks())
+    parts.push_back(brick.mesh.get());
+  const core::MeshTopology t = core::check_topology(core::weld_brick_meshes(parts));
+  EXPECT_TRUE(t.closed()) << t.boundary_edges << " boundary, " << t.nonmanifold_edges
+                          << " non-manifold edges";
+  EXPECT_EQ(t.nonmanifold_vertices, 0);
 }
 
 TEST(SurfaceMesher, NothingChangedIsNoChange) {

@@ -16,12 +16,20 @@
 // take() hands the render thread the brick meshes made since its previous
 // call; it never waits either.
 //
+// A brick's first mesh is the march's, published at once. A third thread,
+// the simplifier, at a lower priority, then simplifies each published mesh
+// (core/mesh/brick_simplify.h) and publishes it again with about a seventh
+// of the triangles, which are what a software renderer spends its frame
+// on; the mesher never waits for it, and a mesh the mesher remade meanwhile
+// is not replaced by an older one simplified.
+//
 // Thread safety: submit() from one thread (the one that owns the volume),
 // take() from one thread (the renderer's); both may run while the mesher
 // works.
 
 #include <condition_variable>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -78,14 +86,25 @@ struct MesherCounters {
   int64_t bricks_meshed = 0;       ///< brick meshes remade
   int64_t pending_bricks_max = 0;  ///< deepest the pending set got
   int64_t coarse_first = 0;        ///< changes shown coarse before full detail
+  int64_t bricks_simplified = 0;   ///< published again simplified
+  int64_t triangles_marched = 0;   ///< their triangles before simplifying
+  int64_t triangles_kept = 0;      ///< and after
+  double simplify_error_max = 0;   ///< largest estimated surface move, level-0 voxels
   LatencyHistogram update_us;      ///< time of each mesh update
+  LatencyHistogram simplify_us;    ///< time of each pass of simplifying
 };
 
 class SurfaceMesher {
  public:
+  /// A brick's surface is simplified while it stays within this many of
+  /// the brick's voxels (a fifth: 0.2 voxel at full detail, 0.8 at level 2,
+  /// whose voxels span at most a pixel: LodSelector).
+  static constexpr float kSimplifyError = 0.2f;
+
   /// `threads` mesh the changed bricks of one update in parallel (0: all
-  /// cores); the meshes do not depend on it.
-  explicit SurfaceMesher(int threads = 0);
+  /// cores); the meshes do not depend on it. `simplify_error`: in voxels of
+  /// each brick's level; 0 publishes the march's meshes only.
+  explicit SurfaceMesher(int threads = 0, float simplify_error = kSimplifyError);
   ~SurfaceMesher();
   SurfaceMesher(const SurfaceMesher&) = delete;
   SurfaceMesher& operator=(const SurfaceMesher&) = delete;
@@ -100,8 +119,8 @@ class SurfaceMesher {
   /// The meshes made since the previous call; nothing when none.
   std::optional<SurfaceDelta> take();
 
-  /// Waits until every submitted change is meshed and ready to take (tests,
-  /// a screenshot of a given frame, the end of a run).
+  /// Waits until every submitted change is meshed, simplified and ready to
+  /// take (tests, a screenshot of a given frame, the end of a run).
   void wait_until_meshed();
 
   MesherCounters counters() const;
@@ -114,9 +133,15 @@ class SurfaceMesher {
     uint64_t change = 0;
   };
   void run();
+  void simplify();
+  /// Stamps the bricks' versions, queues them to simplify and hands them
+  /// to take().
   void publish(SurfaceDelta delta);
+  /// Merges into the meshes not taken yet (mutex_ held).
+  void merge_ready(SurfaceDelta delta);
 
   const int threads_;
+  const float simplify_error_;
   // Sculpting side only.
   uint64_t generation_ = ~uint64_t{0};
   std::vector<uint64_t> sent_versions_;
@@ -124,15 +149,24 @@ class SurfaceMesher {
   uint64_t change_ = 0;
 
   mutable std::mutex mutex_;
-  std::condition_variable wake_;    // the mesher: work or stop
-  std::condition_variable meshed_;  // wait_until_meshed()
+  std::condition_variable wake_;           // the mesher: work or stop
+  std::condition_variable meshed_;         // wait_until_meshed()
+  std::condition_variable simplify_wake_;  // the simplifier: work or stop
   Pending pending_;
   bool has_pending_ = false;
   bool busy_ = false;
+  // Published meshes waiting to be simplified, oldest first, one per brick.
+  std::deque<int64_t> simplify_order_;
+  std::unordered_map<int64_t, BrickSurface> simplify_jobs_;
+  bool simplifying_ = false;
+  std::unordered_map<int64_t, uint64_t> newest_version_;  // per brick, as published
+  uint64_t versions_ = 0;                                 // handed out, across volumes
+  uint64_t last_change_ = 0, last_full_detail_change_ = 0;
   bool stop_ = false;
   std::optional<SurfaceDelta> ready_;
   MesherCounters counters_;
   std::thread thread_;
+  std::thread simplifier_;
 };
 
 }  // namespace sculpt::station

@@ -10,6 +10,8 @@
 
 #include <string>
 
+#include "sculpt/station/view/surface_mesher.h"
+
 namespace sculpt::station {
 
 struct WindowOptions {
@@ -29,6 +31,9 @@ struct WindowOptions {
   bool distance_normals = false;    ///< shade with the distance field's gradient
   int undo_mib = 256;               ///< the undo history's memory budget
   int mesh_threads = 0;             ///< threads meshing the surface's changes (0: all cores)
+  /// How far simplifying may move the drawn surface, in voxels of each
+  /// brick's level (0: draw the marching-cubes meshes as they are).
+  float simplify_error = SurfaceMesher::kSimplifyError;
   bool vsync = true;
   bool visible = true;
   int width = 1280;

@@ -1,0 +1,34 @@
+#pragma once
+// Fewer triangles for the same picture. Marching cubes puts a vertex on every
+// crossed cell edge, so a smooth part of a sculpture carries about two
+// triangles per voxel of its area: the demo's head is 238k triangles, which
+// a software renderer (Mesa's llvmpipe) spends most of a frame on. Collapsing
+// edges where the surface stays within a fifth of a voxel of the march's
+// removes six in seven of them with no change a viewer can see.
+//
+// A brick's mesh is simplified alone, with the vertices on its open border
+// (its seams with the neighbouring bricks) held exactly where they are: the
+// bricks still meet without a crack, whether their neighbours were
+// simplified or not, and at any mix of levels. Uses meshoptimizer's
+// quadric-error simplifier (Debian's libmeshoptimizer-dev).
+
+#include "sculpt/core/mesh/brick_mesh.h"
+
+namespace sculpt::core {
+
+struct SimplifiedBrick {
+  BrickMesh brick;
+  /// A bound on how far the surface moved, in the positions' units: the
+  /// simplifier's estimate with the margin that makes it one (tested: no
+  /// marched vertex lies farther than `max_error` from the result).
+  float error = 0.0f;
+};
+
+/// `brick` with edges collapsed while the surface moves by at most
+/// `max_error` (the positions' units: level-0 voxels for the station's
+/// meshes); border vertices stay, normals and seam keys follow their
+/// vertices, vertices no triangle uses are dropped. An empty mesh, or
+/// `max_error` <= 0, comes back as it was.
+SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error);
+
+}  // namespace sculpt::core

@@ -1,0 +1,165 @@
+// Simplified brick meshes must still close against each other (and against
+// bricks left as marched), stay within the error asked for, and keep the
+// shape's volume and topology.
+
+#include "sculpt/core/mesh/brick_simplify.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include "sculpt/core/mesh/mixed_level_mesh.h"
+#include "sculpt/core/shapes/analytic_shapes.h"
+
+namespace sculpt::core {
+namespace {
+
+// Distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5).
+float point_triangle_distance(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+  const glm::vec3 ab = b - a, ac = c - a, ap = p - a;
+  const float d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return glm::length(p - a);
+  const glm::vec3 bp = p - b;
+  const float d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return glm::length(p - b);
+  const float vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return glm::length(p - (a + d1 / (d1 - d3) * ab));
+  const glm::vec3 cp = p - c;
+  const float d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return glm::length(p - c);
+  const float vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return glm::length(p - (a + d2 / (d2 - d6) * ac));
+  const float va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return glm::length(p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b)));
+  const float denom = 1.0f / (va + vb + vc);
+  return glm::length(p - (a + ab * (vb * denom) + ac * (vc * denom)));
+}
+
+float distance_to_mesh(glm::vec3 p, const Mesh& m) {
+  float best = INFINITY;
+  for (const glm::uvec3& t : m.triangles)
+    best = std::min(
+        best, point_triangle_distance(p, m.positions[t.x], m.positions[t.y], m.positions[t.z]));
+  return best;
+}
+
+struct Meshed {
+  std::vector<BrickMesh> marched, simplified;
+  std::vector<float> errors;
+};
+
+Meshed mesh_bricks(const Volume& v, const std::vector<int>& levels, float error,
+                   bool every_other = false) {
+  MixedLevelMeshCache cache;
+  cache.update(v, levels);
+  Meshed out;
+  for (int64_t i = 0; i < v.brick_count(); ++i) {
+    const BrickMesh& m = cache.brick_mesh(grid_position(i, v.brick_grid()));
+    if (m.empty()) continue;
+    out.marched.push_back(m);
+    // Every other brick left as marched: simplified bricks meet both kinds.
+    const bool simplify = !every_other || i % 2 == 0;
+    const SimplifiedBrick s = simplify ? simplify_brick_mesh(m, error) : SimplifiedBrick{m, 0.0f};
+    out.simplified.push_back(s.brick);
+    out.errors.push_back(s.error);
+  }
+  return out;
+}
+
+Mesh weld(const std::vector<BrickMesh>& bricks) {
+  std::vector<const BrickMesh*> p;
+  for (const BrickMesh& b : bricks)
+    p.push_back(&b);
+  return weld_brick_meshes(p);
+}
+
+TEST(BrickSimplify, FewerTrianglesAndTheBricksStillCloseAtEveryLevelMix) {
+  const Volume v = sphere_volume(128);  // 4^3 bricks of 32
+  const std::vector<std::vector<int>> mixes = {
+      std::vector<int>(static_cast<size_t>(v.brick_count()), 0), [&] {
+        std::vector<int> l;
+        for (int64_t i = 0; i < v.brick_count(); ++i)
+          l.push_back(static_cast<int>(i * 7 % 3));
+        return l;
+      }()};
+  for (const std::vector<int>& levels : mixes) {
+    for (bool every_other : {false, true}) {
+      SCOPED_TRACE(testing::Message() << "levels " << (levels[1] == 0 ? "all 0" : "mixed")
+                                      << (every_other ? ", every other brick simplified" : ""));
+      const Meshed m = mesh_bricks(v, levels, 0.2f, every_other);
+      const Mesh before = weld(m.marched), after = weld(m.simplified);
+      const MeshTopology t = check_topology(after);
+      EXPECT_TRUE(t.closed()) << t.boundary_edges << " boundary edges";
+      EXPECT_EQ(t.nonmanifold_vertices, 0);
+      EXPECT_EQ(t.euler_characteristic(), 2);  // still a sphere
+      EXPECT_LT(after.triangles.size(), before.triangles.size() * (every_other ? 3 : 2) / 4);
+      // Cutting chords off a convex surface shrinks it a little.
+      EXPECT_NEAR(enclosed_volume(after), enclosed_volume(before), 5e-3 * enclosed_volume(before));
+    }
+  }
+}
+
+TEST(BrickSimplify, TheSurfaceMovesNoFartherThanAsked) {
+  float worst_ratio = 0;
+  // A sphere and a noisier shape (a torus: two curvatures), full detail.
+  const Volume shapes[] = {sphere_volume(64), Volume::from_dense(torus_density(
+                                                  glm::ivec3(64), glm::vec3(31.5f), 18.0f, 7.0f))};
+  for (const Volume& v : shapes) {
+    const std::vector<int> levels(static_cast<size_t>(v.brick_count()), 0);
+    for (float error : {0.1f, 0.2f, 0.5f}) {
+      SCOPED_TRACE(testing::Message() << "error " << error);
+      const Meshed m = mesh_bricks(v, levels, error);
+      for (size_t b = 0; b < m.marched.size(); ++b) {
+        EXPECT_LE(m.errors[b], error * 1.01f);
+        // Every marched vertex lies within the bound of the simplified surface.
+        float worst = 0;
+        for (const glm::vec3& p : m.marched[b].mesh.positions)
+          worst = std::max(worst, distance_to_mesh(p, m.simplified[b].mesh));
+        EXPECT_LE(worst, error) << "brick " << b;
+        worst_ratio = std::max(worst_ratio, worst / error);
+      }
+    }
+  }
+  // It is not a loose bound either: some vertex gets near it.
+  EXPECT_GT(worst_ratio, 0.5f);
+}
+
+TEST(BrickSimplify, BorderVerticesNormalsAndSeamsStay) {
+  const Volume v = sphere_volume(64);
+  const std::vector<int> levels(static_cast<size_t>(v.brick_count()), 0);
+  const Meshed m = mesh_bricks(v, levels, 0.5f);
+  for (size_t b = 0; b < m.marched.size(); ++b) {
+    const BrickMesh& in = m.marched[b];
+    const BrickMesh& out = m.simplified[b];
+    // Every seam vertex (on a face shared with a neighbour) is still there,
+    // at the same place, with its normal and key.
+    ASSERT_EQ(out.seams.size(), in.seams.size());
+    for (size_t s = 0; s < in.seams.size(); ++s) {
+      EXPECT_EQ(out.seams[s].key, in.seams[s].key);
+      EXPECT_EQ(out.mesh.positions[out.seams[s].vertex], in.mesh.positions[in.seams[s].vertex]);
+      EXPECT_EQ(out.mesh.normals[out.seams[s].vertex], in.mesh.normals[in.seams[s].vertex]);
+    }
+    // Only used vertices are kept.
+    std::vector<bool> used(out.mesh.positions.size(), false);
+    for (const glm::uvec3& t : out.mesh.triangles)
+      used[t.x] = used[t.y] = used[t.z] = true;
+    EXPECT_TRUE(std::all_of(used.begin(), used.end(), [](bool u) { return u; }));
+  }
+}
+
+TEST(BrickSimplify, NothingToDoComesBackAsItWas) {
+  const Volume v = sphere_volume(64);
+  const std::vector<int> levels(static_cast<size_t>(v.brick_count()), 0);
+  const Meshed m = mesh_bricks(v, levels, 0.0f);
+  for (size_t b = 0; b < m.marched.size(); ++b)
+    EXPECT_EQ(m.simplified[b], m.marched[b]);
+  EXPECT_EQ(simplify_brick_mesh(BrickMesh{}, 0.1f).brick, BrickMesh{});
+}
+
+}  // namespace
+}  // namespace sculpt::core
