@@ -158,6 +158,11 @@ void SurfaceMesher::publish(SurfaceDelta delta) {
 }
 
 void SurfaceMesher::merge_ready(SurfaceDelta delta) {
+  if (ready_ && delta.reset) {
+    // The meshes go, the times of the changes they showed stay.
+    delta.readiness.insert(delta.readiness.begin(), ready_->readiness.begin(),
+                           ready_->readiness.end());
+  }
   if (!ready_ || delta.reset) {
     ready_ = std::move(delta);
     return;
@@ -176,7 +181,7 @@ void SurfaceMesher::merge_ready(SurfaceDelta delta) {
   }
   merged.change = delta.change;
   merged.full_detail_change = std::max(merged.full_detail_change, delta.full_detail_change);
-  merged.ready_ns = delta.ready_ns;
+  merged.readiness.insert(merged.readiness.end(), delta.readiness.begin(), delta.readiness.end());
 }
 
 void SurfaceMesher::run() {
@@ -240,7 +245,7 @@ void SurfaceMesher::run() {
         delta.bricks.push_back(
             {i, cache.brick_level(b), 0, std::make_shared<const core::BrickMesh>(mesh)});
       }
-      delta.ready_ns = hal::monotonic_ns();
+      delta.readiness.push_back({delta.change, delta.full_detail_change, hal::monotonic_ns()});
       publish(std::move(delta));
     };
     if (coarse_first) mesh_and_publish(coarse_levels, false, reset);
@@ -291,18 +296,12 @@ void SurfaceMesher::simplify() {
     if (newest_version_[index] != job.version) continue;
     job.version = ++versions_;
     newest_version_[index] = job.version;
+    // Changes already shown: no dab waits on this delta, which says when
+    // no change was ready.
     SurfaceDelta delta;
-    // Changes already shown: no dab waits on this delta.
-    delta.change = last_change_;
-    delta.full_detail_change = last_full_detail_change_;
-    delta.ready_ns = end;
+    delta.change = ready_ ? ready_->change : last_change_;
+    delta.full_detail_change = ready_ ? ready_->full_detail_change : last_full_detail_change_;
     delta.bricks.push_back(std::move(job));
-    if (ready_) {
-      // Merged into meshes not taken yet, whose figures stay theirs.
-      delta.change = ready_->change;
-      delta.full_detail_change = ready_->full_detail_change;
-      delta.ready_ns = ready_->ready_ns;
-    }
     merge_ready(std::move(delta));
   }
 }

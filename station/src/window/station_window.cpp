@@ -22,6 +22,7 @@
 #include "sculpt/hal/types/clock.h"
 #include "sculpt/sim/replay/sim_backend.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
+#include "sculpt/station/app/input_hub.h"
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/session_start.h"
 #include "sculpt/station/app/station_controller.h"
@@ -36,7 +37,6 @@
 namespace sculpt::station {
 namespace {
 
-constexpr int64_t kScanIntervalNs = 1'000'000'000;  // hot-plug: look for new devices each second
 constexpr float kOrbitRadPerPixel = 0.008f;
 constexpr float kKeyMoveVoxPerSecond = 60.0f;
 constexpr int kMaxDrawnLevel = 2;  // coarser than 1/4 resolution looks like a blob
@@ -73,6 +73,7 @@ struct RunFigures {
   // Where the frames' time went, milliseconds summed over all frames.
   double input_ms = 0, mesh_ms = 0, upload_ms = 0, draw_ms = 0;
   int64_t started_ns = 0;  // the first frame's start
+  InputHubFigures hub;
 };
 
 // Brick by brick, uniform bricks without decoding: --stats-every calls this
@@ -142,8 +143,12 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
         {"triangles_kept", f.mesher.triangles_kept},
         {"simplify_error_max_vox", f.mesher.simplify_error_max},
         {"simplify_ms_p99", f.mesher.simplify_us.quantile_us(0.99) * 1e-3}}},
+      {"sculpting",
+       {{"polls", f.hub.polls},
+        {"sculpt_ms", f.hub.sculpt_ms},
+        {"waiting_for_the_frame_ms", f.hub.lock_wait_ms}}},
       {"mean_ms",
-       {{"input_and_sculpt", f.input_ms / n},
+       {{"pointer_and_keys", f.input_ms / n},
         {"mesh", f.mesh_ms / n},
         {"upload", f.upload_ms / n},
         {"draw", f.draw_ms / n}}},
@@ -256,17 +261,15 @@ int run_window(const WindowOptions& o) {
     auto id = registry->open_device(o.device);
     if (!id) return fail(id.error());
   }
-  uint32_t device_id = 0;  // the device the panel reports on
-  auto note_devices = [&] {
-    for (uint32_t id = 0; id < 64; ++id) {
-      if (const hal::DeviceReader* r = registry->reader(id); r != nullptr) {
-        controller.set_device(r->info(), hal::to_text(*config));
-        device_id = id;
-        return;
-      }
-    }
-  };
-  note_devices();
+  // The surface drawn: each brick at the level its distance calls for,
+  // crack-free where levels meet, meshed on the mesher's thread from a
+  // mirror of the volume; the frame hands over what changed and draws
+  // what is ready, never waiting for it.
+  SurfaceMesher mesher(o.mesh_threads, o.simplify_error);
+  // Devices are read and sculpted on the sculpting thread (input_hub.h);
+  // each frame takes its turn with the controller for the mouse, the keys
+  // and the panel, and draws without it.
+  InputHub hub(controller, std::move(registry), sim_backend, hal::to_text(*config), mesher);
   if (!o.record.empty()) {
     if (Status st = controller.start_recording(o.record, hal::monotonic_ns()); !st)
       return fail(st.error());
@@ -283,61 +286,19 @@ int run_window(const WindowOptions& o) {
   glfwSetScrollCallback(w, on_scroll);
   StationPanel panel(controller);
 
-  // The surface drawn: each brick at the level its distance calls for,
-  // crack-free where levels meet, meshed on the mesher's thread from a
-  // mirror of the volume; the frame hands over what changed and draws
-  // what is ready, never waiting for it.
-  SurfaceMesher mesher(o.mesh_threads, o.simplify_error);
   SurfaceSnapshot surface;
   RunFigures figures;
   FrameFigures frame_figures;
-  hal::InputFrame input;
-  int64_t last_scan = hal::monotonic_ns();
-  int64_t last_frame = last_scan;
-  int64_t last_stats = last_scan;
-  figures.started_ns = last_scan;
-  bool replay_done = false;
-  std::vector<std::pair<int64_t, sim::Command>> pending_commands;
-  int64_t newest_report_t = std::numeric_limits<int64_t>::min();
+  int64_t last_frame = hal::monotonic_ns();
+  int64_t last_stats = last_frame;
+  figures.started_ns = last_frame;
+  hub.start();
   for (int frame = 0; !glfwWindowShouldClose(w) && (o.frames <= 0 || frame < o.frames) &&
-                      !(o.exit_when_replayed && replay_done);
+                      !(o.exit_when_replayed && hub.replay_done());
        ++frame) {
     glfwPollEvents();
     const int64_t now = hal::monotonic_ns();
-    // Device input: what the reader threads delivered since the last frame.
-    if (now - last_scan > kScanIntervalNs) {
-      if (!registry->scan().opened.empty()) note_devices();
-      last_scan = now;
-    }
-    // Checked before polling: once true, this poll gets the session's last reports.
-    const bool session_played = sim_backend != nullptr && sim_backend->played();
-    input.clear();
-    registry->poll(input, now);
-    replay_done |= session_played;
-    for (const hal::InputEvent& e : input.events)
-      replay_done |= sim_backend != nullptr && e.kind == hal::InputKind::kDisconnected;
-    // A sim device hands over a command before it reads the report after it,
-    // so once the reports are polled, every command older than the newest of
-    // them is here; younger ones wait for the reports before them (frame
-    // timing must not change where a command falls among the reports).
-    std::vector<std::pair<int64_t, sim::Command>> commands;
-    if (sim_backend != nullptr) {
-      for (auto& c : sim_backend->take_commands())
-        pending_commands.push_back(std::move(c));
-      for (const hal::InputEvent& e : input.events) {
-        if (e.kind == hal::InputKind::kMotion || e.kind == hal::InputKind::kButton)
-          newest_report_t = std::max(newest_report_t, e.t_ns);  // the device's clock
-      }
-      const bool device_gone = registry->open_count() == 0 || session_played;
-      auto ready = std::stable_partition(
-          pending_commands.begin(), pending_commands.end(),
-          [&](const auto& c) { return device_gone || c.first <= newest_report_t; });
-      commands.assign(pending_commands.begin(), ready);
-      pending_commands.erase(pending_commands.begin(), ready);
-    }
-    controller.device_frame(input, now, commands);
-    if (const hal::DeviceReader* reader = registry->reader(device_id); reader != nullptr)
-      controller.reader_samples(reader->counters().motion_samples, now);
+    std::unique_lock turn(hub.mutex());
 
     // The ordinary mouse and keyboard.
     ImGuiIO& io = ImGui::GetIO();
@@ -400,18 +361,19 @@ int run_window(const WindowOptions& o) {
     policy.max_level = std::min(kMaxDrawnLevel, volume.levels());
     if (frame == 0 && o.lod >= 0) policy.fixed_level = o.lod;
     controller.lod().set_policy(policy);
-    const std::vector<int> levels =
-        controller.lod().select(volume.brick_grid(), volume.brick_edge(), camera.eye(),
-                                OrbitCamera::focal_length_px(static_cast<float>(fb_h)));
-    controller.surface_submitted(
-        mesher.submit(volume, controller.loop().volume_generation(), levels), hal::monotonic_ns());
+    hub.set_levels(controller.lod().select(volume.brick_grid(), volume.brick_edge(), camera.eye(),
+                                           OrbitCamera::focal_length_px(static_cast<float>(fb_h))));
     // A picture of a given frame shows everything sculpted before it, and
     // every brick shaded as it asks.
     const bool picture_frame = !o.screenshot.empty() && o.frames > 0 && frame == o.frames - 1;
-    if (picture_frame) mesher.wait_until_meshed();
+    if (picture_frame) {
+      hub.poll_now();
+      mesher.wait_until_meshed();
+    }
     if (auto delta = mesher.take()) {
       // Latency: from each dab's report to its surface ready to draw.
-      controller.surface_ready(delta->change, delta->full_detail_change, delta->ready_ns);
+      for (const SurfaceDelta::Readiness& r : delta->readiness)
+        controller.surface_ready(r.change, r.full_detail_change, r.ready_ns);
       surface.apply(std::move(*delta));
     }
     const int64_t t_upload = hal::monotonic_ns();
@@ -423,14 +385,16 @@ int run_window(const WindowOptions& o) {
     (*renderer)->set_sheet(sheet.mesh(), sheet.version(),
                            controller.loop().settings().sheet_editing);
 
-    // Draw.
+    // Draw, without holding up the sculpting.
     const int64_t t_draw = hal::monotonic_ns();
     figures.upload_ms += static_cast<double>(t_draw - t_upload) * 1e-6;
     const hal::ToolPose& pose = controller.loop().pose();
-    gl::ToolDraw tool{true, pose.position, pose.orientation, controller.loop().settings().mode,
-                      controller.loop().pressed()};
-    (*renderer)->draw({camera.view(), camera.projection(aspect), camera.eye(), fb_w, fb_h}, tool,
-                      glm::vec3(volume.dims()));
+    const gl::ToolDraw tool{true, pose.position, pose.orientation,
+                            controller.loop().settings().mode, controller.loop().pressed()};
+    const gl::SceneView view{camera.view(), camera.projection(aspect), camera.eye(), fb_w, fb_h};
+    const glm::vec3 block(volume.dims());
+    turn.unlock();
+    (*renderer)->draw(view, tool, block);
     if (picture_frame) {
       RgbImage shot{fb_w, fb_h, {}};
       read_pixels(fb_w, fb_h, shot.rgb);
@@ -439,6 +403,7 @@ int run_window(const WindowOptions& o) {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
+    turn.lock();
     frame_figures.triangles = sync.triangles;
     frame_figures.uploaded = sync.uploaded;
     panel.draw(frame_figures, now);
@@ -449,35 +414,46 @@ int run_window(const WindowOptions& o) {
         if (auto action = shortcut(k, mods)) controller.perform(*action, now);
       }
     }
+    if (!o.stats.empty() && o.stats_every_s > 0 &&
+        now - last_stats >= static_cast<int64_t>(o.stats_every_s * 1e9)) {
+      figures.mesher = mesher.counters();
+      figures.hub = hub.figures();
+      if (Status st = write_stats(o.stats, figures, controller); !st) return fail(st.error());
+      last_stats = now;
+    }
+    turn.unlock();
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     glfwSwapBuffers(w);
     figures.draw_ms += static_cast<double>(hal::monotonic_ns() - t_draw) * 1e-6;
 
-    controller.tick(hal::monotonic_ns());
-    if (!o.stats.empty() && o.stats_every_s > 0 &&
-        now - last_stats >= static_cast<int64_t>(o.stats_every_s * 1e9)) {
-      figures.mesher = mesher.counters();
-      if (Status st = write_stats(o.stats, figures, controller); !st) return fail(st.error());
-      last_stats = now;
-    }
     const int64_t end = hal::monotonic_ns();
     const double ms = static_cast<double>(end - now) * 1e-6;
     figures.frame_us.add(ms * 1e3);
     figures.frames_total_ms += ms;
     figures.uploads += sync.uploaded;
     figures.triangles = sync.triangles;
-    controller.lod().frame_done(ms);
+    {
+      std::lock_guard lod_turn(hub.mutex());
+      controller.lod().frame_done(ms);
+    }
     frame_figures.frame_ms = 0.9 * frame_figures.frame_ms + 0.1 * ms;
     frame_figures.fps = frame_figures.frame_ms > 0 ? 1000.0 / frame_figures.frame_ms : 0;
     last_frame = now;
   }
 
-  // The dabs of the last frames count in the latency figures too.
+  // What the devices said last is sculpted, and the dabs of the last
+  // frames count in the latency figures too.
+  hub.stop();
+  std::lock_guard last_turn(hub.mutex());  // no other thread now: kept for the rule
+  hub.poll_now();
   mesher.wait_until_meshed();
-  if (auto delta = mesher.take())
-    controller.surface_ready(delta->change, delta->full_detail_change, delta->ready_ns);
+  if (auto delta = mesher.take()) {
+    for (const SurfaceDelta::Readiness& r : delta->readiness)
+      controller.surface_ready(r.change, r.full_detail_change, r.ready_ns);
+  }
   figures.mesher = mesher.counters();
+  figures.hub = hub.figures();
 
   g_pointer = nullptr;
   ImGui_ImplOpenGL3_Shutdown();

@@ -218,10 +218,6 @@ TEST(StationWindow, PlayingTheDemoLiveSculptsWhatItsReplaySculpts) {
   }
 }
 
-// What the sculptor sees at automatic level of detail is the full-detail
-// picture to within a pixel's error, whichever normals shade it: a small
-// window makes the demo's far bricks coarse (a quarter of the triangles),
-// and the picture must not show it (no facet, seam or shading step).
 // How two pictures of the same size differ: the mean over pixels of the
 // largest channel difference, and the share of pixels where it is over 24.
 struct PictureDifference {
@@ -270,6 +266,10 @@ std::optional<Shot> shoot(const sculpt::test::ScratchDir& dir, const std::string
               nlohmann::json::parse(read_text(dir.file("s.json")))["triangles"].get<int64_t>()};
 }
 
+// What the sculptor sees at automatic level of detail is the full-detail
+// picture to within a pixel's error, whichever normals shade it: a small
+// window makes the demo's far bricks coarse (a quarter of the triangles),
+// and the picture must not show it (no facet, seam or shading step).
 TEST(StationWindow, AutomaticLevelOfDetailLooksLikeFullDetail) {
   sculpt::test::ScratchDir dir;
   const std::string project = demo_project(dir);

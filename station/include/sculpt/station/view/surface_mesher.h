@@ -62,7 +62,15 @@ struct SurfaceDelta {
   /// The newest change whose bricks are all at full detail: a big change
   /// (a new volume) is shown at once at a coarse level, refined next.
   uint64_t full_detail_change = 0;
-  int64_t ready_ns = 0;  ///< hal::monotonic_ns() when they were ready
+  /// When each change was meshed (hal::monotonic_ns()), oldest first: a
+  /// delta taken late holds several, and each dab's latency ends at its
+  /// own change's time, not the newest's.
+  struct Readiness {
+    uint64_t change = 0;
+    uint64_t full_detail_change = 0;
+    int64_t ready_ns = 0;
+  };
+  std::vector<Readiness> readiness;
 };
 
 /// The render thread's picture of the surface: the newest mesh of every

@@ -1,0 +1,103 @@
+#pragma once
+// The station's sculpting thread: it reads the devices and sculpts what they
+// say as their reports arrive, a millisecond apart, instead of once a frame
+// behind a draw that takes 15-30 ms on a software renderer.
+//
+//   device readers --rings--> InputHub thread: poll, order device samples
+//                             and the session's commands, StationController
+//                             sculpts, SurfaceMesher::submit()
+//   render thread: pointer, keys, panel (under mutex()), then draws unlocked
+//
+// The controller and the volume it owns are used by this thread and, under
+// mutex(), by the render thread for what the user does with the mouse, the
+// keys and the panel (a few hundred microseconds a frame). Drawing, which is
+// most of a frame, never holds it, so sculpting waits at most for the
+// panel, and the frame at most for one dab. Sculpting stays on one thread in
+// the order the samples came, so a live session ends on its replay's volume.
+//
+// GL-free: tested without a window (tests/station/app/input_hub_test.cpp).
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "sculpt/hal/registry/device_registry.h"
+#include "sculpt/sim/replay/sim_backend.h"
+#include "sculpt/sim/session/session.h"
+#include "sculpt/station/app/station_controller.h"
+#include "sculpt/station/view/surface_mesher.h"
+
+namespace sculpt::station {
+
+struct InputHubFigures {
+  int64_t polls = 0;        ///< times the devices were read
+  double sculpt_ms = 0;     ///< time spent sculpting what they said, summed
+  double lock_wait_ms = 0;  ///< time waiting for the render thread's turn, summed
+};
+
+class InputHub {
+ public:
+  static constexpr int64_t kPollIntervalNs = 1'000'000;      ///< 1 kHz
+  static constexpr int64_t kScanIntervalNs = 1'000'000'000;  ///< hot-plug, each second
+  /// Recording flushes and autosave checks (StationController::tick).
+  static constexpr int64_t kTickIntervalNs = 16'000'000;
+
+  /// `sim` is the registry's sim backend when a session plays as a device
+  /// (else null); `normalizer_text` the settings its devices read with
+  /// (the panel shows them). Nothing runs until start().
+  InputHub(StationController& controller, std::unique_ptr<hal::DeviceRegistry> registry,
+           sim::SimBackend* sim, std::string normalizer_text, SurfaceMesher& mesher);
+  ~InputHub();
+  InputHub(const InputHub&) = delete;
+  InputHub& operator=(const InputHub&) = delete;
+
+  void start();
+  /// Stops the thread; what it read is sculpted. Safe to call twice.
+  void stop();
+
+  /// Held to use the controller, or the volume, from another thread.
+  std::mutex& mutex() { return mutex_; }
+  /// Under mutex(): the level to mesh each brick at (the camera's choice).
+  void set_levels(std::vector<int> levels) { levels_ = std::move(levels); }
+  /// Under mutex(): reads the devices and hands the volume's changes to
+  /// the mesher now, not at the next poll (a picture of a given frame,
+  /// tests, and before start()).
+  void poll_now();
+  /// The sim device's session has played (or its device went).
+  bool replay_done() const { return replay_done_.load(std::memory_order_acquire); }
+  /// Under mutex().
+  const InputHubFigures& figures() const { return figures_; }
+
+ private:
+  void run();
+  void poll(int64_t now_ns);  // mutex_ held
+  void note_devices();
+
+  StationController& controller_;
+  std::unique_ptr<hal::DeviceRegistry> registry_;
+  sim::SimBackend* sim_;
+  const std::string normalizer_text_;
+  SurfaceMesher& mesher_;
+
+  std::mutex mutex_;
+  // Under mutex_.
+  std::vector<int> levels_;
+  hal::InputFrame input_;
+  std::vector<std::pair<int64_t, sim::Command>> pending_commands_;
+  int64_t newest_report_t_ns_;
+  int64_t last_scan_ns_ = 0;
+  int64_t last_tick_ns_ = 0;
+  uint32_t device_id_ = 0;  // the device the panel reports on
+  InputHubFigures figures_;
+
+  std::atomic<bool> replay_done_{false};
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+}  // namespace sculpt::station

@@ -1,0 +1,139 @@
+#include "sculpt/station/app/input_hub.h"
+
+#include <algorithm>
+#include <ctime>
+#include <limits>
+
+#include "sculpt/base/thread_times.h"
+#include "sculpt/hal/types/clock.h"
+
+namespace sculpt::station {
+
+InputHub::InputHub(StationController& controller, std::unique_ptr<hal::DeviceRegistry> registry,
+                   sim::SimBackend* sim, std::string normalizer_text, SurfaceMesher& mesher)
+    : controller_(controller),
+      registry_(std::move(registry)),
+      sim_(sim),
+      normalizer_text_(std::move(normalizer_text)),
+      mesher_(mesher),
+      newest_report_t_ns_(std::numeric_limits<int64_t>::min()) {
+  last_scan_ns_ = hal::monotonic_ns();
+  note_devices();
+}
+
+InputHub::~InputHub() {
+  stop();
+}
+
+void InputHub::start() {
+  if (thread_.joinable()) return;
+  stop_.store(false, std::memory_order_relaxed);
+  thread_ = std::thread([this] {
+    name_this_thread("sculpting");
+    run();
+  });
+}
+
+void InputHub::stop() {
+  stop_.store(true, std::memory_order_relaxed);
+  if (thread_.joinable()) thread_.join();
+}
+
+void InputHub::poll_now() {
+  poll(hal::monotonic_ns());
+}
+
+void InputHub::note_devices() {
+  for (uint32_t id = 0; id < 64; ++id) {
+    if (const hal::DeviceReader* r = registry_->reader(id); r != nullptr) {
+      controller_.set_device(r->info(), normalizer_text_);
+      device_id_ = id;
+      return;
+    }
+  }
+}
+
+void InputHub::run() {
+  timespec next{};
+  clock_gettime(CLOCK_MONOTONIC, &next);
+  while (!stop_.load(std::memory_order_relaxed)) {
+    const int64_t before_lock = hal::monotonic_ns();
+    {
+      std::lock_guard lock(mutex_);
+      const int64_t now = hal::monotonic_ns();
+      figures_.lock_wait_ms += static_cast<double>(now - before_lock) * 1e-6;
+      poll(now);
+      figures_.sculpt_ms += static_cast<double>(hal::monotonic_ns() - now) * 1e-6;
+    }
+    // Absolute deadlines: a slow poll (a big dab) is followed by the next
+    // at once, not a millisecond later.
+    next.tv_nsec += kPollIntervalNs;
+    if (next.tv_nsec >= 1'000'000'000) {
+      next.tv_nsec -= 1'000'000'000;
+      ++next.tv_sec;
+    }
+    timespec now{};
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    if (now.tv_sec > next.tv_sec || (now.tv_sec == next.tv_sec && now.tv_nsec > next.tv_nsec)) {
+      next = now;  // behind: do not try to catch up with the polls missed
+      continue;
+    }
+    clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr);
+  }
+}
+
+void InputHub::poll(int64_t now) {
+  ++figures_.polls;
+  if (now - last_scan_ns_ > kScanIntervalNs) {
+    if (!registry_->scan().opened.empty()) note_devices();
+    last_scan_ns_ = now;
+  }
+  // Checked before polling: once true, this poll gets the session's last reports.
+  const bool session_played = sim_ != nullptr && sim_->played();
+  input_.clear();
+  registry_->poll(input_, now);
+  bool done = session_played;
+  for (const hal::InputEvent& e : input_.events)
+    done |= sim_ != nullptr && e.kind == hal::InputKind::kDisconnected;
+  // A sim device hands over a command before it reads the report after it,
+  // so once the reports are polled, every command older than the newest of
+  // them is here; younger ones wait for the reports before them (poll
+  // timing must not change where a command falls among the reports).
+  std::vector<std::pair<int64_t, sim::Command>> commands;
+  if (sim_ != nullptr) {
+    for (auto& c : sim_->take_commands())
+      pending_commands_.push_back(std::move(c));
+    for (const hal::InputEvent& e : input_.events) {
+      if (e.kind == hal::InputKind::kMotion || e.kind == hal::InputKind::kButton)
+        newest_report_t_ns_ = std::max(newest_report_t_ns_, e.t_ns);  // the device's clock
+    }
+    const bool device_gone = registry_->open_count() == 0 || session_played;
+    auto ready = std::stable_partition(
+        pending_commands_.begin(), pending_commands_.end(),
+        [&](const auto& c) { return device_gone || c.first <= newest_report_t_ns_; });
+    commands.assign(pending_commands_.begin(), ready);
+    pending_commands_.erase(pending_commands_.begin(), ready);
+  }
+  controller_.device_frame(input_, now, commands);
+  if (const hal::DeviceReader* reader = registry_->reader(device_id_); reader != nullptr)
+    controller_.reader_samples(reader->counters().motion_samples, now);
+  // What was sculpted goes to the mesher at once; before the render thread
+  // has said which levels it draws, there is nothing to mesh for.
+  if (!levels_.empty()) {
+    const core::Volume& volume = controller_.loop().volume();
+    if (static_cast<int64_t>(levels_.size()) == volume.brick_count()) {
+      controller_.surface_submitted(
+          mesher_.submit(volume, controller_.loop().volume_generation(), levels_),
+          hal::monotonic_ns());
+    }
+  }
+  // Recording and autosave keep the frame's pace: a file write a millisecond
+  // would be mostly system calls.
+  if (now - last_tick_ns_ >= kTickIntervalNs) {
+    controller_.tick(hal::monotonic_ns());
+    last_tick_ns_ = now;
+  }
+  if (done) replay_done_.store(true, std::memory_order_release);
+}
+
+}  // namespace sculpt::station

@@ -1,0 +1,126 @@
+// The sculpting thread: a session played as a live device through the hub
+// ends on its replay's volume, with the render thread taking its turns with
+// the controller meanwhile (run under ThreadSanitizer in CI).
+
+#include "sculpt/station/app/input_hub.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <memory>
+#include <thread>
+
+#include "scratch_dir.h"
+#include "sculpt/core/mesh/mixed_level_mesh.h"
+#include "sculpt/hal/normalizer/normalizer_config.h"
+#include "sculpt/sim/replay/sim_backend.h"
+#include "sculpt/sim/synth/bundled_sessions.h"
+#include "sculpt/station/app/session_loading.h"
+#include "sculpt/station/app/session_replay.h"
+
+namespace sculpt::station {
+namespace {
+
+struct LiveSession {
+  std::unique_ptr<hal::DeviceRegistry> registry;
+  sim::SimBackend* sim = nullptr;
+  std::string normalizer;
+};
+
+// The session as a device, as the window plays it (`sculpt run --device sim:`).
+LiveSession play_live(const std::string& name, double speed) {
+  auto session = load_session(sim::bundled_session_path(name));
+  EXPECT_TRUE(session.ok());
+  auto config = hal::parse_normalizer_config(session->header.normalizer_config, name);
+  EXPECT_TRUE(config.ok());
+  LiveSession live;
+  live.normalizer = hal::to_text(*config);
+  live.registry = std::make_unique<hal::DeviceRegistry>(
+      std::vector<std::unique_ptr<hal::Backend>>{}, *config, hal::ReaderOptions{});
+  auto backend = std::make_unique<sim::SimBackend>(std::move(session).value(),
+                                                   sim::bundled_session_path(name), speed);
+  live.sim = backend.get();
+  live.registry->add_backend(std::move(backend), /*first=*/true);
+  EXPECT_TRUE(live.registry->open_device("sim").ok());
+  return live;
+}
+
+uint64_t replayed_hash(const std::string& name, int64_t* dabs) {
+  auto session = load_session(sim::bundled_session_path(name));
+  StationLoop loop(StationLoop::Options{});
+  EXPECT_TRUE(replay_session(*session, name, loop).ok());
+  *dabs = loop.counters().dabs;
+  return loop.volume().content_hash();
+}
+
+TEST(InputHub, ALiveSessionSculptedOnItsThreadEndsOnTheReplaysVolume) {
+  test::ScratchDir dir;
+  ControllerOptions co;
+  co.loop.mesh = false;
+  co.project = dir.path() / "p.sculpt";
+  co.autosave_seconds = 0;
+  StationController controller(co);
+  SurfaceMesher mesher;
+  LiveSession live = play_live("sheet", 8.0);
+  InputHub hub(controller, std::move(live.registry), live.sim, live.normalizer, mesher);
+  SurfaceSnapshot snapshot;
+  std::vector<int> levels;
+  hub.start();
+  // The render thread's turns: the camera chooses levels, the meshes are
+  // taken, the panel reads the pose and turns the camera.
+  int turns = 0;
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!hub.replay_done() && std::chrono::steady_clock::now() < give_up) {
+    {
+      std::lock_guard turn(hub.mutex());
+      const core::Volume& v = controller.loop().volume();
+      levels.assign(static_cast<size_t>(v.brick_count()), turns % 2);
+      hub.set_levels(levels);
+      if (auto delta = mesher.take()) {
+        for (const SurfaceDelta::Readiness& r : delta->readiness)
+          controller.surface_ready(r.change, r.full_detail_change, r.ready_ns);
+        snapshot.apply(std::move(*delta));
+      }
+      controller.camera().orbit(0.001f, 0.0f);
+      EXPECT_TRUE(std::isfinite(controller.loop().pose().position.x));
+      ++turns;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));  // drawing
+  }
+  ASSERT_TRUE(hub.replay_done()) << "the session did not end in 60 s";
+  hub.stop();
+  std::lock_guard last(hub.mutex());
+  hub.poll_now();
+  mesher.wait_until_meshed();
+  if (auto delta = mesher.take()) snapshot.apply(std::move(*delta));
+
+  int64_t dabs = 0;
+  EXPECT_EQ(controller.loop().volume().content_hash(), replayed_hash("sheet", &dabs));
+  EXPECT_EQ(controller.loop().counters().dabs, dabs);
+  EXPECT_GT(dabs, 10);
+  EXPECT_GT(hub.figures().polls, turns);  // it read the devices more often than frames came
+  EXPECT_GT(snapshot.triangle_count(), 100);
+  EXPECT_GE(controller.session_latency().count, 1);
+}
+
+TEST(InputHub, StopsCleanlyWithoutADevice) {
+  ControllerOptions co;
+  co.loop.mesh = false;
+  co.autosave_seconds = 0;
+  StationController controller(co);
+  SurfaceMesher mesher;
+  auto registry = std::make_unique<hal::DeviceRegistry>(
+      std::vector<std::unique_ptr<hal::Backend>>{}, hal::NormalizerConfig{}, hal::ReaderOptions{});
+  InputHub hub(controller, std::move(registry), nullptr, "", mesher);
+  hub.start();
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  hub.stop();
+  hub.stop();  // twice is harmless
+  EXPECT_FALSE(hub.replay_done());
+  std::lock_guard last(hub.mutex());
+  EXPECT_GT(hub.figures().polls, 2);
+  EXPECT_EQ(controller.loop().counters().dabs, 0);
+}
+
+}  // namespace
+}  // namespace sculpt::station
