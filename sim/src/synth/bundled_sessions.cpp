@@ -194,14 +194,116 @@ Session sheet_session() {
   return s.finish();
 }
 
+// A bust in a 512^3 block: the station's workload at eight times the
+// demo's voxels, with big tools (a 110-voxel ball for the head, 70 for the
+// shoulders) and fine ones (eyes, brow, lips, hair), mirrored.
+Session bust_session() {
+  SessionScript s(scripted_device(0x256f, 0xc635), scripted_normalizer(), 250);
+  const glm::vec3 c(256, 300, 250);  // head centre; the face looks along +z
+  s.volume(glm::ivec3(512), 0);
+
+  // Shoulders: a wide ball swept across, low down.
+  s.tool(ToolShape::kSphere, 70);
+  s.mode(SculptModeId::kAdd);
+  s.spacing(0.1f);
+  const glm::vec3 chest = c - glm::vec3(0, 170, 10);
+  s.place(chest - glm::vec3(110, 0, 0));
+  s.rest(0.05f);
+  s.press();
+  s.follow(line_path(chest - glm::vec3(110, 0, 0), chest + glm::vec3(110, 0, 0)), 0.6f);
+  s.release();
+  // The neck, then the head: a big ball dragged upward into an egg.
+  s.tool(ToolShape::kSphere, 45);
+  s.move_to(chest + glm::vec3(0, 40, 0), 0.3f);
+  s.press();
+  s.follow(line_path(chest + glm::vec3(0, 40, 0), c - glm::vec3(0, 60, 0)), 0.4f);
+  s.release();
+  s.tool(ToolShape::kSphere, 110);
+  s.move_to(c - glm::vec3(0, 10, 0), 0.3f);
+  s.press();
+  s.follow(line_path(c - glm::vec3(0, 10, 0), c + glm::vec3(0, 30, 0)), 0.4f);
+  s.release();
+  s.spacing(0.25f);
+
+  // Eye sockets and eyeballs, mirrored across x = 256.
+  s.mirror(0, 256);
+  s.tool(ToolShape::kSphere, 24);
+  s.mode(SculptModeId::kSubtract);
+  const glm::vec3 eye = c + glm::vec3(-44, 24, 96);
+  s.move_to(eye, 0.5f);
+  s.press();
+  s.follow(line_path(eye, eye + glm::vec3(-6, 0, 3)), 0.2f);
+  s.release();
+  s.tool(ToolShape::kSphere, 14);
+  s.mode(SculptModeId::kAdd);
+  s.move_to(eye + glm::vec3(-3, 0, -6), 0.3f);
+  s.press();
+  s.rest(0.05f);
+  s.release();
+  // The brow: a ridge of small balls over each eye.
+  s.tool(ToolShape::kSphere, 8);
+  s.move_to(eye + glm::vec3(22, 30, -6), 0.3f);
+  s.press();
+  s.follow(arc_path(eye + glm::vec3(0, 8, -6), kX, kY, 28, kPi * 0.2f, kPi * 0.8f), 0.5f);
+  s.release();
+  s.mirror(-1, 0);
+
+  // The nose, smoothed; the lips carved and built.
+  s.tool(ToolShape::kSphere, 12);
+  const glm::vec3 bridge = c + glm::vec3(0, 16, 106);
+  s.move_to(bridge, 0.4f);
+  s.press();
+  s.follow(line_path(bridge, c + glm::vec3(0, -20, 124)), 0.5f);
+  s.release();
+  s.mode(SculptModeId::kSmooth);
+  s.tool(ToolShape::kSphere, 16);
+  s.press();
+  s.follow(line_path(c + glm::vec3(0, -20, 120), bridge), 0.4f);
+  s.release();
+  s.mode(SculptModeId::kSubtract);
+  s.tool(ToolShape::kSphere, 6);
+  const glm::vec3 mouth = c + glm::vec3(0, -12, 96);
+  const auto lips = arc_path(mouth, kX, kY, 36, kPi * 1.25f, kPi * 1.75f);
+  s.move_to(lips(0), 0.4f);
+  s.press();
+  s.follow(lips, 0.6f);
+  s.release();
+
+  // Hair: a zigzag of small balls laid on the crown, and a cut undone.
+  s.mode(SculptModeId::kAdd);
+  s.tool(ToolShape::kSphere, 7);
+  const glm::vec3 crown_centre = c + glm::vec3(0, 30, 0);  // the head ball's upper centre
+  const auto flat = zigzag_path(crown_centre + glm::vec3(-60, 0, -30), kX, kZ, 120, 50, 4);
+  const Path hair = [=](float t) {
+    const glm::vec3 p = flat(t);
+    const glm::vec2 d(p.x - crown_centre.x, p.z - crown_centre.z);
+    return glm::vec3(
+        p.x, crown_centre.y + std::sqrt(std::max(0.0f, 112.0f * 112.0f - glm::dot(d, d))), p.z);
+  };
+  s.move_to(hair(0), 0.4f);
+  s.press();
+  s.follow(hair, 1.2f);
+  s.release();
+  s.tool(ToolShape::kCube, 30);
+  s.mode(SculptModeId::kSubtract);
+  s.move_to(c + glm::vec3(60, -40, 90), 0.3f);
+  s.press();
+  s.follow(line_path(c + glm::vec3(60, -40, 90), c + glm::vec3(80, -60, 70)), 0.2f);
+  s.release();
+  s.undo();
+  s.rest(0.2f);
+  return s.finish();
+}
+
 std::vector<std::string_view> bundled_session_names() {
-  return {"short", "demo", "sheet"};
+  return {"short", "demo", "sheet", "bust"};
 }
 
 Session bundled_session(std::string_view name) {
   if (name == "short") return short_session();
   if (name == "demo") return demo_session();
   if (name == "sheet") return sheet_session();
+  if (name == "bust") return bust_session();
   return {};
 }
 

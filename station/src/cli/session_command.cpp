@@ -43,7 +43,7 @@ int from_text(const SessionOptions& o) {
 int generate(const SessionOptions& o) {
   const sim::Session session = sim::bundled_session(o.input);
   if (session.records.empty())
-    return report(Error("no bundled session named '" + o.input + "' (short, demo, sheet)"));
+    return report(Error("no bundled session named '" + o.input + "' (short, demo, sheet, bust)"));
   if (Status st = sim::write_session_file(o.output, session); !st) return report(st.error());
   std::printf("wrote %s: %zu records, %.1f s\n", o.output.c_str(), session.records.size(),
               static_cast<double>(session.end_t_ns() - session.start_t_ns()) * 1e-9);

@@ -23,9 +23,12 @@ Session demo_session();
 /// The NURBS sheet: placed, dragged twice by the device, its shell added to
 /// the material, then carved through.
 Session sheet_session();
+/// A bust in a 512^3 block with big tools (balls of 110 and 70 voxels) and
+/// fine ones: the station's workload at eight times the demo's voxels.
+Session bust_session();
 /// The names above; nullptr-like empty optional for others.
 std::vector<std::string_view> bundled_session_names();
-/// The session `name` ("short", "demo"); an empty session when unknown.
+/// The session `name` ("short", "demo", "sheet", "bust"); an empty session when unknown.
 Session bundled_session(std::string_view name);
 /// Where the bundled file of `name` lives in the source tree.
 std::string bundled_session_path(std::string_view name);
