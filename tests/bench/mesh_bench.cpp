@@ -171,8 +171,9 @@ BENCHMARK(BM_MeshLevel)->Args({512, 2})->ArgNames({"n", "level"})->Unit(benchmar
 // beyond, at most 3.
 std::vector<int> camera_levels(const Volume& volume) {
   const glm::ivec3 g = volume.brick_grid();
-  const glm::vec3 eye(static_cast<float>(volume.dims().x), volume.dims().y / 2.0f,
-                      volume.dims().z / 2.0f);
+  const glm::vec3 eye(static_cast<float>(volume.dims().x),
+                      static_cast<float>(volume.dims().y) / 2.0f,
+                      static_cast<float>(volume.dims().z) / 2.0f);
   std::vector<int> levels;
   for (int z = 0; z < g.z; ++z)
     for (int y = 0; y < g.y; ++y)

@@ -60,6 +60,15 @@ const MixedLevelMeshCache::Decoded& MixedLevelMeshCache::decoded(glm::ivec3 b, i
   return d;
 }
 
+const uint8_t* MixedLevelMeshCache::decoded_voxels(glm::ivec3 b, int k,
+                                                   std::vector<uint8_t>& spare) {
+  const Decoded& d = decoded(b, k);
+  const auto kept = decoded_.find(static_cast<uint64_t>(index(b)) * 8 + static_cast<uint64_t>(k));
+  if (!frozen_ || (kept != decoded_.end() && &kept->second == &d)) return d.voxels.data();
+  spare = d.voxels;  // the thread's scratch: the next decode would overwrite it
+  return spare.data();
+}
+
 float MixedLevelMeshCache::raw(int k, glm::ivec3 p) {
   const glm::ivec3 d = volume_->level_dims(k);
   if (glm::any(glm::lessThan(p, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(p, d)))
@@ -165,6 +174,23 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<
   const glm::ivec3 ld = volume_->level_dims(k);
   const int side = m + 3;
   block.assign(static_cast<size_t>(side) * side * side, 0.0f);
+  // The decoded voxels of the brick and its neighbours, looked up once (a
+  // lookup per row was a tenth of the update).
+  // Bricks of fewer than two voxels a side read two bricks away: those
+  // look each row up.
+  const uint8_t* around[3][3][3] = {};
+  std::vector<uint8_t> spare[3][3][3];
+  const bool near = reach(k) == 1;
+  for (int dz = -1; dz <= 1 && near; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if (const glm::ivec3 nb = b + glm::ivec3(dx, dy, dz); in_grid(nb))
+          around[dz + 1][dy + 1][dx + 1] = decoded_voxels(nb, k, spare[dz + 1][dy + 1][dx + 1]);
+  auto voxels_of = [&](glm::ivec3 nb) {
+    if (!near) return decoded(nb, k).voxels.data();
+    const glm::ivec3 d = nb - b + 1;
+    return around[d.z][d.y][d.x];
+  };
   // Plain level-k voxels, row by row, a brick's run at a time.
   for (int z = -1; z <= m + 1; ++z)
     for (int y = -1; y <= m + 1; ++y) {
@@ -174,8 +200,8 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<
       for (int x = std::max(0, p0.x); x < std::min(ld.x, p0.x + side);) {
         const glm::ivec3 nb(x / m, p0.y / m, p0.z / m);
         const int run_end = std::min({ld.x, p0.x + side, (nb.x + 1) * m});
-        const std::vector<uint8_t>& v = decoded(nb, k).voxels;
-        const uint8_t* src = &v[(static_cast<size_t>(p0.z - nb.z * m) * m + (p0.y - nb.y * m)) * m];
+        const uint8_t* src =
+            voxels_of(nb) + (static_cast<size_t>(p0.z - nb.z * m) * m + (p0.y - nb.y * m)) * m;
         for (; x < run_end; ++x)
           row[x - p0.x] = src[x - nb.x * m];
       }
@@ -196,19 +222,7 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<
           block[(static_cast<size_t>(z + 1) * side + (y + 1)) * side + (x + 1)] = shared(k, p);
       }
     }
-  bool any_in = false, any_out = false;
-  for (int z = 1; z <= m + 1; ++z)
-    for (int y = 1; y <= m + 1; ++y)
-      for (int x = 1; x <= m + 1; ++x) {
-        const bool in = block[(static_cast<size_t>(z) * side + y) * side + x] > options_.iso;
-        any_in = any_in || in;
-        any_out = any_out || !in;
-      }
   cb.stats = {};
-  if (!any_in || !any_out) {
-    cb.mesh.clear();
-    return;
-  }
   auto key = [&](glm::ivec3 p, int axis) -> uint64_t {
     bool seam = false;
     for (int a = 0; a < 3; ++a)
@@ -229,6 +243,9 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<
     return pack_edge(k, x / s, axis);
   };
   detail::march_float_cells(block.data(), glm::ivec3(m), origin, k, options_.iso, key, cb.mesh);
+  // No crossing among the corners (the march finds that first, row by
+  // row): nothing to stitch either.
+  if (cb.mesh.empty()) return;
   // Only a coarser face neighbour leaves gaps for this brick to close.
   bool coarser_face = false;
   for (int a = 0; a < 3; ++a)

@@ -124,6 +124,9 @@ class MixedLevelMeshCache {
   // Level-k voxel p (level coordinates), 0 outside the volume.
   float raw(int k, glm::ivec3 p);
   const Decoded& decoded(glm::ivec3 b, int k);
+  // decoded(b, k)'s voxels, kept valid across further calls: an unforeseen
+  // decode while frozen goes to `spare`, not to the thread's one scratch.
+  const uint8_t* decoded_voxels(glm::ivec3 b, int k, std::vector<uint8_t>& spare);
   // The sample all bricks sharing level-k point p agree on.
   float shared(int k, glm::ivec3 p);
   float shared_value(int k, glm::ivec3 p);
