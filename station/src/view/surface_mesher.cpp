@@ -151,6 +151,8 @@ void SurfaceMesher::publish(SurfaceDelta delta) {
       simplify_jobs_.erase(b.index);
     }
   }
+  counters_.simplify_queue_max =
+      std::max(counters_.simplify_queue_max, static_cast<int64_t>(simplify_jobs_.size()));
   last_change_ = delta.change;
   last_full_detail_change_ = std::max(last_full_detail_change_, delta.full_detail_change);
   merge_ready(std::move(delta));

@@ -127,6 +127,8 @@ void deltas_build_the_surface_meshed_from_scratch(float simplify_error) {
   EXPECT_EQ(c.update_us.count(), c.updates);
   if (simplify_error > 0) {
     EXPECT_GT(c.bricks_simplified, 0);
+    EXPECT_GT(c.simplify_queue_max, 0);
+    EXPECT_LE(c.simplify_queue_max, 8 * 8 * 8);  // one job per brick of the bigger volume at most
     EXPECT_LT(c.triangles_kept, c.triangles_marched);
     EXPECT_LE(c.simplify_error_max, 4 * simplify_error);  // level 2 bricks: 4 times
   } else {

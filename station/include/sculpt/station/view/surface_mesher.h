@@ -95,6 +95,7 @@ struct MesherCounters {
   int64_t pending_bricks_max = 0;  ///< deepest the pending set got
   int64_t coarse_first = 0;        ///< changes shown coarse before full detail
   int64_t bricks_simplified = 0;   ///< published again simplified
+  int64_t simplify_queue_max = 0;  ///< most bricks waiting to be simplified (one per brick at most)
   int64_t triangles_marched = 0;   ///< their triangles before simplifying
   int64_t triangles_kept = 0;      ///< and after
   double simplify_error_max = 0;   ///< largest estimated surface move, level-0 voxels
