@@ -108,7 +108,8 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_option("--stats-every", w.stats_every_s,
                   "window: also rewrite --stats every this many seconds (a long run's monitor)")
       ->check(finite_range(0.1, 86400));
-  cmd->add_option("--screenshot", w.screenshot, "window: PNG of the last frame (with --frames)");
+  cmd->add_option("--screenshot", w.screenshot,
+                  "window: PNG of the last frame (with --frames or --until-replayed)");
   cmd->add_option_function<std::string>(
          "--normals",
          [&w = *o](const std::string& v) { w.window.distance_normals = v == "distance"; },

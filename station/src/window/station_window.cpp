@@ -294,11 +294,16 @@ int run_window(const WindowOptions& o) {
   int64_t last_stats = last_frame;
   figures.started_ns = last_frame;
   hub.start();
-  for (int frame = 0; !glfwWindowShouldClose(w) && (o.frames <= 0 || frame < o.frames) &&
-                      !(o.exit_when_replayed && hub.replay_done());
-       ++frame) {
+  bool played_out = false;  // the last frame of --until-replayed is drawn
+  for (int frame = 0;
+       !glfwWindowShouldClose(w) && (o.frames <= 0 || frame < o.frames) && !played_out; ++frame) {
     glfwPollEvents();
     const int64_t now = hal::monotonic_ns();
+    // The sculpting thread plays a sim device's session at its own pace, so
+    // it can end before a slow frame (a sanitizer's, a loaded machine's) has
+    // shown anything: the frame after it shows the end, then the window goes.
+    played_out = o.exit_when_replayed && hub.replay_done();
+    const bool final_frame = played_out || (o.frames > 0 && frame == o.frames - 1);
     std::unique_lock turn(hub.mutex());
 
     // The ordinary mouse and keyboard.
@@ -364,10 +369,10 @@ int run_window(const WindowOptions& o) {
     controller.lod().set_policy(policy);
     hub.set_levels(controller.lod().select(volume.brick_grid(), volume.brick_edge(), camera.eye(),
                                            OrbitCamera::focal_length_px(static_cast<float>(fb_h))));
-    // A picture of a given frame shows everything sculpted before it, and
-    // every brick shaded as it asks.
-    const bool picture_frame = !o.screenshot.empty() && o.frames > 0 && frame == o.frames - 1;
-    if (picture_frame) {
+    // The last frame (and so its picture) shows everything sculpted before
+    // it, and every brick shaded as it asks.
+    const bool picture_frame = !o.screenshot.empty() && final_frame;
+    if (final_frame) {
       hub.poll_now();
       mesher.wait_until_meshed();
     }
