@@ -53,7 +53,7 @@ class InputStatistics {
   std::vector<int64_t> made_t_ns_;  // report times of dabs not yet submitted
   std::deque<Meshing> meshing_;     // submitted, waiting for their meshes
   std::deque<Meshing> detailing_;   // shown, waiting for full detail
-  uint64_t ready_change_ = 0;        // the last ready() figures
+  uint64_t ready_change_ = 0;       // the last ready() figures
   uint64_t full_detail_change_ = 0;
   std::deque<double> recent_us_;
   LatencyHistogram all_us_;  // fixed memory: the station runs for hours
