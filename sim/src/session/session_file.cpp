@@ -15,8 +15,6 @@
 namespace sculpt::sim {
 namespace {
 
-constexpr uint32_t kMaxHeaderBytes = 1u << 20;
-constexpr uint32_t kMaxDescriptorBytes = 4096;
 constexpr size_t kRecordHeadBytes = 12;
 
 enum RecordKindByte : uint8_t {
@@ -235,12 +233,13 @@ Result<Session> parse_session_bytes(std::span<const uint8_t> bytes, const std::s
   Session s;
   Reader f(fields);
   hal::DeviceInfo& d = s.header.device;
-  const bool fields_ok = f.str(d.backend, 256) && f.str(d.path, 4096) && f.str(d.name, 4096) &&
-                         f.str(d.manufacturer, 4096) && f.str(d.serial, 4096) &&
-                         f.num(d.vendor_id) && f.num(d.product_id) && f.num(d.usage_page) &&
-                         f.num(d.usage) && f.blob(d.report_descriptor, kMaxDescriptorBytes) &&
-                         f.str(s.header.normalizer_config, kMaxHeaderBytes) &&
-                         f.num(s.header.created_unix_ns) && f.left() == 0;
+  const bool fields_ok =
+      f.str(d.backend, kMaxBackendBytes) && f.str(d.path, kMaxDeviceTextBytes) &&
+      f.str(d.name, kMaxDeviceTextBytes) && f.str(d.manufacturer, kMaxDeviceTextBytes) &&
+      f.str(d.serial, kMaxDeviceTextBytes) && f.num(d.vendor_id) && f.num(d.product_id) &&
+      f.num(d.usage_page) && f.num(d.usage) && f.blob(d.report_descriptor, kMaxDescriptorBytes) &&
+      f.str(s.header.normalizer_config, kMaxNormalizerBytes) && f.num(s.header.created_unix_ns) &&
+      f.left() == 0;
   if (!fields_ok) return Error(name + ": malformed header fields");
 
   const size_t records_start = sizeof(kSessionMagic) + r.at();

@@ -114,16 +114,27 @@ int64_t read_integer(const json& object, const char* key, int64_t lo, int64_t hi
 }
 
 // text_field()'s inverse; missing is empty. Throws like the other readers.
-std::string read_text_field(const json& object, const char* key) {
+// A header's text field, refused when longer than a session file holds.
+std::string read_text_field(const json& object, const char* key, uint32_t max_bytes) {
   if (!object.contains(key)) return {};
   const json& v = object[key];
-  if (v.is_string()) return v.get<std::string>();
-  if (v.is_object() && v.contains("bytes") && v["bytes"].is_string()) {
+  std::string text;
+  if (v.is_string()) {
+    text = v.get<std::string>();
+  } else if (v.is_object() && v.contains("bytes") && v["bytes"].is_string()) {
     const auto bytes = from_hex(v["bytes"].get<std::string>());
     if (!bytes) throw std::string(key) + ".bytes: not hex";
-    return std::string(bytes->begin(), bytes->end());
+    text.assign(bytes->begin(), bytes->end());
+  } else {
+    throw std::string(key) + ": expected a string or {\"bytes\": hex}";
   }
-  throw std::string(key) + ": expected a string or {\"bytes\": hex}";
+  if (text.size() > max_bytes) {
+    std::string why = key;
+    why += ": " + std::to_string(text.size()) + " bytes, more than the ";
+    why += std::to_string(max_bytes) + " a session holds";
+    throw why;
+  }
+  return text;
 }
 
 ordered floats(const float* v, int n) {
@@ -445,11 +456,11 @@ Result<Session> session_from_text(std::string_view text, const std::string& name
           throw std::string("unsupported session version ") + j["sculpt_session"].dump();
         const json& d = j.at("device");
         hal::DeviceInfo& info = s.header.device;
-        info.backend = read_text_field(d, "backend");
-        info.path = read_text_field(d, "path");
-        info.name = read_text_field(d, "name");
-        info.manufacturer = read_text_field(d, "manufacturer");
-        info.serial = read_text_field(d, "serial");
+        info.backend = read_text_field(d, "backend", kMaxBackendBytes);
+        info.path = read_text_field(d, "path", kMaxDeviceTextBytes);
+        info.name = read_text_field(d, "name", kMaxDeviceTextBytes);
+        info.manufacturer = read_text_field(d, "manufacturer", kMaxDeviceTextBytes);
+        info.serial = read_text_field(d, "serial", kMaxDeviceTextBytes);
         const std::string vp = d.value("vendor_product", "");
         unsigned vid = 0, pid = 0;
         char tail = 0;
@@ -462,8 +473,12 @@ Result<Session> session_from_text(std::string_view text, const std::string& name
         info.usage = static_cast<uint16_t>(read_integer(d, "usage", 0, 0xFFFF));
         const auto descriptor = from_hex(d.value("report_descriptor", ""));
         if (!descriptor) throw std::string("device.report_descriptor: not hex");
+        if (descriptor->size() > kMaxDescriptorBytes) {
+          throw "device.report_descriptor: " + std::to_string(descriptor->size()) +
+              " bytes, more than the " + std::to_string(kMaxDescriptorBytes) + " a session holds";
+        }
         info.report_descriptor = *descriptor;
-        s.header.normalizer_config = read_text_field(j, "normalizer");
+        s.header.normalizer_config = read_text_field(j, "normalizer", kMaxNormalizerBytes);
         s.header.created_unix_ns = read_integer(j, "created_unix_ns", INT64_MIN, INT64_MAX);
         have_header = true;
         continue;

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
+#include <string>
+
 #include "sculpt/sim/session/session_file.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
 
@@ -59,6 +63,38 @@ TEST(SessionText, AHeaderNumberOutOfRangeIsRefusedBeforeAnyConversion) {
       session_from_text(header_start + "\"usage\": 8}, \"created_unix_ns\": 1e300}\n", "h.jsonl");
   ASSERT_FALSE(time.ok());
   EXPECT_NE(time.error().message().find("created_unix_ns"), std::string::npos);
+}
+
+// Found by fuzzing: a 400-byte backend name was read from text, but a
+// session file holds 256, so the text did not convert to a file and back.
+TEST(SessionText, AHeaderFieldLongerThanASessionFileHoldsIsRefused) {
+  std::ifstream in(SCULPT_TEST_DATA_DIR "/session/fuzz_long_backend.jsonl", std::ios::binary);
+  const std::string found((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(found.empty());
+  const auto r = session_from_text(found, "f.jsonl");
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message().find("f.jsonl:1: backend:"), std::string::npos)
+      << r.error().message();
+  EXPECT_NE(r.error().message().find("more than the 256 a session holds"), std::string::npos)
+      << r.error().message();
+  const std::string head =
+      "{\"sculpt_session\": 1, \"device\": {\"vendor_product\": \"046d:c626\", ";
+  const std::string fields[] = {
+      "\"name\": \"" + std::string(kMaxDeviceTextBytes + 1, 'n') + "\"",
+      "\"report_descriptor\": \"" + std::string(2 * (kMaxDescriptorBytes + 1), 'a') + "\""};
+  for (const std::string& field : fields) {
+    const auto long_field = session_from_text(head + field + "}}\n", "h.jsonl");
+    ASSERT_FALSE(long_field.ok());
+    EXPECT_NE(long_field.error().message().find("a session holds"), std::string::npos)
+        << long_field.error().message();
+  }
+  // At the limit it is read, and converts to a file and back.
+  const auto at_limit = session_from_text(
+      head + "\"backend\": \"" + std::string(kMaxBackendBytes, 'b') + "\"}}\n", "h.jsonl");
+  ASSERT_TRUE(at_limit.ok()) << at_limit.error().message();
+  const auto back = parse_session_bytes(serialize_session(*at_limit), "b.scs");
+  ASSERT_TRUE(back.ok()) << back.error().message();
+  EXPECT_EQ(*back, *at_limit);
 }
 
 TEST(SessionText, ReadsAHandWrittenSessionWithPastedHex) {

@@ -107,6 +107,16 @@ struct SessionRecord {
   friend bool operator==(const SessionRecord& a, const SessionRecord& b);
 };
 
+/// What a session file's header holds at most (session_file.cpp reads no
+/// more); the text form refuses more, so whatever it accepts converts to a
+/// file and back. Bytes.
+inline constexpr uint32_t kMaxHeaderBytes = 1u << 20;  ///< the whole header
+inline constexpr uint32_t kMaxBackendBytes = 256;
+inline constexpr uint32_t kMaxDeviceTextBytes = 4096;  ///< path, name, manufacturer, serial
+inline constexpr uint32_t kMaxDescriptorBytes = 4096;
+/// The rest of the header fits in the 64 KiB left beside it.
+inline constexpr uint32_t kMaxNormalizerBytes = kMaxHeaderBytes - (1u << 16);
+
 struct SessionHeader {
   /// The device (backend, path, name, vendor:product, serial, report descriptor).
   hal::DeviceInfo device;
