@@ -198,36 +198,51 @@ void BM_MeshMixedLevel(benchmark::State& state) {
 }
 BENCHMARK(BM_MeshMixedLevel)->Arg(256)->ArgName("n")->Unit(benchmark::kMillisecond);
 
-// The mixed-level cache after one dab (same dabs as BM_MeshRemeshAfterDab).
-void BM_MeshMixedLevelAfterDab(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  Volume volume = sphere_volume(n);
-  const std::vector<int> levels = camera_levels(volume);
-  MixedLevelMeshCache cache;
+// The mixed-level cache updated after each of the benchmark's dabs (balls
+// of `dab_radius` added and carved in turn at random points of the
+// sphere's surface); only the updates are timed.
+struct UpdatesAfterDabs {
+  std::vector<double> seconds;  // sorted
+  double bricks_remeshed = 0;   // per update
+};
+
+UpdatesAfterDabs time_updates_after_dabs(benchmark::State& state, Volume& volume,
+                                         MixedLevelMeshCache& cache, const std::vector<int>& levels,
+                                         float dab_radius) {
   cache.update(volume, levels);
-  std::vector<double> samples;
-  int64_t meshed = 0;
   uint32_t seed = 12345;
   auto next = [&] {
     seed = seed * 1664525u + 1013904223u;
     return static_cast<float>(seed >> 8) / static_cast<float>(1u << 24) * 2.0f - 1.0f;
   };
+  UpdatesAfterDabs out;
+  int64_t meshed = 0;
   bool carve = false;
   for (auto _ : state) {
-    dab_on_surface(volume, next, carve);
+    dab_on_surface(volume, next, carve, dab_radius);
     carve = !carve;
     const auto t0 = std::chrono::steady_clock::now();
     const MeshUpdate u = cache.update(volume, levels);
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     state.SetIterationTime(s);
-    samples.push_back(s);
+    out.seconds.push_back(s);
     meshed += u.bricks_changed;
   }
-  std::sort(samples.begin(), samples.end());
-  state.counters["median_us"] = samples[samples.size() / 2] * 1e6;
-  state.counters["p99_us"] = samples[std::min(samples.size() - 1, samples.size() * 99 / 100)] * 1e6;
-  state.counters["bricks_remeshed"] =
-      static_cast<double>(meshed) / static_cast<double>(samples.size());
+  std::sort(out.seconds.begin(), out.seconds.end());
+  out.bricks_remeshed = static_cast<double>(meshed) / static_cast<double>(out.seconds.size());
+  return out;
+}
+
+// The mixed-level cache after one dab (same dabs as BM_MeshRemeshAfterDab).
+void BM_MeshMixedLevelAfterDab(benchmark::State& state) {
+  Volume volume = sphere_volume(static_cast<int>(state.range(0)));
+  const std::vector<int> levels = camera_levels(volume);
+  MixedLevelMeshCache cache;
+  const UpdatesAfterDabs u = time_updates_after_dabs(state, volume, cache, levels, 14.0f);
+  const std::vector<double>& t = u.seconds;
+  state.counters["median_us"] = t[t.size() / 2] * 1e6;
+  state.counters["p99_us"] = t[std::min(t.size() - 1, t.size() * 99 / 100)] * 1e6;
+  state.counters["bricks_remeshed"] = u.bricks_remeshed;
 }
 BENCHMARK(BM_MeshMixedLevelAfterDab)
     ->Arg(256)
@@ -245,29 +260,9 @@ void BM_MeshMixedLevelAfterBigDab(benchmark::State& state) {
   MarchingCubesOptions options;
   options.threads = static_cast<int>(state.range(0));
   MixedLevelMeshCache cache(options);
-  cache.update(volume, levels);
-  uint32_t seed = 12345;
-  auto next = [&] {
-    seed = seed * 1664525u + 1013904223u;
-    return static_cast<float>(seed >> 8) / static_cast<float>(1u << 24) * 2.0f - 1.0f;
-  };
-  std::vector<double> samples;
-  int64_t meshed = 0;
-  bool carve = false;
-  for (auto _ : state) {
-    dab_on_surface(volume, next, carve, 66.0f);
-    carve = !carve;
-    const auto t0 = std::chrono::steady_clock::now();
-    const MeshUpdate u = cache.update(volume, levels);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    state.SetIterationTime(s);
-    samples.push_back(s);
-    meshed += u.bricks_changed;
-  }
-  std::sort(samples.begin(), samples.end());
-  state.counters["median_ms"] = samples[samples.size() / 2] * 1e3;
-  state.counters["bricks_remeshed"] =
-      static_cast<double>(meshed) / static_cast<double>(samples.size());
+  const UpdatesAfterDabs u = time_updates_after_dabs(state, volume, cache, levels, 66.0f);
+  state.counters["median_ms"] = u.seconds[u.seconds.size() / 2] * 1e3;
+  state.counters["bricks_remeshed"] = u.bricks_remeshed;
 }
 BENCHMARK(BM_MeshMixedLevelAfterBigDab)
     ->Arg(1)

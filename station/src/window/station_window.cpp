@@ -378,8 +378,7 @@ int run_window(const WindowOptions& o) {
     }
     if (auto delta = mesher.take()) {
       // Latency: from each dab's report to its surface ready to draw.
-      for (const SurfaceDelta::Readiness& r : delta->readiness)
-        controller.surface_ready(r.change, r.full_detail_change, r.ready_ns);
+      controller.surface_ready(*delta);
       surface.apply(std::move(*delta));
     }
     const int64_t t_upload = hal::monotonic_ns();
@@ -454,10 +453,7 @@ int run_window(const WindowOptions& o) {
   std::lock_guard last_turn(hub.mutex());  // no other thread now: kept for the rule
   hub.poll_now();
   mesher.wait_until_meshed();
-  if (auto delta = mesher.take()) {
-    for (const SurfaceDelta::Readiness& r : delta->readiness)
-      controller.surface_ready(r.change, r.full_detail_change, r.ready_ns);
-  }
+  if (auto delta = mesher.take()) controller.surface_ready(*delta);
   figures.mesher = mesher.counters();
   figures.hub = hub.figures();
 

@@ -77,8 +77,7 @@ TEST(InputHub, ALiveSessionSculptedOnItsThreadEndsOnTheReplaysVolume) {
       levels.assign(static_cast<size_t>(v.brick_count()), turns % 2);
       hub.set_levels(levels);
       if (auto delta = mesher.take()) {
-        for (const SurfaceDelta::Readiness& r : delta->readiness)
-          controller.surface_ready(r.change, r.full_detail_change, r.ready_ns);
+        controller.surface_ready(*delta);
         snapshot.apply(std::move(*delta));
       }
       controller.camera().orbit(0.001f, 0.0f);
@@ -93,8 +92,7 @@ TEST(InputHub, ALiveSessionSculptedOnItsThreadEndsOnTheReplaysVolume) {
   hub.poll_now();
   mesher.wait_until_meshed();
   if (auto delta = mesher.take()) {
-    for (const SurfaceDelta::Readiness& r : delta->readiness)
-      controller.surface_ready(r.change, r.full_detail_change, r.ready_ns);
+    controller.surface_ready(*delta);
     snapshot.apply(std::move(*delta));
   }
 

@@ -33,6 +33,7 @@
 #include "sculpt/station/project/project_file.h"
 #include "sculpt/station/view/lod_selector.h"
 #include "sculpt/station/view/orbit_camera.h"
+#include "sculpt/station/view/surface_mesher.h"
 
 namespace sculpt::station {
 
@@ -196,6 +197,11 @@ class StationController {
   /// `ready_ns` (up to `full_detail_change` at full detail): the latencies
   /// of their dabs (report to first mesh, and to full detail).
   void surface_ready(uint64_t change, uint64_t full_detail_change, int64_t ready_ns);
+  /// The same for each change a mesher's delta says is ready, oldest first.
+  void surface_ready(const SurfaceDelta& delta) {
+    for (const SurfaceDelta::Readiness& r : delta.readiness)
+      surface_ready(r.change, r.full_detail_change, r.ready_ns);
+  }
   /// Latency of the last few hundred dabs, and of all of them.
   LatencyStats recent_latency() const { return stats_.recent_latency(); }
   LatencyStats session_latency() const { return stats_.session_latency(); }
