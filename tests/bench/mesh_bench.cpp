@@ -272,5 +272,59 @@ BENCHMARK(BM_MeshMixedLevelAfterBigDab)
     ->Iterations(20)
     ->Unit(benchmark::kMillisecond);
 
+// Coarse first for a sculpting change, measured: the head ball's changed
+// bricks shown at `level` first (their unchanged neighbours re-stitch
+// against them), then at full detail. Timed: the coarse pass. The window
+// does not do this (surface_mesher.cpp): the neighbours' re-stitching makes
+// the coarse pass slower than the full-detail update it would precede
+// (compare BM_MeshMixedLevelAfterBigDab/threads:2).
+void BM_MeshMixedLevelCoarseFirstAfterBigDab(benchmark::State& state) {
+  Volume volume = sphere_volume(256);
+  const int level = static_cast<int>(state.range(0));
+  const std::vector<int> full(static_cast<size_t>(volume.brick_count()), 0);
+  MarchingCubesOptions options;
+  options.threads = 2;
+  MixedLevelMeshCache cache(options);
+  cache.update(volume, full);
+  uint32_t seed = 12345;
+  auto next = [&] {
+    seed = seed * 1664525u + 1013904223u;
+    return static_cast<float>(seed >> 8) / static_cast<float>(1u << 24) * 2.0f - 1.0f;
+  };
+  const glm::ivec3 grid = volume.brick_grid();
+  std::vector<uint64_t> versions(full.size());
+  double coarse_s = 0, full_s = 0, coarse_meshed = 0;
+  bool carve = false;
+  for (auto _ : state) {
+    for (size_t i = 0; i < versions.size(); ++i)
+      versions[i] = volume.brick_version(grid_position(static_cast<int64_t>(i), grid));
+    dab_on_surface(volume, next, carve, 66.0f);
+    carve = !carve;
+    std::vector<int> coarse = full;
+    for (size_t i = 0; i < versions.size(); ++i)
+      if (versions[i] != volume.brick_version(grid_position(static_cast<int64_t>(i), grid)))
+        coarse[i] = level;
+    const auto t0 = std::chrono::steady_clock::now();
+    coarse_meshed += static_cast<double>(cache.update(volume, coarse).bricks_meshed);
+    const auto t1 = std::chrono::steady_clock::now();
+    cache.update(volume, full);
+    const auto t2 = std::chrono::steady_clock::now();
+    coarse_s += std::chrono::duration<double>(t1 - t0).count();
+    full_s += std::chrono::duration<double>(t2 - t1).count();
+    state.SetIterationTime(std::chrono::duration<double>(t1 - t0).count());
+  }
+  const auto n = static_cast<double>(state.iterations());
+  state.counters["coarse_ms"] = coarse_s / n * 1e3;
+  state.counters["then_full_ms"] = full_s / n * 1e3;
+  state.counters["coarse_bricks_meshed"] = coarse_meshed / n;
+}
+BENCHMARK(BM_MeshMixedLevelCoarseFirstAfterBigDab)
+    ->Arg(1)
+    ->Arg(2)
+    ->ArgName("level")
+    ->UseManualTime()
+    ->Iterations(20)
+    ->Unit(benchmark::kMillisecond);
+
 }  // namespace
 }  // namespace sculpt::core

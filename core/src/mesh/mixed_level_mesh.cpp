@@ -1,6 +1,7 @@
 #include "sculpt/core/mesh/mixed_level_mesh.h"
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <cmath>
 
@@ -24,6 +25,47 @@ uint64_t pack_edge(int level, glm::ivec3 lower, int axis) {
 }
 
 }  // namespace
+
+// An open-addressing table: a brick's face needs a few hundred agreed
+// samples, each read by up to eight finer points, and a node-based map's
+// allocations cost more than the samples.
+class MixedLevelMeshCache::SharedMemo {
+ public:
+  const float* find(uint64_t key) const {
+    if (keys_.empty()) return nullptr;
+    for (size_t i = slot(key);; i = (i + 1) & (keys_.size() - 1)) {
+      if (keys_[i] == key) return &values_[i];
+      if (keys_[i] == kEmpty) return nullptr;
+    }
+  }
+  void insert(uint64_t key, float value) {
+    if (2 * (used_ + 1) > keys_.size()) grow();
+    size_t i = slot(key);
+    while (keys_[i] != kEmpty)
+      i = (i + 1) & (keys_.size() - 1);
+    keys_[i] = key;
+    values_[i] = value;
+    ++used_;
+  }
+
+ private:
+  static constexpr uint64_t kEmpty = ~uint64_t{0};
+  size_t slot(uint64_t key) const {
+    return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> 40) & (keys_.size() - 1);
+  }
+  void grow() {
+    std::vector<uint64_t> keys(std::max<size_t>(1024, 2 * keys_.size()), kEmpty);
+    std::vector<float> values(keys.size());
+    keys.swap(keys_);
+    values.swap(values_);
+    used_ = 0;
+    for (size_t i = 0; i < keys.size(); ++i)
+      if (keys[i] != kEmpty) insert(keys[i], values[i]);
+  }
+  std::vector<uint64_t> keys_;
+  std::vector<float> values_;
+  size_t used_ = 0;
+};
 
 MixedLevelMeshCache::MixedLevelMeshCache(const MarchingCubesOptions& options) : options_(options) {}
 
@@ -70,7 +112,7 @@ const uint8_t* MixedLevelMeshCache::decoded_voxels(glm::ivec3 b, int k,
 }
 
 float MixedLevelMeshCache::raw(int k, glm::ivec3 p) {
-  const glm::ivec3 d = volume_->level_dims(k);
+  const glm::ivec3 d = level_dims_[static_cast<size_t>(k)];
   if (glm::any(glm::lessThan(p, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(p, d)))
     return 0.0f;
   const int m = edge_ >> k;
@@ -79,18 +121,24 @@ float MixedLevelMeshCache::raw(int k, glm::ivec3 p) {
   return decoded(b, k).voxels[(static_cast<size_t>(l.z) * m + l.y) * m + l.x];
 }
 
-float MixedLevelMeshCache::shared(int k, glm::ivec3 p) {
+float MixedLevelMeshCache::shared(int k, glm::ivec3 p, SharedMemo& memo) {
+  // Points of one coarse square are read by every finer point inside it.
+  const uint64_t key = (static_cast<uint64_t>(k) << 60) | (static_cast<uint64_t>(p.z + 1) << 40) |
+                       (static_cast<uint64_t>(p.y + 1) << 20) | static_cast<uint64_t>(p.x + 1);
+  if (const float* known = memo.find(key)) return *known;
   // A sample exactly at the iso-level puts the crossings of the edges
   // around it on the grid point itself, where the finer side's polyline
   // could end on an edge the coarser side does not have (the symmetric
   // density ramp makes interpolated ties common). Every brick reads this
   // same value, so moving ties just below the level keeps them agreeing.
-  const float v = shared_value(k, p);
-  return v == options_.iso ? options_.iso - 1.0f / 1024.0f : v;
+  const float v = shared_value(k, p, memo);
+  const float agreed = v == options_.iso ? options_.iso - 1.0f / 1024.0f : v;
+  memo.insert(key, agreed);
+  return agreed;
 }
 
-float MixedLevelMeshCache::shared_value(int k, glm::ivec3 p) {
-  const glm::ivec3 d = volume_->level_dims(k);
+float MixedLevelMeshCache::shared_value(int k, glm::ivec3 p, SharedMemo& memo) {
+  const glm::ivec3 d = level_dims_[static_cast<size_t>(k)];
   if (glm::any(glm::lessThan(p, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(p, d)))
     return 0.0f;
   const int s = 1 << k;
@@ -121,7 +169,7 @@ float MixedLevelMeshCache::shared_value(int k, glm::ivec3 p) {
     for (int a = 0; a < 3; ++a)
       weight *= o[a] ? w[a] : 1.0f - w[a];
     if (weight == 0.0f) continue;
-    value += weight * shared(lambda, i0 + o);
+    value += weight * shared(lambda, i0 + o, memo);
   }
   return value;
 }
@@ -171,7 +219,7 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<
   const int k = cb.level;
   const int m = edge_ >> k, s = 1 << k;
   const glm::ivec3 origin = b * m;
-  const glm::ivec3 ld = volume_->level_dims(k);
+  const glm::ivec3 ld = level_dims_[static_cast<size_t>(k)];
   const int side = m + 3;
   block.assign(static_cast<size_t>(side) * side * side, 0.0f);
   // The decoded voxels of the brick and its neighbours, looked up once (a
@@ -212,14 +260,41 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<
   // the sampling that finds the sharing levels was most of the time.
   const bool same_level_around =
       std::all_of(cb.levels.begin(), cb.levels.end(), [k](int8_t l) { return l < 0 || l == k; });
+  // The levels of the bricks sharing a boundary point come from the
+  // neighbourhood's, kept in cb.levels (outside the grid: -1, not counted).
+  const int r = reach(k), width = 2 * r + 1;
+  auto neighbour_level = [&](int dx, int dy, int dz) {
+    return cb.levels[static_cast<size_t>(((dz + r) * width + (dy + r)) * width + (dx + r))];
+  };
+  auto sides = [m](int c, int(&out)[2]) {
+    out[0] = 0;
+    if (c == 0)
+      out[1] = -1;
+    else if (c == m)
+      out[1] = 1;
+    else
+      return 1;
+    return 2;
+  };
+  SharedMemo memo;
   for (int z = 0; z <= m && !same_level_around; ++z)
     for (int y = 0; y <= m; ++y) {
       const bool yz_face = z == 0 || y == 0 || z == m || y == m;
       for (int x = 0; x <= m; x += (yz_face ? 1 : m)) {
-        const glm::ivec3 p = origin + glm::ivec3(x, y, z);
-        const glm::ivec2 range = levels_at(p * s * 2);
-        if (range.x < k || range.y > k)
-          block[(static_cast<size_t>(z + 1) * side + (y + 1)) * side + (x + 1)] = shared(k, p);
+        int sx[2], sy[2], sz[2];
+        const int nx = sides(x, sx), ny = sides(y, sy), nz = sides(z, sz);
+        int finest = k, coarsest = k;
+        for (int iz = 0; iz < nz; ++iz)
+          for (int iy = 0; iy < ny; ++iy)
+            for (int ix = 0; ix < nx; ++ix) {
+              const int l = neighbour_level(sx[ix], sy[iy], sz[iz]);
+              if (l < 0) continue;
+              finest = std::min(finest, l);
+              coarsest = std::max(coarsest, l);
+            }
+        if (finest < k || coarsest > k)
+          block[(static_cast<size_t>(z + 1) * side + (y + 1)) * side + (x + 1)] =
+              shared(k, origin + glm::ivec3(x, y, z), memo);
       }
     }
   cb.stats = {};
@@ -259,52 +334,66 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<
 
 void MixedLevelMeshCache::stitch(glm::ivec3 b, int k, BrickMesh& out, MixedLevelStats& st) const {
   Mesh& mesh = out.mesh;
-  // Edges used by one triangle of this brick lie on its faces: the seams
-  // with its neighbours. Against a coarser face neighbour they bound the
-  // gaps this brick closes.
-  std::vector<uint64_t> undirected;
-  undirected.reserve(mesh.triangles.size() * 3);
+  // Faces toward a coarser neighbour (2 axis + 1 for the high side): only
+  // there are gaps for this brick to close.
+  const glm::vec3 lo(b * edge_), hi((b + 1) * edge_);
+  int coarser_faces = 0;
+  for (int face = 0; face < 6; ++face) {
+    glm::ivec3 nb = b;
+    nb[face / 2] += (face & 1) ? 1 : -1;
+    if (in_grid(nb) && level_of(nb) > k) coarser_faces |= 1 << face;
+  }
+  // Which face planes each vertex lies on: vertices on a face plane have
+  // that coordinate exactly (a crossing moves along its edge only).
+  std::vector<uint8_t> on_faces(mesh.positions.size(), 0);
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    int faces = 0;
+    for (int a = 0; a < 3; ++a) {
+      if (mesh.positions[v][a] == lo[a]) faces |= 1 << (2 * a);
+      if (mesh.positions[v][a] == hi[a]) faces |= 1 << (2 * a + 1);
+    }
+    on_faces[v] = static_cast<uint8_t>(faces);
+  }
+  // Edges in such a face used by one triangle of this brick bound its gaps
+  // (an edge in two triangles is inside the surface). Only edges with both
+  // ends on one of those planes are counted: a tenth of the mesh's or less.
   auto edge_key = [](uint32_t a, uint32_t c) {
     return (static_cast<uint64_t>(std::min(a, c)) << 32) | std::max(a, c);
   };
+  auto in_face = [&](uint32_t a, uint32_t c) {
+    return (on_faces[a] & on_faces[c] & coarser_faces) != 0;
+  };
+  std::vector<uint64_t> face_edges;
   for (const glm::uvec3& t : mesh.triangles)
     for (int c = 0; c < 3; ++c)
-      undirected.push_back(edge_key(t[c], t[(c + 1) % 3]));
-  std::sort(undirected.begin(), undirected.end());
+      if (in_face(t[c], t[(c + 1) % 3])) face_edges.push_back(edge_key(t[c], t[(c + 1) % 3]));
+  if (face_edges.empty()) return;
+  std::sort(face_edges.begin(), face_edges.end());
   auto used_once = [&](uint64_t key) {
-    const auto [lo, hi] = std::equal_range(undirected.begin(), undirected.end(), key);
-    return hi - lo == 1;
+    const auto [first, last] = std::equal_range(face_edges.begin(), face_edges.end(), key);
+    return last - first == 1;
   };
   struct Gap {
     uint64_t group;  // face and coarse square
     uint32_t from, to;
   };
   std::vector<Gap> gaps;
-  const glm::vec3 lo(b * edge_), hi((b + 1) * edge_);
   for (const glm::uvec3& t : mesh.triangles)
     for (int c = 0; c < 3; ++c) {
       const uint32_t from = t[c], to = t[(c + 1) % 3];
-      if (!used_once(edge_key(from, to))) continue;
-      // Vertices on a face plane have that coordinate exactly (the
-      // crossing moves along its edge only); the midpoint would round a
-      // vertex one ulp off the plane onto it.
-      const glm::vec3 p = mesh.positions[from], q = mesh.positions[to];
-      const glm::dvec3 mid = 0.5 * (glm::dvec3(p) + glm::dvec3(q));
-      int face = -1;
-      for (int a = 0; a < 3 && face < 0; ++a) {
-        if (p[a] == lo[a] && q[a] == lo[a]) face = 2 * a;
-        if (p[a] == hi[a] && q[a] == hi[a]) face = 2 * a + 1;
-      }
-      if (face < 0) {
-        ++st.stitch_off_face;
-        continue;
-      }
+      if (!in_face(from, to) || !used_once(edge_key(from, to))) continue;
+      // The first face both ends lie on (an edge along a brick's edge lies
+      // in two); a same-level face is welded, a finer one is its stitch.
+      const int face = std::countr_zero(static_cast<unsigned>(on_faces[from] & on_faces[to]));
+      if (((coarser_faces >> face) & 1) == 0) continue;
       const int axis = face / 2;
       glm::ivec3 nb = b;
       nb[axis] += (face & 1) ? 1 : -1;
-      if (!in_grid(nb)) continue;
       const int lambda = level_of(nb);
-      if (lambda <= k) continue;  // same level: welded; finer: its stitch
+      // The midpoint in double: in float it would round a vertex one ulp
+      // off the plane onto it.
+      const glm::dvec3 mid =
+          0.5 * (glm::dvec3(mesh.positions[from]) + glm::dvec3(mesh.positions[to]));
       const double big = 1 << lambda;
       const int u = (axis + 1) % 3, v = (axis + 2) % 3;
       const auto su = static_cast<uint64_t>(std::floor(mid[u] / big));
@@ -410,6 +499,8 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
     decoded_.clear();
   }
   levels_.assign(brick_levels.begin(), brick_levels.end());
+  for (int k = 0; k <= volume.levels(); ++k)
+    level_dims_[static_cast<size_t>(k)] = volume.level_dims(k);
   for ([[maybe_unused]] int l : levels_)
     assert(l >= 0 && l <= volume.levels());
   decodes_ = 0;

@@ -229,6 +229,7 @@ void Volume::replace_brick(glm::ivec3 b, Brick brick) {
   const size_t i = brick_index(b);
   bricks_[i] = std::move(brick);
   ++versions_[i];
+  ++stores_;
   // Its decoded copy among the recent bricks is no longer its voxels.
   for (int64_t& recent : recent_brick_)
     if (recent == static_cast<int64_t>(i)) recent = -1;
@@ -240,6 +241,7 @@ void Volume::store_brick(glm::ivec3 b, std::span<uint8_t> voxels) {
   remember_stored(i, voxels);
   bricks_[i].encode(voxels, options_.brick_edge, options_.levels);
   ++versions_[i];
+  ++stores_;
   if (!dirty_flags_[i]) {
     dirty_flags_[i] = 1;
     dirty_list_.push_back(static_cast<int64_t>(i));
@@ -261,6 +263,7 @@ void Volume::store_brick(glm::ivec3 b, std::span<uint8_t> voxels, const Box& cha
   remember_stored(i, voxels);
   bricks_[i].encode_region(voxels, e, options_.levels, {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
   ++versions_[i];
+  ++stores_;
   if (!dirty_flags_[i]) {
     dirty_flags_[i] = 1;
     dirty_list_.push_back(static_cast<int64_t>(i));

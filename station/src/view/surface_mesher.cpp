@@ -50,6 +50,10 @@ SurfaceMesher::~SurfaceMesher() {
 uint64_t SurfaceMesher::submit(const core::Volume& volume, uint64_t generation,
                                const std::vector<int>& levels) {
   const bool reset = generation != generation_;
+  // Nothing stored since the previous call (most of the sculpting thread's
+  // thousand calls a second): no brick to look at.
+  if (!reset && volume.stores() == sent_stores_ && levels == sent_levels_) return change_;
+  sent_stores_ = volume.stores();
   const glm::ivec3 grid = volume.brick_grid();
   std::vector<std::pair<int64_t, const core::Brick*>> changed;
   if (reset) {

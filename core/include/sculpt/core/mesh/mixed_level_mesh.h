@@ -27,6 +27,7 @@
 // shapes that stay clear of the volume's low faces by one coarse voxel (the
 // whole-level meshes of marching_cubes.h have no such limit).
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <span>
@@ -47,11 +48,9 @@ namespace sculpt::core {
 struct MixedLevelStats {
   int64_t stitch_loops = 0;      ///< gaps closed in brick faces
   int64_t stitch_triangles = 0;  ///< triangles added for them
-  int64_t stitch_off_face = 0;   ///< open mesh edges not on a brick face (0 unless broken)
   MixedLevelStats& operator+=(const MixedLevelStats& o) {
     stitch_loops += o.stitch_loops;
     stitch_triangles += o.stitch_triangles;
-    stitch_off_face += o.stitch_off_face;
     return *this;
   }
 };
@@ -128,8 +127,11 @@ class MixedLevelMeshCache {
   // decode while frozen goes to `spare`, not to the thread's one scratch.
   const uint8_t* decoded_voxels(glm::ivec3 b, int k, std::vector<uint8_t>& spare);
   // The sample all bricks sharing level-k point p agree on.
-  float shared(int k, glm::ivec3 p);
-  float shared_value(int k, glm::ivec3 p);
+  // Agreed samples already computed during one brick's meshing, by level
+  // and point (mixed_level_mesh.cpp).
+  class SharedMemo;
+  float shared(int k, glm::ivec3 p, SharedMemo& memo);
+  float shared_value(int k, glm::ivec3 p, SharedMemo& memo);
   // Finest and coarsest level among the bricks whose closed box holds
   // level-0 point x2 / 2 (doubled so edge midpoints are integers).
   glm::ivec2 levels_at(glm::ivec3 x2) const;
@@ -147,6 +149,7 @@ class MixedLevelMeshCache {
   glm::ivec3 grid_{0};
   int edge_ = 0;
   std::vector<int> levels_;
+  std::array<glm::ivec3, 8> level_dims_{};  // volume_->level_dims(k), looked up per sample
   std::vector<CachedBrick> bricks_;
   std::vector<uint64_t> seen_versions_;            // brick versions as of the last update
   std::unordered_map<uint64_t, Decoded> decoded_;  // key: brick index * 8 + level

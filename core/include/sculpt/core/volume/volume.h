@@ -123,6 +123,10 @@ class Volume {
 
   /// Incremented each time brick `b` is stored; mesh caches compare it.
   uint64_t brick_version(glm::ivec3 b) const { return versions_[brick_index(b)]; }
+  /// Incremented each time any brick is stored: a reader polling for
+  /// changes (the mesher's, a thousand times a second) compares this before
+  /// looking at every brick's version.
+  uint64_t stores() const { return stores_; }
   /// Bricks stored since the previous call, in brick order; clears the set.
   std::vector<glm::ivec3> take_dirty_bricks();
 
@@ -147,6 +151,7 @@ class Volume {
   glm::ivec3 grid_;
   std::vector<Brick> bricks_;
   std::vector<uint64_t> versions_;
+  uint64_t stores_ = 0;
   std::vector<uint8_t> dirty_flags_;
   std::vector<int64_t> dirty_list_;
   // The recently stored bricks: index (-1: free slot) and decoded voxels,

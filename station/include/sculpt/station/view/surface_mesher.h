@@ -154,6 +154,7 @@ class SurfaceMesher {
   // Sculpting side only.
   uint64_t generation_ = ~uint64_t{0};
   std::vector<uint64_t> sent_versions_;
+  uint64_t sent_stores_ = 0;  // volume.stores() as of the previous submit
   std::vector<int> sent_levels_;
   uint64_t change_ = 0;
 
