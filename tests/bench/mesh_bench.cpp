@@ -246,6 +246,7 @@ void BM_MeshMixedLevelAfterDab(benchmark::State& state) {
 }
 BENCHMARK(BM_MeshMixedLevelAfterDab)
     ->Arg(256)
+    ->Arg(512)
     ->ArgName("n")
     ->UseManualTime()
     ->Iterations(100)

@@ -474,8 +474,9 @@ void MixedLevelMeshCache::stitch(glm::ivec3 b, int k, BrickMesh& out, MixedLevel
 
 MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int> brick_levels) {
   assert(static_cast<int64_t>(brick_levels.size()) == volume.brick_count());
-  if (volume_ != &volume || volume.dims() != dims_ || volume.brick_grid() != grid_ ||
-      volume.brick_edge() != edge_) {
+  const bool reset = volume_ != &volume || volume.dims() != dims_ || volume.brick_grid() != grid_ ||
+                     volume.brick_edge() != edge_;
+  if (reset) {
     volume_ = &volume;
     dims_ = volume.dims();
     grid_ = volume.brick_grid();
@@ -498,6 +499,10 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
     }
     decoded_.clear();
   }
+  // A new volume, or levels other than the last update's: every brick's
+  // neighbourhood is looked at, not only the changed bricks'.
+  const bool levels_moved = reset || !std::equal(levels_.begin(), levels_.end(),
+                                                 brick_levels.begin(), brick_levels.end());
   levels_.assign(brick_levels.begin(), brick_levels.end());
   for (int k = 0; k <= volume.levels(); ++k)
     level_dims_[static_cast<size_t>(k)] = volume.level_dims(k);
@@ -543,40 +548,60 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
       }
   std::vector<int8_t> levels;
   std::vector<glm::ivec3> stale_bricks;
-  for (int z = 0; z < grid_.z; ++z)
-    for (int y = 0; y < grid_.y; ++y)
-      for (int x = 0; x < grid_.x; ++x) {
-        const glm::ivec3 b(x, y, z);
-        CachedBrick& cb = bricks_[index(b)];
-        const int k = level_of(b);
-        const int r = reach(k);
-        levels.clear();
-        for (int dz = -r; dz <= r; ++dz)
-          for (int dy = -r; dy <= r; ++dy)
-            for (int dx = -r; dx <= r; ++dx) {
-              const glm::ivec3 nb = b + glm::ivec3(dx, dy, dz);
-              levels.push_back(static_cast<int8_t>(in_grid(nb) ? level_of(nb) : -1));
-            }
-        // The voxels this brick reads: its box, one level-k voxel below and
-        // two above (normals), face samples from voxels on its boundary.
-        const int margin = 2 << k;
-        const Box reads{b * edge_ - margin, (b + 1) * edge_ + margin};
-        bool stale = cb.level != k || cb.levels != levels;
-        for (size_t i = 0; i < changed.size() && !stale; ++i)
-          stale = !intersect(changed[i], reads).empty();
-        if (!stale) continue;
-        ++stats.bricks_changed;
-        cb.level = k;
-        cb.levels.swap(levels);
-        if (uniform_around(b, r)) {
-          // No crossing anywhere it reads: no surface, nothing to decode.
-          if (!cb.mesh.empty()) ++cb.mesh_version;
-          cb.mesh.clear();
-          cb.stats = {};
-          continue;
+  auto consider = [&](glm::ivec3 b) {
+    CachedBrick& cb = bricks_[index(b)];
+    const int k = level_of(b);
+    const int r = reach(k);
+    levels.clear();
+    for (int dz = -r; dz <= r; ++dz)
+      for (int dy = -r; dy <= r; ++dy)
+        for (int dx = -r; dx <= r; ++dx) {
+          const glm::ivec3 nb = b + glm::ivec3(dx, dy, dz);
+          levels.push_back(static_cast<int8_t>(in_grid(nb) ? level_of(nb) : -1));
         }
-        stale_bricks.push_back(b);
-      }
+    // The voxels this brick reads: its box, one level-k voxel below and
+    // two above (normals), face samples from voxels on its boundary.
+    const int margin = 2 << k;
+    const Box reads{b * edge_ - margin, (b + 1) * edge_ + margin};
+    bool stale = cb.level != k || cb.levels != levels;
+    for (size_t i = 0; i < changed.size() && !stale; ++i)
+      stale = !intersect(changed[i], reads).empty();
+    if (!stale) return;
+    ++stats.bricks_changed;
+    cb.level = k;
+    cb.levels.swap(levels);
+    if (uniform_around(b, r)) {
+      // No crossing anywhere it reads: no surface, nothing to decode.
+      if (!cb.mesh.empty()) ++cb.mesh_version;
+      cb.mesh.clear();
+      cb.stats = {};
+      return;
+    }
+    stale_bricks.push_back(b);
+  };
+  if (levels_moved) {
+    for (int z = 0; z < grid_.z; ++z)
+      for (int y = 0; y < grid_.y; ++y)
+        for (int x = 0; x < grid_.x; ++x)
+          consider({x, y, z});
+  } else {
+    // Levels as before: only bricks that read a changed box can be stale,
+    // those within the widest margin of one (a big volume has tens of
+    // thousands of bricks; a dab changes a few).
+    const int margin = 2 << volume.levels();
+    std::vector<int64_t> near;
+    for (const Box& box : changed) {
+      const Box around = volume.bricks_overlapping(Box{box.lo - margin, box.hi + margin});
+      for (int z = around.lo.z; z < around.hi.z; ++z)
+        for (int y = around.lo.y; y < around.hi.y; ++y)
+          for (int x = around.lo.x; x < around.hi.x; ++x)
+            near.push_back(static_cast<int64_t>(index({x, y, z})));
+    }
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    for (int64_t i : near)
+      consider(grid_position(i, grid_));
+  }
   // Decode what the stale bricks read (their neighbourhood, at every level
   // found in it), then mesh them in parallel: each writes only its own
   // cached brick and reads the decoded voxels, which stay as they are.
