@@ -98,7 +98,7 @@ void BM_ToolPrepare(benchmark::State& state) {
     benchmark::DoNotOptimize(&p);
   }
 }
-BENCHMARK(BM_ToolPrepare)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ToolPrepare)->Arg(16)->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMicrosecond);
 
 // Full dabs of the 32^3 tool into the 256^3 sphere. range(0): 0 = a new
 // orientation every dab (every contact voxel rotated), 1 = the same

@@ -20,6 +20,7 @@
 // Always rotate the reference tool, never an already rotated one (§3.1).
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -77,18 +78,20 @@ class PreparedTool {
   glm::ivec3 padded_dims() const { return padded_dims_; }
   const uint8_t* padded() const { return padded_.data(); }
   /// Per cell: 0 when its corners differ, else 0x100 | their value.
-  const uint16_t* cells() const { return cells_.data(); }
+  const uint16_t* cells() const { return cells_.get(); }
   /// Per cell: its 8 corners, bytes (x, y, z), (x, y+1, z), (x+1, y, z),
   /// (x+1, y+1, z), then the same at z+1, from the lowest; the vector
   /// kernel's trilinear source (one load per sample).
-  const uint64_t* corners() const { return corners_.data(); }
+  const uint64_t* corners() const { return corners_.get(); }
 
  private:
   Tool tool_;
   glm::ivec3 padded_dims_;
   std::vector<uint8_t> padded_;
-  std::vector<uint16_t> cells_;
-  std::vector<uint64_t> corners_;
+  // Not zeroed on allocation: every entry is written once, in parallel
+  // (a big tool's tables are a hundred megabytes).
+  std::unique_ptr<uint16_t[]> cells_;
+  std::unique_ptr<uint64_t[]> corners_;
   // [0] nearest, [1] trilinear.
   float reach_vox_[2] = {0.0f, 0.0f};
   float core_radius_vox_[2] = {0.0f, 0.0f};
