@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <mutex>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -63,6 +65,23 @@ extern "C" void on_scroll(GLFWwindow* w, double dx, double dy) {
   if (g_pointer != nullptr && !ImGui::GetIO().WantCaptureMouse) g_pointer->scroll += dy;
 }
 
+// The sculpting thread's turn for the frame: waited for when `must`, else
+// given up after a millisecond (its polls hold it a fraction of one; a big
+// dab, tens).
+bool take_turn(std::unique_lock<std::mutex>& turn, bool must) {
+  if (must) {
+    turn.lock();
+    return true;
+  }
+  constexpr int64_t kPatienceNs = 1'000'000;
+  const int64_t start = hal::monotonic_ns();
+  while (!turn.try_lock()) {
+    if (hal::monotonic_ns() - start > kPatienceNs) return false;
+    std::this_thread::yield();
+  }
+  return true;
+}
+
 // Frame and latency figures for --stats.
 struct RunFigures {
   LatencyHistogram frame_us;  // fixed memory: the window runs for hours
@@ -72,7 +91,8 @@ struct RunFigures {
   int64_t triangles = 0;  // drawn in the last frame
   // Where the frames' time went, milliseconds summed over all frames.
   double input_ms = 0, mesh_ms = 0, upload_ms = 0, draw_ms = 0;
-  int64_t started_ns = 0;  // the first frame's start
+  int64_t started_ns = 0;              // the first frame's start
+  int64_t frames_drawn_unsteered = 0;  // the sculpting thread held the turn: drawn without it
   InputHubFigures hub;
 };
 
@@ -122,6 +142,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
   const LatencyStats full = c.full_detail_latency();
   const nlohmann::ordered_json j = {
       {"frames", f.frame_us.count()},
+      {"frames_drawn_unsteered", f.frames_drawn_unsteered},
       {"fps_mean", total > 0 ? 1000.0 * static_cast<double>(f.frame_us.count()) / total : 0.0},
       {"frame_ms_p50", at(0.5)},
       {"frame_ms_p90", at(0.9)},
@@ -288,6 +309,13 @@ int run_window(const WindowOptions& o) {
   StationPanel panel(controller);
 
   SurfaceSnapshot surface;
+  SurfaceDelta unreported;  // meshes' ready times not yet given to the statistics
+  // What the frame draws, as of the last frame that had the turn.
+  struct Drawn {
+    gl::ToolDraw tool{};
+    gl::SceneView view{};
+    glm::vec3 block{0.0f};
+  } drawn;
   RunFigures figures;
   FrameFigures frame_figures;
   int64_t last_frame = hal::monotonic_ns();
@@ -304,71 +332,81 @@ int run_window(const WindowOptions& o) {
     // shown anything: the frame after it shows the end, then the window goes.
     played_out = o.exit_when_replayed && hub.replay_done();
     const bool final_frame = played_out || (o.frames > 0 && frame == o.frames - 1);
-    std::unique_lock turn(hub.mutex());
-
-    // The ordinary mouse and keyboard.
-    ImGuiIO& io = ImGui::GetIO();
+    // The sculpting thread holds the turn while it sculpts, tens of
+    // milliseconds for a big tool's first placement: a frame that finds it
+    // busy does not wait but draws what it has (the meshes made meanwhile
+    // included), and the next frame that gets the turn steers (mouse, keys,
+    // levels, panel). The last frame waits: it shows everything.
+    std::unique_lock turn(hub.mutex(), std::defer_lock);
+    const bool steering = take_turn(turn, final_frame);
+    if (!steering) ++figures.frames_drawn_unsteered;
     int fb_w = 1, fb_h = 1, win_w = 1, win_h = 1;
     glfwGetFramebufferSize(w, &fb_w, &fb_h);
     glfwGetWindowSize(w, &win_w, &win_h);
     const float aspect =
         static_cast<float>(std::max(fb_w, 1)) / static_cast<float>(std::max(fb_h, 1));
-    double mx, my;
-    glfwGetCursorPos(w, &mx, &my);
-    OrbitCamera& camera = controller.camera();
-    if (!io.WantCaptureMouse) {
-      const bool left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-      const bool right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-      const bool middle = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
-      const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
-      const glm::vec2 delta(static_cast<float>(mx - pointer.x), static_cast<float>(my - pointer.y));
-      if (right && !shift && pointer.orbiting)
-        camera.orbit(-delta.x * kOrbitRadPerPixel, delta.y * kOrbitRadPerPixel);
-      if ((middle || (right && shift)) && pointer.panning)
-        camera.pan(delta, static_cast<float>(win_h));
-      pointer.orbiting = right && !shift;
-      pointer.panning = middle || (right && shift);
-      if (pointer.scroll != 0) camera.zoom(std::pow(0.9f, static_cast<float>(pointer.scroll)));
-      pointer.scroll = 0;
-      // The tool sits on the surface under the cursor; the left button sculpts.
-      const glm::vec2 ndc(static_cast<float>(2.0 * mx / std::max(win_w, 1) - 1.0),
-                          static_cast<float>(1.0 - 2.0 * my / std::max(win_h, 1)));
-      if (left || delta != glm::vec2(0.0f)) {
-        if (auto p = pointer_target(controller, camera.ray(ndc, aspect)))
-          controller.pointer_move(*p, now);
+    ImGuiIO& io = ImGui::GetIO();
+    if (steering) {
+      // The ordinary mouse and keyboard.
+      double mx, my;
+      glfwGetCursorPos(w, &mx, &my);
+      OrbitCamera& camera = controller.camera();
+      if (!io.WantCaptureMouse) {
+        const bool left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+        const bool right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+        const bool middle = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+        const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
+        const glm::vec2 delta(static_cast<float>(mx - pointer.x),
+                              static_cast<float>(my - pointer.y));
+        if (right && !shift && pointer.orbiting)
+          camera.orbit(-delta.x * kOrbitRadPerPixel, delta.y * kOrbitRadPerPixel);
+        if ((middle || (right && shift)) && pointer.panning)
+          camera.pan(delta, static_cast<float>(win_h));
+        pointer.orbiting = right && !shift;
+        pointer.panning = middle || (right && shift);
+        if (pointer.scroll != 0) camera.zoom(std::pow(0.9f, static_cast<float>(pointer.scroll)));
+        pointer.scroll = 0;
+        // The tool sits on the surface under the cursor; the left button sculpts.
+        const glm::vec2 ndc(static_cast<float>(2.0 * mx / std::max(win_w, 1) - 1.0),
+                            static_cast<float>(1.0 - 2.0 * my / std::max(win_h, 1)));
+        if (left || delta != glm::vec2(0.0f)) {
+          if (auto p = pointer_target(controller, camera.ray(ndc, aspect)))
+            controller.pointer_move(*p, now);
+        }
+        if (left && !pointer.sculpting) controller.pointer_down(now);
+        if (!left && pointer.sculpting) controller.pointer_up(now);
+        pointer.sculpting = left;
       }
-      if (left && !pointer.sculpting) controller.pointer_down(now);
-      if (!left && pointer.sculpting) controller.pointer_up(now);
-      pointer.sculpting = left;
-    }
-    pointer.x = mx;
-    pointer.y = my;
-    if (!io.WantCaptureKeyboard) {
-      // Arrows move the tool in the view plane, Page Up/Down in depth; Space sculpts.
-      const float step = kKeyMoveVoxPerSecond * static_cast<float>(now - last_frame) * 1e-9f;
-      glm::vec3 move(0.0f);
-      auto key = [&](int k) { return glfwGetKey(w, k) == GLFW_PRESS ? 1.0f : 0.0f; };
-      move += camera.right() * (key(GLFW_KEY_RIGHT) - key(GLFW_KEY_LEFT));
-      move += camera.up() * (key(GLFW_KEY_UP) - key(GLFW_KEY_DOWN));
-      move += camera.forward() * (key(GLFW_KEY_PAGE_DOWN) - key(GLFW_KEY_PAGE_UP));
-      if (move != glm::vec3(0.0f))
-        controller.pointer_move(controller.loop().pose().position + move * step, now);
-      const bool space = key(GLFW_KEY_SPACE) > 0;
-      if (space && !pointer.space_held) controller.pointer_down(now);
-      if (!space && pointer.space_held) controller.pointer_up(now);
-      pointer.space_held = space;
-    }
+      pointer.x = mx;
+      pointer.y = my;
+      if (!io.WantCaptureKeyboard) {
+        // Arrows move the tool in the view plane, Page Up/Down in depth; Space sculpts.
+        const float step = kKeyMoveVoxPerSecond * static_cast<float>(now - last_frame) * 1e-9f;
+        glm::vec3 move(0.0f);
+        auto key = [&](int k) { return glfwGetKey(w, k) == GLFW_PRESS ? 1.0f : 0.0f; };
+        move += camera.right() * (key(GLFW_KEY_RIGHT) - key(GLFW_KEY_LEFT));
+        move += camera.up() * (key(GLFW_KEY_UP) - key(GLFW_KEY_DOWN));
+        move += camera.forward() * (key(GLFW_KEY_PAGE_DOWN) - key(GLFW_KEY_PAGE_UP));
+        if (move != glm::vec3(0.0f))
+          controller.pointer_move(controller.loop().pose().position + move * step, now);
+        const bool space = key(GLFW_KEY_SPACE) > 0;
+        if (space && !pointer.space_held) controller.pointer_down(now);
+        if (!space && pointer.space_held) controller.pointer_up(now);
+        pointer.space_held = space;
+      }
 
-    // Sculpt results to the GPU.
+      // Sculpt results to the GPU.
+      const core::Volume& volume = controller.loop().volume();
+      LodPolicy policy = controller.lod().policy();
+      policy.max_level = std::min(kMaxDrawnLevel, volume.levels());
+      if (frame == 0 && o.lod >= 0) policy.fixed_level = o.lod;
+      controller.lod().set_policy(policy);
+      hub.set_levels(
+          controller.lod().select(volume.brick_grid(), volume.brick_edge(), camera.eye(),
+                                  OrbitCamera::focal_length_px(static_cast<float>(fb_h))));
+    }
     const int64_t t_mesh = hal::monotonic_ns();
     figures.input_ms += static_cast<double>(t_mesh - now) * 1e-6;
-    const core::Volume& volume = controller.loop().volume();
-    LodPolicy policy = controller.lod().policy();
-    policy.max_level = std::min(kMaxDrawnLevel, volume.levels());
-    if (frame == 0 && o.lod >= 0) policy.fixed_level = o.lod;
-    controller.lod().set_policy(policy);
-    hub.set_levels(controller.lod().select(volume.brick_grid(), volume.brick_edge(), camera.eye(),
-                                           OrbitCamera::focal_length_px(static_cast<float>(fb_h))));
     // The last frame (and so its picture) shows everything sculpted before
     // it, and every brick shaded as it asks.
     const bool picture_frame = !o.screenshot.empty() && final_frame;
@@ -377,58 +415,73 @@ int run_window(const WindowOptions& o) {
       mesher.wait_until_meshed();
     }
     if (auto delta = mesher.take()) {
-      // Latency: from each dab's report to its surface ready to draw.
-      controller.surface_ready(*delta);
+      // Latency: from each dab's report to its surface ready to draw (the
+      // times are in the delta; the statistics take them with the turn).
+      unreported.readiness.insert(unreported.readiness.end(), delta->readiness.begin(),
+                                  delta->readiness.end());
       surface.apply(std::move(*delta));
     }
     const int64_t t_upload = hal::monotonic_ns();
     figures.mesh_ms += static_cast<double>(t_upload - t_mesh) * 1e-6;
-    (*renderer)->set_distance_normals(controller.distance_normals());
-    const gl::SurfaceSync sync = (*renderer)->sync_surface(volume, surface, picture_frame);
-    (*renderer)->set_tool(controller.loop().tool(), controller.loop().tool_version());
-    const SheetEditor& sheet = controller.loop().sheet();
-    (*renderer)->set_sheet(sheet.mesh(), sheet.version(),
-                           controller.loop().settings().sheet_editing);
+    if (steering) {
+      controller.surface_ready(unreported);
+      unreported.readiness.clear();
+      (*renderer)->set_distance_normals(controller.distance_normals());
+      (*renderer)->set_tool(controller.loop().tool(), controller.loop().tool_version());
+      const SheetEditor& sheet = controller.loop().sheet();
+      (*renderer)->set_sheet(sheet.mesh(), sheet.version(),
+                             controller.loop().settings().sheet_editing);
+      const hal::ToolPose& pose = controller.loop().pose();
+      drawn.tool = {true, pose.position, pose.orientation, controller.loop().settings().mode,
+                    controller.loop().pressed()};
+      const OrbitCamera& camera = controller.camera();
+      drawn.view = {camera.view(), camera.projection(aspect), camera.eye(), fb_w, fb_h};
+      drawn.block = glm::vec3(controller.loop().volume().dims());
+    }
+    const gl::SurfaceSync sync = (*renderer)->sync_surface(
+        steering ? &controller.loop().volume() : nullptr, surface, picture_frame);
 
     // Draw, without holding up the sculpting.
     const int64_t t_draw = hal::monotonic_ns();
     figures.upload_ms += static_cast<double>(t_draw - t_upload) * 1e-6;
-    const hal::ToolPose& pose = controller.loop().pose();
-    const gl::ToolDraw tool{true, pose.position, pose.orientation,
-                            controller.loop().settings().mode, controller.loop().pressed()};
-    const gl::SceneView view{camera.view(), camera.projection(aspect), camera.eye(), fb_w, fb_h};
-    const glm::vec3 block(volume.dims());
-    turn.unlock();
-    (*renderer)->draw(view, tool, block);
+    if (steering) turn.unlock();
+    (*renderer)->draw(drawn.view, drawn.tool, drawn.block);
     if (picture_frame) {
       RgbImage shot{fb_w, fb_h, {}};
       read_pixels(fb_w, fb_h, shot.rgb);
       if (Status st = write_png(o.screenshot, shot); !st) return fail(st.error());
     }
-    ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
-    ImGui::NewFrame();
-    turn.lock();
-    frame_figures.triangles = sync.triangles;
-    frame_figures.uploaded = sync.uploaded;
-    panel.draw(frame_figures, now);
-    if (!io.WantCaptureKeyboard) {
-      for (int k = GLFW_KEY_SPACE; k <= GLFW_KEY_LAST; ++k) {
-        if (!ImGui::IsKeyPressed(k, false)) continue;
-        const int mods = (io.KeyCtrl ? GLFW_MOD_CONTROL : 0) | (io.KeyShift ? GLFW_MOD_SHIFT : 0);
-        if (auto action = shortcut(k, mods)) controller.perform(*action, now);
+    // The panel reads and sets the controller: drawn with the turn, else
+    // the last frame's panel is drawn again.
+    const bool panel_turn = take_turn(turn, final_frame);
+    if (panel_turn) {
+      ImGui_ImplOpenGL3_NewFrame();
+      ImGui_ImplGlfw_NewFrame();
+      ImGui::NewFrame();
+      frame_figures.triangles = sync.triangles;
+      frame_figures.uploaded = sync.uploaded;
+      panel.draw(frame_figures, now);
+      if (!io.WantCaptureKeyboard) {
+        for (int k = GLFW_KEY_SPACE; k <= GLFW_KEY_LAST; ++k) {
+          if (!ImGui::IsKeyPressed(k, false)) continue;
+          const int mods = (io.KeyCtrl ? GLFW_MOD_CONTROL : 0) | (io.KeyShift ? GLFW_MOD_SHIFT : 0);
+          if (auto action = shortcut(k, mods)) controller.perform(*action, now);
+        }
       }
+      if (!o.stats.empty() && o.stats_every_s > 0 &&
+          now - last_stats >= static_cast<int64_t>(o.stats_every_s * 1e9)) {
+        figures.mesher = mesher.counters();
+        figures.hub = hub.figures();
+        if (Status st = write_stats(o.stats, figures, controller); !st) return fail(st.error());
+        last_stats = now;
+      }
+      turn.unlock();
+      ImGui::Render();
     }
-    if (!o.stats.empty() && o.stats_every_s > 0 &&
-        now - last_stats >= static_cast<int64_t>(o.stats_every_s * 1e9)) {
-      figures.mesher = mesher.counters();
-      figures.hub = hub.figures();
-      if (Status st = write_stats(o.stats, figures, controller); !st) return fail(st.error());
-      last_stats = now;
-    }
-    turn.unlock();
-    ImGui::Render();
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    // After NewFrame() a Render() follows: the draw data are this frame's, or
+    // the last one's again.
+    if (ImDrawData* panel_draw = ImGui::GetDrawData(); panel_draw != nullptr)
+      ImGui_ImplOpenGL3_RenderDrawData(panel_draw);
     glfwSwapBuffers(w);
     figures.draw_ms += static_cast<double>(hal::monotonic_ns() - t_draw) * 1e-6;
 
@@ -438,10 +491,8 @@ int run_window(const WindowOptions& o) {
     figures.frames_total_ms += ms;
     figures.uploads += sync.uploaded;
     figures.triangles = sync.triangles;
-    {
-      std::lock_guard lod_turn(hub.mutex());
-      controller.lod().frame_done(ms);
-    }
+    if (std::unique_lock lod_turn(hub.mutex(), std::try_to_lock); lod_turn.owns_lock())
+      controller.lod().frame_done(ms);  // a frame's time left out is no loss to its average
     frame_figures.frame_ms = 0.9 * frame_figures.frame_ms + 0.1 * ms;
     frame_figures.fps = frame_figures.frame_ms > 0 ? 1000.0 / frame_figures.frame_ms : 0;
     last_frame = now;

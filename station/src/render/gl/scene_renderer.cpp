@@ -101,7 +101,7 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create() {
   return r;
 }
 
-SurfaceSync SceneRenderer::sync_surface(const core::Volume& volume, const SurfaceSnapshot& surface,
+SurfaceSync SceneRenderer::sync_surface(const core::Volume* volume, const SurfaceSnapshot& surface,
                                         bool whole) {
   SurfaceSync sync;
   visible_.clear();
@@ -119,7 +119,7 @@ SurfaceSync SceneRenderer::sync_surface(const core::Volume& volume, const Surfac
     visible_.push_back(&slot.mesh);
     sync.triangles += slot.mesh.triangles();
   }
-  if (distance_normals_) refine_normals(volume, whole);
+  if (distance_normals_ && volume != nullptr) refine_normals(*volume, whole);
   return sync;
 }
 

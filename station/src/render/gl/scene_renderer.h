@@ -51,10 +51,11 @@ class SceneRenderer {
   static Result<std::unique_ptr<SceneRenderer>> create();
 
   /// Sends the brick meshes re-made since the last call to the GPU.
-  /// `volume` is read for distance normals only. `whole`: re-shade every
-  /// brick now, however long it takes (a picture of this frame), instead
-  /// of within the frame's budget.
-  SurfaceSync sync_surface(const core::Volume& volume, const SurfaceSnapshot& surface,
+  /// `volume` is read for distance normals only; null when this frame may
+  /// not read it (the sculpting thread holds it): re-shading then waits for
+  /// a frame that may. `whole`: re-shade every brick now, however long it
+  /// takes (a picture of this frame), instead of within the frame's budget.
+  SurfaceSync sync_surface(const core::Volume* volume, const SurfaceSnapshot& surface,
                            bool whole = false);
   /// Normals of the brick meshes: the density gradient (false, the mesher's)
   /// or the gradient of the distance to the sub-voxel surface (true;
