@@ -6,8 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "sculpt/core/distance/surface_normals.h"
-#include "sculpt/core/mesh/marching_cubes.h"
-#include "sculpt/core/mesh/mesh_cache.h"
+#include "sculpt/station/view/tool_outline.h"
 
 namespace sculpt::station::gl {
 namespace {
@@ -164,10 +163,7 @@ void SceneRenderer::set_tool(const core::Tool& tool, uint64_t version) {
   if (version == tool_version_) return;
   tool_version_ = version;
   tool_pivot_ = tool.pivot;
-  const core::Volume v = core::Volume::from_dense(tool.density);
-  core::MarchingCubesOptions options;
-  options.threads = 1;
-  tool_mesh_.upload(core::marching_cubes(v, 0, options));
+  tool_mesh_.upload(tool_outline(tool));
 }
 
 void SceneRenderer::draw_lines(const std::vector<glm::vec3>& points, glm::vec4 colour,

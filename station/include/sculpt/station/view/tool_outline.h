@@ -1,0 +1,22 @@
+#pragma once
+// The surface the window draws for the tool: its density's iso-surface,
+// from voxels averaged 2^k to one when the tool is big, so that choosing a
+// big tool never stalls a frame (a 223-voxel ball meshed whole took 44 ms
+// of the render thread) and drawing it costs a few thousand triangles.
+
+#include "sculpt/core/mesh/mesh.h"
+#include "sculpt/core/tool/tool.h"
+
+namespace sculpt::station {
+
+/// Cells a side the outline is meshed from, at most (a power-of-two
+/// averaging brings a bigger tool below it).
+constexpr int kToolOutlineCells = 64;
+
+/// The tool's iso-surface in the tool's voxel coordinates (as its density
+/// grid), from its voxels averaged over blocks of 2^k, k the smallest with
+/// every side at most `max_cells` blocks: a coarse voxel's outline moves by
+/// at most about one block, 2% of a tool that needs k = 2.
+core::Mesh tool_outline(const core::Tool& tool, int max_cells = kToolOutlineCells);
+
+}  // namespace sculpt::station
