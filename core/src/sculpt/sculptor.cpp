@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "sculpt/core/sculpt/combine_row.h"
+#include "sculpt/core/util/parallel_for.h"
 
 namespace sculpt::core {
 namespace {
@@ -35,6 +36,9 @@ inline uint64_t load_u64(const uint8_t* p) {
   std::memcpy(&v, p, sizeof v);
   return v;
 }
+
+// Dabs that change at least this many bricks are combined on every core.
+constexpr int kParallelBricks = 16;
 
 // Whether a uniform brick of value v can change under `mode`.
 bool can_change_uniform(SculptMode mode, uint8_t v) {
@@ -243,6 +247,72 @@ DabStats Sculptor::apply(RotatedToolCache& cache, const Dab& dab) {
   if (dab.mode == SculptMode::kSmooth) before = volume_.read(before_box, 0);
 
   const int edge = volume_.brick_edge();
+  // The new voxels of one brick's part `bb` of the region, in `voxels` (the
+  // brick's, edge^3 plus kCombineRowSlack), counting rotated rows in
+  // `rows`; returns the voxels changed and the box of the rows that did.
+  struct Combined {
+    int64_t changed = 0;
+    Box touched{glm::ivec3(std::numeric_limits<int>::max()),
+                glm::ivec3(std::numeric_limits<int>::min())};
+  };
+  auto combine_brick = [&](glm::ivec3 b, const Box& bb, uint8_t* voxels,
+                           RotatedToolCacheStats& rows) {
+    Combined out;
+    const glm::ivec3 origin = b * edge;
+    for (int z = bb.lo.z; z < bb.hi.z; ++z) {
+      // Only the rows of this plane that cross the reach ball.
+      const float pz = static_cast<float>(z) - pivot_pos.z;
+      const float hz2 = reach2 - pz * pz;
+      if (hz2 < 0.0f) continue;
+      const float hz = std::sqrt(hz2);
+      const int y_lo = std::max(bb.lo.y, ceil_int(pivot_pos.y - hz));
+      const int y_hi = std::min(bb.hi.y, floor_int(pivot_pos.y + hz) + 1);
+      for (int y = y_lo; y < y_hi; ++y) {
+        // The row's stretch within the tool's reach (a ball round the
+        // pivot), kept by the placement.
+        const auto [ra, rb] = entry.reach(y - anchor.y, z - anchor.z);
+        const int xa = std::max(bb.lo.x, ra + anchor.x);
+        const int xb = std::min(bb.hi.x, rb + anchor.x);
+        if (xa >= xb) continue;
+        uint8_t* m = &voxels[(static_cast<size_t>(z - origin.z) * edge + (y - origin.y)) * edge +
+                             (xa - origin.x)];
+        // Contact: rotate only where the material can change.
+        int c0 = 0, c1 = xb - xa;
+        if (saturated >= 0) {
+          // Eight voxels at a time through the saturated stretches.
+          const uint64_t word = 0x0101010101010101ull * static_cast<uint64_t>(saturated);
+          while (c0 + 8 <= c1 && load_u64(m + c0) == word)
+            c0 += 8;
+          while (c0 < c1 && m[c0] == saturated)
+            ++c0;
+          while (c1 - 8 >= c0 && load_u64(m + c1 - 8) == word)
+            c1 -= 8;
+          while (c1 > c0 && m[c1 - 1] == saturated)
+            --c1;
+        }
+        if (c0 >= c1) continue;
+        const uint8_t* f =
+            entry.row(y - anchor.y, z - anchor.z, xa + c0 - anchor.x, xa + c1 - anchor.x, rows);
+        const int64_t row_changed = dab.mode == SculptMode::kSmooth
+                                        ? smooth_row(m + c0, f, c1 - c0, strength_q, before,
+                                                     glm::ivec3(xa + c0, y, z) - before_box.lo)
+                                        : combine_row(dab.mode, m + c0, f, c1 - c0, strength_q);
+        if (row_changed != 0) {
+          out.changed += row_changed;
+          out.touched.lo = glm::min(out.touched.lo, glm::ivec3(xa + c0, y, z));
+          out.touched.hi = glm::max(out.touched.hi, glm::ivec3(xa + c1, y + 1, z + 1));
+        }
+      }
+    }
+    return out;
+  };
+
+  // The bricks the dab can change, in brick order.
+  struct Job {
+    glm::ivec3 b;
+    Box bb;
+  };
+  std::vector<Job> jobs;
   const Box bricks = volume_.bricks_overlapping(region);
   for (int bz = bricks.lo.z; bz < bricks.hi.z; ++bz)
     for (int by = bricks.lo.y; by < bricks.hi.y; ++by)
@@ -256,74 +326,84 @@ DabStats Sculptor::apply(RotatedToolCache& cache, const Dab& dab) {
         if (glm::dot(gap, gap) > reach2) continue;
         const Brick& brick = volume_.brick(b);
         if (brick.is_uniform() && !can_change_uniform(dab.mode, brick.uniform_value())) continue;
-
-        const int64_t t0 = now_ns();
-        DecodedBrick& decoded = decoded_brick(b, stats);
-        std::span<uint8_t> voxels = decoded.brick();
-        const int64_t t1 = now_ns();
-        const glm::ivec3 origin = b * edge;
-        int64_t changed = 0;
-        // Bounding box of the rows that changed: only the wavelet
-        // coefficients over it are re-encoded.
-        Box touched{glm::ivec3(std::numeric_limits<int>::max()),
-                    glm::ivec3(std::numeric_limits<int>::min())};
-        for (int z = bb.lo.z; z < bb.hi.z; ++z) {
-          // Only the rows of this plane that cross the reach ball.
-          const float pz = static_cast<float>(z) - pivot_pos.z;
-          const float hz2 = reach2 - pz * pz;
-          if (hz2 < 0.0f) continue;
-          const float hz = std::sqrt(hz2);
-          const int y_lo = std::max(bb.lo.y, ceil_int(pivot_pos.y - hz));
-          const int y_hi = std::min(bb.hi.y, floor_int(pivot_pos.y + hz) + 1);
-          for (int y = y_lo; y < y_hi; ++y) {
-            // The row's stretch within the tool's reach (a ball round the
-            // pivot), kept by the placement.
-            const auto [ra, rb] = entry.reach(y - anchor.y, z - anchor.z);
-            const int xa = std::max(bb.lo.x, ra + anchor.x);
-            const int xb = std::min(bb.hi.x, rb + anchor.x);
-            if (xa >= xb) continue;
-            uint8_t* m =
-                &voxels[(static_cast<size_t>(z - origin.z) * edge + (y - origin.y)) * edge +
-                        (xa - origin.x)];
-            // Contact: rotate only where the material can change.
-            int c0 = 0, c1 = xb - xa;
-            if (saturated >= 0) {
-              // Eight voxels at a time through the saturated stretches.
-              const uint64_t word = 0x0101010101010101ull * static_cast<uint64_t>(saturated);
-              while (c0 + 8 <= c1 && load_u64(m + c0) == word)
-                c0 += 8;
-              while (c0 < c1 && m[c0] == saturated)
-                ++c0;
-              while (c1 - 8 >= c0 && load_u64(m + c1 - 8) == word)
-                c1 -= 8;
-              while (c1 > c0 && m[c1 - 1] == saturated)
-                --c1;
-            }
-            if (c0 >= c1) continue;
-            const uint8_t* f =
-                entry.row(y - anchor.y, z - anchor.z, xa + c0 - anchor.x, xa + c1 - anchor.x);
-            const int64_t row_changed = dab.mode == SculptMode::kSmooth
-                                            ? smooth_row(m + c0, f, c1 - c0, strength_q, before,
-                                                         glm::ivec3(xa + c0, y, z) - before_box.lo)
-                                            : combine_row(dab.mode, m + c0, f, c1 - c0, strength_q);
-            if (row_changed != 0) {
-              changed += row_changed;
-              touched.lo = glm::min(touched.lo, glm::ivec3(xa + c0, y, z));
-              touched.hi = glm::max(touched.hi, glm::ivec3(xa + c1, y + 1, z + 1));
-            }
-          }
-        }
-        const int64_t t2 = now_ns();
-        stats.decode_ns += t1 - t0;
-        stats.apply_ns += t2 - t1;
-        if (changed == 0) continue;
-        history_.before_change(volume_, b);
-        volume_.store_brick(b, voxels, touched);  // re-pads `voxels` as stored
-        decoded.version = volume_.brick_version(b);
-        stats.encode_ns += now_ns() - t2;
-        ++stats.bricks_changed;
-        stats.voxels_changed += changed;
+        jobs.push_back({b, bb});
       }
+
+  RotatedToolCacheStats rows;
+  if (static_cast<int>(jobs.size()) < kParallelBricks) {
+    // A usual dab: a few bricks, their decoded voxels kept for the next.
+    for (const Job& job : jobs) {
+      const int64_t t0 = now_ns();
+      DecodedBrick& decoded = decoded_brick(job.b, stats);
+      const int64_t t1 = now_ns();
+      const Combined c = combine_brick(job.b, job.bb, decoded.voxels.data(), rows);
+      const int64_t t2 = now_ns();
+      stats.decode_ns += t1 - t0;
+      stats.apply_ns += t2 - t1;
+      if (c.changed == 0) continue;
+      history_.before_change(volume_, job.b);
+      volume_.store_brick(job.b, decoded.brick(), c.touched);  // re-pads the voxels as stored
+      decoded.version = volume_.brick_version(job.b);
+      stats.encode_ns += now_ns() - t2;
+      ++stats.bricks_changed;
+      stats.voxels_changed += c.changed;
+    }
+    cache.add_row_counts(rows);
+    return stats;
+  }
+
+  // A big dab (a ball of a hundred voxels changes hundreds of bricks, tens
+  // of milliseconds on one core): its bricks are decoded and combined on
+  // every core, then stored here in brick order, so the volume, its brick
+  // versions and the undo history are what one thread makes. A row of the
+  // rotated tool is shared by the bricks along x only: each task takes one
+  // such line of bricks, so no two fill the same row at once. Decoded here
+  // into buffers of their own: the kept ones are for small dabs.
+  std::vector<size_t> lines;  // first job of each line of bricks along x
+  for (size_t k = 0; k < jobs.size(); ++k)
+    if (k == 0 || jobs[k].b.y != jobs[k - 1].b.y || jobs[k].b.z != jobs[k - 1].b.z)
+      lines.push_back(k);
+  lines.push_back(jobs.size());
+  const size_t brick_bytes = static_cast<size_t>(edge) * edge * edge;
+  std::vector<std::vector<uint8_t>> voxels(jobs.size());
+  std::vector<Combined> combined(jobs.size());
+  struct LineFigures {
+    RotatedToolCacheStats rows;
+    int64_t decode_ns = 0, apply_ns = 0;
+  };
+  std::vector<LineFigures> line_figures(lines.size() - 1);
+  parallel_for(static_cast<int64_t>(lines.size() - 1), [&](int64_t line) {
+    LineFigures& f = line_figures[static_cast<size_t>(line)];
+    for (size_t k = lines[static_cast<size_t>(line)]; k < lines[static_cast<size_t>(line) + 1];
+         ++k) {
+      const int64_t t0 = now_ns();
+      voxels[k].resize(brick_bytes + kCombineRowSlack);
+      volume_.decode_brick(jobs[k].b, std::span<uint8_t>(voxels[k]).first(brick_bytes));
+      const int64_t t1 = now_ns();
+      combined[k] = combine_brick(jobs[k].b, jobs[k].bb, voxels[k].data(), f.rows);
+      f.decode_ns += t1 - t0;
+      f.apply_ns += now_ns() - t1;
+    }
+  });
+  for (const LineFigures& f : line_figures) {
+    rows.voxels_requested += f.rows.voxels_requested;
+    rows.voxels_reused += f.rows.voxels_reused;
+    rows.voxels_rotated += f.rows.voxels_rotated;
+    stats.decode_ns += f.decode_ns;
+    stats.apply_ns += f.apply_ns;
+  }
+  cache.add_row_counts(rows);
+  stats.bricks_decoded += static_cast<int>(jobs.size());
+  const int64_t t_store = now_ns();
+  for (size_t k = 0; k < jobs.size(); ++k) {
+    if (combined[k].changed == 0) continue;
+    history_.before_change(volume_, jobs[k].b);
+    volume_.store_brick(jobs[k].b, std::span<uint8_t>(voxels[k]).first(brick_bytes),
+                        combined[k].touched);
+    ++stats.bricks_changed;
+    stats.voxels_changed += combined[k].changed;
+  }
+  stats.encode_ns += now_ns() - t_store;
   return stats;
 }
 

@@ -32,7 +32,8 @@ RotatedToolEntry::RotatedToolEntry(const PreparedTool& tool, const glm::mat3& ro
                        &reach_hi_[static_cast<size_t>(z) * s.y]);
 }
 
-const uint8_t* RotatedToolEntry::rotate_row(int y, int z, int x0, int x1) {
+const uint8_t* RotatedToolEntry::rotate_row(int y, int z, int x0, int x1,
+                                            RotatedToolCacheStats& stats) {
   const Box& b = frame_.box();
   assert(x0 >= b.lo.x && x1 <= b.hi.x && x0 <= x1 && y >= b.lo.y && y < b.hi.y && z >= b.lo.z &&
          z < b.hi.z);
@@ -40,24 +41,24 @@ const uint8_t* RotatedToolEntry::rotate_row(int y, int z, int x0, int x1) {
   const size_t r = static_cast<size_t>(lz) * b.size().y + ly;
   uint8_t* values = &values_[r * b.size().x];
   const int a = x0 - b.lo.x, e = x1 - b.lo.x;
-  stats_->voxels_requested += e - a;
+  stats.voxels_requested += e - a;
   int lo = done_lo_[r], hi = done_hi_[r];
-  stats_->voxels_reused += std::max(0, std::min(e, hi) - std::max(a, lo));
+  stats.voxels_reused += std::max(0, std::min(e, hi) - std::max(a, lo));
   if (lo >= hi) {
     frame_.sample_row(*tool_, y, z, x0, x1, values + a);
-    stats_->voxels_rotated += e - a;
+    stats.voxels_rotated += e - a;
     lo = a;
     hi = e;
   } else {
     // Keep one computed stretch per row: fill the gap on either side.
     if (a < lo) {
       frame_.sample_row(*tool_, y, z, x0, b.lo.x + lo, values + a);
-      stats_->voxels_rotated += lo - a;
+      stats.voxels_rotated += lo - a;
       lo = a;
     }
     if (e > hi) {
       frame_.sample_row(*tool_, y, z, b.lo.x + hi, x1, values + hi);
-      stats_->voxels_rotated += e - hi;
+      stats.voxels_rotated += e - hi;
       hi = e;
     }
   }

@@ -218,6 +218,46 @@ TEST(Sculptor, KeptDecodedBricksGiveTheSameResultAndSeeOtherWriters) {
   EXPECT_EQ(a.content_hash(), b.content_hash());
 }
 
+// A dab over many bricks is decoded and combined on every core, a small one
+// on the calling thread with its decoded bricks kept: both make the same
+// voxels and undo the same.
+TEST(Sculptor, ABigDabOnEveryCoreEqualsItsBricksOneByOne) {
+  const DenseGrid<uint8_t> noise = [] {
+    DenseGrid<uint8_t> g(glm::ivec3(96));
+    uint32_t s = 7;
+    for (uint8_t& v : g.values()) {
+      s = s * 1664525u + 1013904223u;
+      v = static_cast<uint8_t>(40 + (s >> 16) % 160);
+    }
+    return g;
+  }();
+  // 8-voxel bricks: the 24-voxel ball touches some 300 (parallel); 64-voxel
+  // bricks: at most 8 (one by one). The content hash is brick-size blind.
+  VolumeOptions small_bricks, big_bricks;
+  small_bricks.brick_edge = 8;
+  small_bricks.levels = 3;
+  big_bricks.brick_edge = 64;
+  for (SculptMode mode : {SculptMode::kAdd, SculptMode::kSubtract, SculptMode::kSmooth}) {
+    Volume many = Volume::from_dense(noise, small_bricks);
+    Volume few = Volume::from_dense(noise, big_bricks);
+    const uint64_t original = many.content_hash();
+    Sculptor a(many), b(few);
+    a.set_tool(make_sphere_tool(24.0f));
+    b.set_tool(make_sphere_tool(24.0f));
+    const Dab dab{{47.3f, 50.6f, 44.1f}, kTurn, mode, 0.7f};
+    const DabStats sa = a.dab(dab);
+    const DabStats sb = b.dab(dab);
+    ASSERT_GE(sa.bricks_changed, 100) << sculpt_mode_name(mode);
+    ASSERT_LE(sb.bricks_overlapped, 8) << sculpt_mode_name(mode);
+    EXPECT_EQ(many.content_hash(), few.content_hash()) << sculpt_mode_name(mode);
+    EXPECT_NE(many.content_hash(), original) << sculpt_mode_name(mode);
+    EXPECT_EQ(sa.voxels_changed, sb.voxels_changed) << sculpt_mode_name(mode);
+    EXPECT_GT(a.cache().stats().voxels_rotated, 0) << sculpt_mode_name(mode);
+    ASSERT_TRUE(a.undo());
+    EXPECT_EQ(many.content_hash(), original) << sculpt_mode_name(mode);
+  }
+}
+
 TEST(Sculptor, ModeNamesRoundTrip) {
   for (const char* n : {"add", "subtract", "union", "difference", "smooth"}) {
     const auto m = parse_sculpt_mode(n);

@@ -65,7 +65,11 @@ class RotatedToolEntry {
   /// Rotated voxels [x0, x1) of row (y, z) (anchor-relative, inside box()),
   /// rotating those not yet computed. Valid until the next call; readable
   /// for kRowSlack bytes past x1.
-  const uint8_t* row(int y, int z, int x0, int x1) {
+  const uint8_t* row(int y, int z, int x0, int x1) { return row(y, z, x0, x1, *stats_); }
+  /// row(), counting in `stats` instead of the cache's: threads filling
+  /// different rows of one entry at once each count in their own (the
+  /// cache takes the sums, RotatedToolCache::add_row_counts()).
+  const uint8_t* row(int y, int z, int x0, int x1, RotatedToolCacheStats& stats) {
     // The hit (every voxel of an unchanged orientation's dab) inline.
     const Box& b = frame_.box();
     assert(x0 >= b.lo.x && x1 <= b.hi.x && x0 <= x1 && y >= b.lo.y && y < b.hi.y && z >= b.lo.z &&
@@ -73,11 +77,11 @@ class RotatedToolEntry {
     const size_t r = static_cast<size_t>(z - b.lo.z) * b.size().y + (y - b.lo.y);
     const int a = x0 - b.lo.x, e = x1 - b.lo.x;
     if (done_lo_[r] <= a && e <= done_hi_[r] && a < e) {
-      stats_->voxels_requested += e - a;
-      stats_->voxels_reused += e - a;
+      stats.voxels_requested += e - a;
+      stats.voxels_reused += e - a;
       return &values_[r * b.size().x + a];
     }
-    return rotate_row(y, z, x0, x1);
+    return rotate_row(y, z, x0, x1, stats);
   }
   /// The stretch [x0, x1) of row (y, z) (anchor-relative, inside box())
   /// within the tool's reach: outside it the row's voxels are 0. Empty
@@ -91,7 +95,7 @@ class RotatedToolEntry {
 
  private:
   // row() when some of the voxels are not rotated yet.
-  const uint8_t* rotate_row(int y, int z, int x0, int x1);
+  const uint8_t* rotate_row(int y, int z, int x0, int x1, RotatedToolCacheStats& stats);
 
   const PreparedTool* tool_;
   glm::mat3 rotation_;
@@ -129,6 +133,12 @@ class RotatedToolCache {
   const PreparedTool& tool() const { return *tool_; }
   Sampling sampling() const { return sampling_; }
   const RotatedToolCacheStats& stats() const { return stats_; }
+  /// Adds row counts made in a thread's own stats (RotatedToolEntry::row()).
+  void add_row_counts(const RotatedToolCacheStats& counts) {
+    stats_.voxels_requested += counts.voxels_requested;
+    stats_.voxels_reused += counts.voxels_reused;
+    stats_.voxels_rotated += counts.voxels_rotated;
+  }
   void clear();
 
  private:
