@@ -312,6 +312,7 @@ int run_window(const WindowOptions& o) {
   SurfaceDelta unreported;  // meshes' ready times not yet given to the statistics
   // What the frame draws, as of the last frame that had the turn.
   struct Drawn {
+    bool known = false;  // no frame has had the turn yet: nothing to draw
     gl::ToolDraw tool{};
     gl::SceneView view{};
     glm::vec3 block{0.0f};
@@ -437,6 +438,7 @@ int run_window(const WindowOptions& o) {
       const OrbitCamera& camera = controller.camera();
       drawn.view = {camera.view(), camera.projection(aspect), camera.eye(), fb_w, fb_h};
       drawn.block = glm::vec3(controller.loop().volume().dims());
+      drawn.known = true;
     }
     const gl::SurfaceSync sync = (*renderer)->sync_surface(
         steering ? &controller.loop().volume() : nullptr, surface, picture_frame);
@@ -445,7 +447,7 @@ int run_window(const WindowOptions& o) {
     const int64_t t_draw = hal::monotonic_ns();
     figures.upload_ms += static_cast<double>(t_draw - t_upload) * 1e-6;
     if (steering) turn.unlock();
-    (*renderer)->draw(drawn.view, drawn.tool, drawn.block);
+    if (drawn.known) (*renderer)->draw(drawn.view, drawn.tool, drawn.block);
     if (picture_frame) {
       RgbImage shot{fb_w, fb_h, {}};
       read_pixels(fb_w, fb_h, shot.rgb);
