@@ -78,6 +78,15 @@ BENCHMARK(BM_MeshExtract)
 // A ball of radius 14 (its density ramp fills a 32^3 box) added or carved
 // at a random point of the surface of the peers.py sphere that fills
 // `volume`, not aligned with the bricks, so it touches up to 8 bricks.
+// Uniform numbers in [-1, 1) from a fixed seed, the same every run.
+struct Uniform {
+  uint32_t seed = 12345;
+  float operator()() {
+    seed = seed * 1664525u + 1013904223u;
+    return static_cast<float>(seed >> 8) / static_cast<float>(1u << 24) * 2.0f - 1.0f;
+  }
+};
+
 template <class Random>
 void dab_on_surface(Volume& volume, Random& next, bool carve, float dab_radius = 14.0f) {
   const glm::vec3 centre(static_cast<float>(volume.dims().x - 1) / 2.0f);
@@ -115,11 +124,7 @@ void BM_MeshRemeshAfterDab(benchmark::State& state) {
   cache.update(volume);
   std::vector<double> samples;
   int64_t meshed = 0;
-  uint32_t seed = 12345;
-  auto next = [&] {
-    seed = seed * 1664525u + 1013904223u;
-    return static_cast<float>(seed >> 8) / static_cast<float>(1u << 24) * 2.0f - 1.0f;
-  };
+  Uniform next;
   bool carve = false;
   for (auto _ : state) {
     dab_on_surface(volume, next, carve);
@@ -210,11 +215,7 @@ UpdatesAfterDabs time_updates_after_dabs(benchmark::State& state, Volume& volume
                                          MixedLevelMeshCache& cache, const std::vector<int>& levels,
                                          float dab_radius) {
   cache.update(volume, levels);
-  uint32_t seed = 12345;
-  auto next = [&] {
-    seed = seed * 1664525u + 1013904223u;
-    return static_cast<float>(seed >> 8) / static_cast<float>(1u << 24) * 2.0f - 1.0f;
-  };
+  Uniform next;
   UpdatesAfterDabs out;
   int64_t meshed = 0;
   bool carve = false;
@@ -287,11 +288,7 @@ void BM_MeshMixedLevelCoarseFirstAfterBigDab(benchmark::State& state) {
   options.threads = 2;
   MixedLevelMeshCache cache(options);
   cache.update(volume, full);
-  uint32_t seed = 12345;
-  auto next = [&] {
-    seed = seed * 1664525u + 1013904223u;
-    return static_cast<float>(seed >> 8) / static_cast<float>(1u << 24) * 2.0f - 1.0f;
-  };
+  Uniform next;
   const glm::ivec3 grid = volume.brick_grid();
   std::vector<uint64_t> versions(full.size());
   double coarse_s = 0, full_s = 0, coarse_meshed = 0;
