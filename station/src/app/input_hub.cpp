@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <ctime>
 #include <limits>
+#include <thread>
 
 #include "sculpt/base/thread_times.h"
 #include "sculpt/hal/types/clock.h"
@@ -37,6 +38,19 @@ void InputHub::start() {
 void InputHub::stop() {
   stop_.store(true, std::memory_order_relaxed);
   if (thread_.joinable()) thread_.join();
+}
+
+std::unique_lock<std::mutex> InputHub::frame_turn(bool must) {
+  std::unique_lock turn(mutex_, std::defer_lock);
+  if (must) {
+    turn.lock();
+    return turn;
+  }
+  constexpr int64_t kPatienceNs = 1'000'000;
+  const int64_t start = hal::monotonic_ns();
+  while (!turn.try_lock() && hal::monotonic_ns() - start <= kPatienceNs)
+    std::this_thread::yield();
+  return turn;
 }
 
 void InputHub::poll_now() {

@@ -11,7 +11,6 @@
 #include <fstream>
 #include <limits>
 #include <mutex>
-#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -63,23 +62,6 @@ PointerState* g_pointer = nullptr;  // GLFW callbacks have no user pointer to sp
 extern "C" void on_scroll(GLFWwindow* w, double dx, double dy) {
   ImGui_ImplGlfw_ScrollCallback(w, dx, dy);
   if (g_pointer != nullptr && !ImGui::GetIO().WantCaptureMouse) g_pointer->scroll += dy;
-}
-
-// The sculpting thread's turn for the frame: waited for when `must`, else
-// given up after a millisecond (its polls hold it a fraction of one; a big
-// dab, tens).
-bool take_turn(std::unique_lock<std::mutex>& turn, bool must) {
-  if (must) {
-    turn.lock();
-    return true;
-  }
-  constexpr int64_t kPatienceNs = 1'000'000;
-  const int64_t start = hal::monotonic_ns();
-  while (!turn.try_lock()) {
-    if (hal::monotonic_ns() - start > kPatienceNs) return false;
-    std::this_thread::yield();
-  }
-  return true;
 }
 
 // Frame and latency figures for --stats.
@@ -338,8 +320,8 @@ int run_window(const WindowOptions& o) {
     // busy does not wait but draws what it has (the meshes made meanwhile
     // included), and the next frame that gets the turn steers (mouse, keys,
     // levels, panel). The last frame waits: it shows everything.
-    std::unique_lock turn(hub.mutex(), std::defer_lock);
-    const bool steering = take_turn(turn, final_frame);
+    std::unique_lock turn = hub.frame_turn(final_frame);
+    const bool steering = turn.owns_lock();
     if (!steering) ++figures.frames_drawn_unsteered;
     int fb_w = 1, fb_h = 1, win_w = 1, win_h = 1;
     glfwGetFramebufferSize(w, &fb_w, &fb_h);
@@ -455,7 +437,8 @@ int run_window(const WindowOptions& o) {
     }
     // The panel reads and sets the controller: drawn with the turn, else
     // the last frame's panel is drawn again.
-    const bool panel_turn = take_turn(turn, final_frame);
+    turn = hub.frame_turn(final_frame);
+    const bool panel_turn = turn.owns_lock();
     if (panel_turn) {
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();

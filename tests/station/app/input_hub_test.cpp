@@ -7,7 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <condition_variable>
 #include <memory>
+#include <mutex>
 #include <thread>
 
 #include "scratch_dir.h"
@@ -122,6 +124,43 @@ TEST(InputHub, StopsCleanlyWithoutADevice) {
   std::lock_guard last(hub.mutex());
   EXPECT_GT(hub.figures().polls, 2);
   EXPECT_EQ(controller.loop().counters().dabs, 0);
+}
+
+TEST(InputHub, AFrameDoesNotWaitForALongPollUnlessItMust) {
+  ControllerOptions co;
+  co.loop.mesh = false;
+  co.autosave_seconds = 0;
+  StationController controller(co);
+  SurfaceMesher mesher;
+  auto registry = std::make_unique<hal::DeviceRegistry>(
+      std::vector<std::unique_ptr<hal::Backend>>{}, hal::NormalizerConfig{}, hal::ReaderOptions{});
+  InputHub hub(controller, std::move(registry), nullptr, "", mesher);
+  EXPECT_TRUE(hub.frame_turn(false).owns_lock());  // nobody holds it
+  // A poll that sculpts a big dab holds the turn until it is done.
+  std::mutex done_mutex;
+  std::condition_variable done_changed;
+  bool holding = false, done = false;
+  std::thread long_poll([&] {
+    std::lock_guard poll(hub.mutex());
+    std::unique_lock l(done_mutex);
+    holding = true;
+    done_changed.notify_all();
+    done_changed.wait(l, [&] { return done; });
+  });
+  {
+    std::unique_lock l(done_mutex);
+    done_changed.wait(l, [&] { return holding; });
+  }
+  EXPECT_FALSE(hub.frame_turn(false).owns_lock());  // the frame draws without it
+  std::thread last_frame([&] { EXPECT_TRUE(hub.frame_turn(true).owns_lock()); });
+  {
+    std::lock_guard l(done_mutex);
+    done = true;
+  }
+  done_changed.notify_all();
+  long_poll.join();
+  last_frame.join();  // the last frame waited for the poll, then had its turn
+  EXPECT_TRUE(hub.frame_turn(false).owns_lock());
 }
 
 }  // namespace

@@ -62,6 +62,11 @@ class InputHub {
 
   /// Held to use the controller, or the volume, from another thread.
   std::mutex& mutex() { return mutex_; }
+  /// mutex() for a frame: waited for when `must` (the last frame, a
+  /// picture), else given up after a millisecond, so a frame is never held
+  /// by a long poll (a big tool's first placement holds it tens of
+  /// milliseconds; an ordinary poll a fraction of one). Check owns_lock().
+  std::unique_lock<std::mutex> frame_turn(bool must);
   /// Under mutex(): the level to mesh each brick at (the camera's choice).
   void set_levels(std::vector<int> levels) { levels_ = std::move(levels); }
   /// Under mutex(): reads the devices and hands the volume's changes to
