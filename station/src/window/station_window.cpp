@@ -286,6 +286,11 @@ int run_window(const WindowOptions& o) {
   ImGui_ImplGlfw_InitForOpenGL(w, /*install_callbacks=*/true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
   PointerState pointer;
+  // Where the cursor is now: a mouse that has not moved does not move the
+  // tool (the first frame that steers may come after a session's device
+  // has placed it; a jump to the cursor there would sculpt what the
+  // recording did not).
+  glfwGetCursorPos(w, &pointer.x, &pointer.y);
   g_pointer = &pointer;
   glfwSetScrollCallback(w, on_scroll);
   StationPanel panel(controller);
