@@ -20,7 +20,8 @@ RotatedToolEntry::RotatedToolEntry(const PreparedTool& tool, const glm::mat3& ro
       offset_(offset),
       frame_(tool, rotation, offset, sampling),
       stats_(stats),
-      values_(static_cast<size_t>(voxel_count(frame_.box().size())) + kRowSlack, 0) {
+      stride_(static_cast<size_t>(frame_.box().size().x) + kRowSlack),
+      values_(static_cast<size_t>(frame_.box().size().y) * frame_.box().size().z * stride_, 0) {
   const glm::ivec3 s = frame_.box().size();
   const size_t rows = static_cast<size_t>(s.y) * s.z;
   done_lo_.assign(rows, 0);
@@ -39,7 +40,7 @@ const uint8_t* RotatedToolEntry::rotate_row(int y, int z, int x0, int x1,
          z < b.hi.z);
   const int ly = y - b.lo.y, lz = z - b.lo.z;
   const size_t r = static_cast<size_t>(lz) * b.size().y + ly;
-  uint8_t* values = &values_[r * b.size().x];
+  uint8_t* values = &values_[r * stride_];
   const int a = x0 - b.lo.x, e = x1 - b.lo.x;
   stats.voxels_requested += e - a;
   int lo = done_lo_[r], hi = done_hi_[r];

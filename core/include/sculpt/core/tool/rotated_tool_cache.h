@@ -79,7 +79,7 @@ class RotatedToolEntry {
     if (done_lo_[r] <= a && e <= done_hi_[r] && a < e) {
       stats.voxels_requested += e - a;
       stats.voxels_reused += e - a;
-      return &values_[r * b.size().x + a];
+      return &values_[r * stride_ + static_cast<size_t>(a)];
     }
     return rotate_row(y, z, x0, x1, stats);
   }
@@ -102,8 +102,11 @@ class RotatedToolEntry {
   glm::vec3 offset_;
   RotationFrame frame_;
   RotatedToolCacheStats* stats_;
-  // The box's voxels, x fastest, then kRowSlack zero bytes: a row's
-  // consumer may read a vector's width past its end (combine_row()).
+  // The box's voxels, x fastest, each row followed by kRowSlack zero bytes
+  // of its own: a row's consumer may read a vector's width past its end
+  // (combine_row()), and threads filling neighbouring rows at once
+  // (Sculptor's big dabs) must not have it read the next row's.
+  size_t stride_;
   std::vector<uint8_t> values_;
   // Per row (y, z) of the box, the computed stretch [lo, hi) of x offsets.
   std::vector<int16_t> done_lo_, done_hi_;
