@@ -107,15 +107,26 @@ TEST(InputHub, ALiveSessionSculptedOnItsThreadEndsOnTheReplaysVolume) {
   EXPECT_EQ(controller.session_latency().count, dabs);  // every dab's latency counted
 }
 
-TEST(InputHub, StopsCleanlyWithoutADevice) {
-  ControllerOptions co;
-  co.loop.mesh = false;
-  co.autosave_seconds = 0;
-  StationController controller(co);
+// A hub with no device, over a controller that meshes nothing.
+struct IdleHub {
+  static ControllerOptions options() {
+    ControllerOptions co;
+    co.loop.mesh = false;
+    co.autosave_seconds = 0;
+    return co;
+  }
+  StationController controller{options()};
   SurfaceMesher mesher;
-  auto registry = std::make_unique<hal::DeviceRegistry>(
-      std::vector<std::unique_ptr<hal::Backend>>{}, hal::NormalizerConfig{}, hal::ReaderOptions{});
-  InputHub hub(controller, std::move(registry), nullptr, "", mesher);
+  InputHub hub{controller,
+               std::make_unique<hal::DeviceRegistry>(std::vector<std::unique_ptr<hal::Backend>>{},
+                                                     hal::NormalizerConfig{}, hal::ReaderOptions{}),
+               nullptr, "", mesher};
+};
+
+TEST(InputHub, StopsCleanlyWithoutADevice) {
+  IdleHub idle;
+  InputHub& hub = idle.hub;
+  StationController& controller = idle.controller;
   hub.start();
   std::this_thread::sleep_for(std::chrono::milliseconds(20));
   hub.stop();
@@ -127,14 +138,8 @@ TEST(InputHub, StopsCleanlyWithoutADevice) {
 }
 
 TEST(InputHub, AFrameDoesNotWaitForALongPollUnlessItMust) {
-  ControllerOptions co;
-  co.loop.mesh = false;
-  co.autosave_seconds = 0;
-  StationController controller(co);
-  SurfaceMesher mesher;
-  auto registry = std::make_unique<hal::DeviceRegistry>(
-      std::vector<std::unique_ptr<hal::Backend>>{}, hal::NormalizerConfig{}, hal::ReaderOptions{});
-  InputHub hub(controller, std::move(registry), nullptr, "", mesher);
+  IdleHub idle;
+  InputHub& hub = idle.hub;
   EXPECT_TRUE(hub.frame_turn(false).owns_lock());  // nobody holds it
   // A poll that sculpts a big dab holds the turn until it is done.
   std::mutex done_mutex;
