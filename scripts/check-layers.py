@@ -28,8 +28,8 @@ ALLOWED = {
 # assembles readers. A folder may include its own layer or any lower one.
 HAL_LAYERS = [
     {"types"},
-    {"parsers", "normalizer", "pose", "stroke"},
-    {"backends", "input"},
+    {"parsers", "normalizer", "pose", "stroke", "force"},
+    {"backends", "input", "haptics"},
     {"registry"},
 ]
 # The station without a screen (sculpt::station_app): these folders see no

@@ -1,0 +1,101 @@
+#include "sculpt/hal/haptics/haptic_loop.h"
+
+#include <algorithm>
+
+#include <glm/geometric.hpp>
+
+namespace sculpt::hal {
+
+HapticLoop::HapticLoop(ForceDevice& device, ForceLaw& law, const HapticLoopOptions& options)
+    : device_(device),
+      law_(law),
+      options_(options),
+      safety_(device.limits(), options.safety),
+      records_(std::max<size_t>(options.record_capacity, 1)) {}
+
+void HapticLoop::take_request() {
+  switch (request_.exchange(kNone, std::memory_order_acquire)) {
+    case kEnable:
+      safety_.enable();
+      if (state_ == HapticLoopState::kFaulted) state_ = HapticLoopState::kRunning;
+      break;
+    case kDrop:
+      safety_.drop();
+      break;
+    default:
+      break;
+  }
+}
+
+void HapticLoop::publish() {
+  if (!records_.try_push(last_)) live_.records_dropped.fetch_add(1, std::memory_order_relaxed);
+}
+
+bool HapticLoop::tick(int64_t t_ns) {
+  if (state_ == HapticLoopState::kRemoved) return false;
+  take_request();
+
+  if (have_last_tick_) {
+    const int64_t period_ns = t_ns - last_tick_ns_;
+    const double period_us = static_cast<double>(period_ns) * 1e-3;
+    periods_.add(period_us);
+    if (period_ns > options_.late_period_ns)
+      live_.late_ticks.fetch_add(1, std::memory_order_relaxed);
+    if (period_us > live_.worst_period_us.load(std::memory_order_relaxed))
+      live_.worst_period_us.store(static_cast<float>(period_us), std::memory_order_relaxed);
+  }
+  have_last_tick_ = true;
+  last_tick_ns_ = t_ns;
+
+  HapticInput input;
+  input.t_ns = t_ns;
+  const ForceIo read = device_.read(input.device);
+  if (read == ForceIo::kRemoved) {
+    // Nothing can be written to a device that is gone; zero() is for a
+    // transport that still half works (the cable back in before we noticed).
+    device_.zero();
+    safety_.drop();
+    state_ = HapticLoopState::kRemoved;
+    last_ = {t_ns, last_.position_mm, 0, glm::vec3(0.0f)};
+    publish();
+    return false;
+  }
+  if (input.device.buttons & options_.drop_buttons) safety_.drop();
+
+  glm::vec3 wanted(0.0f);
+  if (read == ForceIo::kOk && input.device.homed && state_ == HapticLoopState::kRunning) {
+    try {
+      wanted = law_.force_n(input);
+    } catch (...) {
+      // A law that throws is a bug; the hand must not feel it. Force stays
+      // off until someone enables it again.
+      state_ = HapticLoopState::kFaulted;
+      safety_.drop();
+      wanted = glm::vec3(0.0f);
+    }
+  }
+  glm::vec3 force = safety_.filter(wanted, t_ns);
+  if (read == ForceIo::kFault) {
+    live_.device_faults.fetch_add(1, std::memory_order_relaxed);
+    safety_.interrupt();
+    force = glm::vec3(0.0f);
+  }
+  if (!input.device.homed) force = glm::vec3(0.0f);
+  if (device_.write(force) != ForceIo::kOk) {
+    live_.device_faults.fetch_add(1, std::memory_order_relaxed);
+    device_.zero();
+    safety_.interrupt();
+    force = glm::vec3(0.0f);
+  }
+
+  last_ = {t_ns, input.device.position_mm, input.device.buttons, force};
+  publish();
+  live_.ticks.fetch_add(1, std::memory_order_relaxed);
+  const float magnitude = glm::length(force);
+  if (magnitude > live_.max_force_n.load(std::memory_order_relaxed))
+    live_.max_force_n.store(magnitude, std::memory_order_relaxed);
+  live_.ramp.store(safety_.ramp(), std::memory_order_relaxed);
+  return true;
+}
+
+}  // namespace sculpt::hal

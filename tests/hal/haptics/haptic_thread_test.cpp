@@ -1,0 +1,72 @@
+#include "sculpt/hal/haptics/haptic_thread.h"
+
+#include <atomic>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+namespace sculpt::hal {
+namespace {
+
+class CountingDevice final : public ForceDevice {
+ public:
+  std::atomic<int> reads{0}, zeroes{0};
+  int remove_after = -1;  // reads; -1: never
+
+  const DeviceInfo& info() const override { return info_; }
+  const ForceLimits& limits() const override { return sim_arm_limits(); }
+  ForceIo read(ForceDeviceState& out) override {
+    out = {};
+    const int n = ++reads;
+    return remove_after >= 0 && n > remove_after ? ForceIo::kRemoved : ForceIo::kOk;
+  }
+  ForceIo write(glm::vec3) override { return ForceIo::kOk; }
+  void zero() noexcept override { ++zeroes; }
+
+ private:
+  DeviceInfo info_;
+};
+
+class NoForce final : public ForceLaw {
+ public:
+  glm::vec3 force_n(const HapticInput&) override { return glm::vec3(0.0f); }
+};
+
+TEST(HapticThread, TicksUntilStoppedThenLeavesTheDeviceWithZeroForce) {
+  CountingDevice device;
+  NoForce law;
+  HapticLoop loop(device, law);
+  HapticThread thread(loop, device);
+  thread.start();
+  // Either real-time or one line saying why not.
+  EXPECT_TRUE(thread.realtime() ||
+              thread.realtime_note().find("no real-time priority") != std::string::npos);
+  while (loop.live().ticks.load() < 20)
+    std::this_thread::yield();
+  EXPECT_TRUE(thread.running());
+  thread.stop();
+  EXPECT_FALSE(thread.running());
+  EXPECT_GE(device.zeroes.load(), 1);
+  const int64_t ticks = loop.live().ticks.load();
+  EXPECT_GE(ticks, 20);
+  // Ticks are not bunched up to catch up: each period is one deadline or more,
+  // so the ticks never outnumber the deadlines passed.
+  EXPECT_EQ(loop.periods().count(), ticks - 1);
+}
+
+TEST(HapticThread, EndsByItselfWhenTheDeviceGoesAway) {
+  CountingDevice device;
+  device.remove_after = 5;
+  NoForce law;
+  HapticLoop loop(device, law);
+  HapticThread thread(loop, device);
+  thread.start();
+  while (thread.running())
+    std::this_thread::yield();
+  EXPECT_EQ(loop.state(), HapticLoopState::kRemoved);
+  EXPECT_EQ(loop.live().ticks.load(), 5);
+  EXPECT_GE(device.zeroes.load(), 1);
+}
+
+}  // namespace
+}  // namespace sculpt::hal
