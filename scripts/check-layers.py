@@ -34,7 +34,7 @@ HAL_LAYERS = [
 ]
 # The station without a screen (sculpt::station_app): these folders see no
 # window, GL renderer or command line, and no GL, GLFW or ImGui header.
-STATION_APP_FOLDERS = {"app", "project", "view", "settings", "render"}
+STATION_APP_FOLDERS = {"app", "project", "view", "settings", "render", "haptics"}
 STATION_SCREEN_FOLDERS = {"window", "render/gl", "cli"}
 SCREEN_HEADERS = re.compile(r"^(GLFW/|GL/|imgui|backends/imgui|glad/)")
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^">]+)[">]')

@@ -46,6 +46,9 @@ class HapticRenderer {
 
   const HapticTick& last() const { return last_; }
   const HapticSettings& settings() const { return settings_; }
+  /// The energy the hand has put into the current contact, J: the passivity
+  /// observer's sum after its damping, which keeps it from going below zero.
+  double passivity_energy_j() const { return observer_.energy_j(); }
 
  private:
   HapticSettings settings_;
