@@ -59,6 +59,7 @@ glm::vec3 ContactForceLaw::force_n(const hal::HapticInput& input) {
         renderer_.tick(patch, tool_vox_, static_cast<double>(input.t_ns) * 1e-9);
     record.proxy_vox = tick.proxy.position_vox;
     record.contact = tick.proxy.contact;
+    record.normal = tick.proxy.normal;
     record.force_n = tick.force_n * settings_.force_scale;
   }
   if (!contacts_.try_push(record)) dropped_.fetch_add(1, std::memory_order_relaxed);

@@ -64,6 +64,8 @@ struct ContactRecord {
   glm::vec3 device_vox{0.0f};
   glm::vec3 proxy_vox{0.0f};
   bool contact = false;
+  /// Outward normal of the material at the proxy (in contact).
+  glm::vec3 normal{0.0f};
   bool clutched = false;
   /// The force on the hand, N, device frame (before the loop's safety rules).
   glm::vec3 force_n{0.0f};

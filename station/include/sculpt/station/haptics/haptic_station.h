@@ -1,0 +1,138 @@
+#pragma once
+// A force device at the station (DESIGN.md §5a): its haptic loop on its own
+// thread at 1 kHz, the contact law between it and the material, and the
+// sculpting thread's half: the distance patch kept around the proxy, and the
+// station's tool moved to where the device presses.
+//
+//   haptic thread (1 kHz)    device -> ContactForceLaw -> safety -> device
+//        ^ patch (PatchExchange)          | contact records (ring)
+//        |                                v
+//   sculpting thread (poll)  PatchKeeper <- proxy;  proxy -> pointer commands
+//
+// The tool follows the proxy, so it rests on the sculpture instead of
+// sinking in. Button 0 held carves (or adds) only where the device pushes
+// beyond the press threshold (core/haptics/press_dab.h): resting the tool
+// on the clay carves nothing, pushing harder carves deeper and the material
+// resists. In free air the button sculpts at the tool, as with any device.
+// The tool's moves and presses are pointer commands of the station, so a
+// recording replays the sculpture bit for bit.
+//
+// The proxy is a sphere of the tool's size (half its largest extent for
+// shapes other than the sphere); a tool change restarts the loop with the
+// new radius, and the force ramps in again.
+//
+// Thread safety: start(), stop(), sculpting_side(), contact() and figures()
+// from the sculpting side (under the hub's mutex, or one thread); enable(),
+// drop() and set_clutch() from any thread.
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "sculpt/core/haptics/patch_exchange.h"
+#include "sculpt/core/haptics/press_dab.h"
+#include "sculpt/hal/force/force_device.h"
+#include "sculpt/hal/haptics/haptic_loop.h"
+#include "sculpt/hal/haptics/haptic_thread.h"
+#include "sculpt/station/haptics/contact_force_law.h"
+#include "sculpt/station/haptics/patch_keeper.h"
+
+namespace sculpt::station {
+
+class StationController;
+
+struct HapticStationOptions {
+  /// The contact; its proxy radius follows the tool.
+  ContactSettings contact;
+  core::PressOptions press;
+  hal::HapticLoopOptions loop;
+  hal::HapticThreadOptions thread;
+  /// False: the device only feels the material and moves no tool (while a
+  /// session plays the tool, say).
+  bool drives_tool = true;
+  /// Force on from the start (it ramps in); else after enable().
+  bool enabled = true;
+};
+
+/// What the panel and `--stats` show.
+struct HapticFigures {
+  std::string device;
+  bool running = false;
+  int64_t ticks = 0;
+  int64_t late_ticks = 0;  ///< period over 1.5 ms
+  int64_t skipped_deadlines = 0;
+  int64_t device_faults = 0;
+  int64_t watchdog_trips = 0;
+  int64_t records_dropped = 0;
+  double worst_period_us = 0.0;
+  /// Percentiles of the period, us; from the loop's own histogram, so only
+  /// once it has stopped (0 while running).
+  double period_p50_us = 0.0;
+  double period_p99_us = 0.0;
+  float max_force_n = 0.0f;
+  float ramp = 0.0f;
+  bool realtime = false;
+  std::string realtime_note;
+  PatchKeeperFigures patch;
+  int64_t restarts = 0;  ///< loop restarts for a new tool
+};
+
+class HapticStation {
+ public:
+  HapticStation(std::unique_ptr<hal::ForceDevice> device, const HapticStationOptions& options);
+  ~HapticStation();
+  HapticStation(const HapticStation&) = delete;
+  HapticStation& operator=(const HapticStation&) = delete;
+
+  /// Starts the loop with the tool at `start_vox` when the device is at its
+  /// origin, and a proxy of `radius_vox`.
+  void start(glm::vec3 start_vox, float radius_vox);
+  /// Stops the loop; the device is left with zero force.
+  void stop();
+  bool running() const { return thread_ != nullptr && thread_->running(); }
+
+  /// The sculpting side, every poll: takes the loop's newest contact, moves
+  /// the controller's tool to it (and presses), keeps the patch current.
+  void sculpting_side(StationController& controller, int64_t now_ns);
+
+  void enable();
+  void drop();
+  void set_clutch(bool held);
+
+  /// The newest contact the sculpting side took.
+  const ContactRecord& contact() const { return contact_; }
+  /// The newest tick (position in mm, buttons, force written).
+  const hal::HapticTickRecord& tick() const { return tick_; }
+  HapticFigures figures() const;
+  const hal::ForceDevice& device() const { return *device_; }
+
+ private:
+  void start_loop(glm::vec3 start_vox, float radius_vox);
+  void stop_loop();
+  void drive_tool(StationController& controller, int64_t now_ns);
+
+  std::unique_ptr<hal::ForceDevice> device_;
+  HapticStationOptions options_;
+  std::unique_ptr<core::PatchExchange> exchange_;
+  std::unique_ptr<PatchKeeper> keeper_;
+  std::unique_ptr<ContactForceLaw> law_;
+  std::unique_ptr<hal::HapticLoop> loop_;
+  std::unique_ptr<hal::HapticThread> thread_;
+  // Figures of loops stopped for a new tool, added to the running one's.
+  HapticFigures past_;
+  ContactRecord contact_;
+  hal::HapticTickRecord tick_;
+  bool have_contact_ = false;
+  uint64_t tool_version_ = 0;
+  bool tool_seen_ = false;
+  bool pressing_ = false;
+  glm::vec3 last_tool_vox_{-1e9f};
+  // The user's intent, kept across loop restarts.
+  std::atomic<bool> enabled_{false};
+  std::atomic<bool> clutch_{false};
+};
+
+}  // namespace sculpt::station

@@ -1,0 +1,60 @@
+#pragma once
+// The sculpting thread's half of the haptic contact (DESIGN.md §5a): it keeps
+// the distance patch around the proxy and current with the material, and
+// publishes it to the haptic loop (core::PatchExchange) only when it changed.
+// Called every poll (1 kHz): when nothing was sculpted and the proxy stays
+// near the patch's centre, it costs a comparison of two counters.
+//
+// Changes are found by brick versions, not by Volume::take_dirty_bricks(), so
+// the patch shares the volume with the mesher and the project's autosave
+// without taking their changes from them.
+//
+// Thread safety: one thread (the sculpting thread, under the hub's mutex).
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "sculpt/core/haptics/distance_patch.h"
+#include "sculpt/core/haptics/patch_exchange.h"
+#include "sculpt/core/volume/volume.h"
+
+namespace sculpt::station {
+
+struct PatchKeeperFigures {
+  int64_t builds = 0;     ///< from scratch (first time, a new volume)
+  int64_t refreshes = 0;  ///< after material changed under the patch
+  int64_t recentres = 0;  ///< after the proxy moved away from the centre
+  int64_t publishes = 0;  ///< snapshots handed to the haptic loop
+};
+
+class PatchKeeper {
+ public:
+  /// Publishes into `exchange`, which must have been made with options.edge.
+  PatchKeeper(core::PatchExchange& exchange, const core::DistancePatchOptions& options);
+
+  /// Keeps the patch around `centre_vox` (the proxy) and current with
+  /// `volume`, whose `generation` moves on when it is replaced; publishes
+  /// when anything changed. Returns whether it published.
+  bool update(const core::Volume& volume, uint64_t generation, glm::vec3 centre_vox);
+
+  const core::DistancePatch& patch() const { return patch_; }
+  const PatchKeeperFigures& figures() const { return figures_; }
+
+ private:
+  // Bricks whose version moved since the last look, among those whose
+  // material the patch's values can depend on.
+  std::vector<glm::ivec3> changed_bricks(const core::Volume& volume);
+  void remember_versions(const core::Volume& volume);
+
+  core::PatchExchange& exchange_;
+  core::DistancePatch patch_;
+  bool built_ = false;
+  uint64_t generation_ = 0;
+  uint64_t stores_seen_ = 0;
+  std::vector<uint64_t> versions_;  // per brick of the volume, at the last look
+  PatchKeeperFigures figures_;
+};
+
+}  // namespace sculpt::station

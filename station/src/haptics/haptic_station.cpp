@@ -1,0 +1,161 @@
+#include "sculpt/station/haptics/haptic_station.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include <glm/geometric.hpp>
+
+#include "sculpt/station/app/station_controller.h"
+
+namespace sculpt::station {
+namespace {
+
+// The tool moves with the proxy only when it moved this far: a device at
+// rest (its encoders flickering by a count) records no commands.
+constexpr float kMoveEpsilonVox = 1e-3f;
+
+}  // namespace
+
+HapticStation::HapticStation(std::unique_ptr<hal::ForceDevice> device,
+                             const HapticStationOptions& options)
+    : device_(std::move(device)), options_(options) {
+  enabled_.store(options.enabled);
+  past_.device = device_->info().name;
+}
+
+HapticStation::~HapticStation() {
+  stop();
+}
+
+void HapticStation::start(glm::vec3 start_vox, float radius_vox) {
+  stop_loop();
+  start_loop(start_vox, radius_vox);
+}
+
+void HapticStation::stop() {
+  stop_loop();
+}
+
+void HapticStation::start_loop(glm::vec3 start_vox, float radius_vox) {
+  ContactSettings contact = options_.contact;
+  contact.haptic.proxy.radius_vox = std::max(radius_vox, 0.0f);
+  const float band = core::band_for_sphere(contact.haptic.proxy.radius_vox);
+  const core::DistancePatchOptions patch{
+      core::patch_edge_for_reach(contact.haptic.proxy.radius_vox, band), band, 1};
+  // A new exchange for the new patch size: the old loop has stopped reading
+  // the old one.
+  exchange_ = std::make_unique<core::PatchExchange>(patch.edge);
+  keeper_ = std::make_unique<PatchKeeper>(*exchange_, patch);
+  law_ = std::make_unique<ContactForceLaw>(*exchange_, device_->limits(), contact, start_vox);
+  law_->set_clutch(clutch_.load());
+  loop_ = std::make_unique<hal::HapticLoop>(*device_, *law_, options_.loop);
+  if (enabled_.load()) loop_->enable();
+  thread_ = std::make_unique<hal::HapticThread>(*loop_, *device_, options_.thread);
+  thread_->start();
+  have_contact_ = false;
+  contact_.device_vox = contact_.proxy_vox = start_vox;
+}
+
+void HapticStation::stop_loop() {
+  if (!thread_) return;
+  thread_->stop();
+  // Keep the stopped loop's counts in the totals.
+  const HapticFigures stopped = figures();
+  past_ = stopped;
+  past_.running = false;
+  thread_.reset();
+  loop_.reset();
+  law_.reset();
+}
+
+void HapticStation::enable() {
+  enabled_.store(true);
+  if (loop_) loop_->enable();
+}
+
+void HapticStation::drop() {
+  enabled_.store(false);
+  if (loop_) loop_->drop();
+}
+
+void HapticStation::set_clutch(bool held) {
+  clutch_.store(held);
+  if (law_) law_->set_clutch(held);
+}
+
+void HapticStation::sculpting_side(StationController& controller, int64_t now_ns) {
+  if (!loop_) return;
+  const StationLoop& station = controller.loop();
+  // A new tool: a new proxy of its size, the tool staying where it is.
+  if (!tool_seen_ || station.tool_version() != tool_version_) {
+    const float radius = station.tool_size() * 0.5f;
+    if (tool_seen_ && std::abs(radius - law_->settings().haptic.proxy.radius_vox) > 1e-4f) {
+      const float vox_per_mm = law_->settings().workspace_scale / law_->settings().voxel_mm;
+      const glm::vec3 at_origin = contact_.device_vox - tick_.position_mm * vox_per_mm;
+      stop_loop();
+      start_loop(at_origin, radius);
+      ++past_.restarts;
+    }
+    tool_seen_ = true;
+    tool_version_ = station.tool_version();
+  }
+  // The newest of what the loop did since the last poll.
+  for (ContactRecord r; law_->contacts().try_pop(r);) {
+    contact_ = r;
+    have_contact_ = true;
+  }
+  for (hal::HapticTickRecord t; loop_->records().try_pop(t);)
+    tick_ = t;
+  if (have_contact_ && options_.drives_tool) drive_tool(controller, now_ns);
+  keeper_->update(station.volume(), station.volume_generation(), contact_.proxy_vox);
+}
+
+void HapticStation::drive_tool(StationController& controller, int64_t now_ns) {
+  const bool button = (tick_.buttons & 1u) != 0 && !contact_.clutched;
+  glm::vec3 at = contact_.proxy_vox;
+  bool stroke = false;
+  if (button) {
+    if (!contact_.contact) {
+      stroke = true;  // in free air: sculpt at the tool
+    } else if (const auto pressed = core::pressed_dab_position(
+                   contact_.proxy_vox, contact_.normal, contact_.force_n, true, options_.press)) {
+      stroke = true;
+      at = *pressed;
+    }
+  }
+  if (glm::length(at - last_tool_vox_) > kMoveEpsilonVox) {
+    controller.pointer_move(at, now_ns);
+    last_tool_vox_ = at;
+  }
+  if (stroke && !pressing_) controller.pointer_down(now_ns);
+  if (!stroke && pressing_) controller.pointer_up(now_ns);
+  pressing_ = stroke;
+}
+
+HapticFigures HapticStation::figures() const {
+  HapticFigures f = past_;
+  f.patch = keeper_ ? keeper_->figures() : past_.patch;
+  if (!loop_ || !thread_) return f;
+  const hal::HapticLiveCounters& live = loop_->live();
+  f.running = thread_->running();
+  f.ticks += live.ticks.load();
+  f.late_ticks += live.late_ticks.load();
+  f.device_faults += live.device_faults.load();
+  f.records_dropped += live.records_dropped.load() + law_->records_dropped();
+  f.skipped_deadlines += thread_->skipped_deadlines();
+  f.worst_period_us = std::max(f.worst_period_us, double(live.worst_period_us.load()));
+  f.max_force_n = std::max(f.max_force_n, live.max_force_n.load());
+  f.ramp = live.ramp.load();
+  f.realtime = thread_->realtime();
+  f.realtime_note = thread_->realtime_note();
+  // The loop's own state, readable once its thread has ended.
+  if (!f.running) {
+    f.watchdog_trips += loop_->safety().counters().watchdog_trips;
+    f.period_p50_us = loop_->periods().quantile_us(0.50);
+    f.period_p99_us = loop_->periods().quantile_us(0.99);
+  }
+  return f;
+}
+
+}  // namespace sculpt::station
