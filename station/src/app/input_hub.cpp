@@ -131,6 +131,7 @@ void InputHub::poll(int64_t now) {
   controller_.device_frame(input_, now, commands);
   if (const hal::DeviceReader* reader = registry_->reader(device_id_); reader != nullptr)
     controller_.reader_samples(reader->counters().motion_samples, now);
+  if (listener_ != nullptr) listener_->on_poll(controller_, now);
   // What was sculpted goes to the mesher at once; before the render thread
   // has said which levels it draws, there is nothing to mesh for.
   if (!levels_.empty()) {

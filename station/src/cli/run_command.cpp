@@ -59,6 +59,9 @@ int run_headless(const RunOptions& o) {
 }
 
 int run_station(const RunOptions& o) {
+  if ((o.headless || !display_available()) && !o.window.haptic.empty())
+    return report(Error("--haptic " + o.window.haptic +
+                        ": a force device needs the window (and a display)"));
   if (o.headless) return run_headless(o);
   if (!display_available()) {
     std::printf("no display: running headless (see --out)\n");
@@ -132,6 +135,21 @@ void add_run_command(CLI::App& app, Action& action) {
             return {};
           },
           "WIDTHxHEIGHT");
+  cmd->add_option("--haptic", w.haptic,
+                  "window: a force device beside the pointing device: sim-arm:HAND_SCRIPT (the "
+                  "simulated arm held by a scripted hand)");
+  cmd->add_option("--haptic-stiffness", w.haptic_stiffness_n_per_mm,
+                  "window: the material's stiffness under a force device, N/mm (clamped to the "
+                  "device's limit)")
+      ->capture_default_str()
+      ->check(finite_range(0.01, 100));
+  cmd->add_option("--workspace-scale", w.workspace_scale,
+                  "window: material millimetres per force-device millimetre")
+      ->capture_default_str()
+      ->check(finite_range(0.01, 100));
+  cmd->add_option("--voxel-mm", w.voxel_mm, "window: the material's voxel size, mm")
+      ->capture_default_str()
+      ->check(finite_range(0.001, 100));
   cmd->add_option("--lod", w.lod, "window: draw every brick at this level (default: by distance)")
       ->check(finite_range(0, 2));
   cmd->add_flag(

@@ -22,7 +22,11 @@ ContactSettings clamped(ContactSettings s, const hal::ForceLimits& limits) {
   c.stiffness_n_per_mm = limits.clamp_stiffness(c.stiffness_n_per_mm);
   c.damping_ns_per_m = limits.clamp_damping(c.damping_ns_per_m);
   c.max_force_n = std::min(usable(c.max_force_n) ? c.max_force_n : 0.0f, limits.max_force_n);
-  c.voxel_mm = s.voxel_mm / s.workspace_scale;
+  // The proxy works in the patch's voxels: 2^level full-resolution ones.
+  s.patch_level = std::clamp(s.patch_level, 0, 8);
+  const float scale = static_cast<float>(1 << s.patch_level);
+  c.voxel_mm = s.voxel_mm * scale / s.workspace_scale;
+  s.haptic.proxy.radius_vox /= scale;
   s.haptic.passivity_max_damping_ns_per_m =
       limits.clamp_damping(s.haptic.passivity_max_damping_ns_per_m);
   return s;
@@ -36,6 +40,7 @@ ContactForceLaw::ContactForceLaw(core::PatchExchange& patches, const hal::ForceL
       settings_(clamped(settings, limits)),
       renderer_(settings_.haptic),
       vox_per_device_mm_(settings_.workspace_scale / settings_.voxel_mm),
+      patch_scale_(static_cast<float>(1 << settings_.patch_level)),
       offset_vox_(start_vox),
       tool_vox_(start_vox),
       contacts_(kContactRecords) {}
@@ -56,8 +61,8 @@ glm::vec3 ContactForceLaw::force_n(const hal::HapticInput& input) {
   const core::PatchSnapshot& patch = patches_.acquire();
   if (!patch.empty() && !clutched) {
     const core::HapticTick& tick =
-        renderer_.tick(patch, tool_vox_, static_cast<double>(input.t_ns) * 1e-9);
-    record.proxy_vox = tick.proxy.position_vox;
+        renderer_.tick(patch, tool_vox_ / patch_scale_, static_cast<double>(input.t_ns) * 1e-9);
+    record.proxy_vox = tick.proxy.position_vox * patch_scale_;
     record.contact = tick.proxy.contact;
     record.normal = tick.proxy.normal;
     record.force_n = tick.force_n * settings_.force_scale;

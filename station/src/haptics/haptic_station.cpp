@@ -14,6 +14,10 @@ namespace {
 // The tool moves with the proxy only when it moved this far: a device at
 // rest (its encoders flickering by a count) records no commands.
 constexpr float kMoveEpsilonVox = 1e-3f;
+// The proxy's radius in the patch's voxels at most (band 8: a patch built in
+// a few milliseconds), and the coarsest level used for it.
+constexpr float kMaxPatchRadiusVox = 5.0f;
+constexpr int kMaxPatchLevel = 4;
 
 }  // namespace
 
@@ -31,6 +35,7 @@ HapticStation::~HapticStation() {
 void HapticStation::start(glm::vec3 start_vox, float radius_vox) {
   stop_loop();
   start_loop(start_vox, radius_vox);
+  thread_->start();
 }
 
 void HapticStation::stop() {
@@ -39,20 +44,30 @@ void HapticStation::stop() {
 
 void HapticStation::start_loop(glm::vec3 start_vox, float radius_vox) {
   ContactSettings contact = options_.contact;
-  contact.haptic.proxy.radius_vox = std::max(radius_vox, 0.0f);
-  const float band = core::band_for_sphere(contact.haptic.proxy.radius_vox);
-  const core::DistancePatchOptions patch{
-      core::patch_edge_for_reach(contact.haptic.proxy.radius_vox, band), band, 1};
+  proxy_radius_vox_ = std::max(radius_vox, 0.0f);
+  contact.haptic.proxy.radius_vox = proxy_radius_vox_;
+  // A sphere proxy reads the field at its centre only (phi - r), so the
+  // patch needs the band around the centre's path, not the sphere's reach
+  // too. The band must reach past r, and a patch's cost grows with the cube
+  // of its band (a 24-voxel radius costs a second at full resolution, 4
+  // voxels 2 ms): a big tool's patch is sampled from a coarser level of the
+  // pyramid, where its radius is at most kMaxPatchRadiusVox.
+  int level = 0;
+  while (level < std::min(kMaxPatchLevel, volume_levels_) &&
+         proxy_radius_vox_ / static_cast<float>(1 << level) > kMaxPatchRadiusVox)
+    ++level;
+  contact.patch_level = level;
+  const float band = core::band_for_sphere(proxy_radius_vox_ / static_cast<float>(1 << level));
+  const core::DistancePatchOptions patch{core::patch_edge_for_reach(0.0f, band), band, 1};
   // A new exchange for the new patch size: the old loop has stopped reading
   // the old one.
   exchange_ = std::make_unique<core::PatchExchange>(patch.edge);
-  keeper_ = std::make_unique<PatchKeeper>(*exchange_, patch);
+  keeper_ = std::make_unique<PatchKeeper>(*exchange_, patch, level);
   law_ = std::make_unique<ContactForceLaw>(*exchange_, device_->limits(), contact, start_vox);
   law_->set_clutch(clutch_.load());
   loop_ = std::make_unique<hal::HapticLoop>(*device_, *law_, options_.loop);
   if (enabled_.load()) loop_->enable();
   thread_ = std::make_unique<hal::HapticThread>(*loop_, *device_, options_.thread);
-  thread_->start();
   have_contact_ = false;
   contact_.device_vox = contact_.proxy_vox = start_vox;
 }
@@ -67,6 +82,27 @@ void HapticStation::stop_loop() {
   thread_.reset();
   loop_.reset();
   law_.reset();
+}
+
+void HapticStation::restart(float radius_vox) {
+  // The tool stays where it is: the new loop's mapping puts the device's
+  // present position there.
+  const glm::vec3 tool_vox = contact_.device_vox;
+  const glm::vec3 device_mm = tick_.position_mm;
+  stop_loop();
+  start_loop(tool_vox, radius_vox);
+  law_->place_tool(tool_vox, device_mm);
+  thread_->start();
+  ++past_.restarts;
+}
+
+void HapticStation::set_contact(const ContactSettings& contact) {
+  options_.contact = contact;
+  if (law_) restart(proxy_radius_vox_);
+}
+
+ContactSettings HapticStation::contact_settings() const {
+  return law_ ? law_->settings() : options_.contact;
 }
 
 void HapticStation::enable() {
@@ -88,15 +124,13 @@ void HapticStation::sculpting_side(StationController& controller, int64_t now_ns
   if (!loop_) return;
   const StationLoop& station = controller.loop();
   // A new tool: a new proxy of its size, the tool staying where it is.
-  if (!tool_seen_ || station.tool_version() != tool_version_) {
+  if (!tool_seen_ || station.tool_version() != tool_version_ ||
+      station.volume().levels() != volume_levels_) {
     const float radius = station.tool_size() * 0.5f;
-    if (tool_seen_ && std::abs(radius - law_->settings().haptic.proxy.radius_vox) > 1e-4f) {
-      const float vox_per_mm = law_->settings().workspace_scale / law_->settings().voxel_mm;
-      const glm::vec3 at_origin = contact_.device_vox - tick_.position_mm * vox_per_mm;
-      stop_loop();
-      start_loop(at_origin, radius);
-      ++past_.restarts;
-    }
+    const bool levels_changed = station.volume().levels() != volume_levels_;
+    volume_levels_ = station.volume().levels();
+    if (levels_changed || (tool_seen_ && std::abs(radius - proxy_radius_vox_) > 1e-4f))
+      restart(radius);
     tool_seen_ = true;
     tool_version_ = station.tool_version();
   }

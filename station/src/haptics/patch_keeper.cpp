@@ -1,12 +1,16 @@
 #include "sculpt/station/haptics/patch_keeper.h"
 
+#include <algorithm>
+#include <cassert>
+#include <chrono>
 #include <cmath>
 
 namespace sculpt::station {
 namespace {
 
 // A value depends on the material within its seed reach + 2 voxels
-// (distance_patch.h); the band plus that margin bounds the reach.
+// (distance_patch.h); the band plus that margin bounds the reach. In the
+// patch's voxels.
 core::Box watched_region(const core::DistancePatch& patch) {
   core::Box box = patch.box();
   const int margin = static_cast<int>(std::ceil(patch.options().band_vox)) + 4;
@@ -15,10 +19,14 @@ core::Box watched_region(const core::DistancePatch& patch) {
   return box;
 }
 
+// A level's mirror only ever reads its own level 0: small bricks, one level.
+constexpr core::VolumeOptions kMirrorOptions{16, 1, 1};
+
 }  // namespace
 
-PatchKeeper::PatchKeeper(core::PatchExchange& exchange, const core::DistancePatchOptions& options)
-    : exchange_(exchange), patch_(options) {}
+PatchKeeper::PatchKeeper(core::PatchExchange& exchange, const core::DistancePatchOptions& options,
+                         int level)
+    : exchange_(exchange), patch_(options), level_(std::max(level, 0)) {}
 
 void PatchKeeper::remember_versions(const core::Volume& volume) {
   const glm::ivec3 grid = volume.brick_grid();
@@ -34,7 +42,10 @@ void PatchKeeper::remember_versions(const core::Volume& volume) {
 std::vector<glm::ivec3> PatchKeeper::changed_bricks(const core::Volume& volume) {
   std::vector<glm::ivec3> changed;
   const glm::ivec3 grid = volume.brick_grid();
-  const core::Box bricks = volume.bricks_overlapping(watched_region(patch_));
+  // At level 0 only the bricks under the patch matter: a re-centre reads
+  // the others afresh. A level's mirror must follow every brick.
+  core::Box bricks{glm::ivec3(0), grid};
+  if (level_ == 0) bricks = volume.bricks_overlapping(watched_region(patch_));
   for (int z = bricks.lo.z; z < bricks.hi.z; ++z)
     for (int y = bricks.lo.y; y < bricks.hi.y; ++y)
       for (int x = bricks.lo.x; x < bricks.hi.x; ++x) {
@@ -43,16 +54,37 @@ std::vector<glm::ivec3> PatchKeeper::changed_bricks(const core::Volume& volume) 
         if (now != seen) changed.push_back({x, y, z});
         seen = now;
       }
-  // Bricks outside the watched region keep their old versions: when the
-  // patch moves over them, recentre() reads them whole anyway.
   stores_seen_ = volume.stores();
   return changed;
 }
 
+std::vector<glm::ivec3> PatchKeeper::mirror_bricks() {
+  return mirror_->take_dirty_bricks();
+}
+
+const core::Volume& PatchKeeper::source(const core::Volume& volume,
+                                        std::span<const glm::ivec3> changed) {
+  if (level_ == 0) return volume;
+  const int round_up = (1 << level_) - 1;
+  for (const glm::ivec3& b : changed) {
+    const core::Box box = volume.brick_box(b);
+    const core::Box at_level{box.lo >> level_, (box.hi + round_up) >> level_};
+    mirror_->write(at_level.lo, volume.read(at_level, level_));
+  }
+  return *mirror_;
+}
+
 bool PatchKeeper::update(const core::Volume& volume, uint64_t generation, glm::vec3 centre_vox) {
+  assert(level_ <= volume.levels());
+  const auto started = std::chrono::steady_clock::now();
+  const glm::vec3 centre = centre_vox / static_cast<float>(1 << level_);
   bool changed = false;
   if (!built_ || generation != generation_) {
-    patch_.build(volume, centre_vox);
+    if (level_ > 0)
+      mirror_ = std::make_unique<core::Volume>(
+          core::Volume::from_dense(volume.to_dense(level_), kMirrorOptions));
+    patch_.build(level_ > 0 ? *mirror_ : volume, centre);
+    if (mirror_) (void)mirror_->take_dirty_bricks();
     remember_versions(volume);
     built_ = true;
     generation_ = generation;
@@ -62,16 +94,21 @@ bool PatchKeeper::update(const core::Volume& volume, uint64_t generation, glm::v
     if (volume.stores() != stores_seen_) {
       const std::vector<glm::ivec3> bricks = changed_bricks(volume);
       if (!bricks.empty()) {
-        patch_.refresh_bricks(volume, bricks);
+        const core::Volume& from = source(volume, bricks);
+        if (level_ == 0) {
+          patch_.refresh_bricks(from, bricks);
+        } else {
+          patch_.refresh_bricks(from, mirror_bricks());
+        }
         ++figures_.refreshes;
         changed = true;
       }
     }
-    if (patch_.off_centre(centre_vox)) {
-      // Bricks that changed outside the watched region are read afresh by
-      // the re-centre; remember them as seen.
-      patch_.recentre(volume, centre_vox);
-      remember_versions(volume);
+    if (patch_.off_centre(centre)) {
+      // At level 0, bricks changed outside the watched region are read
+      // afresh by the re-centre: remember them as seen.
+      patch_.recentre(level_ > 0 ? *mirror_ : volume, centre);
+      if (level_ == 0) remember_versions(volume);
       ++figures_.recentres;
       changed = true;
     }
@@ -80,6 +117,9 @@ bool PatchKeeper::update(const core::Volume& volume, uint64_t generation, glm::v
     core::copy_snapshot(patch_.snapshot(), exchange_.back());
     exchange_.publish();
     ++figures_.publishes;
+    const std::chrono::duration<double, std::milli> took =
+        std::chrono::steady_clock::now() - started;
+    figures_.slowest_update_ms = std::max(figures_.slowest_update_ms, took.count());
   }
   return changed;
 }

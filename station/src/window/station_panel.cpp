@@ -174,6 +174,9 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     tip(Action::kFrameView);
   }
 
+  if (haptics_ != nullptr && ImGui::CollapsingHeader("Haptics", ImGuiTreeNodeFlags_DefaultOpen))
+    draw_haptics(now);
+
   if (ImGui::CollapsingHeader("Figures", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::Text("%.0f fps (%.1f ms), %lld triangles", f.fps, f.frame_ms,
                 static_cast<long long>(f.triangles));
@@ -184,6 +187,54 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
   }
   if (!c_.status().empty()) ImGui::TextWrapped("%s", c_.status().c_str());
   ImGui::End();
+}
+
+void StationPanel::draw_haptics(int64_t now) {
+  HapticStation& h = *haptics_;
+  const HapticFigures f = h.figures();
+  const hal::ForceLimits& limits = h.device().limits();
+  ImGui::Text("%s: %s", f.device.c_str(), f.running ? "running" : "stopped");
+  if (!f.realtime_note.empty() && ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s", f.realtime_note.c_str());
+  bool on = h.enabled();
+  if (ImGui::Checkbox("force (K)", &on)) on ? h.enable() : h.drop();
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("off drops the force at once; on ramps it in over half a second");
+  ImGui::SameLine();
+  ImGui::TextDisabled("clutch: hold V");
+  // Each setting restarts the loop when let go (the force ramps in again).
+  ContactSettings s = h.contact_settings();
+  bool changed = false;
+  ImGui::SliderFloat("stiffness", &s.haptic.coupling.stiffness_n_per_mm, 0.05f,
+                     limits.max_stiffness_n_per_mm, "%.2f N/mm");
+  changed |= ImGui::IsItemDeactivatedAfterEdit();
+  ImGui::SliderFloat("friction", &s.haptic.proxy.friction.static_coefficient, 0.0f, 1.0f, "%.2f");
+  if (ImGui::IsItemDeactivatedAfterEdit()) {
+    // Sliding grips a little less than resting does.
+    s.haptic.proxy.friction.dynamic_coefficient = 0.8f * s.haptic.proxy.friction.static_coefficient;
+    changed = true;
+  }
+  ImGui::SliderFloat("force scale", &s.force_scale, 0.0f, 1.0f, "%.2f");
+  changed |= ImGui::IsItemDeactivatedAfterEdit();
+  ImGui::SliderFloat("workspace scale", &s.workspace_scale, 0.25f, 8.0f, "%.2f x");
+  changed |= ImGui::IsItemDeactivatedAfterEdit();
+  if (changed) h.set_contact(s);
+  // The loop's rate over the last second or so.
+  if (now - haptic_since_ns_ > 1'000'000'000) {
+    if (haptic_since_ns_ != 0)
+      haptic_rate_hz_ = static_cast<double>(f.ticks - haptic_ticks_) * 1e9 /
+                        static_cast<double>(now - haptic_since_ns_);
+    haptic_ticks_ = f.ticks;
+    haptic_since_ns_ = now;
+  }
+  ImGui::Text("loop %.0f Hz%s, late ticks %lld of %lld", haptic_rate_hz_,
+              f.realtime ? " (real-time)" : "", static_cast<long long>(f.late_ticks),
+              static_cast<long long>(f.ticks));
+  ImGui::Text("worst period %.2f ms, max force %.2f N, ramp %.0f%%", f.worst_period_us * 1e-3,
+              f.max_force_n, f.ramp * 100.0f);
+  const ContactRecord& contact = h.contact();
+  ImGui::Text("%s%s, force %.2f N", contact.contact ? "in contact" : "free",
+              contact.clutched ? ", clutched" : "", glm::length(h.tick().force_n));
 }
 
 void StationPanel::draw_sheet(int64_t now) {

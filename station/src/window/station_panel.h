@@ -6,6 +6,7 @@
 #include <string>
 
 #include "sculpt/station/app/station_controller.h"
+#include "sculpt/station/haptics/haptic_station.h"
 
 namespace sculpt::station {
 
@@ -20,11 +21,18 @@ class StationPanel {
  public:
   explicit StationPanel(StationController& controller);
   void draw(const FrameFigures& figures, int64_t now_ns);
+  /// A force device's section (null: none).
+  void set_haptics(HapticStation* haptics) { haptics_ = haptics; }
 
  private:
   void draw_sheet(int64_t now_ns);
+  void draw_haptics(int64_t now_ns);
 
   StationController& c_;
+  HapticStation* haptics_ = nullptr;
+  int64_t haptic_ticks_ = 0;  // at haptic_since_ns_, for the loop rate
+  int64_t haptic_since_ns_ = 0;
+  double haptic_rate_hz_ = 0.0;
   char project_[512] = {};
   char mesh_[512] = {};
   char recording_[512] = {};

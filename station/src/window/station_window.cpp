@@ -11,6 +11,7 @@
 #include <fstream>
 #include <limits>
 #include <mutex>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -20,6 +21,7 @@
 #include "sculpt/base/thread_times.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/hal/registry/device_registry.h"
+#include "sculpt/hal/registry/force_devices.h"
 #include "sculpt/hal/types/clock.h"
 #include "sculpt/sim/replay/sim_backend.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
@@ -27,6 +29,7 @@
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/session_start.h"
 #include "sculpt/station/app/station_controller.h"
+#include "sculpt/station/haptics/haptic_station.h"
 #include "sculpt/station/render/software_renderer.h"
 #include "sculpt/station/view/mesh_raycast.h"
 #include "sculpt/station/view/surface_mesher.h"
@@ -113,7 +116,34 @@ nlohmann::ordered_json thread_figures(int64_t started_ns) {
   return {{"wall_s", static_cast<double>(hal::monotonic_ns() - started_ns) * 1e-9}, {"cpu_s", cpu}};
 }
 
-Status write_stats(const std::string& path, const RunFigures& f, const StationController& c) {
+// The haptic loop's figures (DESIGN.md §5a), for --stats.
+nlohmann::ordered_json haptic_figures(const HapticStation& h) {
+  const HapticFigures f = h.figures();
+  return {{"device", f.device},
+          {"realtime", f.realtime},
+          {"ticks", f.ticks},
+          {"late_ticks", f.late_ticks},
+          {"late_share",
+           f.ticks > 0 ? static_cast<double>(f.late_ticks) / static_cast<double>(f.ticks) : 0.0},
+          {"skipped_deadlines", f.skipped_deadlines},
+          {"period_us_p50", f.period_p50_us},
+          {"period_us_p99", f.period_p99_us},
+          {"period_us_max", f.worst_period_us},
+          {"watchdog_trips", f.watchdog_trips},
+          {"device_faults", f.device_faults},
+          {"records_dropped", f.records_dropped},
+          {"max_force_n", f.max_force_n},
+          {"loop_restarts", f.restarts},
+          {"patch",
+           {{"builds", f.patch.builds},
+            {"refreshes", f.patch.refreshes},
+            {"recentres", f.patch.recentres},
+            {"publishes", f.patch.publishes},
+            {"slowest_update_ms", f.patch.slowest_update_ms}}}};
+}
+
+Status write_stats(const std::string& path, const RunFigures& f, const StationController& c,
+                   const HapticStation* haptics) {
   // What the program holds, apart from what the allocator keeps free: a
   // long run's resident memory can grow by fragmentation alone.
   const struct mallinfo2 heap = ::mallinfo2();
@@ -122,7 +152,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
   const double n = std::max<double>(1.0, static_cast<double>(f.frame_us.count()));
   const LatencyStats l = c.session_latency();
   const LatencyStats full = c.full_detail_latency();
-  const nlohmann::ordered_json j = {
+  nlohmann::ordered_json j = {
       {"frames", f.frame_us.count()},
       {"frames_drawn_unsteered", f.frames_drawn_unsteered},
       {"fps_mean", total > 0 ? 1000.0 * static_cast<double>(f.frame_us.count()) / total : 0.0},
@@ -178,6 +208,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
         {"p90", full.p90_us},
         {"p99", full.p99_us},
         {"max", full.max_us}}}};
+  if (haptics != nullptr) j["haptics"] = haptic_figures(*haptics);
   AtomicFileWriter w(path);
   if (!w.ok()) return w.error();
   w.write(j.dump(2) + "\n");
@@ -270,10 +301,25 @@ int run_window(const WindowOptions& o) {
   // mirror of the volume; the frame hands over what changed and draws
   // what is ready, never waiting for it.
   SurfaceMesher mesher(o.mesh_threads, o.simplify_error);
+  // A force device: its loop ticks on its own thread (started with the hub);
+  // the hub, made after it and so gone before it, runs its sculpting side
+  // each poll.
+  std::unique_ptr<HapticStation> haptics;
+  if (!o.haptic.empty()) {
+    auto device = hal::open_force_device(o.haptic);
+    if (!device) return fail(device.error());
+    HapticStationOptions ho;
+    ho.contact.haptic.coupling.stiffness_n_per_mm = o.haptic_stiffness_n_per_mm;
+    ho.contact.workspace_scale = o.workspace_scale;
+    ho.contact.voxel_mm = o.voxel_mm;
+    ho.drives_tool = sim_backend == nullptr;  // a playing session owns the tool
+    haptics = std::make_unique<HapticStation>(std::move(device).value(), ho);
+  }
   // Devices are read and sculpted on the sculpting thread (input_hub.h);
   // each frame takes its turn with the controller for the mouse, the keys
   // and the panel, and draws without it.
   InputHub hub(controller, std::move(registry), sim_backend, hal::to_text(*config), mesher);
+  hub.set_listener(haptics.get());
   if (!o.record.empty()) {
     if (Status st = controller.start_recording(o.record, hal::monotonic_ns()); !st)
       return fail(st.error());
@@ -294,6 +340,7 @@ int run_window(const WindowOptions& o) {
   g_pointer = &pointer;
   glfwSetScrollCallback(w, on_scroll);
   StationPanel panel(controller);
+  panel.set_haptics(haptics.get());
 
   SurfaceSnapshot surface;
   SurfaceDelta unreported;  // meshes' ready times not yet given to the statistics
@@ -303,12 +350,19 @@ int run_window(const WindowOptions& o) {
     gl::ToolDraw tool{};
     gl::SceneView view{};
     glm::vec3 block{0.0f};
+    std::optional<HapticOverlay> haptics;
   } drawn;
   RunFigures figures;
   FrameFigures frame_figures;
   int64_t last_frame = hal::monotonic_ns();
   int64_t last_stats = last_frame;
   figures.started_ns = last_frame;
+  if (haptics) {
+    // With the hub, so the loop's records are taken from its first tick.
+    haptics->start(controller.loop().pose().position, controller.loop().tool_size() * 0.5f);
+    if (const HapticFigures hf = haptics->figures(); !hf.realtime)
+      std::printf("%s\n", hf.realtime_note.c_str());
+  }
   hub.start();
   bool played_out = false;  // the last frame of --until-replayed is drawn
   for (int frame = 0;
@@ -381,6 +435,8 @@ int run_window(const WindowOptions& o) {
         if (space && !pointer.space_held) controller.pointer_down(now);
         if (!space && pointer.space_held) controller.pointer_up(now);
         pointer.space_held = space;
+        // A force device: V held is the clutch (K, a shortcut, turns force on and off).
+        if (haptics) haptics->set_clutch(key(GLFW_KEY_V) > 0);
       }
 
       // Sculpt results to the GPU.
@@ -426,6 +482,14 @@ int run_window(const WindowOptions& o) {
       drawn.view = {camera.view(), camera.projection(aspect), camera.eye(), fb_w, fb_h};
       drawn.block = glm::vec3(controller.loop().volume().dims());
       drawn.known = true;
+      if (haptics) {
+        HapticOverlayInput overlay;
+        overlay.device_vox = haptics->contact().device_vox;
+        overlay.proxy_vox = haptics->contact().proxy_vox;
+        overlay.radius_vox = controller.loop().tool_size() * 0.5f;
+        overlay.force_n = haptics->tick().force_n;
+        drawn.haptics = haptic_overlay(overlay);
+      }
     }
     const gl::SurfaceSync sync = (*renderer)->sync_surface(
         steering ? &controller.loop().volume() : nullptr, surface, picture_frame);
@@ -434,7 +498,10 @@ int run_window(const WindowOptions& o) {
     const int64_t t_draw = hal::monotonic_ns();
     figures.upload_ms += static_cast<double>(t_draw - t_upload) * 1e-6;
     if (steering) turn.unlock();
-    if (drawn.known) (*renderer)->draw(drawn.view, drawn.tool, drawn.block);
+    if (drawn.known) {
+      (*renderer)->draw(drawn.view, drawn.tool, drawn.block);
+      if (drawn.haptics) (*renderer)->draw_haptics(drawn.view, *drawn.haptics);
+    }
     if (picture_frame) {
       RgbImage shot{fb_w, fb_h, {}};
       read_pixels(fb_w, fb_h, shot.rgb);
@@ -455,6 +522,10 @@ int run_window(const WindowOptions& o) {
         for (int k = GLFW_KEY_SPACE; k <= GLFW_KEY_LAST; ++k) {
           if (!ImGui::IsKeyPressed(k, false)) continue;
           const int mods = (io.KeyCtrl ? GLFW_MOD_CONTROL : 0) | (io.KeyShift ? GLFW_MOD_SHIFT : 0);
+          if (haptics && k == GLFW_KEY_K && mods == 0) {
+            haptics->enabled() ? haptics->drop() : haptics->enable();
+            continue;
+          }
           if (auto action = shortcut(k, mods)) controller.perform(*action, now);
         }
       }
@@ -462,7 +533,8 @@ int run_window(const WindowOptions& o) {
           now - last_stats >= static_cast<int64_t>(o.stats_every_s * 1e9)) {
         figures.mesher = mesher.counters();
         figures.hub = hub.figures();
-        if (Status st = write_stats(o.stats, figures, controller); !st) return fail(st.error());
+        if (Status st = write_stats(o.stats, figures, controller, haptics.get()); !st)
+          return fail(st.error());
         last_stats = now;
       }
       turn.unlock();
@@ -493,6 +565,7 @@ int run_window(const WindowOptions& o) {
   hub.stop();
   std::lock_guard last_turn(hub.mutex());  // no other thread now: kept for the rule
   hub.poll_now();
+  if (haptics) haptics->stop();  // zero force; its figures are final
   mesher.wait_until_meshed();
   if (auto delta = mesher.take()) controller.surface_ready(*delta);
   figures.mesher = mesher.counters();
@@ -512,7 +585,8 @@ int run_window(const WindowOptions& o) {
     return fail(Error("recording stopped early: " + controller.recording_error()));
   controller.finish_autosave();
   if (!o.stats.empty()) {
-    if (Status st = write_stats(o.stats, figures, controller); !st) return fail(st.error());
+    if (Status st = write_stats(o.stats, figures, controller, haptics.get()); !st)
+      return fail(st.error());
   }
   return 0;
 }

@@ -178,6 +178,18 @@ void SceneRenderer::draw_lines(const std::vector<glm::vec3>& points, glm::vec4 c
   glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(points.size()));
 }
 
+void SceneRenderer::draw_haptics(const SceneView& view, const HapticOverlay& overlay) {
+  const glm::mat4 vp = view.projection * view.view;
+  // Seen through the clay: the device sinks into it while the proxy rests
+  // on top, and that is what the sculptor needs to see.
+  glDisable(GL_DEPTH_TEST);
+  draw_lines(overlay.proxy, {0.95f, 0.85f, 0.35f, 1.0f}, vp);
+  if (!overlay.ghost.empty()) draw_lines(overlay.ghost, {0.55f, 0.55f, 0.60f, 1.0f}, vp);
+  draw_lines(overlay.device, {0.90f, 0.90f, 0.95f, 1.0f}, vp);
+  if (!overlay.force.empty()) draw_lines(overlay.force, {1.0f, 0.45f, 0.15f, 1.0f}, vp);
+  glEnable(GL_DEPTH_TEST);
+}
+
 void SceneRenderer::draw(const SceneView& view, const ToolDraw& tool, glm::vec3 block) {
   const glm::mat4 vp = view.projection * view.view;
   glViewport(0, 0, view.width, view.height);

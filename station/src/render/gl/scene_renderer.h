@@ -21,6 +21,7 @@
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/sculpt/sculptor.h"
 #include "sculpt/core/tool/tool.h"
+#include "sculpt/station/view/haptic_overlay.h"
 #include "sculpt/station/view/surface_mesher.h"
 
 namespace sculpt::station::gl {
@@ -73,6 +74,10 @@ class SceneRenderer {
   /// differs from the last one given; `editing` draws it highlighted.
   void set_sheet(const core::Mesh& mesh, uint64_t version, bool editing);
   void draw(const SceneView& view, const ToolDraw& tool, glm::vec3 block_dims);
+  /// Over what draw() drew: a force device's proxy, device point, ghost and
+  /// force arrow (view/haptic_overlay.h), drawn through the clay so the
+  /// device is seen where it has sunk in.
+  void draw_haptics(const SceneView& view, const HapticOverlay& overlay);
 
  private:
   SceneRenderer() = default;

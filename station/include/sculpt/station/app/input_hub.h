@@ -34,6 +34,15 @@
 
 namespace sculpt::station {
 
+/// Work that joins the sculpting thread at every poll, after the devices
+/// are read: a force device's sculpting side (haptics/haptic_station.h).
+class PollListener {
+ public:
+  virtual ~PollListener() = default;
+  /// On the sculpting thread, under mutex().
+  virtual void on_poll(StationController& controller, int64_t now_ns) = 0;
+};
+
 struct InputHubFigures {
   int64_t polls = 0;        ///< times the devices were read
   double sculpt_ms = 0;     ///< time spent sculpting what they said, summed
@@ -73,6 +82,8 @@ class InputHub {
   /// the mesher now, not at the next poll (a picture of a given frame,
   /// tests, and before start()).
   void poll_now();
+  /// Joins every poll, after the devices; set before start(). Null: none.
+  void set_listener(PollListener* listener) { listener_ = listener; }
   /// The sim device's session has played (or its device went).
   bool replay_done() const { return replay_done_.load(std::memory_order_acquire); }
   /// Under mutex().
@@ -88,6 +99,7 @@ class InputHub {
   sim::SimBackend* sim_;
   const std::string normalizer_text_;
   SurfaceMesher& mesher_;
+  PollListener* listener_ = nullptr;
 
   std::mutex mutex_;
   // Under mutex_.

@@ -55,6 +55,12 @@ struct ContactSettings {
   float force_scale = 1.0f;
   /// Device buttons that act as the clutch while held.
   uint32_t clutch_buttons = 0;
+  /// The level of the wavelet pyramid the patch is sampled at (0: full
+  /// resolution). A big tool's proxy needs the distance accurate as far out
+  /// as its radius, and a patch's cost grows with the cube of that band;
+  /// at level k the band is 2^k times narrower in the patch's voxels. The
+  /// proxy radius is in full-resolution voxels whatever the level.
+  int patch_level = 0;
 };
 
 /// One tick of contact, for the window (the device point, the proxy, the
@@ -79,6 +85,12 @@ class ContactForceLaw final : public hal::ForceLaw {
 
   glm::vec3 force_n(const hal::HapticInput& input) override;
 
+  /// Maps the device at `device_mm` to the tool at `tool_vox` (before the
+  /// loop runs: a restart keeps the tool where it was).
+  void place_tool(glm::vec3 tool_vox, glm::vec3 device_mm) {
+    offset_vox_ = tool_vox - device_mm * vox_per_device_mm_;
+    tool_vox_ = tool_vox;
+  }
   /// Holds or releases the clutch (a key), from any thread.
   void set_clutch(bool held) { clutch_key_.store(held, std::memory_order_relaxed); }
 
@@ -95,6 +107,7 @@ class ContactForceLaw final : public hal::ForceLaw {
   ContactSettings settings_;
   core::HapticRenderer renderer_;
   float vox_per_device_mm_;
+  float patch_scale_;  // full-resolution voxels per patch voxel, 2^patch_level
   glm::vec3 offset_vox_;
   glm::vec3 tool_vox_;
   std::atomic<bool> clutch_key_{false};

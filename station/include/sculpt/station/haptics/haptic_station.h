@@ -37,12 +37,11 @@
 #include "sculpt/hal/force/force_device.h"
 #include "sculpt/hal/haptics/haptic_loop.h"
 #include "sculpt/hal/haptics/haptic_thread.h"
+#include "sculpt/station/app/input_hub.h"
 #include "sculpt/station/haptics/contact_force_law.h"
 #include "sculpt/station/haptics/patch_keeper.h"
 
 namespace sculpt::station {
-
-class StationController;
 
 struct HapticStationOptions {
   /// The contact; its proxy radius follows the tool.
@@ -80,10 +79,10 @@ struct HapticFigures {
   int64_t restarts = 0;  ///< loop restarts for a new tool
 };
 
-class HapticStation {
+class HapticStation final : public PollListener {
  public:
   HapticStation(std::unique_ptr<hal::ForceDevice> device, const HapticStationOptions& options);
-  ~HapticStation();
+  ~HapticStation() override;
   HapticStation(const HapticStation&) = delete;
   HapticStation& operator=(const HapticStation&) = delete;
 
@@ -97,10 +96,20 @@ class HapticStation {
   /// The sculpting side, every poll: takes the loop's newest contact, moves
   /// the controller's tool to it (and presses), keeps the patch current.
   void sculpting_side(StationController& controller, int64_t now_ns);
+  /// The hub's poll: sculpting_side().
+  void on_poll(StationController& controller, int64_t now_ns) override {
+    sculpting_side(controller, now_ns);
+  }
 
   void enable();
   void drop();
+  bool enabled() const { return enabled_.load(); }
   void set_clutch(bool held);
+  /// New contact settings (the panel): the loop restarts with them, the
+  /// tool staying where it is, and the force ramps in again.
+  void set_contact(const ContactSettings& contact);
+  /// The settings in force (clamped to the device).
+  ContactSettings contact_settings() const;
 
   /// The newest contact the sculpting side took.
   const ContactRecord& contact() const { return contact_; }
@@ -110,8 +119,11 @@ class HapticStation {
   const hal::ForceDevice& device() const { return *device_; }
 
  private:
+  // Makes the loop (not started) with the tool at start_vox at the device's origin.
   void start_loop(glm::vec3 start_vox, float radius_vox);
   void stop_loop();
+  // A new loop with a proxy of radius_vox, the tool where it is.
+  void restart(float radius_vox);
   void drive_tool(StationController& controller, int64_t now_ns);
 
   std::unique_ptr<hal::ForceDevice> device_;
@@ -129,6 +141,8 @@ class HapticStation {
   uint64_t tool_version_ = 0;
   bool tool_seen_ = false;
   bool pressing_ = false;
+  float proxy_radius_vox_ = 0.0f;  // full-resolution voxels
+  int volume_levels_ = 5;          // of the volume the patch is read from
   glm::vec3 last_tool_vox_{-1e9f};
   // The user's intent, kept across loop restarts.
   std::atomic<bool> enabled_{false};

@@ -12,6 +12,8 @@
 // Thread safety: one thread (the sculpting thread, under the hub's mutex).
 
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -27,12 +29,20 @@ struct PatchKeeperFigures {
   int64_t refreshes = 0;  ///< after material changed under the patch
   int64_t recentres = 0;  ///< after the proxy moved away from the centre
   int64_t publishes = 0;  ///< snapshots handed to the haptic loop
+  /// The slowest update (build, refresh or re-centre, and the copy), ms: the
+  /// time the sculpting thread gave to it once.
+  double slowest_update_ms = 0.0;
 };
 
 class PatchKeeper {
  public:
   /// Publishes into `exchange`, which must have been made with options.edge.
-  PatchKeeper(core::PatchExchange& exchange, const core::DistancePatchOptions& options);
+  /// `level` > 0: the patch is of the pyramid's level `level` (its voxels
+  /// 2^level full-resolution ones a side), read from a mirror of that level
+  /// that follows the volume's changed bricks; centres are still given in
+  /// full-resolution voxels. At most the volume's levels.
+  PatchKeeper(core::PatchExchange& exchange, const core::DistancePatchOptions& options,
+              int level = 0);
 
   /// Keeps the patch around `centre_vox` (the proxy) and current with
   /// `volume`, whose `generation` moves on when it is replaced; publishes
@@ -48,8 +58,16 @@ class PatchKeeper {
   std::vector<glm::ivec3> changed_bricks(const core::Volume& volume);
   void remember_versions(const core::Volume& volume);
 
+  // The volume the patch reads: `volume` itself at level 0, else the mirror
+  // of its level, brought up to date with `changed` first.
+  const core::Volume& source(const core::Volume& volume, std::span<const glm::ivec3> changed);
+  // The mirror's bricks that source() changed.
+  std::vector<glm::ivec3> mirror_bricks();
+
   core::PatchExchange& exchange_;
   core::DistancePatch patch_;
+  int level_ = 0;
+  std::unique_ptr<core::Volume> mirror_;  // level_ > 0: the volume at level_
   bool built_ = false;
   uint64_t generation_ = 0;
   uint64_t stores_seen_ = 0;

@@ -34,6 +34,13 @@ struct WindowOptions {
   /// How far simplifying may move the drawn surface, in voxels of each
   /// brick's level (0: draw the marching-cubes meshes as they are).
   float simplify_error = SurfaceMesher::kSimplifyError;
+  /// A force device (`sim-arm:HAND_SCRIPT`, ...): its haptic loop ticks at
+  /// 1 kHz beside the window and the tool rests on the material (empty: none).
+  /// While a sim device plays a session, the force device only feels.
+  std::string haptic;
+  float haptic_stiffness_n_per_mm = 1.0f;  ///< clamped to the device's limit
+  float workspace_scale = 1.0f;            ///< material mm per device mm
+  float voxel_mm = 0.5f;                   ///< the material's voxel size
   bool vsync = true;
   bool visible = true;
   int width = 1280;
