@@ -17,7 +17,7 @@ void HapticLoop::take_request() {
   switch (request_.exchange(kNone, std::memory_order_acquire)) {
     case kEnable:
       safety_.enable();
-      if (state_ == HapticLoopState::kFaulted) state_ = HapticLoopState::kRunning;
+      if (state() == HapticLoopState::kFaulted) state_.store(HapticLoopState::kRunning);
       break;
     case kDrop:
       safety_.drop();
@@ -32,7 +32,7 @@ void HapticLoop::publish() {
 }
 
 bool HapticLoop::tick(int64_t t_ns) {
-  if (state_ == HapticLoopState::kRemoved) return false;
+  if (state() == HapticLoopState::kRemoved) return false;
   take_request();
 
   if (have_last_tick_) {
@@ -55,7 +55,7 @@ bool HapticLoop::tick(int64_t t_ns) {
     // transport that still half works (the cable back in before we noticed).
     device_.zero();
     safety_.drop();
-    state_ = HapticLoopState::kRemoved;
+    state_.store(HapticLoopState::kRemoved, std::memory_order_release);
     last_ = {t_ns, last_.position_mm, 0, glm::vec3(0.0f)};
     publish();
     return false;
@@ -63,13 +63,13 @@ bool HapticLoop::tick(int64_t t_ns) {
   if (input.device.buttons & options_.drop_buttons) safety_.drop();
 
   glm::vec3 wanted(0.0f);
-  if (read == ForceIo::kOk && input.device.homed && state_ == HapticLoopState::kRunning) {
+  if (read == ForceIo::kOk && input.device.homed && state() == HapticLoopState::kRunning) {
     try {
       wanted = law_.force_n(input);
     } catch (...) {
       // A law that throws is a bug; the hand must not feel it. Force stays
       // off until someone enables it again.
-      state_ = HapticLoopState::kFaulted;
+      state_.store(HapticLoopState::kFaulted);
       safety_.drop();
       wanted = glm::vec3(0.0f);
     }

@@ -12,7 +12,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "sculpt/hal/backends/falcon_backend.h"
 #include "sculpt/hal/registry/device_registry.h"
+#include "sculpt/hal/registry/force_devices.h"
 #include "sculpt/hal/types/quirks.h"
 
 namespace sculpt::station::cli {
@@ -56,6 +58,11 @@ int run_devices(const DevicesOptions& o) {
     for (const hal::DeviceInfo& d : l.devices)
       no_permission += !d.accessible;
   }
+  // Force devices (DESIGN.md §5a) are listed apart: they are opened with
+  // `sculpt run --haptic ID`, beside the pointing device.
+  const hal::BackendStatus falcon_status = hal::falcon_backend_status();
+  std::vector<std::string> force_problems;
+  const std::vector<hal::DeviceInfo> force = hal::list_force_devices(&force_problems);
   std::string summary;
   if (working == 0) {
     summary = "no backend could enumerate devices";
@@ -92,6 +99,18 @@ int run_devices(const DevicesOptions& o) {
       }
       j["backends"].push_back(std::move(b));
     }
+    nlohmann::json f;
+    f["name"] = "falcon";
+    f["state"] = state_name(falcon_status.state);
+    f["note"] = force_problems.empty() ? falcon_status.note : force_problems.front();
+    f["devices"] = nlohmann::json::array();
+    for (const hal::DeviceInfo& d : force)
+      f["devices"].push_back({{"name", d.name},
+                              {"vendor_product", d.vendor_product()},
+                              {"id", "falcon:" + d.path},
+                              {"usb_location", d.usb_location},
+                              {"accessible", d.accessible}});
+    j["force_backends"] = nlohmann::json::array({f});
     j["devices_found"] = found;
     j["summary"] = summary;
     std::printf("%s\n", j.dump(2).c_str());
@@ -114,6 +133,19 @@ int run_devices(const DevicesOptions& o) {
                     d.accessible ? "" : "  [no permission]");
       }
     }
+    std::string line = std::string("falcon (force, --haptic): ") + state_name(falcon_status.state);
+    if (!force_problems.empty()) {
+      line += ", enumeration failed: " + force_problems.front();
+    } else if (!falcon_status.note.empty()) {
+      line += " (" + falcon_status.note + ")";
+    } else {
+      line +=
+          force.empty() ? ", nothing attached" : ", " + std::to_string(force.size()) + " device(s)";
+    }
+    std::printf("%s\n", line.c_str());
+    for (const hal::DeviceInfo& d : force)
+      std::printf("  %-34s %s  --haptic falcon:%s%s\n", d.name.c_str(), d.vendor_product().c_str(),
+                  d.path.c_str(), d.accessible ? "" : "  [no permission]");
     std::printf("%s\n", summary.c_str());
   }
   if (working == 0) {

@@ -60,8 +60,8 @@ int run_headless(const RunOptions& o) {
 
 int run_station(const RunOptions& o) {
   if ((o.headless || !display_available()) && !o.window.haptic.empty())
-    return report(Error("--haptic " + o.window.haptic +
-                        ": a force device needs the window (and a display)"));
+    return report(
+        Error("--haptic " + o.window.haptic + ": a force device needs the window (and a display)"));
   if (o.headless) return run_headless(o);
   if (!display_available()) {
     std::printf("no display: running headless (see --out)\n");
@@ -106,7 +106,8 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_option("--frames", w.frames, "window: stop after this many frames")
       ->check(finite_positive());
   cmd->add_flag("--until-replayed", w.exit_when_replayed,
-                "window: stop when the sim device goes (its session played, or unplugged in it)");
+                "window: stop when the sim device goes (its session played, or unplugged in it); "
+                "with no session, when a simulated arm's hand script unplugs it");
   cmd->add_option("--stats", w.stats, "window: write frame times and dab latency (JSON) at exit");
   cmd->add_option("--stats-every", w.stats_every_s,
                   "window: also rewrite --stats every this many seconds (a long run's monitor)")
@@ -136,8 +137,13 @@ void add_run_command(CLI::App& app, Action& action) {
           },
           "WIDTHxHEIGHT");
   cmd->add_option("--haptic", w.haptic,
-                  "window: a force device beside the pointing device: sim-arm:HAND_SCRIPT (the "
-                  "simulated arm held by a scripted hand)");
+                  "window: a force device beside the pointing device: falcon[:USB_LOCATION] (a "
+                  "Novint Falcon) or sim-arm:HAND_SCRIPT (the simulated arm held by a scripted "
+                  "hand)");
+  cmd->add_option("--falcon-firmware", w.falcon_firmware,
+                  "window: the Novint firmware file a Falcon needs once per power-up (yours: it "
+                  "is not shipped and never downloaded)")
+      ->check(input_file());
   cmd->add_option("--haptic-stiffness", w.haptic_stiffness_n_per_mm,
                   "window: the material's stiffness under a force device, N/mm (clamped to the "
                   "device's limit)")

@@ -18,6 +18,9 @@ constexpr float kMoveEpsilonVox = 1e-3f;
 // a few milliseconds), and the coarsest level used for it.
 constexpr float kMaxPatchRadiusVox = 5.0f;
 constexpr int kMaxPatchLevel = 4;
+// A stroke started by pushing past the press threshold goes on while the
+// push stays above this share of it.
+constexpr float kStrokeHysteresis = 0.5f;
 
 }  // namespace
 
@@ -142,13 +145,29 @@ void HapticStation::sculpting_side(StationController& controller, int64_t now_ns
   for (hal::HapticTickRecord t; loop_->records().try_pop(t);)
     tick_ = t;
   if (have_contact_ && options_.drives_tool) drive_tool(controller, now_ns);
+  if (loop_->state() == hal::HapticLoopState::kRemoved) {
+    // Unplugged mid-stroke: the stroke ends where it was, nothing jerks.
+    if (pressing_) controller.pointer_up(now_ns);
+    pressing_ = false;
+    gone_.store(true, std::memory_order_release);
+  }
   keeper_->update(station.volume(), station.volume_generation(), contact_.proxy_vox);
 }
 
 void HapticStation::drive_tool(StationController& controller, int64_t now_ns) {
+  // Button 1 switches between add and subtract, as on a 3D mouse.
+  const bool mode_button = (tick_.buttons & 2u) != 0;
+  if (mode_button && !mode_button_) {
+    const core::SculptMode mode = controller.loop().settings().mode;
+    controller.set_mode(
+        mode == core::SculptMode::kAdd ? core::SculptMode::kSubtract : core::SculptMode::kAdd,
+        now_ns);
+  }
+  mode_button_ = mode_button;
   const bool button = (tick_.buttons & 1u) != 0 && !contact_.clutched;
   glm::vec3 at = contact_.proxy_vox;
   bool stroke = false;
+  bool hold = false;  // stay in the stroke without moving: no dab
   if (button) {
     if (!contact_.contact) {
       stroke = true;  // in free air: sculpt at the tool
@@ -156,9 +175,17 @@ void HapticStation::drive_tool(StationController& controller, int64_t now_ns) {
                    contact_.proxy_vox, contact_.normal, contact_.force_n, true, options_.press)) {
       stroke = true;
       at = *pressed;
+    } else if (pressing_ && glm::dot(contact_.force_n, contact_.normal) >
+                                kStrokeHysteresis * options_.press.threshold_n) {
+      // Carving takes the material from under the tool, the push drops below
+      // the threshold until the hand catches up, and rises again: the
+      // stroke goes on through the dip (one stroke, one undo) with the tool
+      // held where it last carved, so the dip carves nothing.
+      stroke = true;
+      hold = true;
     }
   }
-  if (glm::length(at - last_tool_vox_) > kMoveEpsilonVox) {
+  if (!hold && glm::length(at - last_tool_vox_) > kMoveEpsilonVox) {
     controller.pointer_move(at, now_ns);
     last_tool_vox_ = at;
   }

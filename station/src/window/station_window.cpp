@@ -19,6 +19,7 @@
 #include "sculpt/base/atomic_file.h"
 #include "sculpt/base/latency_histogram.h"
 #include "sculpt/base/thread_times.h"
+#include "sculpt/core/volume/material_bounds.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/hal/registry/device_registry.h"
 #include "sculpt/hal/registry/force_devices.h"
@@ -288,7 +289,8 @@ int run_window(const WindowOptions& o) {
     if (Status st = add_sim(o.device.substr(4)); !st) return fail(st.error());
   } else if (o.device == "auto") {
     registry->scan();
-    if (registry->open_count() == 0 && o.project.empty()) {
+    // With a force device the station is not idle: no demo then.
+    if (registry->open_count() == 0 && o.project.empty() && o.haptic.empty()) {
       std::printf("no 3D mouse found: playing the demo session as a live device\n");
       if (Status st = add_sim(sim::bundled_session_path("demo")); !st) return fail(st.error());
     }
@@ -306,7 +308,7 @@ int run_window(const WindowOptions& o) {
   // each poll.
   std::unique_ptr<HapticStation> haptics;
   if (!o.haptic.empty()) {
-    auto device = hal::open_force_device(o.haptic);
+    auto device = hal::open_force_device(o.haptic, {o.falcon_firmware});
     if (!device) return fail(device.error());
     HapticStationOptions ho;
     ho.contact.haptic.coupling.stiffness_n_per_mm = o.haptic_stiffness_n_per_mm;
@@ -359,7 +361,16 @@ int run_window(const WindowOptions& o) {
   figures.started_ns = last_frame;
   if (haptics) {
     // With the hub, so the loop's records are taken from its first tick.
-    haptics->start(controller.loop().pose().position, controller.loop().tool_size() * 0.5f);
+    // The tool starts resting over the sculpture's top, at its middle: a
+    // device at the centre of its workspace then holds the tool just above
+    // the clay, wherever the pose was left.
+    glm::vec3 start = controller.loop().pose().position;
+    if (const auto bounds = core::material_bounds(controller.loop().volume())) {
+      const glm::vec3 lo(bounds->lo), hi(bounds->hi);
+      start = glm::vec3(0.5f * (lo.x + hi.x), hi.y + controller.loop().tool_size() * 0.5f + 4.0f,
+                        0.5f * (lo.z + hi.z));
+    }
+    haptics->start(start, controller.loop().tool_size() * 0.5f);
     if (const HapticFigures hf = haptics->figures(); !hf.realtime)
       std::printf("%s\n", hf.realtime_note.c_str());
   }
@@ -372,7 +383,9 @@ int run_window(const WindowOptions& o) {
     // The sculpting thread plays a sim device's session at its own pace, so
     // it can end before a slow frame (a sanitizer's, a loaded machine's) has
     // shown anything: the frame after it shows the end, then the window goes.
-    played_out = o.exit_when_replayed && hub.replay_done();
+    // Without a session, a simulated arm's script ends the run by unplugging it.
+    played_out = o.exit_when_replayed &&
+                 (sim_backend != nullptr ? hub.replay_done() : haptics && haptics->device_gone());
     const bool final_frame = played_out || (o.frames > 0 && frame == o.frames - 1);
     // The sculpting thread holds the turn while it sculpts, tens of
     // milliseconds for a big tool's first placement: a frame that finds it

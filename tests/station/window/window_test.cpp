@@ -322,6 +322,48 @@ TEST(StationWindow, BadInputGetsOneClearError) {
   r = run_with_display("run --device nosuch:device --frames 1 --hidden", dir.path());
   EXPECT_EQ(r->exit_code, 1);
   EXPECT_EQ(line_count(r->err), 1) << r->err;
+  // Force devices: an unknown one, a missing hand script, a bad one.
+  std::ofstream(dir.file("bad.hand")) << "sculpt-hand 1\nat 0 0 0\n";
+  for (const std::string& id : {std::string("bogus"), "sim-arm:" + dir.file("missing.hand"),
+                                "sim-arm:" + dir.file("bad.hand")}) {
+    r = run_with_display("run --haptic " + id + " --frames 1 --hidden", dir.path());
+    EXPECT_EQ(r->exit_code, 1) << id;
+    EXPECT_NE(r->err.find("--haptic"), std::string::npos) << r->err;
+    EXPECT_EQ(line_count(r->err), 1) << r->err;
+  }
+}
+
+// The simulated arm as the station's only device (the bundled touch script):
+// it rests the tool on the clay, carves with force, and its recording
+// replays to the same sculpture. Counts and outcomes, not timings: the arm
+// runs in real time on its own thread, whatever the frames do.
+TEST(StationWindow, TheSimulatedArmCarvesWithForceAndItsRecordingReplays) {
+  sculpt::test::ScratchDir dir;
+  const std::string hand = std::string(SCULPT_SESSIONS_DIR) + "/touch.hand";
+  auto r = run_with_display("run --haptic sim-arm:" + hand +
+                                " --until-replayed --hidden --no-vsync --stats " +
+                                dir.file("s.json") + " --record " + dir.file("touch.scs"),
+                            dir.path());
+  if (!r) GTEST_SKIP() << "no display and no xvfb-run";
+  ASSERT_EQ(r->exit_code, 0) << r->err;
+  const auto stats = nlohmann::json::parse(read_text(dir.file("s.json")));
+  const auto& h = stats["haptics"];
+  EXPECT_EQ(h["device"], "Simulated arm");
+  EXPECT_EQ(h["ticks"].get<int64_t>(), 6200);  // the script unplugs the arm at 6.2 s
+  EXPECT_GT(h["max_force_n"].get<double>(), 2.0);
+  EXPECT_LE(h["max_force_n"].get<double>(), 8.0 + 1e-4);
+  EXPECT_GE(h["patch"]["refreshes"].get<int64_t>(), 1);
+  EXPECT_GT(stats["dabs"].get<int64_t>(), 10);
+  EXPECT_GE(stats["strokes"].get<int64_t>(), 1);
+  // Carved: less clay than the slab the window starts with (128^3 voxels).
+  EXPECT_LT(stats["solid_voxels"].get<int64_t>(), 128 * 128 * 128);
+  EXPECT_GT(stats["solid_voxels"].get<int64_t>(), 128 * 128 * 120);
+  auto recorded = load_session(dir.file("touch.scs"));
+  ASSERT_TRUE(recorded.ok()) << recorded.error().message();
+  StationLoop loop(StationLoop::Options{});
+  ASSERT_TRUE(replay_session(*recorded, "touch", loop).ok());
+  EXPECT_EQ(loop.counters().dabs, stats["dabs"].get<int64_t>());
+  EXPECT_EQ(loop.volume().content_hash(), stats["volume_hash"].get<uint64_t>());
 }
 
 }  // namespace

@@ -89,7 +89,8 @@ class HapticLoop {
   void enable() { request_.store(kEnable, std::memory_order_release); }
   void drop() { request_.store(kDrop, std::memory_order_release); }
 
-  HapticLoopState state() const { return state_; }
+  /// Any thread.
+  HapticLoopState state() const { return state_.load(std::memory_order_acquire); }
   const HapticTickRecord& last() const { return last_; }
   /// The loop's tick records, oldest first; the consumer pops them.
   SpscRing<HapticTickRecord>& records() { return records_; }
@@ -108,7 +109,7 @@ class HapticLoop {
   ForceLaw& law_;
   HapticLoopOptions options_;
   ForceSafety safety_;
-  HapticLoopState state_ = HapticLoopState::kRunning;
+  std::atomic<HapticLoopState> state_{HapticLoopState::kRunning};
   HapticTickRecord last_;
   bool have_last_tick_ = false;
   int64_t last_tick_ns_ = 0;

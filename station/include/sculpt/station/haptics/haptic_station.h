@@ -10,7 +10,8 @@
 //   sculpting thread (poll)  PatchKeeper <- proxy;  proxy -> pointer commands
 //
 // The tool follows the proxy, so it rests on the sculpture instead of
-// sinking in. Button 0 held carves (or adds) only where the device pushes
+// sinking in. Button 1 switches between add and subtract (as on a 3D
+// mouse). Button 0 held carves (or adds) only where the device pushes
 // beyond the press threshold (core/haptics/press_dab.h): resting the tool
 // on the clay carves nothing, pushing harder carves deeper and the material
 // resists. In free air the button sculpts at the tool, as with any device.
@@ -92,6 +93,9 @@ class HapticStation final : public PollListener {
   /// Stops the loop; the device is left with zero force.
   void stop();
   bool running() const { return thread_ != nullptr && thread_->running(); }
+  /// The device went away (unplugged, or the simulated arm's script ended
+  /// with an unplug); any thread.
+  bool device_gone() const { return gone_.load(std::memory_order_acquire); }
 
   /// The sculpting side, every poll: takes the loop's newest contact, moves
   /// the controller's tool to it (and presses), keeps the patch current.
@@ -141,12 +145,14 @@ class HapticStation final : public PollListener {
   uint64_t tool_version_ = 0;
   bool tool_seen_ = false;
   bool pressing_ = false;
+  bool mode_button_ = false;
   float proxy_radius_vox_ = 0.0f;  // full-resolution voxels
   int volume_levels_ = 5;          // of the volume the patch is read from
   glm::vec3 last_tool_vox_{-1e9f};
   // The user's intent, kept across loop restarts.
   std::atomic<bool> enabled_{false};
   std::atomic<bool> clutch_{false};
+  std::atomic<bool> gone_{false};
 };
 
 }  // namespace sculpt::station

@@ -38,6 +38,7 @@ struct WindowOptions {
   /// 1 kHz beside the window and the tool rests on the material (empty: none).
   /// While a sim device plays a session, the force device only feels.
   std::string haptic;
+  std::string falcon_firmware;             ///< the Novint firmware file, for --haptic falcon
   float haptic_stiffness_n_per_mm = 1.0f;  ///< clamped to the device's limit
   float workspace_scale = 1.0f;            ///< material mm per device mm
   float voxel_mm = 0.5f;                   ///< the material's voxel size
