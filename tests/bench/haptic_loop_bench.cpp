@@ -16,12 +16,12 @@
 #include <thread>
 #include <vector>
 
+#include "sculpt/core/haptics/patch_keeper.h"
 #include "sculpt/hal/force/sim_arm.h"
 #include "sculpt/hal/haptics/haptic_loop.h"
 #include "sculpt/hal/haptics/haptic_thread.h"
 #include "sculpt/station/app/station_loop.h"
 #include "sculpt/station/haptics/contact_force_law.h"
-#include "sculpt/station/haptics/patch_keeper.h"
 
 namespace sculpt::station {
 namespace {
@@ -44,7 +44,7 @@ struct Rig {
       core::patch_edge_for_reach(0.0f, core::band_for_sphere(kRadiusVox)),
       core::band_for_sphere(kRadiusVox), 1};
   core::PatchExchange exchange{options.edge};
-  PatchKeeper keeper{exchange, options};
+  core::PatchKeeper keeper{exchange, options};
   hal::SimArm arm;
   ContactForceLaw law;
   hal::HapticLoop loop;

@@ -65,7 +65,7 @@ void HapticStation::start_loop(glm::vec3 start_vox, float radius_vox) {
   // A new exchange for the new patch size: the old loop has stopped reading
   // the old one.
   exchange_ = std::make_unique<core::PatchExchange>(patch.edge);
-  keeper_ = std::make_unique<PatchKeeper>(*exchange_, patch, level);
+  keeper_ = std::make_unique<core::PatchKeeper>(*exchange_, patch, level);
   law_ = std::make_unique<ContactForceLaw>(*exchange_, device_->limits(), contact, start_vox);
   law_->set_clutch(clutch_.load());
   loop_ = std::make_unique<hal::HapticLoop>(*device_, *law_, options_.loop);

@@ -34,13 +34,13 @@
 #include <glm/vec3.hpp>
 
 #include "sculpt/core/haptics/patch_exchange.h"
+#include "sculpt/core/haptics/patch_keeper.h"
 #include "sculpt/core/haptics/press_dab.h"
 #include "sculpt/hal/force/force_device.h"
 #include "sculpt/hal/haptics/haptic_loop.h"
 #include "sculpt/hal/haptics/haptic_thread.h"
 #include "sculpt/station/app/input_hub.h"
 #include "sculpt/station/haptics/contact_force_law.h"
-#include "sculpt/station/haptics/patch_keeper.h"
 
 namespace sculpt::station {
 
@@ -76,7 +76,7 @@ struct HapticFigures {
   float ramp = 0.0f;
   bool realtime = false;
   std::string realtime_note;
-  PatchKeeperFigures patch;
+  core::PatchKeeperFigures patch;
   int64_t restarts = 0;  ///< loop restarts for a new tool
 };
 
@@ -133,7 +133,7 @@ class HapticStation final : public PollListener {
   std::unique_ptr<hal::ForceDevice> device_;
   HapticStationOptions options_;
   std::unique_ptr<core::PatchExchange> exchange_;
-  std::unique_ptr<PatchKeeper> keeper_;
+  std::unique_ptr<core::PatchKeeper> keeper_;
   std::unique_ptr<ContactForceLaw> law_;
   std::unique_ptr<hal::HapticLoop> loop_;
   std::unique_ptr<hal::HapticThread> thread_;

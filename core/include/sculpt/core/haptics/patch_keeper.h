@@ -1,7 +1,7 @@
 #pragma once
 // The sculpting thread's half of the haptic contact (DESIGN.md §5a): it keeps
 // the distance patch around the proxy and current with the material, and
-// publishes it to the haptic loop (core::PatchExchange) only when it changed.
+// publishes it to the haptic loop (PatchExchange) only when it changed.
 // Called every poll (1 kHz): when nothing was sculpted and the proxy stays
 // near the patch's centre, it costs a comparison of two counters.
 //
@@ -9,7 +9,7 @@
 // the patch shares the volume with the mesher and the project's autosave
 // without taking their changes from them.
 //
-// Thread safety: one thread (the sculpting thread, under the hub's mutex).
+// Thread safety: one thread (the station's sculpting thread).
 
 #include <cstdint>
 #include <memory>
@@ -22,7 +22,7 @@
 #include "sculpt/core/haptics/patch_exchange.h"
 #include "sculpt/core/volume/volume.h"
 
-namespace sculpt::station {
+namespace sculpt::core {
 
 struct PatchKeeperFigures {
   int64_t builds = 0;     ///< from scratch (first time, a new volume)
@@ -41,33 +41,32 @@ class PatchKeeper {
   /// 2^level full-resolution ones a side), read from a mirror of that level
   /// that follows the volume's changed bricks; centres are still given in
   /// full-resolution voxels. At most the volume's levels.
-  PatchKeeper(core::PatchExchange& exchange, const core::DistancePatchOptions& options,
-              int level = 0);
+  PatchKeeper(PatchExchange& exchange, const DistancePatchOptions& options, int level = 0);
 
   /// Keeps the patch around `centre_vox` (the proxy) and current with
   /// `volume`, whose `generation` moves on when it is replaced; publishes
   /// when anything changed. Returns whether it published.
-  bool update(const core::Volume& volume, uint64_t generation, glm::vec3 centre_vox);
+  bool update(const Volume& volume, uint64_t generation, glm::vec3 centre_vox);
 
-  const core::DistancePatch& patch() const { return patch_; }
+  const DistancePatch& patch() const { return patch_; }
   const PatchKeeperFigures& figures() const { return figures_; }
 
  private:
   // Bricks whose version moved since the last look, among those whose
   // material the patch's values can depend on.
-  std::vector<glm::ivec3> changed_bricks(const core::Volume& volume);
-  void remember_versions(const core::Volume& volume);
+  std::vector<glm::ivec3> changed_bricks(const Volume& volume);
+  void remember_versions(const Volume& volume);
 
   // The volume the patch reads: `volume` itself at level 0, else the mirror
   // of its level, brought up to date with `changed` first.
-  const core::Volume& source(const core::Volume& volume, std::span<const glm::ivec3> changed);
+  const Volume& source(const Volume& volume, std::span<const glm::ivec3> changed);
   // The mirror's bricks that source() changed.
   std::vector<glm::ivec3> mirror_bricks();
 
-  core::PatchExchange& exchange_;
-  core::DistancePatch patch_;
+  PatchExchange& exchange_;
+  DistancePatch patch_;
   int level_ = 0;
-  std::unique_ptr<core::Volume> mirror_;  // level_ > 0: the volume at level_
+  std::unique_ptr<Volume> mirror_;  // level_ > 0: the volume at level_
   bool built_ = false;
   uint64_t generation_ = 0;
   uint64_t stores_seen_ = 0;
@@ -75,4 +74,4 @@ class PatchKeeper {
   PatchKeeperFigures figures_;
 };
 
-}  // namespace sculpt::station
+}  // namespace sculpt::core

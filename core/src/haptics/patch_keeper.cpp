@@ -1,18 +1,18 @@
-#include "sculpt/station/haptics/patch_keeper.h"
+#include "sculpt/core/haptics/patch_keeper.h"
 
 #include <algorithm>
 #include <cassert>
 #include <chrono>
 #include <cmath>
 
-namespace sculpt::station {
+namespace sculpt::core {
 namespace {
 
 // A value depends on the material within its seed reach + 2 voxels
 // (distance_patch.h); the band plus that margin bounds the reach. In the
 // patch's voxels.
-core::Box watched_region(const core::DistancePatch& patch) {
-  core::Box box = patch.box();
+Box watched_region(const DistancePatch& patch) {
+  Box box = patch.box();
   const int margin = static_cast<int>(std::ceil(patch.options().band_vox)) + 4;
   box.lo -= margin;
   box.hi += margin;
@@ -20,15 +20,14 @@ core::Box watched_region(const core::DistancePatch& patch) {
 }
 
 // A level's mirror only ever reads its own level 0: small bricks, one level.
-constexpr core::VolumeOptions kMirrorOptions{16, 1, 1};
+constexpr VolumeOptions kMirrorOptions{16, 1, 1};
 
 }  // namespace
 
-PatchKeeper::PatchKeeper(core::PatchExchange& exchange, const core::DistancePatchOptions& options,
-                         int level)
+PatchKeeper::PatchKeeper(PatchExchange& exchange, const DistancePatchOptions& options, int level)
     : exchange_(exchange), patch_(options), level_(std::max(level, 0)) {}
 
-void PatchKeeper::remember_versions(const core::Volume& volume) {
+void PatchKeeper::remember_versions(const Volume& volume) {
   const glm::ivec3 grid = volume.brick_grid();
   versions_.assign(static_cast<size_t>(volume.brick_count()), 0);
   for (int z = 0; z < grid.z; ++z)
@@ -39,12 +38,12 @@ void PatchKeeper::remember_versions(const core::Volume& volume) {
   stores_seen_ = volume.stores();
 }
 
-std::vector<glm::ivec3> PatchKeeper::changed_bricks(const core::Volume& volume) {
+std::vector<glm::ivec3> PatchKeeper::changed_bricks(const Volume& volume) {
   std::vector<glm::ivec3> changed;
   const glm::ivec3 grid = volume.brick_grid();
   // At level 0 only the bricks under the patch matter: a re-centre reads
   // the others afresh. A level's mirror must follow every brick.
-  core::Box bricks{glm::ivec3(0), grid};
+  Box bricks{glm::ivec3(0), grid};
   if (level_ == 0) bricks = volume.bricks_overlapping(watched_region(patch_));
   for (int z = bricks.lo.z; z < bricks.hi.z; ++z)
     for (int y = bricks.lo.y; y < bricks.hi.y; ++y)
@@ -62,27 +61,26 @@ std::vector<glm::ivec3> PatchKeeper::mirror_bricks() {
   return mirror_->take_dirty_bricks();
 }
 
-const core::Volume& PatchKeeper::source(const core::Volume& volume,
-                                        std::span<const glm::ivec3> changed) {
+const Volume& PatchKeeper::source(const Volume& volume, std::span<const glm::ivec3> changed) {
   if (level_ == 0) return volume;
   const int round_up = (1 << level_) - 1;
   for (const glm::ivec3& b : changed) {
-    const core::Box box = volume.brick_box(b);
-    const core::Box at_level{box.lo >> level_, (box.hi + round_up) >> level_};
+    const Box box = volume.brick_box(b);
+    const Box at_level{box.lo >> level_, (box.hi + round_up) >> level_};
     mirror_->write(at_level.lo, volume.read(at_level, level_));
   }
   return *mirror_;
 }
 
-bool PatchKeeper::update(const core::Volume& volume, uint64_t generation, glm::vec3 centre_vox) {
+bool PatchKeeper::update(const Volume& volume, uint64_t generation, glm::vec3 centre_vox) {
   assert(level_ <= volume.levels());
   const auto started = std::chrono::steady_clock::now();
   const glm::vec3 centre = centre_vox / static_cast<float>(1 << level_);
   bool changed = false;
   if (!built_ || generation != generation_) {
     if (level_ > 0)
-      mirror_ = std::make_unique<core::Volume>(
-          core::Volume::from_dense(volume.to_dense(level_), kMirrorOptions));
+      mirror_ =
+          std::make_unique<Volume>(Volume::from_dense(volume.to_dense(level_), kMirrorOptions));
     patch_.build(level_ > 0 ? *mirror_ : volume, centre);
     if (mirror_) (void)mirror_->take_dirty_bricks();
     remember_versions(volume);
@@ -94,7 +92,7 @@ bool PatchKeeper::update(const core::Volume& volume, uint64_t generation, glm::v
     if (volume.stores() != stores_seen_) {
       const std::vector<glm::ivec3> bricks = changed_bricks(volume);
       if (!bricks.empty()) {
-        const core::Volume& from = source(volume, bricks);
+        const Volume& from = source(volume, bricks);
         if (level_ == 0) {
           patch_.refresh_bricks(from, bricks);
         } else {
@@ -114,7 +112,7 @@ bool PatchKeeper::update(const core::Volume& volume, uint64_t generation, glm::v
     }
   }
   if (changed) {
-    core::copy_snapshot(patch_.snapshot(), exchange_.back());
+    copy_snapshot(patch_.snapshot(), exchange_.back());
     exchange_.publish();
     ++figures_.publishes;
     const std::chrono::duration<double, std::milli> took =
@@ -124,4 +122,4 @@ bool PatchKeeper::update(const core::Volume& volume, uint64_t generation, glm::v
   return changed;
 }
 
-}  // namespace sculpt::station
+}  // namespace sculpt::core
