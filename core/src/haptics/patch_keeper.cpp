@@ -24,8 +24,22 @@ constexpr VolumeOptions kMirrorOptions{16, 1, 1};
 
 }  // namespace
 
+SpherePatch sphere_patch(float radius_vox, int max_level) {
+  SpherePatch p;
+  const float r = std::max(radius_vox, 0.0f);
+  while (p.level < max_level && r / p.scale() > kMaxSpherePatchRadiusVox)
+    ++p.level;
+  p.options.band_vox = band_for_sphere(r / p.scale());
+  p.options.edge = patch_edge_for_reach(0.0f, p.options.band_vox);
+  p.options.threads = 1;
+  return p;
+}
+
 PatchKeeper::PatchKeeper(PatchExchange& exchange, const DistancePatchOptions& options, int level)
-    : exchange_(exchange), patch_(options), level_(std::max(level, 0)) {}
+    : exchange_(&exchange), patch_(options), level_(std::max(level, 0)) {}
+
+PatchKeeper::PatchKeeper(const DistancePatchOptions& options, int level)
+    : exchange_(nullptr), patch_(options), level_(std::max(level, 0)) {}
 
 void PatchKeeper::remember_versions(const Volume& volume) {
   const glm::ivec3 grid = volume.brick_grid();
@@ -75,7 +89,8 @@ const Volume& PatchKeeper::source(const Volume& volume, std::span<const glm::ive
 bool PatchKeeper::update(const Volume& volume, uint64_t generation, glm::vec3 centre_vox) {
   assert(level_ <= volume.levels());
   const auto started = std::chrono::steady_clock::now();
-  const glm::vec3 centre = centre_vox / static_cast<float>(1 << level_);
+  const SpherePatch mapping{level_, {}};
+  const glm::vec3 centre = mapping.to_patch(centre_vox);
   bool changed = false;
   if (!built_ || generation != generation_) {
     if (level_ > 0)
@@ -112,8 +127,10 @@ bool PatchKeeper::update(const Volume& volume, uint64_t generation, glm::vec3 ce
     }
   }
   if (changed) {
-    copy_snapshot(patch_.snapshot(), exchange_.back());
-    exchange_.publish();
+    if (exchange_ != nullptr) {
+      copy_snapshot(patch_.snapshot(), exchange_->back());
+      exchange_->publish();
+    }
     ++figures_.publishes;
     const std::chrono::duration<double, std::milli> took =
         std::chrono::steady_clock::now() - started;

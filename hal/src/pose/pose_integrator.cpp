@@ -25,6 +25,11 @@ void PoseIntegrator::clamp_position(glm::vec3 lo, glm::vec3 hi) {
   pose_.position = glm::vec3(clamped);
 }
 
+void PoseIntegrator::place(glm::vec3 position) {
+  position_ = glm::dvec3(position);
+  pose_.position = position;
+}
+
 const ToolPose& PoseIntegrator::update(const InputEvent& m) {
   if (m.kind != InputKind::kMotion) return pose_;
   const bool position =

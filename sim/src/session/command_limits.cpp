@@ -113,6 +113,8 @@ std::optional<std::string> command_problem(const Command& c) {
         return "sheet influence " + number(c.values[1]) + " is not 0, 1 or 2";
       return std::nullopt;
     }
+    case CommandKind::kTouch:
+      return choice_below(2, "touch");
     case CommandKind::kPress:
     case CommandKind::kRelease:
     case CommandKind::kUndo:

@@ -10,9 +10,9 @@ namespace {
 constexpr std::array<std::string_view, kCommandKindCount> kCommandNames = {
     "press", "release", "tool",   "mode",      "strength", "spacing",          "mirror",
     "undo",  "redo",    "volume", "tool_pose", "pointer",  "tool_from_region", "hypertexture",
-    "sheet"};
+    "sheet", "touch"};
 constexpr std::array<int, kCommandKindCount> kValueCounts = {0, 0, 2, 0, 1, 1, 1, 0,
-                                                             0, 4, 7, 7, 6, 6, 6};
+                                                             0, 4, 7, 7, 6, 6, 6, 0};
 constexpr std::array<std::string_view, kToolShapeCount> kShapeNames = {"sphere", "cube", "cylinder",
                                                                        "ring", "cone"};
 constexpr std::array<std::string_view, kSculptModeCount> kModeNames = {"add", "subtract", "union",

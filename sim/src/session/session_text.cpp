@@ -240,6 +240,9 @@ ordered record_json(const SessionRecord& r) {
     case CommandKind::kSheet:
       sheet_json(c, j);
       break;
+    case CommandKind::kTouch:
+      j["on"] = c.choice != 0;
+      break;
     default:
       break;
   }
@@ -401,6 +404,12 @@ SessionRecord parse_command(const json& j, int64_t t) {
     case CommandKind::kSheet:
       read_sheet(j, c);
       break;
+    case CommandKind::kTouch: {
+      const json& on = need(j, "on");
+      if (!on.is_boolean()) throw std::string("on: expected true or false");
+      c.choice = on.get<bool>() ? 1 : 0;
+      break;
+    }
     default:
       break;
   }

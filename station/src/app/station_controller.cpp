@@ -81,6 +81,12 @@ void StationController::set_strength(float s, int64_t now_ns) {
 void StationController::set_spacing(float s, int64_t now_ns) {
   command(make_command(sim::CommandKind::kSpacing, 0, {std::max(s, 0.01f)}), now_ns);
 }
+void StationController::set_touch(bool on, int64_t now_ns) {
+  command(make_command(sim::CommandKind::kTouch, on ? 1 : 0), now_ns);
+  status_ = on ? "touch mode: the tool rests on the clay; push past the threshold to sculpt"
+               : "touch mode off: the tool passes through the clay";
+}
+
 void StationController::set_mirror(std::optional<int> axis, int64_t now_ns) {
   if (!axis) {
     command(make_command(sim::CommandKind::kMirror, sim::kMirrorOff, {0.0f}), now_ns);
@@ -195,6 +201,9 @@ bool StationController::perform(Action action, int64_t now_ns) {
       return true;
     case Action::kToggleMirror:
       set_mirror(s.mirror ? std::nullopt : std::optional<int>(0), now_ns);
+      return true;
+    case Action::kToggleTouch:
+      set_touch(!s.touch, now_ns);
       return true;
     case Action::kToggleDeviceTarget:
       device_target_ =

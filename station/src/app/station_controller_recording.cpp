@@ -38,6 +38,7 @@ std::vector<sim::Command> StationController::opening_commands(bool with_block) c
   c.push_back(make_command(sim::CommandKind::kSheet, static_cast<uint8_t>(sim::SheetAction::kEdit),
                            {s.sheet_editing ? 1.0f : 0.0f, static_cast<float>(drag.influence),
                             static_cast<float>(drag.radius)}));
+  c.push_back(make_command(sim::CommandKind::kTouch, s.touch ? 1 : 0));
   c.push_back(make_command(sim::CommandKind::kToolPose, 0,
                            {p.position.x, p.position.y, p.position.z, p.orientation.w,
                             p.orientation.x, p.orientation.y, p.orientation.z}));

@@ -159,6 +159,36 @@ void StationLoop::tool_moved() {
   sculpt(dabs_);
 }
 
+void StationLoop::touch_moved(const hal::InputEvent& e) {
+  const float radius = tool_size() * 0.5f;
+  const glm::vec3 device = integrator_.pose().position;
+  // How far the device pushes: a 3D mouse's cap, its largest translation
+  // axis; a device in position control has no cap, and pushes as far as it
+  // has gone past the proxy, a tool's radius counting as full.
+  float deflection = 0.0f;
+  if (e.absolute) {
+    deflection =
+        std::min(glm::length(device - touch_.last().proxy_vox) / std::max(radius, 1.0f), 1.0f);
+  } else {
+    for (int a = hal::kTx; a <= hal::kTz; ++a)
+      deflection = std::max(deflection, std::abs(e.axes[static_cast<size_t>(a)]));
+  }
+  const TouchResult& t = touch_.update(*volume_, volume_generation_, device, deflection, radius);
+  // The device point never sinks into the material: it stays on the proxy,
+  // so pulling the cap back lifts the tool at once (a rate-controlled point
+  // left inside would have to travel back out first). A device in position
+  // control sets it afresh with its next sample.
+  integrator_.place(t.proxy_vox);
+  if (pressed_ && t.contact && !t.pressing_in) {
+    // Resting on the material with the button held sculpts nothing: the
+    // stroke goes on, the tool held where it last sculpted.
+    return;
+  }
+  integrator_.place(t.tool_vox);
+  tool_moved();
+  integrator_.place(t.proxy_vox);
+}
+
 void StationLoop::handle(const sim::Command& c) {
   using K = sim::CommandKind;
   switch (c.kind) {
@@ -203,6 +233,10 @@ void StationLoop::handle(const sim::Command& c) {
     case K::kRedo:
       if (pressed_) release();
       counters_.redos += (settings_.sheet_editing ? sheet_.redo() : sculptor_->redo()) ? 1 : 0;
+      break;
+    case K::kTouch:
+      settings_.touch = c.choice != 0;
+      touch_.reset();
       break;
     case K::kSheet:
       sheet_command(c);
@@ -277,7 +311,15 @@ void StationLoop::press() {
   ++counters_.strokes;
   sculptor_->begin_stroke();
   dabs_.clear();
+  // In touch mode, pressing while the tool rests on the material sculpts
+  // nothing yet (the push past the threshold does, touch_moved()); pressing
+  // while pushing past it starts where the push puts the tool.
+  const TouchResult& t = touch_.last();
+  const bool touching = settings_.touch && !settings_.sheet_editing && t.contact;
+  if (touching && t.pressing_in) integrator_.place(t.tool_vox);
   sampler_.begin(integrator_.pose(), dabs_);
+  if (touching) integrator_.place(t.proxy_vox);
+  if (touching && !t.pressing_in) return;
   sculpt(dabs_);
 }
 
@@ -316,7 +358,11 @@ void StationLoop::handle(const hal::InputEvent& e) {
       // drive the pose (and the stroke's dabs behind it) out without bound.
       const glm::vec3 margin(sim::kMaxToolSizeVox + 1.0f);
       integrator_.clamp_position(-margin, glm::vec3(volume_->dims()) + margin);
-      tool_moved();
+      if (settings_.touch && !settings_.sheet_editing) {
+        touch_moved(e);
+      } else {
+        tool_moved();
+      }
       break;
     }
     case hal::InputKind::kButton:

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sculpt/core/haptics/patch_keeper.h"
+
 namespace sculpt::station {
 namespace {
 
@@ -40,7 +42,6 @@ ContactForceLaw::ContactForceLaw(core::PatchExchange& patches, const hal::ForceL
       settings_(clamped(settings, limits)),
       renderer_(settings_.haptic),
       vox_per_device_mm_(settings_.workspace_scale / settings_.voxel_mm),
-      patch_scale_(static_cast<float>(1 << settings_.patch_level)),
       offset_vox_(start_vox),
       tool_vox_(start_vox),
       contacts_(kContactRecords) {}
@@ -60,9 +61,10 @@ glm::vec3 ContactForceLaw::force_n(const hal::HapticInput& input) {
   record.clutched = clutched;
   const core::PatchSnapshot& patch = patches_.acquire();
   if (!patch.empty() && !clutched) {
+    const core::SpherePatch mapping{settings_.patch_level, {}};
     const core::HapticTick& tick =
-        renderer_.tick(patch, tool_vox_ / patch_scale_, static_cast<double>(input.t_ns) * 1e-9);
-    record.proxy_vox = tick.proxy.position_vox * patch_scale_;
+        renderer_.tick(patch, mapping.to_patch(tool_vox_), static_cast<double>(input.t_ns) * 1e-9);
+    record.proxy_vox = mapping.from_patch(tick.proxy.position_vox);
     record.contact = tick.proxy.contact;
     record.normal = tick.proxy.normal;
     record.force_n = tick.force_n * settings_.force_scale;

@@ -14,9 +14,7 @@ namespace {
 // The tool moves with the proxy only when it moved this far: a device at
 // rest (its encoders flickering by a count) records no commands.
 constexpr float kMoveEpsilonVox = 1e-3f;
-// The proxy's radius in the patch's voxels at most (band 8: a patch built in
-// a few milliseconds), and the coarsest level used for it.
-constexpr float kMaxPatchRadiusVox = 5.0f;
+// The coarsest level a proxy's patch is read from.
 constexpr int kMaxPatchLevel = 4;
 // A stroke started by pushing past the press threshold goes on while the
 // push stays above this share of it.
@@ -49,19 +47,13 @@ void HapticStation::start_loop(glm::vec3 start_vox, float radius_vox) {
   ContactSettings contact = options_.contact;
   proxy_radius_vox_ = std::max(radius_vox, 0.0f);
   contact.haptic.proxy.radius_vox = proxy_radius_vox_;
-  // A sphere proxy reads the field at its centre only (phi - r), so the
-  // patch needs the band around the centre's path, not the sphere's reach
-  // too. The band must reach past r, and a patch's cost grows with the cube
-  // of its band (a 24-voxel radius costs a second at full resolution, 4
-  // voxels 2 ms): a big tool's patch is sampled from a coarser level of the
-  // pyramid, where its radius is at most kMaxPatchRadiusVox.
-  int level = 0;
-  while (level < std::min(kMaxPatchLevel, volume_levels_) &&
-         proxy_radius_vox_ / static_cast<float>(1 << level) > kMaxPatchRadiusVox)
-    ++level;
-  contact.patch_level = level;
-  const float band = core::band_for_sphere(proxy_radius_vox_ / static_cast<float>(1 << level));
-  const core::DistancePatchOptions patch{core::patch_edge_for_reach(0.0f, band), band, 1};
+  // The patch's level and size for the proxy (patch_keeper.h): a big
+  // tool's is read from a coarser level of the pyramid.
+  const core::SpherePatch sphere =
+      core::sphere_patch(proxy_radius_vox_, std::min(kMaxPatchLevel, volume_levels_));
+  contact.patch_level = sphere.level;
+  const core::DistancePatchOptions& patch = sphere.options;
+  const int level = sphere.level;
   // A new exchange for the new patch size: the old loop has stopped reading
   // the old one.
   exchange_ = std::make_unique<core::PatchExchange>(patch.edge);

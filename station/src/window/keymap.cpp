@@ -54,6 +54,8 @@ std::optional<Action> shortcut(int key, int mods) {
       return Action::kToggleMirror;
     case GLFW_KEY_C:
       return Action::kToggleDeviceTarget;
+    case GLFW_KEY_U:
+      return Action::kToggleTouch;
     case GLFW_KEY_R:
       return Action::kToggleRecording;
     case GLFW_KEY_F:
@@ -103,6 +105,8 @@ const char* shortcut_label(Action action) {
       return "X";
     case Action::kToggleDeviceTarget:
       return "C";
+    case Action::kToggleTouch:
+      return "U";
     case Action::kToggleRecording:
       return "R";
     case Action::kSave:

@@ -55,6 +55,9 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     ImGui::RadioButton("moves the camera", &target, 1);
     tip(Action::kToggleDeviceTarget);
     c_.set_device_target(target == 0 ? DeviceTarget::kTool : DeviceTarget::kCamera);
+    bool touch = c_.loop().settings().touch;
+    if (ImGui::Checkbox("touch mode: the tool rests on the clay", &touch)) c_.set_touch(touch, now);
+    tip(Action::kToggleTouch);
     ImGui::SliderFloat("sensitivity", &sensitivity_, 0.1f, 4.0f, "%.2f");
     ImGui::SliderFloat("deadzone", &deadzone_, 0.0f, 0.5f, "%.2f");
     if (ImGui::Button("Save input settings")) (void)c_.save_input_settings(sensitivity_, deadzone_);

@@ -32,13 +32,12 @@ Volume clay_block(glm::ivec3 dims, int margin) {
 // The snapshot a from-scratch build on `volume` (at `level`) gives.
 PatchSnapshot fresh(const Volume& volume, int level, const DistancePatchOptions& options,
                     glm::vec3 centre_vox) {
-  const float scale = static_cast<float>(1 << level);
   DistancePatch patch(options);
   if (level == 0) {
     patch.build(volume, centre_vox);
   } else {
     const Volume coarse = Volume::from_dense(volume.to_dense(level), VolumeOptions{16, 1, 1});
-    patch.build(coarse, centre_vox / scale);
+    patch.build(coarse, SpherePatch{level, {}}.to_patch(centre_vox));
   }
   return patch.snapshot();
 }

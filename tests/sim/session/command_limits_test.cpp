@@ -36,6 +36,7 @@ TEST(CommandLimits, CommandsTheStationWritesPass) {
   EXPECT_FALSE(command_problem(command(CommandKind::kVolume, kVolumeFill, {65536, 65536, 1, 0})));
   EXPECT_FALSE(command_problem(command(CommandKind::kToolPose, 0, {10, -5, 3, 1, 0, 0, 0})));
   EXPECT_FALSE(command_problem(command(CommandKind::kSheet, 0, {64, 64, 64, 100, 8, 2})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kTouch, 1, {})));
 }
 
 TEST(CommandLimits, EachOutOfRangeFieldIsNamed) {
@@ -51,6 +52,7 @@ TEST(CommandLimits, EachOutOfRangeFieldIsNamed) {
       {command(CommandKind::kSheet, 6, {0, 0, 0, 0, 0, 0}), "sheet action 6 unknown"},
       {command(CommandKind::kSheet, 0, {0, 0, 0, 10, 8, 7}), "sheet axis 7"},
       {command(CommandKind::kPress, 9, {}), "choice 9 unknown"},
+      {command(CommandKind::kTouch, 2, {}), "touch 2 unknown"},
       {command(CommandKind::kTool, 0, {500, 4}), "tool size 500 is outside (0, 256]"},
       {command(CommandKind::kTool, 0, {nan, 4}), "value 0 is not a finite number"},
       {command(CommandKind::kStrength, 0, {inf}), "value 0 is not a finite number"},

@@ -122,6 +122,33 @@ TEST(SessionText, ReadsAHandWrittenSessionWithPastedHex) {
   EXPECT_EQ(s->records[2].command.values[0], 31.5f);
 }
 
+TEST(SessionText, TouchModeRoundTripsAndABadOneIsRefused) {
+  const std::string text = R"({"sculpt_session": 1, "device": {"vendor_product": "046d:c626"}})"
+                           "\n"
+                           R"({"t": 1, "cmd": "touch", "on": true})"
+                           "\n"
+                           R"({"t": 2, "cmd": "touch", "on": false})"
+                           "\n";
+  const auto s = session_from_text(text, "touch.jsonl");
+  ASSERT_TRUE(s.ok()) << s.error().message();
+  ASSERT_EQ(s->records.size(), 2u);
+  EXPECT_EQ(s->records[0].command.kind, CommandKind::kTouch);
+  EXPECT_EQ(s->records[0].command.choice, 1);
+  EXPECT_EQ(s->records[1].command.choice, 0);
+  const auto again = session_from_text(session_to_text(*s), "again");
+  ASSERT_TRUE(again.ok()) << again.error().message();
+  EXPECT_EQ(*again, *s);
+  const auto bad =
+      session_from_text(R"({"sculpt_session": 1, "device": {"vendor_product": "046d:c626"}})"
+                        "\n"
+                        R"({"t": 1, "cmd": "touch", "on": 3})"
+                        "\n",
+                        "bad.jsonl");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message().find("on: expected true or false"), std::string::npos)
+      << bad.error().message();
+}
+
 TEST(SessionText, SheetCommandsRoundTripThroughTextAndBinary) {
   const std::string text =
       R"({"sculpt_session": 1, "device": {"vendor_product": "046d:c626"}})"

@@ -33,6 +33,8 @@ TEST(StationShortcuts, ReachTheSheetAndTurnTheTool) {
   EXPECT_EQ(shortcut(GLFW_KEY_Q, 0), Action::kTurnToolLeft);
   EXPECT_EQ(shortcut(GLFW_KEY_E, GLFW_MOD_SHIFT), Action::kTiltToolDown);
   EXPECT_STREQ(shortcut_label(Action::kNewSheet), "N");
+  EXPECT_EQ(shortcut(GLFW_KEY_U, 0), Action::kToggleTouch);
+  EXPECT_STREQ(shortcut_label(Action::kToggleTouch), "U");
 }
 
 }  // namespace

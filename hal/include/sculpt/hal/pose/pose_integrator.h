@@ -46,6 +46,10 @@ class PoseIntegrator {
   /// around the volume, so a device held at full deflection cannot drive it
   /// (and the stroke behind it) out to infinity.
   void clamp_position(glm::vec3 lo, glm::vec3 hi);
+  /// Puts the tool at `position` without forgetting the time of the last
+  /// sample (the station's touch mode holds it on the material); the next
+  /// rate-control sample moves it on from there.
+  void place(glm::vec3 position);
   void reset(ToolPose start);
 
  private:

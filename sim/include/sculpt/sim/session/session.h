@@ -44,8 +44,11 @@ enum class CommandKind : uint8_t {
   kHypertexture,
   /// The NURBS sheet: choice = SheetAction (see there for the values).
   kSheet,
+  /// Touch mode for devices without force output: choice 1 on, 0 off (the
+  /// tool stops on the material and presses in as the cap is pushed).
+  kTouch,
 };
-inline constexpr uint8_t kCommandKindCount = 15;
+inline constexpr uint8_t kCommandKindCount = 16;
 inline constexpr uint8_t kVolumeFill = 0;
 inline constexpr uint8_t kVolumeClay = 1;
 

@@ -57,6 +57,7 @@ enum class Action {
   kWeaker,
   kToggleMirror,
   kToggleDeviceTarget,
+  kToggleTouch,  ///< touch mode (touch_mode.h)
   kToggleRecording,
   kSave,
   kExportMesh,
@@ -124,6 +125,9 @@ class StationController {
   void set_spacing(float spacing, int64_t now_ns);
   /// axis 0..2 mirrors across the block's middle plane on that axis.
   void set_mirror(std::optional<int> axis, int64_t now_ns);
+  /// Touch mode (touch_mode.h): the tool rests on the material and presses
+  /// in as the device pushes; for devices without force output.
+  void set_touch(bool on, int64_t now_ns);
   void undo(int64_t now_ns);
   void redo(int64_t now_ns);
   /// The material's bounding box becomes the tool (false, with the reason

@@ -5,7 +5,9 @@
 // session ran.
 //
 // Device buttons: button 0 presses the tool into the material while held;
-// button 1 switches between add and subtract. A device that vanishes while
+// button 1 switches between add and subtract. In touch mode (touch_mode.h)
+// the tool rests on the material and button 0 sculpts only where the device
+// pushes past the press threshold. A device that vanishes while
 // pressed ends the stroke cleanly.
 //
 // Thread safety: one thread (the main loop) calls everything.
@@ -24,6 +26,7 @@
 #include "sculpt/hal/types/input_event.h"
 #include "sculpt/sim/session/session.h"
 #include "sculpt/station/app/sheet_editor.h"
+#include "sculpt/station/app/touch_mode.h"
 #include "sculpt/station/settings/station_settings.h"
 
 namespace sculpt::station {
@@ -108,6 +111,8 @@ class StationLoop {
   void release();
   void sculpt(const std::vector<hal::Dab>& dabs);
   void tool_moved();
+  // Touch mode's half of a motion sample: the tool onto the proxy.
+  void touch_moved(const hal::InputEvent& e);
   void sheet_command(const sim::Command& command);
   void sheet_into_material(float thickness_vox, bool add);
   void sheet_as_tool(float thickness_vox);
@@ -128,6 +133,7 @@ class StationLoop {
   bool sheet_held_ = false;   // and grabbed it
   std::vector<hal::Dab> dabs_;
   SheetEditor sheet_;
+  TouchMode touch_;
   std::string sheet_problem_;
 };
 

@@ -107,7 +107,6 @@ class ContactForceLaw final : public hal::ForceLaw {
   ContactSettings settings_;
   core::HapticRenderer renderer_;
   float vox_per_device_mm_;
-  float patch_scale_;  // full-resolution voxels per patch voxel, 2^patch_level
   glm::vec3 offset_vox_;
   glm::vec3 tool_vox_;
   std::atomic<bool> clutch_key_{false};

@@ -45,6 +45,9 @@ struct StationSettings {
   /// Device presses grab the NURBS sheet instead of sculpting, and Undo and
   /// Redo act on the sheet.
   bool sheet_editing = false;
+  /// Touch mode (app/touch_mode.h): the tool stops on the material and
+  /// presses in as the device pushes.
+  bool touch = false;
   SheetDragOptions sheet_drag;
 };
 
