@@ -1,5 +1,6 @@
 #include "sculpt/hal/registry/force_devices.h"
 
+#include "sculpt/hal/backends/evdev_ff_backend.h"
 #include "sculpt/hal/backends/falcon_backend.h"
 #include "sculpt/hal/force/sim_arm.h"
 
@@ -21,8 +22,15 @@ Result<std::unique_ptr<ForceDevice>> open_force_device(const std::string& id,
     if (!device) return device.error().in("--haptic " + id);
     return std::move(device).value();
   }
+  constexpr std::string_view kEvdev = "evdev-ff:";
+  if (id.rfind(kEvdev, 0) == 0) {
+    auto device = open_evdev_force_device(id.substr(kEvdev.size()));
+    if (!device) return device.error().in("--haptic " + id);
+    return std::move(device).value();
+  }
   return Error("--haptic " + id +
-               ": unknown force device (falcon[:LOCATION] or sim-arm:HAND_SCRIPT)");
+               ": unknown force device (falcon[:LOCATION], evdev-ff:/dev/input/eventN or "
+               "sim-arm:HAND_SCRIPT)");
 }
 
 std::vector<DeviceInfo> list_force_devices(std::vector<std::string>* problems) {
@@ -32,6 +40,13 @@ std::vector<DeviceInfo> list_force_devices(std::vector<std::string>* problems) {
     found = std::move(falcons).value();
   } else if (problems != nullptr) {
     problems->push_back(falcons.error().message());
+  }
+  auto sticks = list_evdev_force_devices();
+  if (sticks) {
+    for (DeviceInfo& d : *sticks)
+      found.push_back(std::move(d));
+  } else if (problems != nullptr) {
+    problems->push_back(sticks.error().message());
   }
   return found;
 }

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "sculpt/hal/backends/evdev_ff_backend.h"
 #include "sculpt/hal/backends/falcon_backend.h"
 #include "sculpt/hal/registry/device_registry.h"
 #include "sculpt/hal/registry/force_devices.h"
@@ -60,7 +61,12 @@ int run_devices(const DevicesOptions& o) {
   }
   // Force devices (DESIGN.md §5a) are listed apart: they are opened with
   // `sculpt run --haptic ID`, beside the pointing device.
-  const hal::BackendStatus falcon_status = hal::falcon_backend_status();
+  struct ForceBackend {
+    std::string name;
+    hal::BackendStatus status;
+  };
+  const std::vector<ForceBackend> force_backends = {{"falcon", hal::falcon_backend_status()},
+                                                    {"evdev-ff", hal::evdev_ff_backend_status()}};
   std::vector<std::string> force_problems;
   const std::vector<hal::DeviceInfo> force = hal::list_force_devices(&force_problems);
   std::string summary;
@@ -99,18 +105,24 @@ int run_devices(const DevicesOptions& o) {
       }
       j["backends"].push_back(std::move(b));
     }
-    nlohmann::json f;
-    f["name"] = "falcon";
-    f["state"] = state_name(falcon_status.state);
-    f["note"] = force_problems.empty() ? falcon_status.note : force_problems.front();
-    f["devices"] = nlohmann::json::array();
-    for (const hal::DeviceInfo& d : force)
-      f["devices"].push_back({{"name", d.name},
-                              {"vendor_product", d.vendor_product()},
-                              {"id", "falcon:" + d.path},
-                              {"usb_location", d.usb_location},
-                              {"accessible", d.accessible}});
-    j["force_backends"] = nlohmann::json::array({f});
+    j["force_backends"] = nlohmann::json::array();
+    for (const ForceBackend& fb : force_backends) {
+      nlohmann::json f;
+      f["name"] = fb.name;
+      f["state"] = state_name(fb.status.state);
+      f["note"] = fb.status.note;
+      f["devices"] = nlohmann::json::array();
+      for (const hal::DeviceInfo& d : force) {
+        if (d.backend != fb.name) continue;
+        f["devices"].push_back({{"name", d.name},
+                                {"vendor_product", d.vendor_product()},
+                                {"id", d.id()},
+                                {"usb_location", d.usb_location},
+                                {"accessible", d.accessible}});
+      }
+      j["force_backends"].push_back(std::move(f));
+    }
+    j["force_problems"] = force_problems;
     j["devices_found"] = found;
     j["summary"] = summary;
     std::printf("%s\n", j.dump(2).c_str());
@@ -133,19 +145,24 @@ int run_devices(const DevicesOptions& o) {
                     d.accessible ? "" : "  [no permission]");
       }
     }
-    std::string line = std::string("falcon (force, --haptic): ") + state_name(falcon_status.state);
-    if (!force_problems.empty()) {
-      line += ", enumeration failed: " + force_problems.front();
-    } else if (!falcon_status.note.empty()) {
-      line += " (" + falcon_status.note + ")";
-    } else {
-      line +=
-          force.empty() ? ", nothing attached" : ", " + std::to_string(force.size()) + " device(s)";
+    for (const ForceBackend& fb : force_backends) {
+      std::string line = fb.name + " (force, --haptic): " + state_name(fb.status.state);
+      size_t n = 0;
+      for (const hal::DeviceInfo& d : force)
+        n += d.backend == fb.name;
+      if (!fb.status.note.empty()) {
+        line += " (" + fb.status.note + ")";
+      } else {
+        line += n == 0 ? ", nothing attached" : ", " + std::to_string(n) + " device(s)";
+      }
+      std::printf("%s\n", line.c_str());
+      for (const hal::DeviceInfo& d : force)
+        if (d.backend == fb.name)
+          std::printf("  %-34s %s  --haptic %s%s\n", d.name.c_str(), d.vendor_product().c_str(),
+                      d.id().c_str(), d.accessible ? "" : "  [no permission]");
     }
-    std::printf("%s\n", line.c_str());
-    for (const hal::DeviceInfo& d : force)
-      std::printf("  %-34s %s  --haptic falcon:%s%s\n", d.name.c_str(), d.vendor_product().c_str(),
-                  d.path.c_str(), d.accessible ? "" : "  [no permission]");
+    for (const std::string& p : force_problems)
+      std::printf("  listing failed: %s\n", p.c_str());
     std::printf("%s\n", summary.c_str());
   }
   if (working == 0) {
