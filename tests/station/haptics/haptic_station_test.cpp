@@ -55,6 +55,11 @@ TEST(HapticStation, TheArmRestsOnTheClayAndPushingWithTheButtonCarvesAHole) {
   const hal::SimArm& arm_view = *arm;
   HapticStationOptions options;
   options.thread.realtime_priority = 0;
+  // CI runs this beside sanitized builds on two cores, where ticks come late
+  // now and then: a watchdog trip would restart the ramp and leave too little
+  // force to carve. The safety rules have their own tests (hal/force).
+  options.loop.safety.watchdog_ns = 1'000'000'000;
+  options.loop.safety.ramp_s = 0.05;
   HapticStation station(std::move(arm), options);
   station.start(glm::vec3(32.0f, 56.0f, 32.0f), 3.0f);
 
@@ -75,13 +80,15 @@ TEST(HapticStation, TheArmRestsOnTheClayAndPushingWithTheButtonCarvesAHole) {
   ASSERT_FALSE(station.running());
   const HapticFigures figures = station.figures();
   EXPECT_EQ(figures.ticks, 1200);
+  // Resting, the hand's 0.8 N/mm spring 6 mm past the clay against its
+  // 1 N/mm: 2.7 N.
   EXPECT_GT(figures.max_force_n, 2.0f);
   EXPECT_LE(figures.max_force_n, 8.0f);
   EXPECT_GE(figures.patch.builds, 1);
   EXPECT_GE(figures.patch.refreshes, 1);  // the carving reached the patch
   // Resting, the proxy stayed on the clay while the device sank well into it.
   EXPECT_GT(deepest_proxy_y, top_y + 3.0f - 0.2f);
-  EXPECT_LT(deepest_device_y, top_y - 4.0f);
+  EXPECT_LT(deepest_device_y, top_y - 2.0f);  // at rest: 3.3 voxels under the top
   // Pushing carved: the clay under the tool is gone, the block's bottom is not.
   EXPECT_GT(controller.loop().counters().dabs, 0);
   EXPECT_LT(controller.loop().volume().voxel({32, 46, 32}), 128);
