@@ -9,6 +9,7 @@
 
 #include "sculpt/hal/backends/libusb_backend.h"
 
+#include "backends/libusb_names.h"
 #include "backends/not_built_backend.h"
 
 #if SCULPT_HAL_HAVE_LIBUSB
@@ -30,26 +31,8 @@ namespace {
 
 constexpr uint8_t kHidClass = 3;
 
-std::string usb_location(libusb_device* dev) {
-  uint8_t ports[8];
-  const int n = libusb_get_port_numbers(dev, ports, sizeof ports);
-  std::string s = std::to_string(libusb_get_bus_number(dev));
-  for (int i = 0; i < n; ++i) {
-    s.push_back(i == 0 ? '-' : '.');
-    s += std::to_string(ports[i]);
-  }
-  return s;
-}
-
 std::string path_of(libusb_device* dev, int interface) {
   return usb_location(dev) + ":" + std::to_string(interface);
-}
-
-std::string string_descriptor(libusb_device_handle* h, uint8_t index) {
-  if (index == 0) return {};
-  unsigned char buf[256];
-  const int n = libusb_get_string_descriptor_ascii(h, index, buf, sizeof buf);
-  return n > 0 ? std::string(reinterpret_cast<char*>(buf), static_cast<size_t>(n)) : std::string();
 }
 
 class LibusbDevice final : public Device {
@@ -171,10 +154,10 @@ class LibusbBackend final : public Backend {
       libusb_device_handle* h = nullptr;
       const int opened = libusb_open(dev, &h);
       if (opened == 0) {
-        info.serial = string_descriptor(h, desc.iSerialNumber);
-        const std::string product = string_descriptor(h, desc.iProduct);
+        info.serial = usb_string_descriptor(h, desc.iSerialNumber);
+        const std::string product = usb_string_descriptor(h, desc.iProduct);
         if (!product.empty()) info.name = product;
-        info.manufacturer = string_descriptor(h, desc.iManufacturer);
+        info.manufacturer = usb_string_descriptor(h, desc.iManufacturer);
         libusb_close(h);
       } else if (opened == LIBUSB_ERROR_ACCESS) {
         info.accessible = false;

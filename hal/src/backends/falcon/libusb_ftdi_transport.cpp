@@ -5,6 +5,7 @@
 // you'll fry libusb-1.0. Try to read under 64 and you'll fry OS X").
 
 #include "libusb_ftdi_transport.h"
+#include "backends/libusb_names.h"
 
 #if SCULPT_HAL_HAVE_LIBUSB
 #include <libusb.h>
@@ -29,24 +30,6 @@ UsbStatus status_of(int r) {
   return UsbStatus::kError;
 }
 
-std::string usb_location(libusb_device* dev) {
-  uint8_t ports[8];
-  const int n = libusb_get_port_numbers(dev, ports, sizeof ports);
-  std::string s = std::to_string(libusb_get_bus_number(dev));
-  for (int i = 0; i < n; ++i) {
-    s.push_back(i == 0 ? '-' : '.');
-    s += std::to_string(ports[i]);
-  }
-  return s;
-}
-
-std::string string_descriptor(libusb_device_handle* h, uint8_t index) {
-  if (index == 0) return {};
-  unsigned char buf[256];
-  const int n = libusb_get_string_descriptor_ascii(h, index, buf, sizeof buf);
-  return n > 0 ? std::string(reinterpret_cast<char*>(buf), static_cast<size_t>(n)) : std::string();
-}
-
 bool is_falcon(libusb_device* dev) {
   libusb_device_descriptor desc{};
   return libusb_get_device_descriptor(dev, &desc) == 0 && desc.idVendor == kVendor &&
@@ -68,9 +51,9 @@ DeviceInfo describe(libusb_device* dev) {
 void read_strings(libusb_device* dev, libusb_device_handle* h, DeviceInfo& info) {
   libusb_device_descriptor desc{};
   if (libusb_get_device_descriptor(dev, &desc) != 0) return;
-  info.serial = string_descriptor(h, desc.iSerialNumber);
-  info.manufacturer = string_descriptor(h, desc.iManufacturer);
-  if (std::string product = string_descriptor(h, desc.iProduct); !product.empty())
+  info.serial = usb_string_descriptor(h, desc.iSerialNumber);
+  info.manufacturer = usb_string_descriptor(h, desc.iManufacturer);
+  if (std::string product = usb_string_descriptor(h, desc.iProduct); !product.empty())
     info.name = std::move(product);
 }
 
