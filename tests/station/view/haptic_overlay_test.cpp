@@ -1,7 +1,7 @@
 #include "sculpt/station/view/haptic_overlay.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 namespace sculpt::station {
 namespace {
@@ -14,16 +14,19 @@ TEST(HapticOverlay, TheProxyIsASphereOfTheToolsRadiusAndTheGhostOnlyShowsWhenApa
   HapticOverlay o = haptic_overlay(in);
   ASSERT_EQ(o.proxy.size() % 2, 0u);
   ASSERT_FALSE(o.proxy.empty());
-  for (const glm::vec3& p : o.proxy) EXPECT_NEAR(glm::length(p - in.proxy_vox), 6.0f, 1e-4f);
+  for (const glm::vec3& p : o.proxy)
+    EXPECT_NEAR(glm::length(p - in.proxy_vox), 6.0f, 1e-4f);
   EXPECT_TRUE(o.ghost.empty());
   EXPECT_TRUE(o.force.empty());
   in.device_vox = in.proxy_vox + glm::vec3(0.0f, -3.0f, 0.0f);
   o = haptic_overlay(in);
   ASSERT_EQ(o.ghost.size(), o.proxy.size());
-  for (const glm::vec3& p : o.ghost) EXPECT_NEAR(glm::length(p - in.device_vox), 6.0f, 1e-4f);
+  for (const glm::vec3& p : o.ghost)
+    EXPECT_NEAR(glm::length(p - in.device_vox), 6.0f, 1e-4f);
   // The device's cross is centred on it.
   glm::vec3 mean(0.0f);
-  for (const glm::vec3& p : o.device) mean += p;
+  for (const glm::vec3& p : o.device)
+    mean += p;
   EXPECT_LT(glm::length(mean / float(o.device.size()) - in.device_vox), 1e-4f);
 }
 
