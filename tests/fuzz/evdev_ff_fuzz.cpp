@@ -20,8 +20,8 @@
 #include <cstring>
 #include <memory>
 
-#include "../../hal/src/backends/evdev_ff/evdev_force_device.h"
-#include "../hal/backends/evdev_ff/fake_evdev_io.h"
+#include "backends/evdev_ff/evdev_force_device.h"
+#include "hal/backends/evdev_ff/fake_evdev_io.h"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <span>
 
-#include "../../hal/src/backends/falcon/falcon_packet.h"
+#include "backends/falcon/falcon_packet.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace sculpt::hal::falcon;

@@ -24,8 +24,9 @@ constexpr VolumeOptions kMirrorOptions{16, 1, 1};
 
 }  // namespace
 
-SpherePatch sphere_patch(float radius_vox, int max_level) {
+SpherePatch sphere_patch(float radius_vox, int volume_levels) {
   SpherePatch p;
+  const int max_level = std::min(kMaxSpherePatchLevel, volume_levels);
   const float r = std::max(radius_vox, 0.0f);
   while (p.level < max_level && r / p.scale() > kMaxSpherePatchRadiusVox)
     ++p.level;

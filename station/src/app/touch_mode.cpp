@@ -6,12 +6,6 @@
 #include <glm/geometric.hpp>
 
 namespace sculpt::station {
-namespace {
-
-// The coarsest level a proxy's patch is read from (patch_keeper.h).
-constexpr int kMaxPatchLevel = 4;
-
-}  // namespace
 
 TouchMode::TouchMode(const TouchOptions& options) : options_(options) {}
 
@@ -25,8 +19,7 @@ const TouchResult& TouchMode::update(const core::Volume& volume, uint64_t genera
                                      glm::vec3 device_vox, float deflection, float radius_vox) {
   // A new tool size (or volume of other levels): a new proxy of its size.
   if (!keeper_ || radius_vox != radius_vox_ || volume.levels() != levels_) {
-    const core::SpherePatch sphere =
-        core::sphere_patch(radius_vox, std::min(kMaxPatchLevel, volume.levels()));
+    const core::SpherePatch sphere = core::sphere_patch(radius_vox, volume.levels());
     keeper_ = std::make_unique<core::PatchKeeper>(sphere.options, sphere.level);
     core::SphereProxyOptions proxy;
     proxy.radius_vox = radius_vox / sphere.scale();

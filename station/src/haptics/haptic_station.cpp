@@ -14,8 +14,6 @@ namespace {
 // The tool moves with the proxy only when it moved this far: a device at
 // rest (its encoders flickering by a count) records no commands.
 constexpr float kMoveEpsilonVox = 1e-3f;
-// The coarsest level a proxy's patch is read from.
-constexpr int kMaxPatchLevel = 4;
 // A stroke started by pushing past the press threshold goes on while the
 // push stays above this share of it.
 constexpr float kStrokeHysteresis = 0.5f;
@@ -49,8 +47,7 @@ void HapticStation::start_loop(glm::vec3 start_vox, float radius_vox) {
   contact.haptic.proxy.radius_vox = proxy_radius_vox_;
   // The patch's level and size for the proxy (patch_keeper.h): a big
   // tool's is read from a coarser level of the pyramid.
-  const core::SpherePatch sphere =
-      core::sphere_patch(proxy_radius_vox_, std::min(kMaxPatchLevel, volume_levels_));
+  const core::SpherePatch sphere = core::sphere_patch(proxy_radius_vox_, volume_levels_);
   contact.patch_level = sphere.level;
   const core::DistancePatchOptions& patch = sphere.options;
   const int level = sphere.level;

@@ -1,7 +1,7 @@
 // The two conversions on their own: a force's direction all the way round,
 // the level's rounding and clamping, an axis's range.
 
-#include "../../../../hal/src/backends/evdev_ff/constant_effect_mapping.h"
+#include "backends/evdev_ff/constant_effect_mapping.h"
 
 #include <gtest/gtest.h>
 

@@ -2,11 +2,11 @@
 // devices, nodes without force feedback not even opened, a node this user
 // may not open listed from sysfs as not accessible.
 
-#include "../../../../hal/src/backends/evdev_ff/evdev_enumeration.h"
+#include "backends/evdev_ff/evdev_enumeration.h"
 
 #include <gtest/gtest.h>
 
-#include "../../../../hal/src/backends/evdev_ff/evdev_force_device.h"
+#include "backends/evdev_ff/evdev_force_device.h"
 #include "fake_evdev_io.h"
 #include "sculpt/hal/backends/evdev_ff_backend.h"
 

@@ -9,7 +9,7 @@
 // fraction of 0x10000 (constant_effect_mapping.h: 0x4000 pushes right,
 // 0x0000 pushes away from the user).
 
-#include "../../../../hal/src/backends/evdev_ff/evdev_force_device.h"
+#include "backends/evdev_ff/evdev_force_device.h"
 
 #include <gtest/gtest.h>
 

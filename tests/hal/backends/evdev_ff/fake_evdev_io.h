@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "../../../../hal/src/backends/evdev_ff/evdev_io.h"
+#include "backends/evdev_ff/evdev_io.h"
 
 namespace sculpt::hal::evdev_ff::testing {
 

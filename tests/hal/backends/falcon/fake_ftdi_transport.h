@@ -11,7 +11,7 @@
 #include <span>
 #include <vector>
 
-#include "../../../../hal/src/backends/falcon/ftdi_transport.h"
+#include "backends/falcon/ftdi_transport.h"
 
 namespace sculpt::hal::falcon::testing {
 

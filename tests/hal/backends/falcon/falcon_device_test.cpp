@@ -2,7 +2,7 @@
 // from the bytes given, or missing), homing before force, one exchange per
 // tick, zero(), unplug and transfer faults, malformed answers.
 
-#include "../../../../hal/src/backends/falcon/falcon_device.h"
+#include "backends/falcon/falcon_device.h"
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>

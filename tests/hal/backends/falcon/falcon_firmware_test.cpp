@@ -4,7 +4,7 @@
 // retries that succeed later, giving up after the limit, and detecting a
 // firmware that already runs.
 
-#include "../../../../hal/src/backends/falcon/falcon_firmware.h"
+#include "backends/falcon/falcon_firmware.h"
 
 #include <cstdio>
 #include <string>

@@ -3,7 +3,7 @@
 // encoders -> position, the Jacobian against finite differences of the
 // inverse, and forces to motor commands (direction, clamping, int16 range).
 
-#include "../../../../hal/src/backends/falcon/falcon_kinematics.h"
+#include "backends/falcon/falcon_kinematics.h"
 
 #include <cmath>
 #include <vector>

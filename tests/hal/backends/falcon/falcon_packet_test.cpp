@@ -1,7 +1,7 @@
 // The Novint SDK firmware's packet against bytes worked out by hand, and the
 // stream reader against what a USB line delivers: splits, garbage, cuts.
 
-#include "../../../../hal/src/backends/falcon/falcon_packet.h"
+#include "backends/falcon/falcon_packet.h"
 
 #include <string>
 

@@ -1,7 +1,7 @@
 // The FTDI edge: the baud divisors the Falcon needs, the status bytes that
 // open every IN packet, and the set-up requests' wire values.
 
-#include "../../../../hal/src/backends/falcon/ftdi_transport.h"
+#include "backends/falcon/ftdi_transport.h"
 
 #include <gtest/gtest.h>
 

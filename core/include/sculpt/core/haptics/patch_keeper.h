@@ -38,7 +38,7 @@ struct PatchKeeperFigures {
 /// The band must reach past the radius, and a patch's cost grows with the
 /// cube of its band (built at full resolution: a 4-voxel radius 2 ms, 12
 /// voxels 145 ms, 24 voxels a second), so a big sphere's patch is read from
-/// the coarsest level, at most `max_level`, that keeps its radius within
+/// the coarsest level, at most kMaxSpherePatchLevel, that keeps its radius within
 /// kMaxSpherePatchRadiusVox of that level's voxels. The proxy reads the field
 /// at its centre only (phi - r), so the patch covers the band around the
 /// centre's path, not the sphere's reach too.
@@ -55,7 +55,10 @@ struct SpherePatch {
   glm::vec3 from_patch(glm::vec3 p) const { return p * scale() + 0.5f * (scale() - 1.0f); }
 };
 inline constexpr float kMaxSpherePatchRadiusVox = 5.0f;
-SpherePatch sphere_patch(float radius_vox, int max_level);
+/// The coarsest level a sphere's patch is read from.
+inline constexpr int kMaxSpherePatchLevel = 4;
+/// For a volume of `volume_levels` levels (the level chosen never exceeds them).
+SpherePatch sphere_patch(float radius_vox, int volume_levels);
 
 class PatchKeeper {
  public:
