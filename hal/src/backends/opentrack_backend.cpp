@@ -20,6 +20,7 @@
 #include <charconv>
 #include <cstring>
 
+#include "backends/tracker_listing_backend.h"
 #include "sculpt/hal/parsers/opentrack_datagram.h"
 #include "sculpt/hal/types/clock.h"
 
@@ -38,17 +39,24 @@ std::string endpoint_text(uint32_t ip_net, uint16_t port_net) {
   return std::string(buf) + ":" + std::to_string(ntohs(port_net));
 }
 
+// The path is the port asked for (the id `--device opentrack:PORT` names);
+// the name shows the port really bound (they differ for port 0).
+DeviceInfo opentrack_device_info(const OpenTrackOptions& options, uint16_t bound_port) {
+  DeviceInfo info;
+  info.backend = "opentrack";
+  info.path = std::to_string(options.port);
+  info.name = "OpenTrack UDP on " + options.listen_address + ":" + std::to_string(bound_port);
+  info.serial = "opentrack:" + info.path;  // the physical key: one listener per port
+  return info;
+}
+
 }  // namespace
 
 OpenTrackDevice::OpenTrackDevice(int fd, uint16_t port, const OpenTrackOptions& options)
     : fd_(fd),
       bound_port_(port),
-      lost_after_ns_(static_cast<int64_t>(options.lost_after_ms) * 1'000'000) {
-  info_.backend = "opentrack";
-  info_.path = std::to_string(options.port);
-  info_.name = "OpenTrack UDP on " + options.listen_address + ":" + std::to_string(port);
-  info_.serial = "opentrack:" + std::to_string(port);
-}
+      lost_after_ns_(static_cast<int64_t>(options.lost_after_ms) * 1'000'000),
+      info_(opentrack_device_info(options, port)) {}
 
 OpenTrackDevice::~OpenTrackDevice() {
   if (fd_ >= 0) ::close(fd_);
@@ -149,47 +157,13 @@ ReadResult OpenTrackDevice::read(RawEvent& out, int timeout_ms) {
   return ReadResult::kTimeout;
 }
 
-namespace {
-
-class OpenTrackBackend final : public Backend {
- public:
-  explicit OpenTrackBackend(OpenTrackOptions options) : options_(std::move(options)) {}
-  std::string_view name() const override { return "opentrack"; }
-  BackendStatus status() override { return {}; }
-
-  Result<std::vector<DeviceInfo>> enumerate() override {
-    DeviceInfo info;
-    info.backend = "opentrack";
-    info.path = std::to_string(options_.port);
-    info.name = "OpenTrack UDP on " + options_.listen_address + ":" + info.path;
-    info.serial = "opentrack:" + info.path;
-    return std::vector<DeviceInfo>{info};
-  }
-
-  Result<std::unique_ptr<Device>> open(const DeviceInfo& info) override {
-    if (info.path != std::to_string(options_.port))
-      return Error(info.id() + ": this listener is on port " + std::to_string(options_.port));
-    auto device = OpenTrackDevice::open(options_);
-    if (!device) return device.error().in(info.id());
-    return std::unique_ptr<Device>(std::move(device).value());
-  }
-
-  // One fixed listener: nothing comes or goes.
-  bool changed() override {
-    const bool first = first_;
-    first_ = false;
-    return first;
-  }
-
- private:
-  OpenTrackOptions options_;
-  bool first_ = true;
-};
-
-}  // namespace
-
 std::unique_ptr<Backend> make_opentrack_backend(OpenTrackOptions options) {
-  return std::make_unique<OpenTrackBackend>(std::move(options));
+  return detail::make_tracker_listing_backend(
+      opentrack_device_info(options, options.port), [options]() -> Result<std::unique_ptr<Device>> {
+        auto device = OpenTrackDevice::open(options);
+        if (!device) return device.error();
+        return std::unique_ptr<Device>(std::move(device).value());
+      });
 }
 
 Result<OpenTrackOptions> parse_opentrack_spec(const std::string& spec) {
