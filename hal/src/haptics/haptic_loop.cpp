@@ -13,18 +13,20 @@ HapticLoop::HapticLoop(ForceDevice& device, ForceLaw& law, const HapticLoopOptio
       safety_(device.limits(), options.safety),
       records_(std::max<size_t>(options.record_capacity, 1)) {}
 
-void HapticLoop::take_request() {
-  switch (request_.exchange(kNone, std::memory_order_acquire)) {
-    case kEnable:
+HapticRequest HapticLoop::take_request() {
+  const HapticRequest request = request_.exchange(HapticRequest::kNone, std::memory_order_acquire);
+  switch (request) {
+    case HapticRequest::kEnable:
       safety_.enable();
       if (state() == HapticLoopState::kFaulted) state_.store(HapticLoopState::kRunning);
       break;
-    case kDrop:
+    case HapticRequest::kDrop:
       safety_.drop();
       break;
-    default:
+    case HapticRequest::kNone:
       break;
   }
+  return request;
 }
 
 void HapticLoop::publish() {
@@ -33,7 +35,8 @@ void HapticLoop::publish() {
 
 bool HapticLoop::tick(int64_t t_ns) {
   if (state() == HapticLoopState::kRemoved) return false;
-  take_request();
+  const HapticRequest request = take_request();
+  const uint32_t index = ticks_++;
 
   if (have_last_tick_) {
     const int64_t period_ns = t_ns - last_tick_ns_;
@@ -56,16 +59,22 @@ bool HapticLoop::tick(int64_t t_ns) {
     device_.zero();
     safety_.drop();
     state_.store(HapticLoopState::kRemoved, std::memory_order_release);
-    last_ = {t_ns, last_.position_mm, 0, glm::vec3(0.0f)};
+    last_ = {.t_ns = t_ns,
+             .position_mm = last_.position_mm,
+             .index = index,
+             .read = read,
+             .request = request};
     publish();
     return false;
   }
   if (input.device.buttons & options_.drop_buttons) safety_.drop();
 
   glm::vec3 wanted(0.0f);
+  uint64_t law_inputs = 0;
   if (read == ForceIo::kOk && input.device.homed && state() == HapticLoopState::kRunning) {
     try {
       wanted = law_.force_n(input);
+      law_inputs = law_.inputs();
     } catch (...) {
       // A law that throws is a bug; the hand must not feel it. Force stays
       // off until someone enables it again.
@@ -88,7 +97,15 @@ bool HapticLoop::tick(int64_t t_ns) {
     force = glm::vec3(0.0f);
   }
 
-  last_ = {t_ns, input.device.position_mm, input.device.buttons, force};
+  last_ = {.t_ns = t_ns,
+           .position_mm = input.device.position_mm,
+           .buttons = input.device.buttons,
+           .force_n = force,
+           .index = index,
+           .read = read,
+           .homed = input.device.homed,
+           .request = request,
+           .law_inputs = law_inputs};
   publish();
   live_.ticks.fetch_add(1, std::memory_order_relaxed);
   const float magnitude = glm::length(force);

@@ -43,6 +43,9 @@ class SimDevice final : public hal::Device {
       const SessionRecord* r = player_->next();
       if (r == nullptr) break;
       last_t_ns_ = r->t_ns() + offset_ns_;
+      // A force device's loop is not this device's: a live play moves the
+      // tool through the commands it recorded.
+      if (r->kind == SessionRecord::Kind::kHaptic) continue;
       if (r->kind == SessionRecord::Kind::kCommand) {
         std::lock_guard lock(shared_->mutex);
         shared_->commands.emplace_back(last_t_ns_, r->command);

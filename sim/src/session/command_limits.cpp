@@ -124,7 +124,30 @@ std::optional<std::string> command_problem(const Command& c) {
   return "unknown command";
 }
 
+std::optional<std::string> haptic_problem(const HapticRecord& h) {
+  using Type = HapticRecord::Type;
+  if (h.type < Type::kStart || h.type > Type::kTick) return "unknown haptic record";
+  if (h.settings.size() > kMaxHapticSettingsBytes) return "set-up text longer than 4096 bytes";
+  for (float v : h.values)
+    if (!std::isfinite(v) || std::abs(v) > kMaxCoordinateVox) return "value out of range";
+  if (h.type == Type::kStart) {
+    const auto parsed = parse_haptic_settings(h.settings);
+    if (const auto* why = std::get_if<std::string>(&parsed)) return "set-up text: " + *why;
+  }
+  if (h.type != Type::kTick) return std::nullopt;
+  const int read = (h.flags >> kTickReadShift) & 3;
+  const int request = h.flags >> kTickRequestShift;
+  if (read > 2 || request > 2) return "unknown tick flags";
+  return std::nullopt;
+}
+
 Status check_writable(const SessionRecord& r, const std::string& name, int64_t index) {
+  if (r.kind == SessionRecord::Kind::kHaptic) {
+    const auto why = haptic_problem(r.haptic);
+    if (!why) return {};
+    return Error(name + ": record " + std::to_string(index) + ": haptic " +
+                 std::string(haptic_record_name(r.haptic.type)) + ": " + *why + "; not written");
+  }
   if (r.kind != SessionRecord::Kind::kCommand) return {};
   const auto why = command_problem(r.command);
   if (!why) return {};

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 namespace sculpt::sim {
@@ -19,6 +22,7 @@ constexpr std::array<std::string_view, kSculptModeCount> kModeNames = {"add", "s
                                                                        "difference", "smooth"};
 constexpr std::array<std::string_view, kSheetActionCount> kSheetActionNames = {
     "place", "remove", "edit", "add", "subtract", "tool"};
+constexpr std::array<std::string_view, 3> kHapticRecordNames = {"start", "patch", "tick"};
 
 template <size_t N>
 std::optional<uint8_t> find_name(const std::array<std::string_view, N>& names,
@@ -93,11 +97,77 @@ SessionRecord SessionRecord::of(int64_t t_ns, const Command& c) {
   return r;
 }
 
+SessionRecord SessionRecord::of(int64_t t_ns, const HapticRecord& h) {
+  SessionRecord r;
+  r.kind = Kind::kHaptic;
+  r.haptic = h;
+  r.command_t_ns = t_ns;
+  return r;
+}
+
+bool operator==(const HapticRecord& a, const HapticRecord& b) {
+  return a.type == b.type && a.settings == b.settings && a.tag == b.tag &&
+         a.tick_t_ns == b.tick_t_ns && a.index == b.index && a.buttons == b.buttons &&
+         a.flags == b.flags && std::memcmp(a.values, b.values, sizeof a.values) == 0;
+}
+
+std::string haptic_settings_text(const HapticSettings& settings) {
+  std::string out;
+  char number[32];
+  for (const auto& [name, value] : settings) {
+    std::snprintf(number, sizeof number, "%.17g", value);
+    out += name + " = " + number + "\n";
+  }
+  return out;
+}
+
+std::variant<HapticSettings, std::string> parse_haptic_settings(std::string_view text) {
+  HapticSettings settings;
+  int line_number = 0;
+  while (!text.empty()) {
+    ++line_number;
+    const size_t end = std::min(text.find('\n'), text.size());
+    const std::string line(text.substr(0, end));
+    text.remove_prefix(std::min(end + 1, text.size()));
+    if (line.empty()) continue;
+    const std::string where = "line " + std::to_string(line_number) + ": ";
+    const size_t eq = line.find(" = ");
+    if (eq == std::string::npos || eq == 0) return where + "expected \"name = number\"";
+    const std::string name = line.substr(0, eq);
+    const bool name_ok = std::all_of(name.begin(), name.end(), [](char c) {
+      return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '.';
+    });
+    if (!name_ok) return where + "a name holds only a-z, 0-9, _ and .";
+    const std::string value = line.substr(eq + 3);
+    char* rest = nullptr;
+    const double v = std::strtod(value.c_str(), &rest);
+    if (value.empty() || rest != value.c_str() + value.size() || !std::isfinite(v))
+      return where + name + ": not a finite number";
+    settings.emplace_back(name, v);
+  }
+  return settings;
+}
+
+std::string_view haptic_record_name(HapticRecord::Type type) {
+  return kHapticRecordNames[static_cast<size_t>(type) - 1];
+}
+
+std::optional<HapticRecord::Type> parse_haptic_record_name(std::string_view name) {
+  const auto i = find_name(kHapticRecordNames, name);
+  return i ? std::optional(static_cast<HapticRecord::Type>(*i + 1)) : std::nullopt;
+}
+
 bool operator==(const SessionRecord& a, const SessionRecord& b) {
   if (a.kind != b.kind) return false;
-  return a.kind == SessionRecord::Kind::kEvent
-             ? same_event(a.event, b.event)
-             : a.command_t_ns == b.command_t_ns && a.command == b.command;
+  switch (a.kind) {
+    case SessionRecord::Kind::kEvent:
+      return same_event(a.event, b.event);
+    case SessionRecord::Kind::kCommand:
+      return a.command_t_ns == b.command_t_ns && a.command == b.command;
+    case SessionRecord::Kind::kHaptic:
+      return a.command_t_ns == b.command_t_ns && a.haptic == b.haptic;
+  }
+  return false;
 }
 
 bool operator==(const SessionHeader& a, const SessionHeader& b) {

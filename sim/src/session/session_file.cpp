@@ -23,6 +23,9 @@ enum RecordKindByte : uint8_t {
   kButtonRecord = 3,
   kSyncRecord = 4,
   kRemovedRecord = 5,
+  kHapticStartRecord = 6,
+  kHapticPatchRecord = 7,
+  kHapticTickRecord = 8,
   kCommandRecord = 16,
 };
 
@@ -121,7 +124,31 @@ void append_record(const SessionRecord& r, std::vector<uint8_t>& out) {
   Writer p(payload);
   uint8_t kind = 0;
   uint8_t flags = 0;
-  if (r.kind == SessionRecord::Kind::kCommand) {
+  if (r.kind == SessionRecord::Kind::kHaptic) {
+    const HapticRecord& h = r.haptic;
+    switch (h.type) {
+      case HapticRecord::Type::kStart:
+        kind = kHapticStartRecord;
+        p.bytes({reinterpret_cast<const uint8_t*>(h.settings.data()), h.settings.size()});
+        break;
+      case HapticRecord::Type::kPatch:
+        kind = kHapticPatchRecord;
+        p.num(h.tag);
+        for (int i = 0; i < 3; ++i)
+          p.num(h.values[i]);
+        break;
+      case HapticRecord::Type::kTick:
+        kind = kHapticTickRecord;
+        p.num(h.tick_t_ns);
+        p.num(h.index);
+        p.num(h.buttons);
+        p.num(h.flags);
+        p.num(h.tag);
+        for (float v : h.values)
+          p.num(v);
+        break;
+    }
+  } else if (r.kind == SessionRecord::Kind::kCommand) {
     kind = kCommandRecord;
     p.num(static_cast<uint8_t>(r.command.kind));
     p.num(r.command.choice);
@@ -185,6 +212,35 @@ std::string decode_record(uint8_t kind, uint8_t flags, int64_t t, std::span<cons
       out = SessionRecord::of(kind == kSyncRecord ? hal::RawEvent::sync(t)
                                                   : hal::RawEvent::removed(t));
       return {};
+    case kHapticStartRecord:
+    case kHapticPatchRecord:
+    case kHapticTickRecord: {
+      HapticRecord h;
+      if (kind == kHapticStartRecord) {
+        h.type = HapticRecord::Type::kStart;
+        h.settings.assign(payload.begin(), payload.end());
+      } else if (kind == kHapticPatchRecord) {
+        h.type = HapticRecord::Type::kPatch;
+        if (payload.size() != 20) return "haptic patch record of wrong size";
+        p.num(h.tag);
+        for (int i = 0; i < 3; ++i)
+          p.num(h.values[i]);
+      } else {
+        h.type = HapticRecord::Type::kTick;
+        if (payload.size() != 49) return "haptic tick record of wrong size";
+        p.num(h.tick_t_ns);
+        p.num(h.index);
+        p.num(h.buttons);
+        p.num(h.flags);
+        p.num(h.tag);
+        for (float& v : h.values)
+          p.num(v);
+      }
+      if (auto why = haptic_problem(h))
+        return "haptic " + std::string(haptic_record_name(h.type)) + " record: " + *why;
+      out = SessionRecord::of(t, h);
+      return {};
+    }
     case kCommandRecord: {
       uint8_t command_kind;
       Command c;

@@ -174,6 +174,28 @@ void sheet_json(const Command& c, ordered& j) {
   }
 }
 
+void haptic_json(const HapticRecord& h, ordered& j) {
+  j["haptic"] = haptic_record_name(h.type);
+  switch (h.type) {
+    case HapticRecord::Type::kStart:
+      j["settings"] = h.settings;
+      break;
+    case HapticRecord::Type::kPatch:
+      j["version"] = h.tag;
+      j["centre"] = floats(h.values, 3);
+      break;
+    case HapticRecord::Type::kTick:
+      j["tick_t"] = h.tick_t_ns;
+      j["index"] = h.index;
+      j["buttons"] = h.buttons;
+      j["flags"] = h.flags;
+      j["inputs"] = h.tag;
+      j["position_mm"] = floats(h.values, 3);
+      j["force_n"] = floats(h.values + 3, 3);
+      break;
+  }
+}
+
 ordered record_json(const SessionRecord& r) {
   ordered j;
   j["t"] = r.t_ns();
@@ -197,6 +219,10 @@ ordered record_json(const SessionRecord& r) {
         j["removed"] = true;
         break;
     }
+    return j;
+  }
+  if (r.kind == SessionRecord::Kind::kHaptic) {
+    haptic_json(r.haptic, j);
     return j;
   }
   const Command& c = r.command;
@@ -313,6 +339,7 @@ void read_sheet(const json& j, Command& c) {
 }
 
 SessionRecord parse_command(const json& j, int64_t t);
+SessionRecord parse_haptic(const json& j, int64_t t);
 
 // Reads one record line; throws std::string describing the problem.
 SessionRecord parse_record(const json& j) {
@@ -321,6 +348,7 @@ SessionRecord parse_record(const json& j) {
   const int64_t t = tj.get<int64_t>();
 
   if (j.contains("cmd")) return parse_command(j, t);
+  if (j.contains("haptic")) return parse_haptic(j, t);
   if (j.contains("report")) {
     if (!j["report"].is_string()) throw std::string("report: expected a hex string");
     const auto bytes = from_hex(j["report"].get<std::string>());
@@ -345,7 +373,52 @@ SessionRecord parse_record(const json& j) {
   }
   if (j.contains("sync")) return SessionRecord::of(hal::RawEvent::sync(t));
   if (j.contains("removed")) return SessionRecord::of(hal::RawEvent::removed(t));
-  throw std::string("expected one of report, axis, button, sync, removed, cmd");
+  throw std::string("expected one of report, axis, button, sync, removed, cmd, haptic");
+}
+
+// An unsigned integer field of at most `max`.
+template <class T>
+T read_unsigned(const json& j, const char* key, uint64_t max) {
+  const json& v = need(j, key);
+  if (!v.is_number_unsigned() || v.get<uint64_t>() > max)
+    throw std::string(key) + ": expected an integer 0.." + std::to_string(max);
+  return static_cast<T>(v.get<uint64_t>());
+}
+
+SessionRecord parse_haptic(const json& j, int64_t t) {
+  const json& name = j["haptic"];
+  const auto type =
+      name.is_string() ? parse_haptic_record_name(name.get<std::string>()) : std::nullopt;
+  if (!type) throw std::string("haptic: unknown record ") + name.dump();
+  HapticRecord h;
+  h.type = *type;
+  switch (h.type) {
+    case HapticRecord::Type::kStart: {
+      const json& v = need(j, "settings");
+      if (!v.is_string()) throw std::string("settings: expected a string");
+      h.settings = v.get<std::string>();
+      break;
+    }
+    case HapticRecord::Type::kPatch:
+      h.tag = read_unsigned<uint64_t>(j, "version", UINT64_MAX);
+      read_numbers(j, "centre", h.values, 3);
+      break;
+    case HapticRecord::Type::kTick: {
+      const json& tt = need(j, "tick_t");
+      if (!tt.is_number_integer()) throw std::string("tick_t: expected integer nanoseconds");
+      h.tick_t_ns = tt.get<int64_t>();
+      h.index = read_unsigned<uint32_t>(j, "index", UINT32_MAX);
+      h.buttons = read_unsigned<uint32_t>(j, "buttons", UINT32_MAX);
+      h.flags = read_unsigned<uint8_t>(j, "flags", kTickFlagsMax);
+      h.tag = read_unsigned<uint64_t>(j, "inputs", UINT64_MAX);
+      read_numbers(j, "position_mm", h.values, 3);
+      read_numbers(j, "force_n", h.values + 3, 3);
+      break;
+    }
+  }
+  if (auto why = haptic_problem(h))
+    throw "haptic " + std::string(name.get<std::string>()) + ": " + *why;
+  return SessionRecord::of(t, h);
 }
 
 SessionRecord parse_command(const json& j, int64_t t) {

@@ -62,6 +62,12 @@ Result<ReplayResult> replay_session(const sim::Session& session, const std::stri
       loop.handle(r->command);
       continue;
     }
+    if (r->kind == sim::SessionRecord::Kind::kHaptic) {
+      if (options.on_haptic) {
+        if (Status st = options.on_haptic(r->haptic); !st) return st.error();
+      }
+      continue;
+    }
     const auto t0 = clock::now();
     const int64_t dabs_before = loop.counters().dabs;
     events.clear();

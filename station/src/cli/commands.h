@@ -41,6 +41,7 @@ struct ReplayCliOptions {
   double speed = 1.0;
   int threads = 0;
   std::string volume, mesh, png, stats, samples;
+  std::string forces;               ///< the force device's ticks run again (JSON Lines)
   std::string renderer = "auto";    ///< for png: auto, gl or software
   std::string normals = "density";  ///< mesh and png normals: density or distance (gradient)
   std::string project;              ///< write the final state as a project file

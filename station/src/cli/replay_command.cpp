@@ -1,5 +1,5 @@
 // sculpt replay SESSION [--fast|--speed X] [--volume V.nrrd] [--mesh M.ply]
-//                       [--stats S.json] [--samples S.jsonl]
+//                       [--stats S.json] [--samples S.jsonl] [--forces F.jsonl]
 //
 // Replays a recorded session (binary or text) through the real parsers,
 // normaliser, pose integration, stroke sampler, sculptor and mesh cache.
@@ -21,6 +21,7 @@
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/session_replay.h"
 #include "sculpt/station/app/session_start.h"
+#include "sculpt/station/haptics/haptic_replay.h"
 #include "sculpt/station/project/project_file.h"
 #include "sculpt/station/render/software_renderer.h"
 #include "sculpt/station/window/gl_snapshot.h"
@@ -55,6 +56,37 @@ nlohmann::json sample_json(const hal::InputEvent& e) {
   return j;
 }
 
+nlohmann::json vec_json(glm::vec3 v) {
+  return {v.x, v.y, v.z};
+}
+
+// One tick of a force device's loop, run again.
+nlohmann::json force_json(const ReplayedTick& r) {
+  nlohmann::json j = {{"t", r.tick.t_ns},
+                      {"loop", r.loop},
+                      {"index", r.tick.index},
+                      {"position_mm", vec_json(r.tick.position_mm)},
+                      {"buttons", r.tick.buttons},
+                      {"force_n", vec_json(r.tick.force_n)},
+                      {"proxy_vox", vec_json(r.contact.proxy_vox)},
+                      {"contact", r.contact.contact}};
+  if (!r.matches) j["differs_from_recording"] = true;
+  return j;
+}
+
+nlohmann::json haptics_json(const HapticReplayFigures& f) {
+  return {{"loops", f.loops},
+          {"ticks", f.ticks},
+          {"force_mismatches", f.force_mismatches},
+          {"unverified_ticks", f.unverified_ticks},
+          {"patches", f.patches},
+          {"patch_mismatches", f.patch_mismatches},
+          {"late_ticks", f.late_ticks},
+          {"worst_period_us", f.worst_period_us},
+          {"period_p99_us", f.period_p99_us},
+          {"max_force_n", f.max_force_n}};
+}
+
 }  // namespace
 
 int replay_to_outputs(const ReplayCliOptions& o) {
@@ -81,6 +113,13 @@ int replay_to_outputs(const ReplayCliOptions& o) {
     };
   }
   StationLoop loop(StationLoop::Options{});  // the session's volume command sizes the block
+  // A force device's loops run again on the replayed material.
+  HapticReplay haptics(loop, o.session);
+  std::string forces_text;
+  options.on_haptic = [&](const sim::HapticRecord& r) { return haptics.handle(r); };
+  if (!o.forces.empty()) {
+    haptics.on_tick = [&](const ReplayedTick& t) { forces_text += force_json(t).dump() + "\n"; };
+  }
   // A recording started on a sculpture replays onto it (session_start.h).
   if (auto started = restore_session_start(o.session, loop); !started) {
     return report(started.error());
@@ -116,6 +155,8 @@ int replay_to_outputs(const ReplayCliOptions& o) {
       {"unknown_reports", result->unknown_reports},
       {"short_reports", result->short_reports},
   };
+  const HapticReplayFigures haptic = haptics.figures();
+  if (haptic.loops > 0 || haptic.unverified_ticks > 0) stats["haptics"] = haptics_json(haptic);
   // Every output or none: each is staged whole, and all are moved into
   // place once the last one is written.
   OutputSet outputs;
@@ -165,6 +206,11 @@ int replay_to_outputs(const ReplayCliOptions& o) {
     out.write(samples_text);
     if (Status st = out.commit(); !st) return failed(st);
   }
+  if (!o.forces.empty()) {
+    AtomicFileWriter out(outputs.stage(o.forces));
+    out.write(forces_text);
+    if (Status st = out.commit(); !st) return failed(st);
+  }
   if (!o.stats.empty()) {
     AtomicFileWriter out(outputs.stage(o.stats));
     out.write(stats.dump(2) + "\n");
@@ -178,6 +224,14 @@ int replay_to_outputs(const ReplayCliOptions& o) {
       static_cast<long long>(c.strokes), static_cast<long long>(loop.mesh().triangle_count()),
       result->wall_seconds, stats["speedup"].get<double>());
   std::printf("volume hash %016llx\n", static_cast<unsigned long long>(hash));
+  if (haptic.loops > 0) {
+    std::printf(
+        "force device: %lld loops, %lld ticks run again, %lld forces differ from the "
+        "recording, %lld ticks not verifiable\n",
+        static_cast<long long>(haptic.loops), static_cast<long long>(haptic.ticks),
+        static_cast<long long>(haptic.force_mismatches),
+        static_cast<long long>(haptic.unverified_ticks));
+  }
   return 0;
 }
 
@@ -208,10 +262,13 @@ void add_replay_command(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"density", "distance"}))
       ->capture_default_str();
   cmd->add_option("--stats", o->stats,
-                  "write statistics (JSON): dabs, volume hash, triangles, latency");
+                  "write statistics (JSON): dabs, volume hash, triangles, latency, haptic loops");
   cmd->add_option("--project", o->project,
                   "write the final state as a project the station opens (.sculpt)");
   cmd->add_option("--samples", o->samples, "write the decoded, normalised samples (JSON Lines)");
+  cmd->add_option("--forces", o->forces,
+                  "write the force device's ticks, run again: position, buttons, force, proxy "
+                  "(JSON Lines)");
   cmd->callback([o, &action] { action = [o] { return replay_to_outputs(*o); }; });
 }
 

@@ -47,8 +47,8 @@ ContactForceLaw::ContactForceLaw(core::PatchExchange& patches, const hal::ForceL
       contacts_(kContactRecords) {}
 
 glm::vec3 ContactForceLaw::force_n(const hal::HapticInput& input) {
-  const bool clutched = clutch_key_.load(std::memory_order_relaxed) ||
-                        (input.device.buttons & settings_.clutch_buttons) != 0;
+  const bool clutch_key = clutch_key_.load(std::memory_order_relaxed);
+  const bool clutched = clutch_key || (input.device.buttons & settings_.clutch_buttons) != 0;
   const glm::vec3 mapped_vox = input.device.position_mm * vox_per_device_mm_;
   // While clutched the tool stays where it is: the offset absorbs the motion.
   if (clutched) offset_vox_ = tool_vox_ - mapped_vox;
@@ -60,6 +60,7 @@ glm::vec3 ContactForceLaw::force_n(const hal::HapticInput& input) {
   record.proxy_vox = tool_vox_;
   record.clutched = clutched;
   const core::PatchSnapshot& patch = patches_.acquire();
+  inputs_ = (patch.version << 1) | (clutch_key ? 1u : 0u);
   if (!patch.empty() && !clutched) {
     const core::SpherePatch mapping{settings_.patch_level, {}};
     const core::HapticTick& tick =

@@ -56,6 +56,12 @@ void HapticStation::start_loop(glm::vec3 start_vox, float radius_vox) {
   exchange_ = std::make_unique<core::PatchExchange>(patch.edge);
   keeper_ = std::make_unique<core::PatchKeeper>(*exchange_, patch, level);
   law_ = std::make_unique<ContactForceLaw>(*exchange_, device_->limits(), contact, start_vox);
+  setup_ = {.limits = device_->limits(),
+            .contact = contact,
+            .loop = options_.loop,
+            .start_vox = start_vox,
+            .volume_levels = volume_levels_};
+  setup_recorded_ = false;
   law_->set_clutch(clutch_.load());
   loop_ = std::make_unique<hal::HapticLoop>(*device_, *law_, options_.loop);
   if (enabled_.load()) loop_->enable();
@@ -84,6 +90,9 @@ void HapticStation::restart(float radius_vox) {
   stop_loop();
   start_loop(tool_vox, radius_vox);
   law_->place_tool(tool_vox, device_mm);
+  setup_.placed = true;
+  setup_.placed_tool_vox = tool_vox;
+  setup_.placed_device_mm = device_mm;
   thread_->start();
   ++past_.restarts;
 }
@@ -126,13 +135,24 @@ void HapticStation::sculpting_side(StationController& controller, int64_t now_ns
     tool_seen_ = true;
     tool_version_ = station.tool_version();
   }
+  // A recording holds loops from their first tick: one that starts now
+  // restarts the loop.
+  const bool recording = controller.recording();
+  if (recording && !recording_) restart(proxy_radius_vox_);
+  recording_ = recording;
+  if (recording && !setup_recorded_) {
+    controller.record_haptic(start_record(setup_), now_ns);
+    setup_recorded_ = true;
+  }
   // The newest of what the loop did since the last poll.
   for (ContactRecord r; law_->contacts().try_pop(r);) {
     contact_ = r;
     have_contact_ = true;
   }
-  for (hal::HapticTickRecord t; loop_->records().try_pop(t);)
+  for (hal::HapticTickRecord t; loop_->records().try_pop(t);) {
     tick_ = t;
+    if (recording) controller.record_haptic(tick_record(t), now_ns);
+  }
   if (have_contact_ && options_.drives_tool) drive_tool(controller, now_ns);
   if (loop_->state() == hal::HapticLoopState::kRemoved) {
     // Unplugged mid-stroke: the stroke ends where it was, nothing jerks.
@@ -140,7 +160,9 @@ void HapticStation::sculpting_side(StationController& controller, int64_t now_ns
     pressing_ = false;
     gone_.store(true, std::memory_order_release);
   }
-  keeper_->update(station.volume(), station.volume_generation(), contact_.proxy_vox);
+  const glm::vec3 centre_vox = contact_.proxy_vox;
+  if (keeper_->update(station.volume(), station.volume_generation(), centre_vox) && recording)
+    controller.record_haptic(patch_record(keeper_->patch().snapshot().version, centre_vox), now_ns);
 }
 
 void HapticStation::drive_tool(StationController& controller, int64_t now_ns) {

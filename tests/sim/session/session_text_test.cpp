@@ -1,9 +1,12 @@
 #include "sculpt/sim/session/session_text.h"
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 
+#include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <string>
 
 #include "sculpt/sim/session/session_file.h"
@@ -181,6 +184,73 @@ TEST(SessionText, SheetCommandsRoundTripThroughTextAndBinary) {
   const auto binary = parse_session_bytes(serialize_session(*s), "sheet.scs");
   ASSERT_TRUE(binary.ok()) << binary.error().message();
   EXPECT_EQ(*binary, *s);
+}
+
+TEST(SessionText, HapticRecordsRoundTripThroughTextAndBinaryAndBadOnesAreRefused) {
+  const std::string header = R"({"sculpt_session": 1, "device": {"vendor_product": "046d:c626"}})"
+                             "\n";
+  const std::string text =
+      header +
+      R"({"t": 1, "haptic": "start", "settings": "proxy.radius_vox = 3\nvoxel_mm = 0.5\n"})"
+      "\n"
+      R"({"t": 2, "haptic": "patch", "version": 1, "centre": [32, 51.25, 32]})"
+      "\n"
+      R"({"t": 3, "haptic": "tick", "tick_t": 2500000, "index": 0, "buttons": 1, "flags": 9, "inputs": 3, "position_mm": [0, -0.125, 1e-7], "force_n": [0, 2.5, -0.1]})"
+      "\n";
+  const auto s = session_from_text(text, "haptic.jsonl");
+  ASSERT_TRUE(s.ok()) << s.error().message();
+  ASSERT_EQ(s->records.size(), 3u);
+  const HapticRecord& tick = s->records[2].haptic;
+  EXPECT_EQ(s->records[2].kind, SessionRecord::Kind::kHaptic);
+  EXPECT_EQ(tick.type, HapticRecord::Type::kTick);
+  EXPECT_EQ(tick.tick_t_ns, 2'500'000);
+  EXPECT_EQ(tick.flags, kTickHomed | 1 << kTickRequestShift);
+  EXPECT_EQ(tick.values[2], 1e-7f);
+  EXPECT_EQ(tick.values[5], -0.1f);
+  EXPECT_EQ(s->records[1].haptic.tag, 1u);
+  const auto again = session_from_text(session_to_text(*s), "again.jsonl");
+  ASSERT_TRUE(again.ok()) << again.error().message();
+  EXPECT_EQ(*again, *s);
+  const auto binary = parse_session_bytes(serialize_session(*s), "haptic.scs");
+  ASSERT_TRUE(binary.ok()) << binary.error().message();
+  EXPECT_EQ(*binary, *s);
+
+  auto error = [&](const std::string& body) {
+    const auto r = session_from_text(header + body, "bad.jsonl");
+    return r.ok() ? std::string("accepted") : r.error().message();
+  };
+  EXPECT_EQ(error(R"({"t": 1, "haptic": "wobble"})"),
+            "bad.jsonl:2: haptic: unknown record \"wobble\"");
+  EXPECT_EQ(error(R"({"t": 1, "haptic": "start", "settings": "Stiffness = 1"})"),
+            "bad.jsonl:2: haptic start: set-up text: line 1: a name holds only a-z, 0-9, _ and .");
+  EXPECT_EQ(error(R"({"t": 1, "haptic": "start", "settings": "a = nan"})"),
+            "bad.jsonl:2: haptic start: set-up text: line 1: a: not a finite number");
+  EXPECT_EQ(
+      error(
+          R"({"t": 1, "haptic": "tick", "tick_t": 1, "index": 0, "buttons": 0, "flags": 22, "inputs": 0, "position_mm": [0, 0, 0], "force_n": [0, 0, 0]})"),
+      "bad.jsonl:2: haptic tick: unknown tick flags");
+  EXPECT_EQ(error(R"({"t": 1, "haptic": "patch", "version": -1, "centre": [0, 0, 0]})"),
+            "bad.jsonl:2: version: expected an integer 0..18446744073709551615");
+  // The binary reader refuses the same: a tick whose force is not finite.
+  Session bad = *s;
+  bad.records[2].haptic.values[4] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_FALSE(write_session_file(testing::TempDir() + "/never.scs", bad).ok());
+  std::vector<uint8_t> bytes = serialize_session(*s);
+  bad.records.resize(2);
+  const size_t kept = serialize_session(bad).size();
+  SessionReadInfo info;
+  // The tick's position x (after i64, u32, u32, u8, u64) becomes NaN, and
+  // the record's CRC is made right again: the checksum holds, the value not.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(&bytes[kept + 12 + 25], &nan, sizeof nan);
+  const uint32_t crc = static_cast<uint32_t>(crc32(0, &bytes[kept], 12 + 49));
+  std::memcpy(&bytes[kept + 12 + 49], &crc, sizeof crc);
+  const auto cut = parse_session_bytes(bytes, "cut.scs", &info);
+  ASSERT_TRUE(cut.ok());
+  EXPECT_EQ(cut->records.size(), 2u);
+  EXPECT_EQ(info.bytes_lost, 12 + 49 + 4);
+  EXPECT_NE(info.warning.find("haptic tick record: value out of range"), std::string::npos)
+      << info.warning;
 }
 
 TEST(SessionText, ErrorsNameTheLineAndTheProblem) {

@@ -37,7 +37,14 @@ class ForceLaw {
   virtual ~ForceLaw() = default;
   /// The force on the hand, N, device frame.
   virtual glm::vec3 force_n(const HapticInput& input) = 0;
+  /// What the last force_n() read besides the device (the station's law:
+  /// which patch and whether the clutch key was held), opaque to the loop:
+  /// a recording keeps it so a replay can give a law the same inputs.
+  virtual uint64_t inputs() const { return 0; }
 };
+
+/// A request to the loop from another thread, taken at the next tick.
+enum class HapticRequest : uint8_t { kNone, kEnable, kDrop };
 
 /// One tick as it happened: what a recording keeps and the station draws.
 struct HapticTickRecord {
@@ -46,6 +53,15 @@ struct HapticTickRecord {
   uint32_t buttons = 0;
   /// The force written (after the safety rules), N.
   glm::vec3 force_n{0.0f};
+  /// What a replay needs to run the tick again (sessions keep it): the
+  /// tick's number in its loop (a gap shows records were lost), what the
+  /// read said, the request the tick took, and the law's inputs() when the
+  /// law was asked (0 when not).
+  uint32_t index = 0;
+  ForceIo read = ForceIo::kOk;
+  bool homed = true;
+  HapticRequest request = HapticRequest::kNone;
+  uint64_t law_inputs = 0;
 };
 
 enum class HapticLoopState : uint8_t {
@@ -86,8 +102,8 @@ class HapticLoop {
 
   /// Requests force on (it ramps in) / off at once, from any thread; the
   /// last request before a tick wins.
-  void enable() { request_.store(kEnable, std::memory_order_release); }
-  void drop() { request_.store(kDrop, std::memory_order_release); }
+  void enable() { request_.store(HapticRequest::kEnable, std::memory_order_release); }
+  void drop() { request_.store(HapticRequest::kDrop, std::memory_order_release); }
 
   /// Any thread.
   HapticLoopState state() const { return state_.load(std::memory_order_acquire); }
@@ -100,8 +116,8 @@ class HapticLoop {
   const ForceSafety& safety() const { return safety_; }
 
  private:
-  enum Request : uint8_t { kNone, kEnable, kDrop };
-  void take_request();
+  // The request taken, if any.
+  HapticRequest take_request();
   // Pushes last_ to records_, counting it when the consumer is behind.
   void publish();
 
@@ -116,7 +132,8 @@ class HapticLoop {
   SpscRing<HapticTickRecord> records_;
   HapticLiveCounters live_;
   LatencyHistogram periods_;
-  std::atomic<uint8_t> request_{kNone};
+  std::atomic<HapticRequest> request_{HapticRequest::kNone};
+  uint32_t ticks_ = 0;
 };
 
 }  // namespace sculpt::hal

@@ -25,7 +25,11 @@ inline constexpr float kMaxSpacing = 16.0f;
 /// What is wrong with `c`, in a few words; nothing when it is in range.
 std::optional<std::string> command_problem(const Command& c);
 
-/// The writers' side: a command record the readers would refuse is an error
+/// What is wrong with a haptic record (an unknown type or flag, a value
+/// that is not finite, set-up text too long); nothing when it is sound.
+std::optional<std::string> haptic_problem(const HapticRecord& h);
+
+/// The writers' side: a command or haptic record the readers would refuse is an error
 /// naming `name` and the record's `index`, so a file we write always opens.
 Status check_writable(const SessionRecord& r, const std::string& name, int64_t index);
 

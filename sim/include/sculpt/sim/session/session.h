@@ -8,6 +8,8 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include "sculpt/hal/types/device_info.h"
@@ -97,16 +99,61 @@ std::optional<SculptModeId> parse_sculpt_mode_id(std::string_view name);
 std::string_view sheet_action_name(SheetAction action);
 std::optional<SheetAction> parse_sheet_action(std::string_view name);
 
+/// A force device's haptic loop (DESIGN.md §5a), recorded so that a replay
+/// can run it again tick by tick. The sim module keeps the numbers; the
+/// station gives them meaning (station/haptics/haptic_recording.h).
+struct HapticRecord {
+  enum class Type : uint8_t {
+    kStart = 1,  ///< a loop starts: `settings` holds how it is set up
+    kPatch,      ///< the sculpting side published a patch to the loop
+    kTick,       ///< one tick of the loop
+  };
+  Type type = Type::kTick;
+  /// kStart: the loop's set-up in the station's text form.
+  std::string settings;
+  /// kPatch: the patch's version; kTick: what the force law read besides
+  /// the device (hal::ForceLaw::inputs()).
+  uint64_t tag = 0;
+  /// kTick: the tick's own time (the record's time is when the sculpting
+  /// side took it from the loop), its number in its loop, the buttons, and
+  /// kTickHomed | read << kTickReadShift | request << kTickRequestShift.
+  int64_t tick_t_ns = 0;
+  uint32_t index = 0;
+  uint32_t buttons = 0;
+  uint8_t flags = 0;
+  /// kPatch: the centre asked for, voxels. kTick: position mm (0..2) and
+  /// the force written, N (3..5).
+  float values[6] = {};
+
+  friend bool operator==(const HapticRecord& a, const HapticRecord& b);
+};
+inline constexpr uint8_t kTickHomed = 1;
+inline constexpr int kTickReadShift = 1;     ///< 0 ok, 1 removed, 2 fault
+inline constexpr int kTickRequestShift = 3;  ///< 0 none, 1 enable, 2 drop
+inline constexpr uint8_t kTickFlagsMax = 2 << kTickRequestShift | 3 << kTickReadShift | kTickHomed;
+/// The longest loop set-up text, bytes.
+inline constexpr size_t kMaxHapticSettingsBytes = 4096;
+/// A loop's set-up text: "name = number" lines, names of [a-z0-9_.], numbers
+/// finite (written with 17 digits, so they read back bit for bit).
+using HapticSettings = std::vector<std::pair<std::string, double>>;
+std::string haptic_settings_text(const HapticSettings& settings);
+/// The settings, or why the text is not set-up text (the line and the problem).
+std::variant<HapticSettings, std::string> parse_haptic_settings(std::string_view text);
+std::string_view haptic_record_name(HapticRecord::Type type);
+std::optional<HapticRecord::Type> parse_haptic_record_name(std::string_view name);
+
 struct SessionRecord {
-  enum class Kind : uint8_t { kEvent, kCommand };
+  enum class Kind : uint8_t { kEvent, kCommand, kHaptic };
   Kind kind = Kind::kEvent;
-  hal::RawEvent event;  ///< kEvent (its t_ns is the record's time)
-  Command command;      ///< kCommand
-  int64_t command_t_ns = 0;
+  hal::RawEvent event;       ///< kEvent (its t_ns is the record's time)
+  Command command;           ///< kCommand
+  HapticRecord haptic;       ///< kHaptic
+  int64_t command_t_ns = 0;  ///< the time of a kCommand or kHaptic record
 
   int64_t t_ns() const { return kind == Kind::kEvent ? event.t_ns : command_t_ns; }
   static SessionRecord of(const hal::RawEvent& e);
   static SessionRecord of(int64_t t_ns, const Command& c);
+  static SessionRecord of(int64_t t_ns, const HapticRecord& h);
   friend bool operator==(const SessionRecord& a, const SessionRecord& b);
 };
 

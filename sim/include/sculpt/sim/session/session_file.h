@@ -18,6 +18,10 @@
 //   1 report   the report's bytes (n <= 64); flags bit 0: the device sent more
 //   2 axis     i32 index, i32 value       3 button  i32 index, i32 value
 //   4 sync     (empty)                    5 removed (empty)
+//   6 haptic start  the loop's set-up text (<= 4096 bytes)
+//   7 haptic patch  u64 version, f32 x 3 centre (voxels)
+//   8 haptic tick   i64 tick time, u32 index, u32 buttons, u8 flags, u64 law
+//                   inputs, f32 x 3 position (mm), f32 x 3 force (N)
 //   16 command u8 command kind, u8 choice, f32 x (the kind's value count)
 // Record times never decrease. Files are append-only: the writer appends each
 // record with one write(2), so a crash of the station loses nothing the kernel

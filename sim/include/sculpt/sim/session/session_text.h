@@ -27,6 +27,11 @@
 //   {"t": ..., "cmd": "pointer", "position": [X, Y, Z], "orientation": [W, X, Y, Z]}
 //   {"t": ..., "cmd": "tool_from_region", "lo": [X, Y, Z], "hi": [X, Y, Z]}
 //   {"t": ..., "cmd": "hypertexture", "centre": [X, Y, Z], "radius": R, "width": W, "seed": S}
+// A force device's loop (see HapticRecord):
+//   {"t": ..., "haptic": "start", "settings": "stiffness_n_per_mm = 1\n..."}
+//   {"t": ..., "haptic": "patch", "version": 3, "centre": [X, Y, Z]}
+//   {"t": ..., "haptic": "tick", "tick_t": NS, "index": I, "buttons": B, "flags": F,
+//    "inputs": N, "position_mm": [X, Y, Z], "force_n": [X, Y, Z]}
 // Empty lines and lines starting with # are skipped.
 
 #include <string>

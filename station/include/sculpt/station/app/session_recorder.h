@@ -38,6 +38,11 @@ class SessionRecorder {
 
   /// A station command, at `t_ns` (monotonic).
   void command(const sim::Command& command, int64_t t_ns);
+  /// A force device's loop record, at `t_ns` (monotonic), after the
+  /// commands given before it.
+  void haptic(const sim::HapticRecord& record, int64_t t_ns) {
+    if (writer_) pending_.push_back(sim::SessionRecord::of(t_ns, record));
+  }
   /// A raw device event (any thread).
   void raw(const hal::RawEvent& event);
   /// Raw events up to `t_ns` may be written: the station has applied them.

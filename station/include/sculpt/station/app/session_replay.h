@@ -23,6 +23,9 @@ struct ReplayOptions {
   bool fast = false;   ///< as fast as possible
   /// Called with every normalised device event, in order (--samples).
   std::function<void(const hal::InputEvent&)> on_sample;
+  /// Called with every force device's loop record, in order with the
+  /// commands (haptics/haptic_replay.h); an error ends the replay.
+  std::function<Status(const sim::HapticRecord&)> on_haptic;
 };
 
 struct LatencyStats {

@@ -119,6 +119,11 @@ class StationController {
   void command(const sim::Command& command, int64_t now_ns);
   /// A command stamped with `t_ns` in the recording as it is.
   void command_at(const sim::Command& command, int64_t t_ns);
+  /// A force device's loop record (haptics/haptic_recording.h), kept when
+  /// recording, in order with the commands.
+  void record_haptic(const sim::HapticRecord& record, int64_t now_ns) {
+    if (recorder_.recording()) recorder_.haptic(record, stamp(now_ns));
+  }
   void set_tool(sim::ToolShape shape, float size_a_vox, float size_b_vox, int64_t now_ns);
   void set_mode(core::SculptMode mode, int64_t now_ns);
   void set_strength(float strength, int64_t now_ns);

@@ -84,6 +84,9 @@ class ContactForceLaw final : public hal::ForceLaw {
                   const ContactSettings& settings, glm::vec3 start_vox);
 
   glm::vec3 force_n(const hal::HapticInput& input) override;
+  /// The patch's version the last force_n() read, times two, plus one when
+  /// the clutch key was held (law_inputs() below takes it apart).
+  uint64_t inputs() const override { return inputs_; }
 
   /// Maps the device at `device_mm` to the tool at `tool_vox` (before the
   /// loop runs: a restart keeps the tool where it was).
@@ -112,6 +115,17 @@ class ContactForceLaw final : public hal::ForceLaw {
   std::atomic<bool> clutch_key_{false};
   hal::SpscRing<ContactRecord> contacts_;
   std::atomic<int64_t> dropped_{0};
+  uint64_t inputs_ = 0;
 };
+
+/// What ContactForceLaw::inputs() packs: the patch version read and the
+/// clutch key.
+struct ContactLawInputs {
+  uint64_t patch_version = 0;
+  bool clutch_key = false;
+};
+inline ContactLawInputs law_inputs(uint64_t packed) {
+  return {packed >> 1, (packed & 1u) != 0};
+}
 
 }  // namespace sculpt::station

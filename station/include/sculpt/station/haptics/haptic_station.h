@@ -18,6 +18,11 @@
 // The tool's moves and presses are pointer commands of the station, so a
 // recording replays the sculpture bit for bit.
 //
+// While the station records, the loop goes into the session too
+// (haptic_recording.h): its set-up, every patch published and every tick,
+// so a replay runs it again. Starting a recording restarts the loop, so the
+// session holds it from its first tick; the force ramps in again.
+//
 // The proxy is a sphere of the tool's size (half its largest extent for
 // shapes other than the sphere); a tool change restarts the loop with the
 // new radius, and the force ramps in again.
@@ -41,6 +46,7 @@
 #include "sculpt/hal/haptics/haptic_thread.h"
 #include "sculpt/station/app/input_hub.h"
 #include "sculpt/station/haptics/contact_force_law.h"
+#include "sculpt/station/haptics/haptic_recording.h"
 
 namespace sculpt::station {
 
@@ -142,6 +148,10 @@ class HapticStation final : public PollListener {
   ContactRecord contact_;
   hal::HapticTickRecord tick_;
   bool have_contact_ = false;
+  // The running loop's set-up, and whether the recording has it.
+  HapticLoopSetup setup_;
+  bool setup_recorded_ = false;
+  bool recording_ = false;
   uint64_t tool_version_ = 0;
   bool tool_seen_ = false;
   bool pressing_ = false;

@@ -1,0 +1,140 @@
+// A force device's session, recorded live and replayed: the simulated arm on
+// its real 1 kHz thread presses onto clay and carves while the station
+// records; the replay runs every tick again on patches built from the
+// replayed material and must give the recorded force bit for bit, and the
+// same sculpture.
+
+#include "sculpt/station/haptics/haptic_replay.h"
+
+#include <chrono>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "scratch_dir.h"
+#include "sculpt/hal/force/sim_arm.h"
+#include "sculpt/hal/types/clock.h"
+#include "sculpt/sim/session/session_file.h"
+#include "sculpt/station/app/session_replay.h"
+#include "sculpt/station/app/station_controller.h"
+#include "sculpt/station/haptics/haptic_station.h"
+
+namespace sculpt::station {
+namespace {
+
+ControllerOptions clay_station(const test::ScratchDir& dir) {
+  ControllerOptions co;
+  co.loop.mesh = false;
+  co.loop.volume_dims = glm::ivec3(64);
+  co.loop.clay_margin = 16;  // clay in [16, 48) on every axis
+  co.project = dir.path() / "p.sculpt";
+  co.autosave_seconds = 0;
+  return co;
+}
+
+TEST(HapticReplay, ALiveForceSessionReplaysEveryTickBitForBit) {
+  test::ScratchDir dir;
+  StationController controller(clay_station(dir));
+  const auto session_path = dir.path() / "touch.scs";
+  ASSERT_TRUE(controller.start_recording(session_path, hal::monotonic_ns()).ok());
+  controller.set_tool(sim::ToolShape::kSphere, 6.0f, 6.0f, hal::monotonic_ns());
+  controller.set_mode(core::SculptMode::kSubtract, hal::monotonic_ns());
+
+  // Down onto the clay, a press with the button that carves, a slide along
+  // the hole, with the clutch key held for a moment, then unplugged.
+  hal::HandScript hand;
+  hand.stiffness_n_per_mm = 0.8f;
+  hand.path = {{0.0, glm::vec3(0.0f)},
+               {0.3, glm::vec3(0.0f, -10.0f, 0.0f)},
+               {0.9, glm::vec3(4.0f, -10.0f, 0.0f)}};
+  hand.buttons = {{0.4, 1u}, {0.8, 0u}};
+  hand.unplug_s = 1.0;
+  HapticStationOptions options;
+  options.thread.realtime_priority = 0;
+  options.loop.safety.ramp_s = 0.05;
+  HapticStation station(std::make_unique<hal::SimArm>(hand), options);
+  station.start(glm::vec3(32.0f, 56.0f, 32.0f), 3.0f);
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  bool clutched = false;
+  while (station.running() && std::chrono::steady_clock::now() < give_up) {
+    station.sculpting_side(controller, hal::monotonic_ns());
+    const int64_t ticks = station.figures().ticks;
+    if (ticks > 850 && ticks < 900 && !clutched) station.set_clutch(clutched = true);
+    if (ticks >= 900 && clutched) station.set_clutch(clutched = false);
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+  }
+  ASSERT_FALSE(station.running());
+  station.sculpting_side(controller, hal::monotonic_ns());  // the last ticks
+  ASSERT_TRUE(controller.stop_recording().ok());
+  const uint64_t live_hash = controller.loop().volume().content_hash();
+  ASSERT_GT(controller.loop().counters().dabs, 0);
+
+  auto session = sim::read_session_file(session_path);
+  ASSERT_TRUE(session.ok()) << session.error().message();
+  StationLoop replayed(StationLoop::Options{.mesh = false});
+  HapticReplay haptics(replayed, "touch.scs");
+  int64_t ticks_seen = 0;
+  int64_t forceful = 0;
+  haptics.on_tick = [&](const ReplayedTick& t) {
+    ++ticks_seen;
+    if (glm::length(t.tick.force_n) > 0.5f) ++forceful;
+  };
+  ReplayOptions ro;
+  ro.fast = true;
+  ro.on_haptic = [&](const sim::HapticRecord& r) { return haptics.handle(r); };
+  auto result = replay_session(*session, "touch.scs", replayed, ro);
+  ASSERT_TRUE(result.ok()) << result.error().message();
+
+  const HapticReplayFigures f = haptics.figures();
+  EXPECT_EQ(f.loops, 1);
+  // Every tick of the loop's second of life, recorded and run again.
+  EXPECT_GE(f.ticks, 990);
+  EXPECT_EQ(f.ticks, ticks_seen);
+  EXPECT_EQ(f.unverified_ticks, 0);
+  EXPECT_EQ(f.force_mismatches, 0);
+  EXPECT_GE(f.patches, 2);  // built, then refreshed as the press carved
+  EXPECT_EQ(f.patch_mismatches, 0);
+  EXPECT_GT(forceful, 200);  // it rested and pressed: the forces are not all zero
+  EXPECT_LE(f.max_force_n, 8.0f);
+  EXPECT_EQ(replayed.volume().content_hash(), live_hash);
+}
+
+TEST(HapticReplay, ATickRecordWithoutItsLoopsStartIsCountedNotRun) {
+  StationLoop material(StationLoop::Options{.mesh = false});
+  HapticReplay haptics(material, "orphan.scs");
+  sim::HapticRecord tick;
+  tick.type = sim::HapticRecord::Type::kTick;
+  tick.flags = sim::kTickHomed;
+  ASSERT_TRUE(haptics.handle(tick).ok());
+  EXPECT_EQ(haptics.figures().ticks, 0);
+  EXPECT_EQ(haptics.figures().unverified_ticks, 1);
+}
+
+TEST(HapticReplay, ALoopSetUpRoundTripsAndABadOneNamesTheSetting) {
+  HapticLoopSetup setup;
+  setup.contact.haptic.coupling.stiffness_n_per_mm = 2.75f;
+  setup.contact.workspace_scale = 3.0f;
+  setup.loop.safety.watchdog_ns = 4'000'000;
+  setup.placed = true;
+  setup.placed_device_mm = glm::vec3(0.1f, -7.25f, 3.0f);
+  setup.volume_levels = 4;
+  const sim::HapticRecord record = start_record(setup);
+  auto back = parse_loop_setup(record, "s.scs");
+  ASSERT_TRUE(back.ok()) << back.error().message();
+  EXPECT_EQ(start_record(*back), record);  // every setting, bit for bit
+  EXPECT_EQ(back->contact.haptic.coupling.stiffness_n_per_mm, 2.75f);
+  EXPECT_EQ(back->placed_device_mm.y, -7.25f);
+
+  sim::HapticRecord bad = record;
+  bad.settings = "coupling.stiffnes_n_per_mm = 1\n";
+  EXPECT_EQ(parse_loop_setup(bad, "s.scs").error().message(),
+            "s.scs: haptic loop set-up: unknown setting coupling.stiffnes_n_per_mm");
+  bad.settings = "patch_level = 2.5\n";
+  EXPECT_EQ(parse_loop_setup(bad, "s.scs").error().message(),
+            "s.scs: haptic loop set-up: patch_level = 2.500000 is out of range");
+  bad.settings = "voxel_mm = 1e300\n";
+  EXPECT_FALSE(parse_loop_setup(bad, "s.scs").ok());
+}
+
+}  // namespace
+}  // namespace sculpt::station
