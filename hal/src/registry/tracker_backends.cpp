@@ -1,0 +1,29 @@
+#include "sculpt/hal/registry/tracker_backends.h"
+
+#include "sculpt/hal/backends/opentrack_backend.h"
+#include "sculpt/hal/backends/vrpn_backend.h"
+
+namespace sculpt::hal {
+
+bool names_tracker(std::string_view device_spec) {
+  return device_spec == "opentrack" || device_spec.rfind("opentrack:", 0) == 0 ||
+         device_spec.rfind("vrpn:", 0) == 0;
+}
+
+Result<std::unique_ptr<Backend>> make_tracker_backend(const std::string& device_spec,
+                                                      const std::string& listen_address) {
+  if (device_spec.rfind("vrpn:", 0) == 0) {
+    auto options = parse_vrpn_spec(device_spec);
+    if (!options) return options.error();
+    return make_vrpn_backend(std::move(options).value());
+  }
+  if (names_tracker(device_spec)) {
+    auto options = parse_opentrack_spec(device_spec);
+    if (!options) return options.error();
+    options->listen_address = listen_address;
+    return make_opentrack_backend(std::move(options).value());
+  }
+  return Error(device_spec + ": not a tracker (want opentrack[:PORT] or vrpn:NAME@HOST[:PORT])");
+}
+
+}  // namespace sculpt::hal
