@@ -132,13 +132,14 @@ bool OpenTrackDevice::drain(RawEvent& newest, int64_t now_ns) {
 
 ReadResult OpenTrackDevice::read(RawEvent& out, int timeout_ms) {
   int64_t now = monotonic_ns();
+  timeout_ms = std::max(timeout_ms, 0);
   // Wake up in time to report a loss even when the caller waits longer.
   if (tracking_) {
     const int64_t until_lost_ms = (last_good_ns_ + lost_after_ns_ - now + 999'999) / 1'000'000;
     timeout_ms = static_cast<int>(std::clamp<int64_t>(until_lost_ms, 0, timeout_ms));
   }
   pollfd p{fd_, POLLIN, 0};
-  if (::poll(&p, 1, std::max(timeout_ms, 0)) > 0) {
+  if (::poll(&p, 1, timeout_ms) > 0) {
     now = monotonic_ns();
     if (drain(out, now)) {
       ++counters_.accepted;

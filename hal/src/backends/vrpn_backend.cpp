@@ -338,8 +338,9 @@ ReadResult VrpnTrackerDevice::read(RawEvent& out, int timeout_ms) {
       } else {
         receive(after);
       }
-      continue;
     }
+    // Checked after work too: a server flooding messages that are not poses
+    // must not hold the reader past its timeout.
     if (after >= deadline && pending_.empty()) return ReadResult::kTimeout;
   }
 }
