@@ -31,6 +31,7 @@
 #include "sculpt/station/app/session_start.h"
 #include "sculpt/station/app/station_controller.h"
 #include "sculpt/station/haptics/haptic_station.h"
+#include "sculpt/station/haptics/recorded_force_device.h"
 #include "sculpt/station/render/software_renderer.h"
 #include "sculpt/station/view/mesh_raycast.h"
 #include "sculpt/station/view/surface_mesher.h"
@@ -260,9 +261,16 @@ int run_window(const WindowOptions& o) {
   auto registry = std::make_unique<hal::DeviceRegistry>(hal::DeviceRegistry::default_backends(),
                                                         *config, reader_options);
   sim::SimBackend* sim_backend = nullptr;
+  // A session that recorded a force device plays it too, unless another is given.
+  std::unique_ptr<RecordedForceDevice> recorded_force;
   auto add_sim = [&](const std::string& file) -> Status {
     auto session = load_session(file);
     if (!session) return session.error();
+    if (o.haptic.empty()) {
+      auto force = RecordedForceDevice::from_session(*session, file, o.sim_speed);
+      if (!force) return force.error();
+      if (*force) recorded_force = std::make_unique<RecordedForceDevice>(std::move(**force));
+    }
     // A session plays through the normaliser settings it was recorded with
     // (its header), as its replay does: the live result is then the same.
     auto recorded = hal::parse_normalizer_config(session->header.normalizer_config,
@@ -307,7 +315,15 @@ int run_window(const WindowOptions& o) {
   // the hub, made after it and so gone before it, runs its sculpting side
   // each poll.
   std::unique_ptr<HapticStation> haptics;
-  if (!o.haptic.empty()) {
+  std::optional<glm::vec3> haptic_origin_vox;  // where a recorded loop had the tool
+  if (recorded_force) {
+    HapticStationOptions ho;
+    ho.contact = recorded_force->setup().contact;
+    ho.loop = recorded_force->setup().loop;
+    ho.drives_tool = false;  // the session's commands move the tool
+    haptic_origin_vox = recorded_force->origin_tool_vox();
+    haptics = std::make_unique<HapticStation>(std::move(recorded_force), ho);
+  } else if (!o.haptic.empty()) {
     auto device = hal::open_force_device(o.haptic, {o.falcon_firmware});
     if (!device) return fail(device.error());
     HapticStationOptions ho;
@@ -370,7 +386,7 @@ int run_window(const WindowOptions& o) {
       start = glm::vec3(0.5f * (lo.x + hi.x), hi.y + controller.loop().tool_size() * 0.5f + 4.0f,
                         0.5f * (lo.z + hi.z));
     }
-    haptics->start(start, controller.loop().tool_size() * 0.5f);
+    haptics->start(haptic_origin_vox.value_or(start), controller.loop().tool_size() * 0.5f);
     if (const HapticFigures hf = haptics->figures(); !hf.realtime)
       std::printf("%s\n", hf.realtime_note.c_str());
   }

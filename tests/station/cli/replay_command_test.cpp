@@ -39,6 +39,48 @@ TEST_F(ReplayCommandTest, ADamagedStartProjectIsOneClearError) {
   EXPECT_FALSE(fs::exists(dir_ / "s.json"));
 }
 
+TEST_F(ReplayCommandTest, AForceSessionWritesItsTicksRunAgainAndItsHapticFigures) {
+  const std::string touch = sculpt::sim::bundled_session_path("touch");
+  const CommandResult r = run_sculpt("replay " + touch + " --fast --forces " + path("f.jsonl") +
+                                     " --stats " + path("s.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("6200 ticks run again, 0 forces differ from the recording"),
+            std::string::npos)
+      << r.out;
+  const auto stats = nlohmann::json::parse(read_text(dir_ / "s.json"));
+  EXPECT_EQ(stats["haptics"]["ticks"].get<int>(), 6200);
+  EXPECT_EQ(stats["haptics"]["force_mismatches"].get<int>(), 0);
+  std::ifstream forces(dir_ / "f.jsonl");
+  int lines = 0, in_contact = 0;
+  for (std::string line; std::getline(forces, line); ++lines) {
+    const auto j = nlohmann::json::parse(line);
+    EXPECT_FALSE(j.contains("differs_from_recording")) << line;
+    if (j["contact"].get<bool>()) ++in_contact;
+  }
+  EXPECT_EQ(lines, 6200);
+  EXPECT_GT(in_contact, 2000);  // it rested on the clay, slid and carved
+}
+
+TEST_F(ReplayCommandTest, AForceSessionWithABadLoopSetUpIsOneClearErrorAndWritesNothing) {
+  // A hand-written session whose loop set-up names a setting there is not.
+  const std::string session = path("bad.jsonl");
+  {
+    std::ofstream out(session);
+    out << R"({"sculpt_session": 1, "device": {"vendor_product": "256f:c635"}})"
+           "\n"
+        << R"({"t": 1, "haptic": "start", "settings": "coupling.stifness_n_per_mm = 3\n"})"
+           "\n";
+  }
+  const CommandResult r = run_sculpt("replay " + session + " --fast --forces " + path("f.jsonl") +
+                                     " --stats " + path("s.json"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("bad.jsonl: haptic loop set-up: unknown setting coupling.stifness_n_per_mm"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "f.jsonl"));
+  EXPECT_FALSE(fs::exists(dir_ / "s.json"));
+}
+
 TEST_F(ReplayCommandTest, WritesVolumeMeshStatsAndSamples) {
   const CommandResult r =
       run_sculpt("replay " + short_ + " --fast --volume " + path("v.nrrd") + " --mesh " +

@@ -7,6 +7,8 @@
 #include "sculpt/station/haptics/haptic_replay.h"
 
 #include <chrono>
+#include <filesystem>
+#include <functional>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -15,6 +17,7 @@
 #include "sculpt/hal/force/sim_arm.h"
 #include "sculpt/hal/types/clock.h"
 #include "sculpt/sim/session/session_file.h"
+#include "sculpt/sim/synth/bundled_sessions.h"
 #include "sculpt/station/app/session_replay.h"
 #include "sculpt/station/app/station_controller.h"
 #include "sculpt/station/haptics/haptic_station.h"
@@ -30,6 +33,23 @@ ControllerOptions clay_station(const test::ScratchDir& dir) {
   co.project = dir.path() / "p.sculpt";
   co.autosave_seconds = 0;
   return co;
+}
+
+// Replays the session at `path` into `replayed`, its force device's loops
+// too; each tick run again goes to `on_tick`.
+HapticReplayFigures replay_forces(const std::filesystem::path& path, StationLoop& replayed,
+                                  std::function<void(const ReplayedTick&)> on_tick = {}) {
+  auto session = sim::read_session_file(path);
+  EXPECT_TRUE(session.ok()) << session.error().message();
+  if (!session.ok()) return {};
+  HapticReplay haptics(replayed, path.filename().string());
+  haptics.on_tick = std::move(on_tick);
+  ReplayOptions ro;
+  ro.fast = true;
+  ro.on_haptic = [&](const sim::HapticRecord& r) { return haptics.handle(r); };
+  auto result = replay_session(*session, path.filename().string(), replayed, ro);
+  EXPECT_TRUE(result.ok()) << result.error().message();
+  return haptics.figures();
 }
 
 TEST(HapticReplay, ALiveForceSessionReplaysEveryTickBitForBit) {
@@ -69,23 +89,13 @@ TEST(HapticReplay, ALiveForceSessionReplaysEveryTickBitForBit) {
   const uint64_t live_hash = controller.loop().volume().content_hash();
   ASSERT_GT(controller.loop().counters().dabs, 0);
 
-  auto session = sim::read_session_file(session_path);
-  ASSERT_TRUE(session.ok()) << session.error().message();
   StationLoop replayed(StationLoop::Options{.mesh = false});
-  HapticReplay haptics(replayed, "touch.scs");
   int64_t ticks_seen = 0;
   int64_t forceful = 0;
-  haptics.on_tick = [&](const ReplayedTick& t) {
+  const HapticReplayFigures f = replay_forces(session_path, replayed, [&](const ReplayedTick& t) {
     ++ticks_seen;
     if (glm::length(t.tick.force_n) > 0.5f) ++forceful;
-  };
-  ReplayOptions ro;
-  ro.fast = true;
-  ro.on_haptic = [&](const sim::HapticRecord& r) { return haptics.handle(r); };
-  auto result = replay_session(*session, "touch.scs", replayed, ro);
-  ASSERT_TRUE(result.ok()) << result.error().message();
-
-  const HapticReplayFigures f = haptics.figures();
+  });
   EXPECT_EQ(f.loops, 1);
   // Every tick of the loop's second of life, recorded and run again.
   EXPECT_GE(f.ticks, 990);
@@ -97,6 +107,24 @@ TEST(HapticReplay, ALiveForceSessionReplaysEveryTickBitForBit) {
   EXPECT_GT(forceful, 200);  // it rested and pressed: the forces are not all zero
   EXPECT_LE(f.max_force_n, 8.0f);
   EXPECT_EQ(replayed.volume().content_hash(), live_hash);
+}
+
+// The bundled force session: the simulated arm's touch.hand, recorded by the
+// window. A change to the contact law, the proxy or the safety rules changes
+// its forces, and this test says so; record it again with
+//   sculpt run --haptic sim-arm:sim/sessions/touch.hand --record sim/sessions/touch.scs \
+//              --until-replayed
+// (under xvfb-run without a display).
+TEST(HapticReplay, TheBundledTouchSessionReplaysEveryTickBitForBit) {
+  StationLoop replayed(StationLoop::Options{.mesh = false});
+  const HapticReplayFigures f = replay_forces(sim::bundled_session_path("touch"), replayed);
+  EXPECT_EQ(f.loops, 1);
+  EXPECT_EQ(f.ticks, 6200);  // the hand unplugs the arm at 6.2 s
+  EXPECT_EQ(f.unverified_ticks, 0);
+  EXPECT_EQ(f.force_mismatches, 0);
+  EXPECT_EQ(f.patch_mismatches, 0);
+  EXPECT_GT(f.max_force_n, 2.0f);
+  EXPECT_GT(replayed.counters().dabs, 100);  // it carved a groove
 }
 
 TEST(HapticReplay, ATickRecordWithoutItsLoopsStartIsCountedNotRun) {

@@ -19,6 +19,7 @@
 #include "sculpt/sim/synth/bundled_sessions.h"
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/session_replay.h"
+#include "sculpt/station/haptics/haptic_replay.h"
 #include "sculpt/station/view/orbit_camera.h"
 #include "sculpt/station/window/gl_snapshot.h"
 
@@ -361,8 +362,40 @@ TEST(StationWindow, TheSimulatedArmCarvesWithForceAndItsRecordingReplays) {
   auto recorded = load_session(dir.file("touch.scs"));
   ASSERT_TRUE(recorded.ok()) << recorded.error().message();
   StationLoop loop(StationLoop::Options{});
-  ASSERT_TRUE(replay_session(*recorded, "touch", loop).ok());
+  // The forces too: every tick the window's loop ran, run again bit for bit.
+  HapticReplay haptics(loop, "touch");
+  ReplayOptions ro;
+  ro.on_haptic = [&](const sim::HapticRecord& h) { return haptics.handle(h); };
+  ro.fast = true;
+  ASSERT_TRUE(replay_session(*recorded, "touch", loop, ro).ok());
   EXPECT_EQ(loop.counters().dabs, stats["dabs"].get<int64_t>());
+  EXPECT_EQ(loop.volume().content_hash(), stats["volume_hash"].get<uint64_t>());
+  EXPECT_GT(haptics.figures().ticks, 6000);  // all but those before the recording began
+  EXPECT_EQ(haptics.figures().force_mismatches, 0);
+  EXPECT_EQ(haptics.figures().unverified_ticks, 0);
+}
+
+// A recorded force session played live: its commands move the tool, its
+// recorded device readings drive the station's own loop (feel-only), and
+// the sculpture is the recorded one.
+TEST(StationWindow, ARecordedForceSessionPlaysLiveWithItsDevice) {
+  sculpt::test::ScratchDir dir;
+  const std::string touch = sim::bundled_session_path("touch");
+  auto r =
+      run_with_display("run --device sim:" + touch +
+                           " --until-replayed --hidden --no-vsync --stats " + dir.file("s.json"),
+                       dir.path());
+  if (!r) GTEST_SKIP() << "no display and no xvfb-run";
+  ASSERT_EQ(r->exit_code, 0) << r->err;
+  const auto stats = nlohmann::json::parse(read_text(dir.file("s.json")));
+  const auto& h = stats["haptics"];
+  EXPECT_EQ(h["device"], "recorded force device (" + touch + ")");
+  EXPECT_GT(h["ticks"].get<int64_t>(), 3000);  // it played, at about 1 kHz
+  EXPECT_LE(h["max_force_n"].get<double>(), 8.0 + 1e-4);
+  auto recorded = load_session(touch);
+  ASSERT_TRUE(recorded.ok()) << recorded.error().message();
+  StationLoop loop(StationLoop::Options{});
+  ASSERT_TRUE(replay_session(*recorded, "touch", loop).ok());
   EXPECT_EQ(loop.volume().content_hash(), stats["volume_hash"].get<uint64_t>());
 }
 
