@@ -110,7 +110,7 @@ class HidapiBackend final : public Backend {
     hid_device* h = hid_open_path(info.path.c_str());
     if (h == nullptr) {
       if (::access(info.path.c_str(), R_OK | W_OK) != 0) {
-        return Error(info.id() + ": no permission; install the udev rules (see README: Devices)");
+        return Error(info.id() + ": no permission; install the udev rules (see docs/devices.md)");
       }
       return Error(info.id() + ": cannot open: " + narrow(hid_error(nullptr)));
     }

@@ -188,7 +188,7 @@ class LibusbBackend final : public Backend {
     const int r = found ? libusb_open(found, &h) : LIBUSB_ERROR_NO_DEVICE;
     libusb_free_device_list(list, 1);
     if (r == LIBUSB_ERROR_ACCESS) {
-      return Error(info.id() + ": no permission; install the udev rules (see README: Devices)");
+      return Error(info.id() + ": no permission; install the udev rules (see docs/devices.md)");
     }
     if (r != 0) return Error(info.id() + ": cannot open: " + libusb_error_name(r));
     bool reattach = false;

@@ -75,7 +75,7 @@ ScanReport DeviceRegistry::scan() {
         continue;
       if (!info.accessible) {
         report.errors.push_back(info.id() + " (" + info.vendor_product() +
-                                "): no permission; install the udev rules (see README: Devices)");
+                                "): no permission; install the udev rules (see docs/devices.md)");
         continue;
       }
       auto id = start_reader(*backend, info);
@@ -140,7 +140,7 @@ Result<uint32_t> DeviceRegistry::open_device(const std::string& id) {
       if (open != open_keys_.end()) return open->second;
       if (!info.accessible) {
         return Error("--device " + id +
-                     ": no permission; install the udev rules (see README: Devices)");
+                     ": no permission; install the udev rules (see docs/devices.md)");
       }
       auto started = start_reader(*backend, info);
       if (!started) return started.error().in("--device " + id);

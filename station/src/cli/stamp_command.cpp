@@ -157,7 +157,7 @@ void add_stamp_command(CLI::App& app, Action& action) {
   cmd->add_option("--new", o->new_dims, "start from an empty volume of NX,NY,NZ voxels")
       ->delimiter(',')
       ->expected(3);
-  cmd->add_option("--dabs", o->dabs, "JSON Lines script (see the README)")
+  cmd->add_option("--dabs", o->dabs, "JSON Lines script (see docs/formats.md)")
       ->required()
       ->check(input_file());
   cmd->add_option("-o,--output", o->output, "output NRRD volume")->required();

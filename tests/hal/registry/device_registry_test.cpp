@@ -248,7 +248,7 @@ TEST(DeviceRegistry, NodeWithoutPermissionGivesTheUdevHint) {
   ASSERT_EQ(s.errors.size(), 1u);
   EXPECT_EQ(
       s.errors[0],
-      "fake-hid:hidraw0 (046d:c626): no permission; install the udev rules (see README: Devices)");
+      "fake-hid:hidraw0 (046d:c626): no permission; install the udev rules (see docs/devices.md)");
   const auto direct_open = rig.registry->open_device("fake-hid:hidraw0");
   ASSERT_FALSE(direct_open.ok());
   EXPECT_NE(direct_open.error().message().find("udev rules"), std::string::npos);

@@ -1,5 +1,5 @@
 #pragma once
-// The JSON files of NURBS curves, surfaces and parameter zones (README,
+// The JSON files of NURBS curves, surfaces and parameter zones (docs/formats.md,
 // "NURBS files"; examples in docs/nurbs/).
 //
 // Surface:

@@ -1,6 +1,6 @@
 #pragma once
-// What a NURBS curve or surface read from outside may hold (README "File
-// formats"): every coordinate within +-kMaxCoordinate and every weight in
+// What a NURBS curve or surface read from outside may hold (docs/formats.md):
+// every coordinate within +-kMaxCoordinate and every weight in
 // [kMinWeight, kMaxWeight]. Finite alone is not enough: a weight of 1e308
 // times a coordinate overflows the homogeneous point to infinity, and the
 // evaluation then writes NaN. Within these bounds w * P and the basis sums

@@ -16,7 +16,7 @@
 //        [0, 1] (default 1), rotation as "euler" (degrees, extrinsic xyz) or
 //        "quat" [w,x,y,z] (default none)
 //   {"op":"undo"}, {"op":"redo"}
-// Every field is checked where it is read (README "File formats" lists the
+// Every field is checked where it is read (docs/formats.md lists the
 // limits); the whole script is read before anything is applied, and an
 // error names the script, the line and the field.
 

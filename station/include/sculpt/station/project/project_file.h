@@ -8,7 +8,7 @@
 //   u32      n, then n bytes of JSON: {"volume": {"dims", "brick_edge", "levels",
 //            "content_hash"}, "settings": {...}, "view": {...}, "tool": null |
 //            {"dims", "pivot"}, "sheet": null | a NURBS surface (nurbs_json.h)}
-//            (README "File formats" lists every field)
+//            (docs/formats.md lists every field)
 //   u64      m, then m bytes of zlib (deflate) data holding, for every brick in
 //            index order, u8 0 + u8 value (a uniform brick) or u8 1 + the
 //            brick's edge^3 int16 Haar coefficients (wavelet_pyramid.h layout);
