@@ -30,7 +30,8 @@ void Normalizer::reset() {
 }
 
 void Normalizer::apply(InputEvent& e) {
-  if (e.kind != InputKind::kMotion) return;
+  // A tracker's pose is calibrated by the pose integrator, not by axis maps.
+  if (e.kind != InputKind::kMotion || e.has_pose) return;
   const NormalizerConfig& c = config_;
   std::array<float, 6> v{};
   for (int i = 0; i < 6; ++i)

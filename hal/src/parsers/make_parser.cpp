@@ -3,6 +3,7 @@
 #include "sculpt/hal/parsers/axis_event_parser.h"
 #include "sculpt/hal/parsers/hid_descriptor_parser.h"
 #include "sculpt/hal/parsers/spacemouse_parser.h"
+#include "sculpt/hal/parsers/tracker_report_parser.h"
 #include "sculpt/hal/types/quirks.h"
 
 namespace sculpt::hal {
@@ -12,6 +13,13 @@ Result<std::unique_ptr<ReportParser>> make_parser(const DeviceInfo& info) {
   // spacenavd has decoded the device already, whatever it is.
   if (info.backend == "spnav")
     return std::unique_ptr<ReportParser>(std::make_unique<AxisEventParser>());
+  // A tracker's reports are its datagrams or messages, whatever it tracks.
+  if (info.backend == "opentrack")
+    return std::unique_ptr<ReportParser>(
+        std::make_unique<TrackerReportParser>(TrackerFormat::kOpenTrack));
+  if (info.backend == "vrpn")
+    return std::unique_ptr<ReportParser>(
+        std::make_unique<TrackerReportParser>(TrackerFormat::kVrpn));
   if (const DeviceQuirks* q = find_quirks(info.vendor_id, info.product_id)) {
     if (q->kind == QuirkKind::kIgnore) {
       return Error(who + ": " + std::string(q->name) + " is not a 6-DOF device");

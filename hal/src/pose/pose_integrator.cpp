@@ -10,12 +10,13 @@
 namespace sculpt::hal {
 
 PoseIntegrator::PoseIntegrator(PoseIntegratorConfig config, ToolPose start)
-    : config_(config), pose_(start), position_(start.position) {}
+    : config_(config), pose_(start), position_(start.position), tracker_(config.tracker) {}
 
 void PoseIntegrator::reset(ToolPose start) {
   pose_ = start;
   position_ = glm::dvec3(start.position);
   have_time_ = false;
+  tracker_.unanchor();
 }
 
 void PoseIntegrator::clamp_position(glm::vec3 lo, glm::vec3 hi) {
@@ -35,6 +36,14 @@ const ToolPose& PoseIntegrator::update(const InputEvent& m) {
   const bool position =
       config_.mode == ControlMode::kPosition || (config_.mode == ControlMode::kAuto && m.absolute);
   if (have_time_ && m.t_ns <= pose_.t_ns) return pose_;
+  if (m.has_pose) {
+    const int64_t t_ns = m.t_ns;
+    pose_ = tracker_.map(m.pose, pose_);
+    position_ = glm::dvec3(pose_.position);
+    pose_.t_ns = t_ns;
+    have_time_ = true;
+    return pose_;
+  }
   if (position) {
     pose_.position = config_.workspace_center + glm::vec3(m.axes[kTx], m.axes[kTy], m.axes[kTz]) *
                                                     config_.workspace_half_extent;

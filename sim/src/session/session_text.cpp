@@ -353,8 +353,10 @@ SessionRecord parse_record(const json& j) {
     if (!j["report"].is_string()) throw std::string("report: expected a hex string");
     const auto bytes = from_hex(j["report"].get<std::string>());
     if (!bytes) throw "report: '" + j["report"].get<std::string>() + "' is not hex";
-    if (bytes->empty() || bytes->size() > hal::RawEvent::kMaxReportBytes) {
-      throw std::string("report: expected 1 to 64 bytes");
+    // No bytes is a report too: a tracker's "tracking lost" (the binary
+    // format stores it alike).
+    if (bytes->size() > hal::RawEvent::kMaxReportBytes) {
+      throw std::string("report: expected 0 to 64 bytes");
     }
     SessionRecord r = SessionRecord::of(hal::RawEvent::report(t, *bytes));
     r.event.truncated = j.value("truncated", false);

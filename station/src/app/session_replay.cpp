@@ -91,6 +91,7 @@ Result<ReplayResult> replay_session(const sim::Session& session, const std::stri
   const hal::ParserCounters parsed = stream.parser_counters();
   result.unknown_reports = parsed.unknown_reports;
   result.short_reports = parsed.short_reports;
+  result.invalid_reports = parsed.invalid_reports;
   return result;
 }
 

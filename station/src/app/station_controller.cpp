@@ -304,7 +304,8 @@ void StationController::device_frame(
     // Connect events carry the reader's clock, not the device's: only
     // reports place commands.
     const bool report = e.kind == hal::InputKind::kMotion || e.kind == hal::InputKind::kButton ||
-                        e.kind == hal::InputKind::kBattery;
+                        e.kind == hal::InputKind::kBattery ||
+                        e.kind == hal::InputKind::kTrackingLost;
     if (report) {
       commands_until(e.t_ns);
       processed_t_ns_ = std::max(processed_t_ns_, e.t_ns);
@@ -330,6 +331,7 @@ void StationController::device_frame(
         last_camera_t_ns_ = 0;
         break;
       case hal::InputKind::kButton:
+      case hal::InputKind::kTrackingLost:
         break;
     }
     const int64_t dabs = loop_.counters().dabs;

@@ -377,6 +377,13 @@ void StationLoop::handle(const hal::InputEvent& e) {
       ++counters_.disconnects;
       release();
       break;
+    case hal::InputKind::kTrackingLost:
+      // The stroke ends where the tracker was last seen (no streak to where
+      // it is found again), and the next pose re-anchors instead of jumping.
+      ++counters_.tracking_losses;
+      release();
+      integrator_.lose_tracking();
+      break;
     case hal::InputKind::kConnected:
     case hal::InputKind::kBattery:
       break;

@@ -35,6 +35,12 @@ nlohmann::json sample_json(const hal::InputEvent& e) {
   nlohmann::json j = {{"t", e.t_ns}, {"device", e.device_id}};
   switch (e.kind) {
     case hal::InputKind::kMotion:
+      if (e.has_pose) {  // a tracker: its pose, not axes (decoded again from the recorded bytes)
+        const hal::TrackerPose& p = e.pose;
+        j["pose"] = {{"position_mm", p.position_mm}, {"quat", p.quat_wxyz}};
+        if (p.sensor != 0) j["pose"]["sensor"] = p.sensor;
+        break;
+      }
       j["motion"] = e.axes;
       if (e.translation_stale) j["translation_stale"] = true;
       if (e.rotation_stale) j["rotation_stale"] = true;
@@ -51,6 +57,9 @@ nlohmann::json sample_json(const hal::InputEvent& e) {
       break;
     case hal::InputKind::kDisconnected:
       j["disconnected"] = true;
+      break;
+    case hal::InputKind::kTrackingLost:
+      j["tracking_lost"] = true;
       break;
   }
   return j;
@@ -140,6 +149,7 @@ int replay_to_outputs(const ReplayCliOptions& o) {
       {"undos", c.undos},
       {"redos", c.redos},
       {"disconnects", c.disconnects},
+      {"tracking_losses", c.tracking_losses},
       {"volume_dims", {volume.dims().x, volume.dims().y, volume.dims().z}},
       {"volume_hash", hash},
       {"triangles", loop.mesh().triangle_count()},
@@ -154,6 +164,7 @@ int replay_to_outputs(const ReplayCliOptions& o) {
       {"speedup", result->wall_seconds > 0 ? result->session_seconds / result->wall_seconds : 0.0},
       {"unknown_reports", result->unknown_reports},
       {"short_reports", result->short_reports},
+      {"invalid_reports", result->invalid_reports},
   };
   const HapticReplayFigures haptic = haptics.figures();
   if (haptic.loops > 0 || haptic.unverified_ticks > 0) stats["haptics"] = haptics_json(haptic);

@@ -125,6 +125,25 @@ TEST(SessionText, ReadsAHandWrittenSessionWithPastedHex) {
   EXPECT_EQ(s->records[2].command.values[0], 31.5f);
 }
 
+TEST(SessionText, AnEmptyReportIsTrackingLostInTextAndBinaryAlike) {
+  const std::string text =
+      R"({"sculpt_session": 1, "device": {"backend": "opentrack", "path": "127.0.0.1:4242", "vendor_product": "0000:0000"}})"
+      "\n"
+      R"({"t": 100, "report": ""})"
+      "\n";
+  const auto s = session_from_text(text, "lost.jsonl");
+  ASSERT_TRUE(s.ok()) << s.error().message();
+  ASSERT_EQ(s->records.size(), 1u);
+  EXPECT_EQ(s->records[0].event.kind, hal::RawEventKind::kReport);
+  EXPECT_EQ(s->records[0].event.size, 0);
+  const auto binary = parse_session_bytes(serialize_session(*s), "lost.scs");
+  ASSERT_TRUE(binary.ok()) << binary.error().message();
+  EXPECT_EQ(*binary, *s);
+  const auto back = session_from_text(session_to_text(*binary), "lost.jsonl");
+  ASSERT_TRUE(back.ok()) << back.error().message();
+  EXPECT_EQ(*back, *s);
+}
+
 TEST(SessionText, TouchModeRoundTripsAndABadOneIsRefused) {
   const std::string text = R"({"sculpt_session": 1, "device": {"vendor_product": "046d:c626"}})"
                            "\n"
@@ -283,7 +302,7 @@ TEST(SessionText, ErrorsNameTheLineAndTheProblem) {
   EXPECT_EQ(error("not json"), "bad.jsonl:2: not a JSON object");
   EXPECT_EQ(error(R"({"report": "01"})"), "bad.jsonl:2: missing \"t\"");
   EXPECT_EQ(error(R"({"t": 1, "report": ")" + std::string(65 * 2, 'a') + "\"}"),
-            "bad.jsonl:2: report: expected 1 to 64 bytes");
+            "bad.jsonl:2: report: expected 0 to 64 bytes");
   const auto no_header = session_from_text(R"({"t": 1, "sync": true})", "h.jsonl");
   ASSERT_FALSE(no_header.ok());
   EXPECT_NE(no_header.error().message().find("h.jsonl:1: the first line must be the header"),

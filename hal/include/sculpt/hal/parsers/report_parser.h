@@ -18,12 +18,15 @@ struct ParserCounters {
   int64_t short_reports = 0;    ///< shorter than their layout: ignored
   /// Longer than their layout (or truncated): the layout part is used.
   int64_t overlong_reports = 0;
+  /// Unusable as a whole (a tracker's NaN, its wrong length): dropped.
+  int64_t invalid_reports = 0;
 
   ParserCounters& operator+=(const ParserCounters& other) {
     reports += other.reports;
     unknown_reports += other.unknown_reports;
     short_reports += other.short_reports;
     overlong_reports += other.overlong_reports;
+    invalid_reports += other.invalid_reports;
     return *this;
   }
 };

@@ -6,7 +6,8 @@
 // depends on the sample times, not on how often the main loop looks or how
 // many samples it skipped.
 // Position control (trackers, absolute axes): the sample is the pose, mapped
-// into a workspace box and an angle range.
+// into a workspace box and an angle range; a tracker's pose (has_pose) is
+// mapped by TrackerMapping, anchored where the tool is so nothing jumps.
 
 #include <array>
 #include <cstdint>
@@ -14,6 +15,7 @@
 #include <glm/vec3.hpp>
 
 #include "sculpt/hal/pose/tool_pose.h"
+#include "sculpt/hal/pose/tracker_mapping.h"
 #include "sculpt/hal/types/input_event.h"
 
 namespace sculpt::hal {
@@ -31,6 +33,7 @@ struct PoseIntegratorConfig {
   glm::vec3 workspace_center{0.0f};       ///< position control: pose at axes = 0
   float workspace_half_extent = 100.0f;   ///< position control: world units at axis = ±1
   float max_angle = 3.14159265f;          ///< position control: rad at rotation axis = ±1
+  TrackerCalibration tracker{};           ///< trackers' poses (InputEvent::has_pose)
 };
 
 class PoseIntegrator {
@@ -50,7 +53,10 @@ class PoseIntegrator {
   /// sample (the station's touch mode holds it on the material); the next
   /// rate-control sample moves it on from there.
   void place(glm::vec3 position);
+  /// Also re-anchors a tracker: its next pose maps to `start`.
   void reset(ToolPose start);
+  /// A tracker lost its target: its next pose anchors where the tool is.
+  void lose_tracking() { tracker_.unanchor(); }
 
  private:
   PoseIntegratorConfig config_;
@@ -58,6 +64,7 @@ class PoseIntegrator {
   glm::dvec3 position_{0.0};  // accumulated in double: a long session must not drift
   std::array<double, kAxisCount> last_integral_{};
   bool have_time_ = false;
+  TrackerMapping tracker_;
 };
 
 }  // namespace sculpt::hal

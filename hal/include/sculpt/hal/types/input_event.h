@@ -7,6 +7,8 @@
 #include <array>
 #include <cstdint>
 
+#include "sculpt/hal/types/tracker_pose.h"
+
 namespace sculpt::hal {
 
 enum class InputKind : uint8_t {
@@ -15,6 +17,9 @@ enum class InputKind : uint8_t {
   kBattery,       ///< battery_percent, charging
   kConnected,     ///< device_id appeared (first event of every reader)
   kDisconnected,  ///< device_id is gone (last event of every reader)
+  /// A tracker lost sight of its target: the stroke ends, and the next pose
+  /// re-anchors instead of jumping.
+  kTrackingLost,
 };
 
 /// Axis indices in InputEvent::axes.
@@ -29,6 +34,11 @@ struct InputEvent {
   /// likewise, as a fraction of full twist.
   std::array<float, kAxisCount> axes{};
   bool absolute = false;  ///< kMotion: position-control device (tracker, absolute HID axes)
+  /// kMotion from a tracker: `pose` holds the absolute pose in the tracker's
+  /// frame (mm, unit quaternion w x y z) and `axes` are unused. Set with
+  /// `absolute`.
+  bool has_pose = false;
+  TrackerPose pose;
   bool translation_stale = false;  ///< kMotion: translation half not refreshed by this sample
   bool rotation_stale = false;     ///< kMotion: rotation half not refreshed by this sample
   /// kMotion, relative: each axis integrated over time since the device

@@ -42,6 +42,7 @@ struct ReplayResult {
   LatencyStats dab_latency;
   int64_t unknown_reports = 0;
   int64_t short_reports = 0;
+  int64_t invalid_reports = 0;  ///< dropped whole (a tracker's NaN or wrong-length bytes)
 };
 
 /// Percentiles of a set of durations in microseconds (exact).

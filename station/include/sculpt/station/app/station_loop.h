@@ -8,7 +8,8 @@
 // button 1 switches between add and subtract. In touch mode (touch_mode.h)
 // the tool rests on the material and button 0 sculpts only where the device
 // pushes past the press threshold. A device that vanishes while
-// pressed ends the stroke cleanly.
+// pressed ends the stroke cleanly, and so does a tracker losing its target
+// (its next pose re-anchors where the tool is: the tool never jumps).
 //
 // Thread safety: one thread (the main loop) calls everything.
 
@@ -48,6 +49,8 @@ struct StationCounters {
   int64_t disconnects = 0;
   int64_t sheet_grabs = 0;   ///< presses that grabbed the sheet
   int64_t sheet_misses = 0;  ///< presses in sheet editing that found no sheet near the tool
+  /// A tracker lost its target (each loss ends the stroke).
+  int64_t tracking_losses = 0;
 };
 
 class StationLoop {
