@@ -2,6 +2,7 @@
 
 #include "sculpt/hal/backends/opentrack_backend.h"
 #include "sculpt/hal/backends/vrpn_backend.h"
+#include "sculpt/hal/registry/device_registry.h"
 
 namespace sculpt::hal {
 
@@ -24,6 +25,18 @@ Result<std::unique_ptr<Backend>> make_tracker_backend(const std::string& device_
     return make_opentrack_backend(std::move(options).value());
   }
   return Error(device_spec + ": not a tracker (want opentrack[:PORT] or vrpn:NAME@HOST[:PORT])");
+}
+
+Result<std::string> add_named_tracker(DeviceRegistry& registry, const std::string& device_spec,
+                                      const std::string& listen_address) {
+  if (!names_tracker(device_spec)) return device_spec;
+  auto backend = make_tracker_backend(device_spec, listen_address);
+  if (!backend) return Error("--device " + backend.error().message());  // it names the spec
+  // The backend's name opens its one device: the spec the user typed may
+  // leave out what the device's id spells in full (VRPN's default port).
+  std::string id((*backend)->name());
+  registry.add_backend(std::move(backend).value());
+  return id;
 }
 
 }  // namespace sculpt::hal

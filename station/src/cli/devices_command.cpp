@@ -1,13 +1,16 @@
-// sculpt devices [--json]
+// sculpt devices [--json] [--device opentrack[:PORT] | vrpn:NAME@HOST[:PORT]]...
 //
 // Lists what each HAL backend sees (name, vendor:product, backend, path,
-// serial) without opening anything; when nothing is found, says why:
+// serial) without opening anything (network trackers only when a --device
+// names them: they are never looked for uninvited); when nothing is found, says why:
 // nothing attached, no permission (with the udev hint), backend not built or
 // unavailable. Exit 0 when at least one backend could enumerate, even if it
 // found nothing; 1 when none could.
 
 #include <cstdio>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -16,6 +19,7 @@
 #include "sculpt/hal/backends/falcon_backend.h"
 #include "sculpt/hal/registry/device_registry.h"
 #include "sculpt/hal/registry/force_devices.h"
+#include "sculpt/hal/registry/tracker_backends.h"
 #include "sculpt/hal/types/quirks.h"
 
 namespace sculpt::station::cli {
@@ -27,6 +31,7 @@ constexpr const char* kUdevHint =
 
 struct DevicesOptions {
   bool json = false;
+  std::vector<std::string> trackers;  ///< --device specs of trackers to list too
 };
 
 const char* state_name(hal::BackendState s) {
@@ -49,6 +54,13 @@ std::string hex4(uint16_t v) {
 
 int run_devices(const DevicesOptions& o) {
   hal::DeviceRegistry registry(hal::DeviceRegistry::default_backends());
+  for (const std::string& spec : o.trackers) {
+    if (!hal::names_tracker(spec))
+      return report(Error("--device " + spec +
+                          ": not a tracker (want opentrack[:PORT] or "
+                          "vrpn:NAME@HOST[:PORT]; other devices are listed without --device)"));
+    if (auto added = hal::add_named_tracker(registry, spec); !added) return report(added.error());
+  }
   const std::vector<hal::BackendListing> listing = registry.list();
   int working = 0;
   size_t found = 0;
@@ -180,6 +192,9 @@ void add_devices_command(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand(
       "devices", "List the 6-DOF devices each backend (spnav, hidapi, libusb) sees");
   cmd->add_flag("--json", o->json, "machine-readable output");
+  cmd->add_option("--device", o->trackers,
+                  "list this network tracker too: opentrack[:PORT] or vrpn:NAME@HOST[:PORT] "
+                  "(nothing is opened)");
   cmd->callback([o, &action] { action = [o] { return run_devices(*o); }; });
 }
 

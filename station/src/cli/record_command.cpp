@@ -4,7 +4,9 @@
 // append-only (a crash or an unplug loses at most the last 0.25 s). Stops on
 // Ctrl-C, when the device is unplugged, or after --seconds. `--device
 // sim:FILE` records a session played as a live device (for tests without
-// hardware; --speed plays it faster).
+// hardware; --speed plays it faster). `--device opentrack[:PORT]` or
+// `vrpn:NAME@HOST[:PORT]` records a network tracker; an OpenTrack listener
+// binds to loopback unless --listen names another address.
 
 #include <algorithm>
 #include <atomic>
@@ -22,6 +24,7 @@
 #include "cli/number_checks.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/hal/registry/device_registry.h"
+#include "sculpt/hal/registry/tracker_backends.h"
 #include "sculpt/sim/replay/sim_backend.h"
 #include "sculpt/sim/session/session_file.h"
 #include "sculpt/station/app/session_loading.h"
@@ -41,6 +44,7 @@ struct RecordOptions {
   std::string output;
   double seconds = 0;
   double speed = 1.0;
+  std::string listen = "127.0.0.1";
 };
 
 std::atomic<bool> g_stop{false};
@@ -94,7 +98,9 @@ int run_record(const RecordOptions& o) {
     sim_backend = backend.get();
     registry.add_backend(std::move(backend), /*first=*/true);
   }
-  auto id = registry.open_device(o.device);
+  auto device = hal::add_named_tracker(registry, o.device, o.listen);
+  if (!device) return report(device.error());
+  auto id = registry.open_device(*device);
   if (!id) return report(id.error());
   const hal::DeviceReader* reader = registry.reader(*id);
 
@@ -162,10 +168,15 @@ void add_record_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<RecordOptions>();
   CLI::App* cmd = app.add_subcommand("record", "record a device's raw reports into a session file");
   cmd->add_option("--device", o->device,
-                  "device id as `sculpt devices` prints it, a backend, vvvv:pppp, or sim:FILE")
+                  "device id as `sculpt devices` prints it, a backend, vvvv:pppp, sim:FILE, "
+                  "opentrack[:PORT] or vrpn:NAME@HOST[:PORT]")
       ->required();
   cmd->add_option("-o,--output", o->output, "session file to write (.scs)")->required();
   cmd->add_option("--seconds", o->seconds, "stop after this long")->check(finite_positive());
+  cmd->add_option("--listen", o->listen,
+                  "opentrack only: the address to listen on (another machine's tracker needs "
+                  "this machine's address; anyone who can reach it can then move the tool)")
+      ->capture_default_str();
   cmd->add_option("--speed", o->speed, "sim:FILE only: play the session this much faster")
       ->check(finite_positive());
   cmd->callback([o, &action] { action = [o] { return run_record(*o); }; });

@@ -78,8 +78,12 @@ void add_run_command(CLI::App& app, Action& action) {
       "run", "the station: a window with a display, else the demo session headless");
   WindowOptions& w = o->window;
   cmd->add_option("--device", w.device,
-                  "auto (a 3D mouse if attached, else the demo session), sim:FILE, or a device "
-                  "id as `sculpt devices` prints it")
+                  "auto (a 3D mouse if attached, else the demo session), sim:FILE, a device "
+                  "id as `sculpt devices` prints it, opentrack[:PORT] or vrpn:NAME@HOST[:PORT]")
+      ->capture_default_str();
+  cmd->add_option("--listen", w.listen,
+                  "window, opentrack: the address to listen on (another machine's tracker needs "
+                  "this machine's address; anyone who can reach it can then move the tool)")
       ->capture_default_str();
   cmd->add_flag("--headless", o->headless, "no window: replay the session and write --out");
   cmd->add_option("--out", o->out_dir, "headless: folder for the results")->capture_default_str();

@@ -23,6 +23,7 @@
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/hal/registry/device_registry.h"
 #include "sculpt/hal/registry/force_devices.h"
+#include "sculpt/hal/registry/tracker_backends.h"
 #include "sculpt/hal/types/clock.h"
 #include "sculpt/sim/replay/sim_backend.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
@@ -303,7 +304,10 @@ int run_window(const WindowOptions& o) {
       if (Status st = add_sim(sim::bundled_session_path("demo")); !st) return fail(st.error());
     }
   } else {
-    auto id = registry->open_device(o.device);
+    // A network tracker is opened only when named (tracker_backends.h).
+    auto device = hal::add_named_tracker(*registry, o.device, o.listen);
+    if (!device) return fail(device.error());
+    auto id = registry->open_device(*device);
     if (!id) return fail(id.error());
   }
   // The surface drawn: each brick at the level its distance calls for,

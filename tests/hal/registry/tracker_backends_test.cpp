@@ -59,5 +59,25 @@ TEST(TrackerBackends, AnAddedTrackerIsListedWithoutBeingOpened) {
   EXPECT_EQ(registry.open_count(), 0u);
 }
 
+TEST(TrackerBackends, AddNamedTrackerAddsOnlyWhatTheDeviceSpecNames) {
+  DeviceRegistry registry({});
+  auto other = add_named_tracker(registry, "hidapi:/dev/hidraw0");
+  ASSERT_TRUE(other.ok());
+  EXPECT_EQ(*other, "hidapi:/dev/hidraw0");
+  EXPECT_TRUE(registry.list().empty()) << "a device id adds no tracker";
+  auto id = add_named_tracker(registry, "vrpn:Tracker0@localhost");
+  ASSERT_TRUE(id.ok()) << id.error().message();
+  EXPECT_EQ(*id, "vrpn");
+  const auto listing = registry.list();
+  ASSERT_EQ(listing.size(), 1u);
+  ASSERT_EQ(listing[0].devices.size(), 1u);
+  EXPECT_EQ(registry.open_count(), 0u);
+  auto bad = add_named_tracker(registry, "opentrack:99999");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error().message().rfind("--device opentrack:99999: ", 0), 0u)
+      << bad.error().message();
+  EXPECT_EQ(registry.list().size(), 1u);
+}
+
 }  // namespace
 }  // namespace sculpt::hal

@@ -13,6 +13,10 @@
 #include "sculpt/hal/types/device.h"
 
 namespace sculpt::hal {
+class DeviceRegistry;
+}
+
+namespace sculpt::hal {
 
 /// True for "opentrack", "opentrack:..." and "vrpn:..." (valid or not: the
 /// spec is meant for a tracker, and make_tracker_backend() says what is wrong).
@@ -23,5 +27,12 @@ bool names_tracker(std::string_view device_spec);
 /// the spec and what is wrong with it.
 Result<std::unique_ptr<Backend>> make_tracker_backend(
     const std::string& device_spec, const std::string& listen_address = "127.0.0.1");
+
+/// What `--device SPEC` needs before DeviceRegistry::open_device(): for a
+/// tracker spec, adds its backend (last: it is never scanned for otherwise)
+/// and returns the id that opens it; for any other spec, changes nothing and
+/// returns the spec. Errors: a tracker spec that is wrong, named.
+Result<std::string> add_named_tracker(DeviceRegistry& registry, const std::string& device_spec,
+                                      const std::string& listen_address = "127.0.0.1");
 
 }  // namespace sculpt::hal

@@ -16,8 +16,11 @@ namespace sculpt::station {
 
 struct WindowOptions {
   /// auto (a device if one is attached, else the demo session), sim:FILE,
-  /// or a device id as `sculpt devices` prints it.
+  /// a device id as `sculpt devices` prints it, or a tracker
+  /// (opentrack[:PORT], vrpn:NAME@HOST[:PORT]).
   std::string device = "auto";
+  /// opentrack devices: the address to listen on (loopback: only this machine).
+  std::string listen = "127.0.0.1";
   bool sim_loop = false;            ///< sim devices: play the session over and over (the soak)
   double sim_speed = 1.0;           ///< sim devices: play this much faster
   std::string project;              ///< open this project first
