@@ -10,13 +10,24 @@
 namespace sculpt::hal {
 
 PoseIntegrator::PoseIntegrator(PoseIntegratorConfig config, ToolPose start)
-    : config_(config), pose_(start), position_(start.position), tracker_(config.tracker) {}
+    : config_(config),
+      pose_(start),
+      position_(start.position),
+      tracker_(config.tracker),
+      tracker_filter_(config.tracker_filter) {}
 
 void PoseIntegrator::reset(ToolPose start) {
   pose_ = start;
   position_ = glm::dvec3(start.position);
   have_time_ = false;
+  lose_tracking();
+}
+
+void PoseIntegrator::lose_tracking() {
+  // The filter starts again too: smoothing from the pose before the loss
+  // would drag the tool from there, the jump re-anchoring avoids.
   tracker_.unanchor();
+  tracker_filter_.reset();
 }
 
 void PoseIntegrator::clamp_position(glm::vec3 lo, glm::vec3 hi) {
@@ -37,8 +48,10 @@ const ToolPose& PoseIntegrator::update(const InputEvent& m) {
       config_.mode == ControlMode::kPosition || (config_.mode == ControlMode::kAuto && m.absolute);
   if (have_time_ && m.t_ns <= pose_.t_ns) return pose_;
   if (m.has_pose) {
+    // Another sensor's poses must not enter the driving sensor's filter.
+    if (tracker_.anchored() && m.pose.sensor != tracker_.sensor()) return pose_;
     const int64_t t_ns = m.t_ns;
-    pose_ = tracker_.map(m.pose, pose_);
+    pose_ = tracker_.map(tracker_filter_.filter(m.pose, t_ns), pose_);
     position_ = glm::dvec3(pose_.position);
     pose_.t_ns = t_ns;
     have_time_ = true;

@@ -16,6 +16,7 @@
 
 #include "sculpt/hal/pose/tool_pose.h"
 #include "sculpt/hal/pose/tracker_mapping.h"
+#include "sculpt/hal/pose/tracker_pose_filter.h"
 #include "sculpt/hal/types/input_event.h"
 
 namespace sculpt::hal {
@@ -34,6 +35,8 @@ struct PoseIntegratorConfig {
   float workspace_half_extent = 100.0f;   ///< position control: world units at axis = ±1
   float max_angle = 3.14159265f;          ///< position control: rad at rotation axis = ±1
   TrackerCalibration tracker{};           ///< trackers' poses (InputEvent::has_pose)
+  /// Smooths trackers' poses before the calibration (restarts on each anchor).
+  TrackerFilterParams tracker_filter{};
 };
 
 class PoseIntegrator {
@@ -56,7 +59,7 @@ class PoseIntegrator {
   /// Also re-anchors a tracker: its next pose maps to `start`.
   void reset(ToolPose start);
   /// A tracker lost its target: its next pose anchors where the tool is.
-  void lose_tracking() { tracker_.unanchor(); }
+  void lose_tracking();
 
  private:
   PoseIntegratorConfig config_;
@@ -65,6 +68,7 @@ class PoseIntegrator {
   std::array<double, kAxisCount> last_integral_{};
   bool have_time_ = false;
   TrackerMapping tracker_;
+  TrackerPoseFilter tracker_filter_;
 };
 
 }  // namespace sculpt::hal

@@ -37,6 +37,8 @@ class TrackerMapping {
   /// The next pose anchors again (tracking lost, tool placed, clutch).
   void unanchor() { anchored_ = false; }
   bool anchored() const { return anchored_; }
+  /// The sensor that drives the tool (meaningful when anchored).
+  int32_t sensor() const { return sensor_; }
 
  private:
   TrackerCalibration calibration_;
