@@ -9,10 +9,14 @@
 
 #include <gtest/gtest.h>
 
+#include "free_udp_port.h"
+
 #include "scratch_dir.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -23,22 +27,9 @@
 namespace sculpt::station::test {
 namespace {
 
-// A UDP port free a moment ago (the kernel's pick for port 0).
-uint16_t free_udp_port() {
-  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
-  socklen_t len = sizeof a;
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
-  ::close(fd);
-  return ntohs(a.sin_port);
-}
-
 TEST(TrackerCommands, RecordsOpenTrackDatagramsAndReplaysTheirPoses) {
   sculpt::test::ScratchDir scratch;
-  const uint16_t port = free_udp_port();
+  const uint16_t port = sculpt::test::free_udp_port();
   ASSERT_NE(port, 0);
   const std::string session = scratch.file("ot.scs");
   std::atomic<bool> done{false};
