@@ -1,5 +1,7 @@
 #include "sculpt/hal/pose/tracker_mapping.h"
 
+#include <cmath>
+
 namespace sculpt::hal {
 namespace {
 
@@ -24,11 +26,17 @@ ToolPose TrackerMapping::map(const TrackerPose& pose, const ToolPose& tool) {
   }
   if (pose.sensor != sensor_) return tool;
   const glm::dquat& r = calibration_.tracker_to_sculpture;
-  ToolPose out = tool;
   // In double: the tracker's millimetres far from its origin and a small
   // scale would lose the motion's last digits in float.
-  out.position = glm::vec3(anchor_tool_vox_ +
-                           calibration_.scale_vox_per_mm * (r * (position_of(pose) - anchor_mm_)));
+  const glm::dvec3 position_vox =
+      anchor_tool_vox_ + calibration_.scale_vox_per_mm * (r * (position_of(pose) - anchor_mm_));
+  // The decoders pass any finite number, and 1e300 mm less -1e300 mm is no
+  // longer one (rotated, it becomes NaN): such a pose moves nothing.
+  const glm::vec3 position_f(position_vox);
+  if (!std::isfinite(position_f.x) || !std::isfinite(position_f.y) || !std::isfinite(position_f.z))
+    return tool;
+  ToolPose out = tool;
+  out.position = position_f;
   // The tracker's turn since the anchor, in world axes, expressed in the
   // sculpture's axes and applied to the tool's orientation at the anchor.
   const glm::dquat turn = r * (orientation_of(pose) * glm::inverse(anchor_q_)) * glm::inverse(r);

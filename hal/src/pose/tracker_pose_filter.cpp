@@ -17,20 +17,22 @@ glm::dquat quat_of(const TrackerPose& p) {
 
 }  // namespace
 
+TrackerPose TrackerPoseFilter::restart(const TrackerPose& pose, int64_t t_ns) {
+  initialised_ = true;
+  t_prev_ns_ = t_ns;
+  position_mm_ = glm::dvec3(pose.position_mm[0], pose.position_mm[1], pose.position_mm[2]);
+  orientation_ = quat_of(pose);
+  speed_mm_s_ = 0.0;
+  turn_rad_s_ = 0.0;
+  prev_ = pose;
+  return pose;
+}
+
 TrackerPose TrackerPoseFilter::filter(const TrackerPose& pose, int64_t t_ns) {
   const glm::dvec3 p(pose.position_mm[0], pose.position_mm[1], pose.position_mm[2]);
   glm::dquat q = quat_of(pose);
   if (!params_.enabled) return pose;
-  if (!initialised_) {
-    initialised_ = true;
-    t_prev_ns_ = t_ns;
-    position_mm_ = p;
-    orientation_ = q;
-    speed_mm_s_ = 0.0;
-    turn_rad_s_ = 0.0;
-    prev_ = pose;
-    return pose;
-  }
+  if (!initialised_) return restart(pose, t_ns);
   if (t_ns <= t_prev_ns_) return prev_;
   const double dt = static_cast<double>(t_ns - t_prev_ns_) * 1e-9;
   t_prev_ns_ = t_ns;
@@ -50,6 +52,12 @@ TrackerPose TrackerPoseFilter::filter(const TrackerPose& pose, int64_t t_ns) {
   const double a_q = alpha(params_.min_cutoff_hz + params_.beta_per_rad_s * turn_rad_s_, dt);
   position_mm_ += a_p * (p - position_mm_);
   orientation_ = glm::normalize(glm::slerp(orientation_, q, a_q));
+  // Any finite pose is accepted, but a jump of 1e300 mm overflows the
+  // speed; restarting from this sample keeps the filter from holding NaN.
+  const bool finite = std::isfinite(speed_mm_s_) && std::isfinite(turn_rad_s_) &&
+                      std::isfinite(position_mm_.x) && std::isfinite(position_mm_.y) &&
+                      std::isfinite(position_mm_.z) && std::isfinite(orientation_.w);
+  if (!finite) return restart(pose, t_ns);
   TrackerPose out = pose;
   out.position_mm = {position_mm_.x, position_mm_.y, position_mm_.z};
   out.quat_wxyz = {orientation_.w, orientation_.x, orientation_.y, orientation_.z};

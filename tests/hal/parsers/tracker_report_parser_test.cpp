@@ -87,6 +87,38 @@ TEST(TrackerReportParser, BadBytesAreCountedAndDropped) {
   EXPECT_EQ(vrpn.counters().short_reports, 1);
 }
 
+// A recorded session can hold any bytes (a damaged or hand-edited file):
+// random reports of 0..80 bytes never crash the parser, and every pose it
+// lets through is finite with a unit quaternion. Deterministic (fixed seed).
+TEST(TrackerReportParser, RandomBytesNeverGiveABadPose) {
+  uint32_t seed = 22;
+  auto next = [&seed] {
+    seed = seed * 1664525u + 1013904223u;
+    return seed >> 8;
+  };
+  for (TrackerFormat format : {TrackerFormat::kOpenTrack, TrackerFormat::kVrpn}) {
+    TrackerReportParser parser(format);
+    int64_t poses = 0;
+    for (int i = 0; i < 20000; ++i) {
+      // Mostly the format's own length, so the decoding paths run.
+      const size_t right = format == TrackerFormat::kOpenTrack ? 48 : 64;
+      std::vector<uint8_t> bytes(next() % 4 == 0 ? next() % 81 : right);
+      for (uint8_t& b : bytes)
+        b = static_cast<uint8_t>(next());
+      // VRPN: a small sensor number and exponents in range half the time.
+      if (format == TrackerFormat::kVrpn && bytes.size() == right && next() % 2 == 0)
+        bytes[0] = bytes[1] = bytes[2] = 0;
+      for (const InputEvent& e : parse(parser, RawEvent::report(i, bytes))) {
+        if (!e.has_pose) continue;
+        ++poses;
+        EXPECT_TRUE(is_finite_unit_pose(e.pose, 1e-9)) << "report " << i;
+      }
+    }
+    EXPECT_EQ(parser.counters().reports, 20000);
+    EXPECT_GT(poses, 0) << "random bytes of the right length include valid poses";
+  }
+}
+
 TEST(TrackerReportParser, MakeParserPicksItByBackendAndThePipelineKeepsThePose) {
   for (const char* backend : {"opentrack", "vrpn"}) {
     DeviceInfo info;

@@ -77,6 +77,17 @@ TEST(TrackerMapping, AnotherSensorDoesNotMoveTheTool) {
   EXPECT_EQ(tool.position, glm::vec3(0));
 }
 
+TEST(TrackerMapping, APoseBeyondFloatRangeMovesNothing) {
+  TrackerMapping m;
+  ToolPose tool;
+  tool.position = {1, 2, 3};
+  tool = m.map(at(-1e300, 0, 0), tool);
+  tool = m.map(at(1e300, 0, 0), tool);  // the difference overflows to infinity
+  EXPECT_EQ(tool.position, glm::vec3(1, 2, 3));
+  tool = m.map(at(-1e300, 0, 0), tool);
+  EXPECT_EQ(tool.position, glm::vec3(1, 2, 3));
+}
+
 TEST(TrackerMapping, PoseIntegratorReanchorsAfterTrackingIsLost) {
   ToolPose start;
   start.position = {128, 128, 128};

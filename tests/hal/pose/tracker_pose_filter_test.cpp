@@ -72,6 +72,16 @@ TEST(TrackerPoseFilter, TheFirstSampleAfterResetPassesUnchanged) {
   EXPECT_EQ(none.filter(pose(10), kPeriodNs).position_mm[0], 10.0);
 }
 
+TEST(TrackerPoseFilter, AnOverflowingJumpRestartsTheFilterInsteadOfHoldingNaN) {
+  TrackerPoseFilter f;
+  f.filter(pose(-1e300), 0);
+  f.filter(pose(1e300), kPeriodNs);  // a speed beyond double
+  const TrackerPose out = f.filter(pose(5), 2 * kPeriodNs);
+  EXPECT_TRUE(is_finite_unit_pose(out, 1e-9));
+  const TrackerPose later = f.filter(pose(5), 3 * kPeriodNs);
+  EXPECT_TRUE(is_finite_unit_pose(later, 1e-9));
+}
+
 TEST(TrackerPoseFilter, ThePoseIntegratorSmoothsTrackerPosesAndStillNeverJumps) {
   ToolPose start;
   start.position = {64, 64, 64};

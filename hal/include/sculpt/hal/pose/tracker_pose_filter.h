@@ -31,6 +31,8 @@ class TrackerPoseFilter {
   void reset() { initialised_ = false; }
 
  private:
+  TrackerPose restart(const TrackerPose& pose, int64_t t_ns);  // passes `pose` unchanged
+
   TrackerFilterParams params_;
   bool initialised_ = false;
   int64_t t_prev_ns_ = 0;
