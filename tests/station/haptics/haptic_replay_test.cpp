@@ -111,10 +111,9 @@ TEST(HapticReplay, ALiveForceSessionReplaysEveryTickBitForBit) {
 
 // The bundled force session: the simulated arm's touch.hand, recorded by the
 // window. A change to the contact law, the proxy or the safety rules changes
-// its forces, and this test says so; record it again with
-//   sculpt run --haptic sim-arm:sim/sessions/touch.hand --record sim/sessions/touch.scs \
-//              --until-replayed
-// (under xvfb-run without a display).
+// its forces, and this test says so; record it again with `sculpt run
+// --haptic sim-arm:sim/sessions/touch.hand --record sim/sessions/touch.scs
+// --until-replayed` (under xvfb-run without a display).
 TEST(HapticReplay, TheBundledTouchSessionReplaysEveryTickBitForBit) {
   StationLoop replayed(StationLoop::Options{.mesh = false});
   const HapticReplayFigures f = replay_forces(sim::bundled_session_path("touch"), replayed);
