@@ -110,7 +110,9 @@ Result<HapticLoopSetup> parse_loop_setup(const sim::HapticRecord& start, const s
     return Error(name + ": haptic loop set-up: " + *why);
   HapticLoopSetup setup;
   std::vector<Binding> known = bindings(setup);
-  for (const auto& [key, value] : std::get<sim::HapticSettings>(parsed)) {
+  for (const auto& setting : std::get<sim::HapticSettings>(parsed)) {
+    const std::string& key = setting.first;
+    const double value = setting.second;
     const auto it =
         std::find_if(known.begin(), known.end(), [&](const Binding& b) { return b.name == key; });
     if (it == known.end()) return Error(name + ": haptic loop set-up: unknown setting " + key);
