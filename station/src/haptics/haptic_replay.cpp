@@ -20,7 +20,7 @@ bool same_bits(glm::vec3 a, glm::vec3 b) {
 }  // namespace
 
 // The device of a replayed loop: it reads what the recording says the live
-// device read, and keeps what the loop writes.
+// device read; what the loop writes is in the loop's last() record.
 class HapticReplay::Device final : public hal::ForceDevice {
  public:
   explicit Device(const hal::ForceLimits& limits) : limits_(limits) {
@@ -33,11 +33,8 @@ class HapticReplay::Device final : public hal::ForceDevice {
     out = state_;
     return read_;
   }
-  hal::ForceIo write(glm::vec3 force_n) override {
-    written_n_ = force_n;
-    return hal::ForceIo::kOk;
-  }
-  void zero() noexcept override { written_n_ = glm::vec3(0.0f); }
+  hal::ForceIo write(glm::vec3) override { return hal::ForceIo::kOk; }
+  void zero() noexcept override {}
 
   void stage(const hal::HapticTickRecord& tick) {
     state_ = {tick.position_mm, tick.buttons, tick.homed};
@@ -49,7 +46,6 @@ class HapticReplay::Device final : public hal::ForceDevice {
   hal::ForceLimits limits_;
   hal::ForceDeviceState state_;
   hal::ForceIo read_ = hal::ForceIo::kOk;
-  glm::vec3 written_n_{0.0f};
 };
 
 struct HapticReplay::Loop {
@@ -138,7 +134,10 @@ void HapticReplay::tick(const sim::HapticRecord& record) {
     const int64_t period_ns = recorded.t_ns - last_tick_ns_;
     const double period_us = static_cast<double>(period_ns) * 1e-3;
     periods_us_.add(period_us);
-    if (period_ns > 1'500'000) ++figures_.late_ticks;
+    // Late as the live loop counted it: by its own set-up's threshold.
+    const int64_t late_ns =
+        loop_ ? loop_->setup.loop.late_period_ns : hal::HapticLoopOptions{}.late_period_ns;
+    if (period_ns > late_ns) ++figures_.late_ticks;
     figures_.worst_period_us = std::max(figures_.worst_period_us, period_us);
   }
   have_last_tick_ = true;
