@@ -1,6 +1,7 @@
 #include "sculpt/hal/parsers/make_parser.h"
 
 #include "sculpt/hal/parsers/axis_event_parser.h"
+#include "sculpt/hal/parsers/evdev_event_parser.h"
 #include "sculpt/hal/parsers/hid_descriptor_parser.h"
 #include "sculpt/hal/parsers/spacemouse_parser.h"
 #include "sculpt/hal/parsers/tracker_report_parser.h"
@@ -20,6 +21,16 @@ Result<std::unique_ptr<ReportParser>> make_parser(const DeviceInfo& info) {
   if (info.backend == "vrpn")
     return std::unique_ptr<ReportParser>(
         std::make_unique<TrackerReportParser>(TrackerFormat::kVrpn));
+  // An evdev device is described by its recorded layout, whatever it is;
+  // a known 3D mouse keeps its table row's axis mapping.
+  if (info.backend == "evdev") {
+    EvdevLayout layout;
+    const EvdevLayoutError e = decode_evdev_layout(info.report_descriptor, layout);
+    if (e != EvdevLayoutError::kNone) return Error(who + ": " + std::string(describe(e)));
+    const DeviceQuirks* q = find_quirks(info.vendor_id, info.product_id);
+    if (q && q->kind != QuirkKind::kSpaceMouse) q = nullptr;
+    return std::unique_ptr<ReportParser>(std::make_unique<EvdevEventParser>(std::move(layout), q));
+  }
   if (const DeviceQuirks* q = find_quirks(info.vendor_id, info.product_id)) {
     if (q->kind == QuirkKind::kIgnore) {
       return Error(who + ": " + std::string(q->name) + " is not a 6-DOF device");

@@ -2,6 +2,7 @@
 
 #include <cctype>
 
+#include "sculpt/hal/backends/evdev_backend.h"
 #include "sculpt/hal/backends/hidapi_backend.h"
 #include "sculpt/hal/backends/libusb_backend.h"
 #include "sculpt/hal/backends/spnav_backend.h"
@@ -32,6 +33,10 @@ std::vector<std::unique_ptr<Backend>> DeviceRegistry::default_backends() {
   std::vector<std::unique_ptr<Backend>> b;
   b.push_back(make_spnav_backend());
   b.push_back(make_hidapi_backend());
+  // evdev needs no hidraw permission and detaches nothing, so it comes
+  // before libusb, which takes the device from its kernel driver (and so
+  // from evdev too); after hidapi, whose parsers know the devices' reports.
+  b.push_back(make_evdev_backend());
   b.push_back(make_libusb_backend());
   return b;
 }

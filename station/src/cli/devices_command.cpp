@@ -190,7 +190,7 @@ int run_devices(const DevicesOptions& o) {
 void add_devices_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<DevicesOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "devices", "List the 6-DOF devices each backend (spnav, hidapi, libusb) sees");
+      "devices", "List the 6-DOF devices each backend (spnav, hidapi, evdev, libusb) sees");
   cmd->add_flag("--json", o->json, "machine-readable output");
   cmd->add_option("--device", o->trackers,
                   "list this network tracker too: opentrack[:PORT] or vrpn:NAME@HOST[:PORT] "

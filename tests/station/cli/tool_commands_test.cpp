@@ -105,7 +105,7 @@ TEST_F(ToolCommandsTest, DevicesListsEveryBackendAsJson) {
   std::vector<std::string> names;
   for (const auto& b : j["backends"])
     names.push_back(b["name"]);
-  EXPECT_EQ(names, (std::vector<std::string>{"spnav", "hidapi", "libusb"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"spnav", "hidapi", "evdev", "libusb"}));
   EXPECT_TRUE(j.contains("summary"));
 }
 

@@ -36,6 +36,15 @@ struct EvdevSysfs {
   std::string ff_bitmap;
   /// The USB port path ("1-4.2"), empty when not on USB.
   std::string usb_location;
+  /// capabilities/ev, abs, rel, key and properties, printed like ff_bitmap
+  /// (the 6-axis input backend's filter; empty when sysfs lacks them).
+  std::string ev_bitmap;
+  std::string abs_bitmap;
+  std::string rel_bitmap;
+  std::string key_bitmap;
+  std::string properties_bitmap;
+  /// uniq: the serial number or Bluetooth address, as hidraw's HID_UNIQ.
+  std::string uniq;
 };
 
 class EvdevIo {

@@ -20,7 +20,6 @@
 namespace sculpt::hal::evdev_ff {
 namespace {
 
-constexpr const char* kInputDir = "/dev/input";
 constexpr size_t kLongBits = CHAR_BIT * sizeof(unsigned long);
 
 int minus_errno() {
@@ -105,7 +104,7 @@ LinuxEvdevIo::~LinuxEvdevIo() {
 std::vector<std::string> LinuxEvdevIo::list_event_nodes() {
   std::vector<std::pair<long, std::string>> found;
   std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(kInputDir, ec)) {
+  for (const auto& entry : std::filesystem::directory_iterator(input_dir_, ec)) {
     const std::string name = entry.path().filename().string();
     if (const long n = event_number(name); n >= 0) found.emplace_back(n, entry.path().string());
   }
@@ -117,7 +116,7 @@ std::vector<std::string> LinuxEvdevIo::list_event_nodes() {
 }
 
 std::optional<EvdevSysfs> LinuxEvdevIo::sysfs(const std::string& node) {
-  const std::filesystem::path dir = "/sys/class/input/" + node_name(node);
+  const std::filesystem::path dir = std::filesystem::path(sysfs_input_dir_) / node_name(node);
   const std::filesystem::path device = dir / "device";
   auto name = read_line(device / "name");
   auto vendor = read_hex16(device / "id" / "vendor");
@@ -128,6 +127,12 @@ std::optional<EvdevSysfs> LinuxEvdevIo::sysfs(const std::string& node) {
   s.vendor_id = *vendor;
   s.product_id = *product;
   s.ff_bitmap = read_line(device / "capabilities" / "ff").value_or("");
+  s.ev_bitmap = read_line(device / "capabilities" / "ev").value_or("");
+  s.abs_bitmap = read_line(device / "capabilities" / "abs").value_or("");
+  s.rel_bitmap = read_line(device / "capabilities" / "rel").value_or("");
+  s.key_bitmap = read_line(device / "capabilities" / "key").value_or("");
+  s.properties_bitmap = read_line(device / "properties").value_or("");
+  s.uniq = read_line(device / "uniq").value_or("");
   std::error_code ec;
   // .../usb1/1-4/1-4.2/1-4.2:1.0/0003:.../input/input17/event5: the USB
   // device is the last component shaped like "1-4.2".

@@ -6,6 +6,7 @@
 // unplugged while open answers read, write and ioctl with ENODEV.
 
 #include <string>
+#include <utility>
 
 #include "evdev_io.h"
 
@@ -14,6 +15,10 @@ namespace sculpt::hal::evdev_ff {
 class LinuxEvdevIo final : public EvdevIo {
  public:
   LinuxEvdevIo() = default;
+  /// Lists and describes nodes under other roots than /dev/input and
+  /// /sys/class/input: the tests' fake tree in a temporary directory.
+  LinuxEvdevIo(std::string input_dir, std::string sysfs_input_dir)
+      : input_dir_(std::move(input_dir)), sysfs_input_dir_(std::move(sysfs_input_dir)) {}
   ~LinuxEvdevIo() override;
   LinuxEvdevIo(const LinuxEvdevIo&) = delete;
   LinuxEvdevIo& operator=(const LinuxEvdevIo&) = delete;
@@ -35,6 +40,8 @@ class LinuxEvdevIo final : public EvdevIo {
 
  private:
   int fd_ = -1;
+  std::string input_dir_ = "/dev/input";
+  std::string sysfs_input_dir_ = "/sys/class/input";
 };
 
 }  // namespace sculpt::hal::evdev_ff

@@ -62,6 +62,7 @@ struct FakeEvdevNode {
   std::set<uint16_t> ev_types;
   std::set<uint16_t> ff;
   std::set<uint16_t> abs;
+  std::set<uint16_t> rel;
   std::map<uint16_t, input_absinfo> absinfo;
   std::set<uint16_t> keys;
   std::set<uint16_t> held;  ///< what EVIOCGKEY answers
@@ -204,6 +205,7 @@ class FakeEvdevIo final : public EvdevIo {
     const std::set<uint16_t>* codes = ev_type == 0        ? &n.ev_types
                                       : ev_type == EV_FF  ? &n.ff
                                       : ev_type == EV_ABS ? &n.abs
+                                      : ev_type == EV_REL ? &n.rel
                                       : ev_type == EV_KEY ? &n.keys
                                                           : nullptr;
     fill(bits, codes);

@@ -2,7 +2,7 @@
 // The registry owns the backends and the open devices. scan() enumerates
 // every backend, picks the best backend per physical device (the first in
 // priority order that sees it: spnav when spacenavd owns the device, then
-// hidapi, then libusb, which has to detach the kernel driver) and opens it
+// hidapi, then evdev, then libusb, which has to detach the kernel driver) and opens it
 // once; a device already open through any backend is never opened again.
 // Readers whose device vanished are retired by poll(), so the next scan()
 // picks up a re-plug.
@@ -39,7 +39,7 @@ class DeviceRegistry {
                           NormalizerConfig config = {}, ReaderOptions options = {});
   ~DeviceRegistry();
 
-  /// The hardware backends in their default priority: spnav, hidapi, libusb.
+  /// The hardware backends in their default priority: spnav, hidapi, evdev, libusb.
   static std::vector<std::unique_ptr<Backend>> default_backends();
 
   /// Adds a backend (the sim replay backend, say) at the end of the priority
