@@ -198,6 +198,16 @@ const RotatedToolCache& Sculptor::cache(bool mirrored) const {
   return *cache_;
 }
 
+RotatedToolCache& Sculptor::mirror_cache(int axis) {
+  auto& mc = mirror_caches_[axis];
+  if (!mc) {
+    mc = std::make_unique<RotatedToolCache>(
+        std::make_shared<const PreparedTool>(mirror_tool(*tool_, axis)), options_.sampling,
+        options_.cache_max_bytes, options_.subvoxel_steps);
+  }
+  return *mc;
+}
+
 DabStats Sculptor::dab(const Dab& dab) {
   assert(tool_ && "Sculptor::dab(): set_tool() first");
   const bool own_stroke = !history_.in_stroke();
@@ -205,12 +215,7 @@ DabStats Sculptor::dab(const Dab& dab) {
   DabStats stats = apply(*cache_, dab);
   if (mirror_) {
     const int a = mirror_->axis;
-    auto& mc = mirror_caches_[a];
-    if (!mc) {
-      mc = std::make_unique<RotatedToolCache>(
-          std::make_shared<const PreparedTool>(mirror_tool(*tool_, a)), options_.sampling,
-          options_.cache_max_bytes, options_.subvoxel_steps);
-    }
+    RotatedToolCache& mc = mirror_cache(a);
     Dab m = dab;
     m.position_vox[a] = 2.0f * mirror_->centre_vox - dab.position_vox[a];
     // Reflection M turns rotation R into M R M: the rotation about the
@@ -220,7 +225,7 @@ DabStats Sculptor::dab(const Dab& dab) {
     for (int i = 0; i < 3; ++i)
       if (i != a) q[i] = -q[i];  // glm::quat indexes x, y, z, w
     m.orientation = q;
-    stats += apply(*mc, m);
+    stats += apply(mc, m);
   }
   if (own_stroke) history_.end_stroke();
   return stats;

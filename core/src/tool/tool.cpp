@@ -1,6 +1,7 @@
 #include "sculpt/core/tool/tool.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include <glm/vector_relational.hpp>
 
 #include "sculpt/base/atomic_file.h"
+#include "sculpt/core/distance/signed_distance.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 #include "sculpt/core/util/parallel_for.h"
 
@@ -26,21 +28,43 @@ glm::ivec3 dims_for(glm::vec3 half) {
 }
 
 template <class SignedDistance>
-Tool shape_tool(glm::vec3 half, SignedDistance sd) {
+Tool shape_tool(glm::vec3 half, float hardness, SignedDistance sd) {
+  assert(hardness >= 0.0f && hardness <= 1.0f);
   const glm::ivec3 dims = dims_for(half);
-  Tool tool{DenseGrid<uint8_t>(dims), grid_centre(dims)};
+  Tool tool{DenseGrid<uint8_t>(dims), grid_centre(dims), hardness};
   // Slices in parallel once the tool is big (a sculptor's 100-voxel ball
   // has eight million voxels, made while the next dab waits).
   constexpr int kSerialSlices = 64;
+  const int threads = dims.z > kSerialSlices ? 0 : 1;
+  // A softened tool tapers over its depth: the deepest voxel's distance
+  // (within a voxel of the shape's, which the taper's width does not need
+  // more precisely). A hard one needs no first pass.
+  float depth = 0.0f;
+  if (hardness < 1.0f) {
+    std::vector<float> deepest(static_cast<size_t>(dims.z), 0.0f);
+    parallel_for(
+        dims.z,
+        [&](int64_t slice) {
+          const int z = static_cast<int>(slice);
+          float m = 0.0f;
+          for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x)
+              m = std::min(m, sd(glm::vec3(x, y, z) - tool.pivot));
+          deepest[static_cast<size_t>(slice)] = -m;
+        },
+        threads);
+    depth = *std::max_element(deepest.begin(), deepest.end());
+  }
   parallel_for(
       dims.z,
       [&](int64_t slice) {
         const int z = static_cast<int>(slice);
         for (int y = 0; y < dims.y; ++y)
           for (int x = 0; x < dims.x; ++x)
-            tool.density.at(x, y, z) = density_from_distance(sd(glm::vec3(x, y, z) - tool.pivot));
+            tool.density.at(x, y, z) =
+                tool_density(sd(glm::vec3(x, y, z) - tool.pivot), depth, hardness);
       },
-      dims.z > kSerialSlices ? 0 : 1);
+      threads);
   return tool;
 }
 
@@ -52,53 +76,94 @@ float segment_distance(glm::vec2 p, glm::vec2 a, glm::vec2 b) {
 
 }  // namespace
 
+Status check_hardness(double hardness) {
+  if (!(hardness >= 0.0 && hardness <= 1.0)) {
+    std::ostringstream v;
+    v << hardness;
+    return Error("hardness must be a number in [0, 1], got " + v.str());
+  }
+  return {};
+}
+
+uint8_t tool_density(float d, float depth_vox, float hardness) {
+  if (hardness >= 1.0f) return density_from_distance(d);
+  // smoothstep: zero slope at both ends of the taper, so a partial-strength
+  // stroke's swelling meets the untouched surface and its own crest without
+  // a crease; the hard rim's linear ramp would leave a terrace there.
+  const float width = 2.0f + (1.0f - hardness) * std::max(0.0f, depth_vox - 1.0f);
+  const float t = std::clamp((1.0f - d) / width, 0.0f, 1.0f);
+  return static_cast<uint8_t>(255.0f * t * t * (3.0f - 2.0f * t) + 0.5f);
+}
+
 glm::vec3 grid_centre(glm::ivec3 dims) {
   return (glm::vec3(dims) - 1.0f) * 0.5f;
 }
 
-Tool make_sphere_tool(float radius_vox) {
+Tool make_sphere_tool(float radius_vox, float hardness) {
   assert(radius_vox > 0.0f);
-  return shape_tool(glm::vec3(radius_vox),
-                    [&](glm::vec3 p) { return glm::length(p) - radius_vox; });
+  Tool tool = shape_tool(glm::vec3(radius_vox), hardness,
+                         [&](glm::vec3 p) { return glm::length(p) - radius_vox; });
+  tool.sphere_radius_vox = radius_vox;
+  return tool;
 }
 
-Tool make_cube_tool(float edge_vox) {
+Tool make_cube_tool(float edge_vox, float hardness) {
   assert(edge_vox > 0.0f);
   const glm::vec3 half(edge_vox * 0.5f);
-  return shape_tool(half, [&](glm::vec3 p) {
+  return shape_tool(half, hardness, [&](glm::vec3 p) {
     const glm::vec3 q = glm::abs(p) - half;
     return glm::length(glm::max(q, 0.0f)) + std::min(std::max(q.x, std::max(q.y, q.z)), 0.0f);
   });
 }
 
-Tool make_cylinder_tool(float radius_vox, float height_vox) {
+Tool make_cylinder_tool(float radius_vox, float height_vox, float hardness) {
   assert(radius_vox > 0.0f && height_vox > 0.0f);
-  return shape_tool(glm::vec3(radius_vox, radius_vox, height_vox * 0.5f), [&](glm::vec3 p) {
-    const glm::vec2 q(std::hypot(p.x, p.y) - radius_vox, std::abs(p.z) - height_vox * 0.5f);
-    return glm::length(glm::max(q, 0.0f)) + std::min(std::max(q.x, q.y), 0.0f);
-  });
+  return shape_tool(
+      glm::vec3(radius_vox, radius_vox, height_vox * 0.5f), hardness, [&](glm::vec3 p) {
+        const glm::vec2 q(std::hypot(p.x, p.y) - radius_vox, std::abs(p.z) - height_vox * 0.5f);
+        return glm::length(glm::max(q, 0.0f)) + std::min(std::max(q.x, q.y), 0.0f);
+      });
 }
 
-Tool make_ring_tool(float major_radius_vox, float minor_radius_vox) {
+Tool make_ring_tool(float major_radius_vox, float minor_radius_vox, float hardness) {
   assert(major_radius_vox > 0.0f && minor_radius_vox > 0.0f);
   const float r = major_radius_vox + minor_radius_vox;
-  return shape_tool(glm::vec3(r, r, minor_radius_vox), [&](glm::vec3 p) {
+  return shape_tool(glm::vec3(r, r, minor_radius_vox), hardness, [&](glm::vec3 p) {
     return std::hypot(std::hypot(p.x, p.y) - major_radius_vox, p.z) - minor_radius_vox;
   });
 }
 
-Tool make_cone_tool(float radius_vox, float height_vox) {
+Tool make_cone_tool(float radius_vox, float height_vox, float hardness) {
   assert(radius_vox > 0.0f && height_vox > 0.0f);
   const float h = height_vox * 0.5f;
   // The solid of revolution of the triangle (rho, z): base (0,-h)-(R,-h),
   // slant (R,-h)-(0,h); the axis is no boundary in 3D.
-  return shape_tool(glm::vec3(radius_vox, radius_vox, h), [&](glm::vec3 p) {
+  return shape_tool(glm::vec3(radius_vox, radius_vox, h), hardness, [&](glm::vec3 p) {
     const glm::vec2 q(std::hypot(p.x, p.y), p.z);
     const float d = std::min(segment_distance(q, {0.0f, -h}, {radius_vox, -h}),
                              segment_distance(q, {radius_vox, -h}, {0.0f, h}));
     const bool inside = q.y >= -h && q.y <= h && q.x <= radius_vox * (h - q.y) / (2.0f * h);
     return inside ? -d : d;
   });
+}
+
+Tool with_hardness(Tool tool, float hardness) {
+  assert(hardness >= 0.0f && hardness <= 1.0f);
+  if (hardness >= 1.0f) return tool;
+  if (tool.sphere_radius_vox > 0.0f) {
+    return make_sphere_tool(tool.sphere_radius_vox, hardness);
+  }
+  // The exact sub-voxel distance of the 127.5 surface (Jones & Satherley's
+  // shell initialisation), so a tool file softens like the analytic shapes.
+  const DenseGrid<float> sd =
+      signed_distance(tool.density, DistanceMethod::kExact, DistanceInit::kShell, 1);
+  float depth = 0.0f;
+  for (float v : sd.values())
+    depth = std::max(depth, -v);
+  for (size_t i = 0; i < sd.size(); ++i)
+    tool.density[i] = tool_density(sd[i], depth, hardness);
+  tool.hardness = hardness;
+  return tool;
 }
 
 Tool tool_from_grid(DenseGrid<uint8_t> grid) {
@@ -113,7 +178,7 @@ Tool tool_from_volume(const Volume& volume, const Box& region) {
 Tool mirror_tool(const Tool& tool, int axis) {
   assert(axis >= 0 && axis < 3);
   const glm::ivec3 d = tool.density.dims();
-  Tool out{DenseGrid<uint8_t>(d), tool.pivot};
+  Tool out{DenseGrid<uint8_t>(d), tool.pivot, tool.hardness, tool.sphere_radius_vox};
   out.pivot[axis] = static_cast<float>(d[axis] - 1) - tool.pivot[axis];
   for (int z = 0; z < d.z; ++z)
     for (int y = 0; y < d.y; ++y)

@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
+#include "sculpt/core/sculpt/sculptor.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 
 namespace sculpt::core {
@@ -134,6 +137,94 @@ TEST(Tool, ARegionOfASculptureBecomesATool) {
   EXPECT_EQ(t.density.dims(), region.size());
   EXPECT_EQ(t.density.at(5, 7, 9), v.voxel(glm::ivec3(15, 17, 19)));
   EXPECT_EQ(t.pivot, grid_centre(region.size()));
+}
+
+// Hardness 1 is the tool as it was before hardness existed: the shape's
+// density_from_distance() voxel by voxel, and a dab with it changes the
+// material bit for bit as before.
+TEST(ToolHardness, OneIsTodaysToolAndDabBitForBit) {
+  for (float d = -20.0f; d <= 20.0f; d += 0.013f)
+    ASSERT_EQ(tool_density(d, 12.0f, 1.0f), density_from_distance(d)) << d;
+  const float r = 9.3f;
+  const Tool hard = make_sphere_tool(r, 1.0f);
+  // The ball as it was made before: density_from_distance of the distance
+  // to the grid's centre.
+  const glm::ivec3 dims = hard.density.dims();
+  DenseGrid<uint8_t> before(dims);
+  const glm::vec3 c = grid_centre(dims);
+  for (int z = 0; z < dims.z; ++z)
+    for (int y = 0; y < dims.y; ++y)
+      for (int x = 0; x < dims.x; ++x)
+        before.at(x, y, z) = density_from_distance(glm::length(glm::vec3(x, y, z) - c) - r);
+  EXPECT_EQ(hard.density.values(), before.values());
+  EXPECT_EQ(make_cube_tool(7.0f).density.values(), make_cube_tool(7.0f, 1.0f).density.values());
+  EXPECT_EQ(with_hardness(make_cone_tool(6.0f, 9.0f), 1.0f).density.values(),
+            make_cone_tool(6.0f, 9.0f).density.values());
+  // The dab: the same material from the tool as made before and at hardness 1.
+  auto dab_with = [](Tool tool) {
+    Volume v = sphere_volume(64, 0.3f);
+    Sculptor s(v);
+    s.set_tool(std::move(tool));
+    (void)s.dab({{40.3f, 31.2f, 30.9f},
+                 glm::normalize(glm::quat(0.9f, 0.2f, -0.3f, 0.1f)),
+                 SculptMode::kSubtract,
+                 0.8f});
+    return v.content_hash();
+  };
+  EXPECT_EQ(dab_with(tool_from_grid(before)), dab_with(make_sphere_tool(r, 1.0f)));
+}
+
+TEST(ToolHardness, SofterToolsTaperSmoothlyFromTheCentre) {
+  const float r = 10.0f;
+  int prev_max_step = 256;
+  for (float hardness : {1.0f, 0.5f, 0.0f}) {
+    const Tool t = make_sphere_tool(r, hardness);
+    EXPECT_EQ(t.hardness, hardness);
+    const glm::ivec3 c(glm::round(t.pivot));
+    EXPECT_EQ(t.density.at(c.x, c.y, c.z), 255) << hardness;
+    // Along a radius the density never rises and its steps shrink with the
+    // hardness (hard: the 2-voxel rim, 127 a voxel).
+    int max_step = 0;
+    for (int x = c.x; x + 1 < t.density.dims().x; ++x) {
+      const int a = t.density.at(x, c.y, c.z), b = t.density.at(x + 1, c.y, c.z);
+      EXPECT_LE(b, a) << hardness << " at " << x;
+      max_step = std::max(max_step, a - b);
+    }
+    EXPECT_LT(max_step, prev_max_step) << hardness;
+    prev_max_step = max_step;
+    // Nothing beyond the rim's outer edge.
+    EXPECT_EQ(t.density.at(c.x + static_cast<int>(r) + 1, c.y, c.z), 0) << hardness;
+  }
+  // Hardness 0 tapers over the whole radius: 11 voxels from 255 to 0 in
+  // steps of at most 255 * 1.5 / 11.
+  EXPECT_LE(prev_max_step, 35);
+}
+
+TEST(ToolHardness, AnyToolSoftensFromItsOwnSurface) {
+  // A ball held as a plain grid softens like the analytic ball.
+  const Tool grid_ball = tool_from_grid(make_sphere_tool(9.0f).density);
+  const Tool soft = with_hardness(grid_ball, 0.25f);
+  const Tool analytic = make_sphere_tool(9.0f, 0.25f);
+  ASSERT_EQ(soft.density.dims(), analytic.density.dims());
+  int worst = 0;
+  for (size_t i = 0; i < soft.density.size(); ++i)
+    worst = std::max(worst, std::abs(int(soft.density[i]) - int(analytic.density[i])));
+  EXPECT_LE(worst, 12);
+  EXPECT_EQ(soft.hardness, 0.25f);
+  // A make_sphere_tool() ball is re-made exactly.
+  EXPECT_EQ(with_hardness(make_sphere_tool(9.0f), 0.25f).density.values(),
+            analytic.density.values());
+}
+
+TEST(ToolHardness, OutOfRangeOrNotANumberIsAnError) {
+  for (double h : {0.0, 0.3, 1.0})
+    EXPECT_TRUE(check_hardness(h)) << h;
+  for (double h : {-0.01, 1.01, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    const Status st = check_hardness(h);
+    ASSERT_FALSE(st) << h;
+    EXPECT_NE(st.error().message().find("hardness must be a number in [0, 1]"), std::string::npos)
+        << st.error().message();
+  }
 }
 
 }  // namespace

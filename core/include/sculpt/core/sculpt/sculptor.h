@@ -128,8 +128,14 @@ class Sculptor {
   const Volume& volume() const { return volume_; }
 
  private:
+  // Swept strokes (stroke.h) share the tool, its caches, the mirror and the
+  // undo history, and store bricks as dabs do.
+  friend class SweptStroke;
+
   DabStats apply(RotatedToolCache& cache, const Dab& dab);
   void rebuild_caches();
+  // The cache of the tool mirrored across `axis`, made on first use.
+  RotatedToolCache& mirror_cache(int axis);
 
   Volume& volume_;
   SculptorOptions options_;

@@ -27,7 +27,30 @@ struct Tool {
   /// The point the tool is held and turned by, in the tool's voxel index
   /// space (voxel centres at integers; sub-voxel values allowed).
   glm::vec3 pivot{0.0f};
+  /// The falloff the density was made with, in [0, 1] (see tool_density()):
+  /// 1 is the hard edge of a plain shape.
+  float hardness = 1.0f;
+  /// A ball's radius (voxel units) when the tool is make_sphere_tool()'s
+  /// ball about its pivot, else 0: a stroke then sweeps it exactly, as a
+  /// capsule (stroke.h).
+  float sphere_radius_vox = 0.0f;
 };
+
+/// Hardness from outside (a script, a setting): a number in [0, 1], else an
+/// error naming the value.
+Status check_hardness(double hardness);
+
+/// The density of a tool voxel at signed distance `d` (voxel units, negative
+/// inside) from the surface of a shape whose deepest point lies `depth_vox`
+/// inside it, at `hardness` in [0, 1].
+///   hardness 1: density_from_distance(d), the 2-voxel antialiased rim (today's
+///     tools, bit for bit);
+///   below 1: 255 smoothstep(t), t = (1 - d) / W clamped to [0, 1], over a taper
+///     of W = 2 + (1 - hardness) (depth_vox - 1) voxels from the rim's outer
+///     edge inwards, so hardness 0 tapers over the whole shape (a smooth bump
+///     whose half-density surface lies halfway in) and the density has no
+///     step anywhere.
+uint8_t tool_density(float d, float depth_vox, float hardness);
 
 /// The centre of a grid of `dims` voxels: (dims - 1) / 2.
 glm::vec3 grid_centre(glm::ivec3 dims);
@@ -35,17 +58,25 @@ glm::vec3 grid_centre(glm::ivec3 dims);
 /// Built-in tools. Sizes are in voxels and must be positive (asserted; the
 /// command line checks them). Each grid is just large enough for the shape's
 /// 2-voxel density ramp; the pivot is the shape's centre.
+/// `hardness` in [0, 1] (asserted) shapes the density by tool_density().
 /// Ball of `radius_vox`.
-Tool make_sphere_tool(float radius_vox);
+Tool make_sphere_tool(float radius_vox, float hardness = 1.0f);
 /// Axis-aligned cube with edges of `edge_vox`.
-Tool make_cube_tool(float edge_vox);
+Tool make_cube_tool(float edge_vox, float hardness = 1.0f);
 /// Cylinder along z: `radius_vox`, `height_vox`.
-Tool make_cylinder_tool(float radius_vox, float height_vox);
+Tool make_cylinder_tool(float radius_vox, float height_vox, float hardness = 1.0f);
 /// Ring (torus) around z: `major_radius_vox` to the tube's centre line,
 /// `minor_radius_vox` of the tube.
-Tool make_ring_tool(float major_radius_vox, float minor_radius_vox);
+Tool make_ring_tool(float major_radius_vox, float minor_radius_vox, float hardness = 1.0f);
 /// Cone along z, base of `radius_vox` at the bottom, apex `height_vox` above.
-Tool make_cone_tool(float radius_vox, float height_vox);
+Tool make_cone_tool(float radius_vox, float height_vox, float hardness = 1.0f);
+
+/// The tool with its density re-made at `hardness` in [0, 1] (asserted) from
+/// the signed distance of its 127.5 surface (exact, sub-voxel): any tool,
+/// a file or a piece of a sculpture too. A make_sphere_tool() ball is re-made
+/// from its analytic distance. Hardness 1 returns the tool unchanged; a tool
+/// already softened is softened from its current surface.
+Tool with_hardness(Tool tool, float hardness);
 
 /// Any grid as a tool; pivot at its centre.
 Tool tool_from_grid(DenseGrid<uint8_t> grid);

@@ -1,0 +1,427 @@
+// Swept strokes (stroke.h). Why a per-stroke record rather than dabs applied
+// one after another: add and subtract are sums, so where consecutive dabs
+// overlap the tool's antialiased rim is applied again and again; its partial
+// densities saturate (a groove's wall went from 255 246 174 86 22 to
+// 255 255 162 0), and the union of balls leaves a scallop between each pair
+// (0.24 voxel at radius 8 and half-radius spacing). Taking, per voxel, the
+// largest filling the stroke gives it and combining that once with the
+// material as it was before the stroke makes the result the swept volume's,
+// whatever the sample spacing, and keeps a single dab's rim.
+
+#include "sculpt/core/sculpt/stroke.h"
+
+#include <algorithm>
+#include <cassert>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "sculpt/core/grid/grid_index.h"
+#include "sculpt/core/sculpt/combine_row.h"
+#include "sculpt/core/util/parallel_for.h"
+
+namespace sculpt::core {
+namespace {
+
+int64_t now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+// The material value a voxel cannot leave under `mode`.
+uint8_t saturated_value(SculptMode mode) {
+  return mode == SculptMode::kAdd || mode == SculptMode::kUnion ? 255 : 0;
+}
+
+// Bricks a segment changes at or beyond which they are combined on every core
+// (as Sculptor's big dabs).
+constexpr size_t kParallelBricks = 16;
+
+// Distance from p to the segment a + t ab, t in [0, 1]; ab2 = |ab|^2.
+inline float segment_distance(glm::vec3 p, glm::vec3 a, glm::vec3 ab, float ab2) {
+  const glm::vec3 ap = p - a;
+  const float t = ab2 > 0.0f ? std::clamp(glm::dot(ap, ab) / ab2, 0.0f, 1.0f) : 0.0f;
+  const glm::vec3 d = ap - t * ab;
+  return std::sqrt(glm::dot(d, d));
+}
+
+// Distance from the 2D point p to the 2D segment a -> b.
+float segment_distance_2d(float px, float py, float ax, float ay, float bx, float by) {
+  const float abx = bx - ax, aby = by - ay;
+  const float apx = px - ax, apy = py - ay;
+  const float ab2 = abx * abx + aby * aby;
+  const float t = ab2 > 0.0f ? std::clamp((apx * abx + apy * aby) / ab2, 0.0f, 1.0f) : 0.0f;
+  const float dx = apx - t * abx, dy = apy - t * aby;
+  return std::sqrt(dx * dx + dy * dy);
+}
+
+Box box_around(glm::vec3 lo, glm::vec3 hi, float margin) {
+  return Box{glm::ivec3(glm::floor(lo - margin)), glm::ivec3(glm::ceil(hi + margin)) + 1};
+}
+
+Box hull(const Box& a, const Box& b) {
+  if (a.empty()) return b;
+  if (b.empty()) return a;
+  return Box{glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)};
+}
+
+}  // namespace
+
+// One swept volume of a segment: the ball's capsule, or the tool's placements
+// along it.
+struct SweptStroke::Sweep {
+  bool ball = false;
+  // Ball: the capsule a -> b of radius `radius`, reaching `reach`.
+  glm::vec3 a{0.0f}, b{0.0f};
+  float radius = 0.0f, reach = 0.0f, hardness = 1.0f;
+  // Tool: its placements (entries kept alive while the segment is applied).
+  std::vector<RotatedToolCache::Placement> placements;
+  Box box;  // material voxels it can reach
+};
+
+// What the stroke holds of one brick it reached.
+struct SweptStroke::StrokeBrick {
+  uint64_t version = 0;           // the volume's brick version when last stored
+  std::vector<uint8_t> before;    // the material before the stroke (not accumulating)
+  std::vector<uint8_t> current;   // the brick as stored now
+  std::vector<uint8_t> coverage;  // largest filling so far, or the last segment's
+  int64_t segment = -1;           // accumulating: the segment `coverage` is of
+};
+
+SweptStroke::SweptStroke(Sculptor& sculptor, const StrokeOptions& options)
+    : sculptor_(sculptor), options_(options) {
+  assert(sculptor_.tool_ && "SweptStroke: set the sculptor's tool first");
+  assert(options_.mode != SculptMode::kSmooth && "SweptStroke: smoothing is no sweep");
+  own_undo_stroke_ = !sculptor_.history_.in_stroke();
+  if (own_undo_stroke_) sculptor_.history_.begin_stroke();
+}
+
+SweptStroke::~SweptStroke() {
+  finish();
+}
+
+void SweptStroke::finish() {
+  if (!open_) return;
+  open_ = false;
+  if (own_undo_stroke_) sculptor_.history_.end_stroke();
+  bricks_.clear();
+}
+
+DabStats SweptStroke::add(const StrokeSample& sample) {
+  assert(open_);
+  const StrokeSample from = last_.value_or(sample);
+  last_ = sample;
+  DabStats stats = apply(from, sample);
+  ++segment_;
+  return stats;
+}
+
+DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
+  DabStats stats;
+  Volume& volume = sculptor_.volume_;
+  const Tool& tool = *sculptor_.tool_;
+  const SculptMode mode = options_.mode;
+  const uint8_t saturated = saturated_value(mode);
+  const bool accumulate = options_.accumulate;
+
+  // The sweeps of this segment: the tool's, and its mirror image's.
+  std::vector<Sweep> sweeps;
+  auto add_sweep = [&](RotatedToolCache& cache, StrokeSample s0, StrokeSample s1) {
+    Sweep sw;
+    if (tool.sphere_radius_vox > 0.0f) {
+      sw.ball = true;
+      sw.a = s0.position_vox;
+      sw.b = s1.position_vox;
+      sw.radius = tool.sphere_radius_vox;
+      sw.hardness = tool.hardness;
+      // tool_density() is 0 from one voxel outside the surface on.
+      sw.reach = sw.radius + 1.0f;
+      sw.box = box_around(glm::min(sw.a, sw.b), glm::max(sw.a, sw.b), sw.reach);
+    } else {
+      // Steps that move no point of the tool more than kSweepStepVox: the
+      // pivot's path plus the farthest point's arc.
+      const float reach = cache.tool().reach_vox();
+      const float cos_half = std::min(1.0f, std::abs(glm::dot(s0.orientation, s1.orientation)));
+      const float angle = 2.0f * std::acos(cos_half);
+      const float travel = glm::length(s1.position_vox - s0.position_vox) + reach * angle;
+      const int steps = std::max(1, static_cast<int>(std::ceil(travel / kSweepStepVox)));
+      // The first sample of a stroke is one placement; a segment's start is
+      // the previous segment's end, already applied.
+      const bool point = travel == 0.0f;
+      for (int k = point ? 0 : 1; k <= (point ? 0 : steps); ++k) {
+        const float u = static_cast<float>(k) / static_cast<float>(steps);
+        const glm::quat q = glm::normalize(glm::slerp(s0.orientation, s1.orientation, u));
+        const glm::vec3 p = glm::mix(s0.position_vox, s1.position_vox, u);
+        RotatedToolCache::Placement pl = cache.acquire(q, p);
+        const Box& eb = pl.entry->box();
+        sw.box = hull(sw.box, Box{eb.lo + pl.anchor, eb.hi + pl.anchor});
+        sw.placements.push_back(std::move(pl));
+      }
+    }
+    sweeps.push_back(std::move(sw));
+  };
+  add_sweep(*sculptor_.cache_, from, to);
+  if (const auto& mirror = sculptor_.mirror_) {
+    const int a = mirror->axis;
+    auto reflect = [&](StrokeSample s) {
+      s.position_vox[a] = 2.0f * mirror->centre_vox - s.position_vox[a];
+      // As Sculptor::dab(): the vector part off the mirror axis changes sign.
+      for (int i = 0; i < 3; ++i)
+        if (i != a) s.orientation[i] = -s.orientation[i];
+      return s;
+    };
+    add_sweep(sculptor_.mirror_cache(a), reflect(from), reflect(to));
+  }
+  Box region;
+  for (const Sweep& sw : sweeps)
+    region = hull(region, sw.box);
+  region = intersect(region, Box{glm::ivec3(0), volume.dims()});
+  if (region.empty()) return stats;
+
+  const int edge = volume.brick_edge();
+  const size_t brick_bytes = static_cast<size_t>(edge) * edge * edge;
+  const uint32_t q =
+      static_cast<uint32_t>(std::lround(std::clamp(options_.strength, 0.0f, 1.0f) * 256.0f));
+
+  // The bricks the segment can change, with what the stroke holds of them.
+  struct Job {
+    glm::ivec3 b;
+    Box bb;
+    StrokeBrick* held;
+    int64_t changed = 0;
+    Box touched{glm::ivec3(std::numeric_limits<int>::max()),
+                glm::ivec3(std::numeric_limits<int>::min())};
+  };
+  std::vector<Job> jobs;
+  const Box bricks = volume.bricks_overlapping(region);
+  const int64_t t_decode = now_ns();
+  for (int bz = bricks.lo.z; bz < bricks.hi.z; ++bz)
+    for (int by = bricks.lo.y; by < bricks.hi.y; ++by)
+      for (int bx = bricks.lo.x; bx < bricks.hi.x; ++bx) {
+        const glm::ivec3 b(bx, by, bz);
+        ++stats.bricks_overlapped;
+        const Box bb = intersect(volume.brick_box(b), region);
+        // Beyond every sweep's reach nothing changes.
+        const glm::vec3 centre = (glm::vec3(bb.lo) + glm::vec3(bb.hi - 1)) * 0.5f;
+        const float half_diagonal = 0.5f * glm::length(glm::vec3(bb.size()));
+        bool near = false;
+        for (const Sweep& sw : sweeps) {
+          if (sw.ball) {
+            const glm::vec3 ab = sw.b - sw.a;
+            near = near ||
+                   segment_distance(centre, sw.a, ab, glm::dot(ab, ab)) <= sw.reach + half_diagonal;
+          } else {
+            near = near || !intersect(sw.box, bb).empty();
+          }
+        }
+        if (!near) continue;
+        const auto index = static_cast<int64_t>(grid_index(b, volume.brick_grid()));
+        auto it = bricks_.find(index);
+        if (it == bricks_.end()) {
+          const Brick& brick = volume.brick(b);
+          if (brick.is_uniform() && brick.uniform_value() == saturated) continue;
+          it = bricks_.emplace(index, std::make_unique<StrokeBrick>()).first;
+        }
+        StrokeBrick& held = *it->second;
+        // First reached, or stored since by something else (asserted not to
+        // happen in a stroke, but a stale copy must never be written back).
+        if (held.current.empty() || held.version != volume.brick_version(b)) {
+          held.current.assign(brick_bytes + kCombineRowSlack, 0);
+          volume.decode_brick(b, std::span<uint8_t>(held.current).first(brick_bytes));
+          held.version = volume.brick_version(b);
+          if (!accumulate) held.before = held.current;
+          held.coverage.assign(brick_bytes + kCombineRowSlack, 0);
+          held.segment = -1;
+          ++stats.bricks_decoded;
+        } else {
+          ++stats.bricks_reused;
+        }
+        jobs.push_back({b, bb, &held});
+      }
+  stats.decode_ns += now_ns() - t_decode;
+
+  // One brick's part of the segment: its sweeps' filling, combined.
+  auto run = [&](Job& job, std::vector<uint8_t>& sweep, std::vector<uint8_t>& row_buf) {
+    StrokeBrick& held = *job.held;
+    const glm::ivec3 origin = job.b * edge;
+    const Box& bb = job.bb;
+    const uint8_t* reference = accumulate ? held.current.data() : held.before.data();
+    auto at = [&](int x, int y, int z) {
+      return (static_cast<size_t>(z - origin.z) * edge + static_cast<size_t>(y - origin.y)) * edge +
+             static_cast<size_t>(x - origin.x);
+    };
+    // Per row of bb, the stretch [x0, x1) that can change (not saturated in
+    // the material the result is made from).
+    const glm::ivec3 n = bb.size();
+    std::vector<int> x0(static_cast<size_t>(n.y) * n.z), x1(x0.size());
+    for (int z = bb.lo.z; z < bb.hi.z; ++z)
+      for (int y = bb.lo.y; y < bb.hi.y; ++y) {
+        const uint8_t* r = reference + at(origin.x, y, z);
+        int c0 = bb.lo.x, c1 = bb.hi.x;
+        while (c0 < c1 && r[c0 - origin.x] == saturated)
+          ++c0;
+        while (c1 > c0 && r[c1 - 1 - origin.x] == saturated)
+          --c1;
+        const size_t k = static_cast<size_t>(z - bb.lo.z) * n.y + (y - bb.lo.y);
+        x0[k] = c0;
+        x1[k] = c1;
+        if (c0 < c1) std::memset(&sweep[at(c0, y, z)], 0, static_cast<size_t>(c1 - c0));
+      }
+    auto row_index = [&](int y, int z) {
+      return static_cast<size_t>(z - bb.lo.z) * n.y + (y - bb.lo.y);
+    };
+
+    for (const Sweep& sw : sweeps) {
+      if (sw.ball) {
+        const glm::vec3 ab = sw.b - sw.a;
+        const float ab2 = glm::dot(ab, ab);
+        const float reach2 = sw.reach * sw.reach;
+        const float depth = sw.radius;
+        for (int z = bb.lo.z; z < bb.hi.z; ++z)
+          for (int y = bb.lo.y; y < bb.hi.y; ++y) {
+            const size_t k = row_index(y, z);
+            if (x0[k] >= x1[k]) continue;
+            // The row (y, z) is a line along x: its distance to the segment is
+            // that of (y, z) to the segment's shadow on the yz plane.
+            const float dyz = segment_distance_2d(static_cast<float>(y), static_cast<float>(z),
+                                                  sw.a.y, sw.a.z, sw.b.y, sw.b.z);
+            if (dyz * dyz >= reach2) continue;
+            const float half = std::sqrt(reach2 - dyz * dyz);
+            const int lo =
+                std::max(x0[k], static_cast<int>(std::floor(std::min(sw.a.x, sw.b.x) - half)));
+            const int hi =
+                std::min(x1[k], static_cast<int>(std::ceil(std::max(sw.a.x, sw.b.x) + half)) + 1);
+            uint8_t* out = &sweep[at(origin.x, y, z)];
+            for (int x = lo; x < hi; ++x) {
+              const glm::vec3 p(static_cast<float>(x), static_cast<float>(y),
+                                static_cast<float>(z));
+              const float d = segment_distance(p, sw.a, ab, ab2) - sw.radius;
+              if (d >= 1.0f) continue;
+              uint8_t& o = out[x - origin.x];
+              o = std::max(o, tool_density(d, depth, sw.hardness));
+            }
+          }
+      } else {
+        for (const RotatedToolCache::Placement& pl : sw.placements) {
+          RotatedToolEntry& entry = *pl.entry;
+          const Box eb{entry.box().lo + pl.anchor, entry.box().hi + pl.anchor};
+          const Box part = intersect(eb, bb);
+          if (part.empty()) continue;
+          RotatedToolCacheStats counts;
+          for (int z = part.lo.z; z < part.hi.z; ++z)
+            for (int y = part.lo.y; y < part.hi.y; ++y) {
+              const size_t k = row_index(y, z);
+              const auto [ra, rb] = entry.reach(y - pl.anchor.y, z - pl.anchor.z);
+              const int lo = std::max(x0[k], ra + pl.anchor.x);
+              const int hi = std::min(x1[k], rb + pl.anchor.x);
+              if (lo >= hi) continue;
+              const uint8_t* f = entry.row(y - pl.anchor.y, z - pl.anchor.z, lo - pl.anchor.x,
+                                           hi - pl.anchor.x, counts);
+              uint8_t* out = &sweep[at(lo, y, z)];
+              for (int i = 0; i < hi - lo; ++i)
+                out[i] = std::max(out[i], f[i]);
+            }
+        }
+      }
+    }
+
+    // Combine: once per stroke from the material before it, or building on
+    // the current material by what exceeds the previous segment's filling.
+    const bool prev_valid = accumulate && held.segment == segment_ - 1;
+    for (int z = bb.lo.z; z < bb.hi.z; ++z)
+      for (int y = bb.lo.y; y < bb.hi.y; ++y) {
+        const size_t k = row_index(y, z);
+        const int c0 = x0[k], c1 = x1[k];
+        if (c0 >= c1) continue;
+        const size_t i0 = at(c0, y, z);
+        const int len = c1 - c0;
+        uint8_t* cur = &held.current[i0];
+        uint8_t* cov = &held.coverage[i0];
+        const uint8_t* sw = &sweep[i0];
+        int64_t changed = 0;
+        if (!accumulate) {
+          for (int i = 0; i < len; ++i)
+            cov[i] = std::max(cov[i], sw[i]);
+          std::memcpy(row_buf.data(), &held.before[i0], static_cast<size_t>(len));
+          combine_row(mode, row_buf.data(), cov, len, q);
+          for (int i = 0; i < len; ++i)
+            changed += row_buf[i] != cur[i];
+          if (changed != 0) std::memcpy(cur, row_buf.data(), static_cast<size_t>(len));
+        } else {
+          for (int i = 0; i < len; ++i) {
+            const uint8_t prev = prev_valid ? cov[i] : uint8_t{0};
+            row_buf[i] = sw[i] > prev ? static_cast<uint8_t>(sw[i] - prev) : uint8_t{0};
+          }
+          changed = combine_row(mode, cur, row_buf.data(), len, q);
+        }
+        if (changed != 0) {
+          job.changed += changed;
+          job.touched.lo = glm::min(job.touched.lo, glm::ivec3(c0, y, z));
+          job.touched.hi = glm::max(job.touched.hi, glm::ivec3(c1, y + 1, z + 1));
+        }
+      }
+    if (accumulate) {
+      // The coverage becomes this segment's alone.
+      std::fill(held.coverage.begin(), held.coverage.end(), uint8_t{0});
+      for (int z = bb.lo.z; z < bb.hi.z; ++z)
+        for (int y = bb.lo.y; y < bb.hi.y; ++y) {
+          const size_t k = row_index(y, z);
+          if (x0[k] < x1[k])
+            std::memcpy(&held.coverage[at(x0[k], y, z)], &sweep[at(x0[k], y, z)],
+                        static_cast<size_t>(x1[k] - x0[k]));
+        }
+      held.segment = segment_;
+    }
+  };
+
+  const int64_t t_apply = now_ns();
+  // The ball's sweep reads nothing shared; the rotated tool's rows are filled
+  // lazily in shared entries, so a tool sweep stays on this thread.
+  bool all_balls = true;
+  for (const Sweep& sw : sweeps)
+    all_balls = all_balls && sw.ball;
+  if (all_balls && jobs.size() >= kParallelBricks) {
+    parallel_for(static_cast<int64_t>(jobs.size()), [&](int64_t k) {
+      std::vector<uint8_t> sweep(brick_bytes + kCombineRowSlack);
+      std::vector<uint8_t> row_buf(static_cast<size_t>(edge) + kCombineRowSlack);
+      run(jobs[static_cast<size_t>(k)], sweep, row_buf);
+    });
+  } else {
+    sweep_.resize(brick_bytes + kCombineRowSlack);
+    std::vector<uint8_t> row_buf(static_cast<size_t>(edge) + kCombineRowSlack);
+    for (Job& job : jobs)
+      run(job, sweep_, row_buf);
+  }
+  stats.apply_ns += now_ns() - t_apply;
+
+  const int64_t t_store = now_ns();
+  for (Job& job : jobs) {
+    if (job.changed == 0) continue;
+    sculptor_.history_.before_change(volume, job.b);
+    volume.store_brick(job.b, std::span<uint8_t>(job.held->current).first(brick_bytes),
+                       job.touched);
+    job.held->version = volume.brick_version(job.b);
+    ++stats.bricks_changed;
+    stats.voxels_changed += job.changed;
+  }
+  stats.encode_ns += now_ns() - t_store;
+  return stats;
+}
+
+DabStats sweep_stroke(Sculptor& sculptor, std::span<const StrokeSample> path,
+                      const StrokeOptions& options) {
+  assert(!path.empty());
+  DabStats stats;
+  SweptStroke stroke(sculptor, options);
+  for (const StrokeSample& s : path)
+    stats += stroke.add(s);
+  stroke.finish();
+  return stats;
+}
+
+}  // namespace sculpt::core
