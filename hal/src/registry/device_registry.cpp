@@ -62,6 +62,7 @@ std::vector<BackendListing> DeviceRegistry::list() {
 
 ScanReport DeviceRegistry::scan() {
   ScanReport report;
+  std::map<std::string, std::string> denied;  // physical key -> the first backend's complaint
   for (auto& backend : backends_) {
     const std::string name(backend->name());
     if (backend->status().state != BackendState::kReady) continue;
@@ -79,7 +80,9 @@ ScanReport DeviceRegistry::scan() {
       if (open_keys_.count(key) || (name != "spnav" && open_keys_.count(spnav_claim(info))))
         continue;
       if (!info.accessible) {
-        report.errors.push_back(info.id() + " (" + info.vendor_product() +
+        // Said at the end, and only if no later backend opens the device
+        // (evdev may, where hidraw is not this user's).
+        denied.emplace(key, info.id() + " (" + info.vendor_product() +
                                 "): no permission; install the udev rules (see docs/devices.md)");
         continue;
       }
@@ -90,6 +93,9 @@ ScanReport DeviceRegistry::scan() {
       }
       report.opened.push_back(*id);
     }
+  }
+  for (const auto& [key, why] : denied) {
+    if (!open_keys_.count(key)) report.errors.push_back(why);
   }
   return report;
 }

@@ -323,6 +323,39 @@ TEST_F(EvdevBackendTest, TheRegistryPrefersHidrawAndNeverOpensADeviceTwice) {
   EXPECT_EQ(registry.reader(second.opened[0])->info().backend, "evdev");
 }
 
+TEST_F(EvdevBackendTest, WhereHidrawIsNotThisUsersEvdevOpensItWithoutComplaint) {
+  plug(3, "SpaceMouse Compact", 0x256f, 0xc635, six_axis_caps(), "1-4");
+  plug(6, "SpaceMouse Pro", 0x256f, 0xc62b, six_axis_caps(), "1-6");
+  {
+    std::lock_guard lock(kernel_.mutex);
+    kernel_.sys.nodes[node_path(6)].open_error = -EACCES;
+  }
+  std::vector<std::unique_ptr<Backend>> backends;
+  auto hid = std::make_unique<FeedBackend>("hidapi");
+  FeedBackend* hidraw = hid.get();
+  backends.push_back(std::move(hid));
+  backends.push_back(backend());
+  DeviceRegistry registry(std::move(backends));
+  DeviceInfo compact;
+  compact.path = "/dev/hidraw2";
+  compact.vendor_id = 0x256f;
+  compact.product_id = 0xc635;
+  compact.usb_location = "1-4";
+  compact.accessible = false;
+  hidraw->attach(compact);
+  DeviceInfo pro = compact;
+  pro.path = "/dev/hidraw3";
+  pro.product_id = 0xc62b;
+  pro.usb_location = "1-6";
+  hidraw->attach(pro);
+
+  const ScanReport r = registry.scan();
+  ASSERT_EQ(r.opened.size(), 1u);
+  EXPECT_EQ(registry.reader(r.opened[0])->info().path, node_path(3));
+  ASSERT_EQ(r.errors.size(), 1u) << "only the device nobody could open";
+  EXPECT_NE(r.errors[0].find("hidapi:/dev/hidraw3"), std::string::npos) << r.errors[0];
+}
+
 TEST_F(EvdevBackendTest, HotPlugUnplugAndReplugThroughTheRegistry) {
   std::mutex raw_mutex;
   std::vector<RawEvent> raws;
