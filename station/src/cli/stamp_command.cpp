@@ -21,9 +21,11 @@
 #include "cli/number_checks.h"
 #include "sculpt/base/output_set.h"
 #include "sculpt/core/sculpt/sculptor.h"
+#include "sculpt/core/sculpt/stroke.h"
 #include "sculpt/core/tool/tool.h"
 #include "sculpt/core/tool/tool_rotation.h"
 #include "sculpt/core/volume/volume_io.h"
+#include "sculpt/hal/stroke/stroke_sampler.h"
 #include "sculpt/sim/session/command_limits.h"
 #include "sculpt/sim/session/session.h"
 #include "sculpt/station/app/station_loop.h"
@@ -34,6 +36,27 @@ namespace {
 
 // The script's operations, as dab_script::read() gives them.
 using namespace dab_script;  // NOLINT(google-build-using-namespace)
+
+// A stroke line's samples: its points, or with a spacing, where the
+// station's stroke sampler places them along the points' polyline (the
+// first point, then one every spacing; the rest short of a spacing is
+// dropped, as live input's is).
+std::vector<core::StrokeSample> stroke_samples(const SweepOp& op) {
+  if (op.spacing_vox <= 0.0) return op.path;
+  hal::StrokeSampler sampler(1.0f, static_cast<float>(op.spacing_vox));
+  std::vector<hal::Dab> dabs;
+  for (size_t i = 0; i < op.path.size(); ++i) {
+    const hal::ToolPose pose{op.path[i].position_vox, op.path[i].orientation,
+                             static_cast<int64_t>(i)};
+    i == 0 ? sampler.begin(pose, dabs) : sampler.add(pose, dabs);
+  }
+  sampler.end();
+  std::vector<core::StrokeSample> out;
+  out.reserve(dabs.size());
+  for (const hal::Dab& d : dabs)
+    out.push_back({d.position, d.orientation});
+  return out;
+}
 
 struct StampOptions {
   std::string input;
@@ -68,6 +91,8 @@ int run_stamp(const StampOptions& o) {
   std::optional<core::Tool> tool;
   core::DabStats total;
   int dabs = 0;
+  int strokes = 0;
+  int64_t stroke_samples_total = 0;
   // The tools the script saves and the volume appear together, or none of
   // them if a later line fails.
   OutputSet outputs;
@@ -90,6 +115,8 @@ int run_stamp(const StampOptions& o) {
         }
         tool = std::move(loaded.value());
       }
+      if (t->hardness < 1.0)
+        tool = core::with_hardness(std::move(*tool), static_cast<float>(t->hardness));
       sculptor.set_tool(*tool);
     } else if (auto* s = std::get_if<SaveToolOp>(&op)) {
       if (!tool) return report(Error("save_tool before any tool").in(where));
@@ -114,6 +141,12 @@ int run_stamp(const StampOptions& o) {
       if (!tool) return report(Error("dab before any tool").in(where));
       total += sculptor.dab(*d);
       ++dabs;
+    } else if (auto* sw = std::get_if<SweepOp>(&op)) {
+      if (!tool) return report(Error("stroke before any tool").in(where));
+      const std::vector<core::StrokeSample> samples = stroke_samples(*sw);
+      total += core::sweep_stroke(sculptor, samples, sw->options);
+      ++strokes;
+      stroke_samples_total += static_cast<int64_t>(samples.size());
     }
   }
   sculptor.end_stroke();
@@ -127,6 +160,10 @@ int run_stamp(const StampOptions& o) {
   std::printf("%d dabs in %.2f ms (%.3f ms per dab): %d bricks changed, %lld voxels changed\n",
               dabs, ms, dabs ? ms / dabs : 0.0, total.bricks_changed,
               static_cast<long long>(total.voxels_changed));
+  if (strokes > 0) {
+    std::printf("%d swept strokes through %lld samples\n", strokes,
+                static_cast<long long>(stroke_samples_total));
+  }
   std::printf("time: decode %.2f ms, rotate on contact + combine %.2f ms, re-encode %.2f ms\n",
               static_cast<double>(total.decode_ns) * 1e-6,
               static_cast<double>(total.apply_ns) * 1e-6,

@@ -56,6 +56,106 @@ Result<std::vector<double>> numbers(const json& j, const char* key, size_t n) {
   return out;
 }
 
+// Reads the optional "hardness" of a tool line into t.
+Status read_hardness(const json& j, ToolOp& t) {
+  if (!j.contains("hardness")) return {};
+  auto h = number(j, "hardness");
+  if (!h) return h.error().in("tool " + t.shape);
+  if (Status st = core::check_hardness(*h); !st) return st.error().in("tool " + t.shape);
+  t.hardness = *h;
+  return {};
+}
+
+// A point of a dab or stroke: a tool reaches at most its size past the
+// volume, so a point farther out changes nothing, and one at 1e30 would only
+// lose float precision.
+Status check_point(const double* p, glm::ivec3 dims, const std::string& what) {
+  const double margin = kMaxToolSize + 1.0;
+  for (int a = 0; a < 3; ++a) {
+    if (p[a] < -margin || p[a] > dims[a] + margin)
+      return Error(what + " is more than " + std::to_string(int(margin)) +
+                   " voxels outside the volume");
+  }
+  return {};
+}
+
+Result<Op> parse_stroke(const json& j, glm::ivec3 dims) {
+  SweepOp s;
+  const std::string bad_path = "stroke: 'path' must be a non-empty array of [x, y, z] points";
+  if (!j.contains("path") || !j["path"].is_array() || j["path"].empty()) return Error(bad_path);
+  const json& path = j["path"];
+  if (path.size() > kMaxStrokePoints) {
+    return Error("stroke: 'path' has more than " + std::to_string(kMaxStrokePoints) + " points");
+  }
+  for (size_t i = 0; i < path.size(); ++i) {
+    const json& p = path[i];
+    if (!p.is_array() || p.size() != 3) return Error(bad_path);
+    double v[3];
+    for (int a = 0; a < 3; ++a) {
+      if (!p[a].is_number() || !std::isfinite(p[a].get<double>())) {
+        return Error("stroke: 'path' point " + std::to_string(i) + " must be 3 finite numbers");
+      }
+      v[a] = p[a].get<double>();
+    }
+    if (Status st = check_point(v, dims, "'path' point " + std::to_string(i)); !st)
+      return st.error().in("stroke");
+    core::StrokeSample sample;
+    sample.position_vox = glm::vec3(v[0], v[1], v[2]);
+    s.path.push_back(sample);
+  }
+  if (j.contains("quats")) {
+    const json& quats = j["quats"];
+    if (!quats.is_array() || quats.size() != path.size())
+      return Error("stroke: 'quats' must hold one [w, x, y, z] per 'path' point");
+    for (size_t i = 0; i < quats.size(); ++i) {
+      const json& q = quats[i];
+      const std::string what = "stroke: 'quats' entry " + std::to_string(i);
+      if (!q.is_array() || q.size() != 4) return Error(what + " must be 4 finite numbers");
+      float c[4];
+      for (int a = 0; a < 4; ++a) {
+        if (!q[a].is_number() || !std::isfinite(q[a].get<double>()))
+          return Error(what + " must be 4 finite numbers");
+        c[a] = static_cast<float>(q[a].get<double>());
+      }
+      const glm::quat qq(c[0], c[1], c[2], c[3]);
+      if (!(glm::length(qq) > 1e-6f)) return Error(what + " must not be zero");
+      s.path[i].orientation = glm::normalize(qq);
+    }
+  }
+  const Result<std::string> mode_text = text(j, "mode", "add");
+  if (!mode_text) return mode_text.error().in("stroke");
+  const auto m = core::parse_sculpt_mode(*mode_text);
+  if (!m || *m == core::SculptMode::kSmooth) {
+    return Error("stroke: unknown mode '" + *mode_text +
+                 "' (add, subtract, union, difference; smoothing is done by dabs)");
+  }
+  s.options.mode = *m;
+  if (j.contains("strength")) {
+    auto st = number(j, "strength");
+    if (!st || *st < 0.0 || *st > 1.0)
+      return Error("stroke: 'strength' must be a number in [0, 1]");
+    s.options.strength = static_cast<float>(*st);
+  }
+  if (j.contains("accumulate")) {
+    if (!j["accumulate"].is_boolean()) return Error("stroke: 'accumulate' must be true or false");
+    s.options.accumulate = j["accumulate"].get<bool>();
+  }
+  if (j.contains("spacing")) {
+    auto sp = number(j, "spacing");
+    if (!sp || !(*sp > 0.0)) return Error("stroke: 'spacing' must be a number above 0 (voxels)");
+    double length = 0.0;
+    for (size_t i = 1; i < s.path.size(); ++i)
+      length += glm::length(glm::dvec3(s.path[i].position_vox - s.path[i - 1].position_vox));
+    if (length / *sp > kMaxStrokeSamples) {
+      return Error("stroke: 'spacing' places more than " +
+                   std::to_string(static_cast<int64_t>(kMaxStrokeSamples)) +
+                   " samples on the path");
+    }
+    s.spacing_vox = *sp;
+  }
+  return Op{std::move(s)};
+}
+
 Result<Op> parse_op(const json& j, glm::ivec3 dims) {
   if (!j.is_object() || !j.contains("op") || !j["op"].is_string()) {
     return Error("expected an object with a string 'op'");
@@ -64,7 +164,8 @@ Result<Op> parse_op(const json& j, glm::ivec3 dims) {
   if (op == "tool") {
     if (!j.contains("shape") || !j["shape"].is_string())
       return Error("tool: missing string 'shape'");
-    ToolOp t{j["shape"], 0.0, 0.0, {}, {}};
+    ToolOp t{j["shape"], 0.0, 0.0, {}, {}, 1.0};
+    if (Status st = read_hardness(j, t); !st) return st.error();
     const std::pair<const char*, const char*> params[] = {{"sphere", "radius"},
                                                           {"cube", "edge"},
                                                           {"cylinder", "radius"},
@@ -147,18 +248,12 @@ Result<Op> parse_op(const json& j, glm::ivec3 dims) {
   }
   if (op == "begin" || op == "end") return Op{StrokeOp{op == "begin"}};
   if (op == "undo" || op == "redo") return Op{UndoOp{op == "redo"}};
+  if (op == "stroke") return parse_stroke(j, dims);
   if (op == "dab") {
     core::Dab d;
     auto at = numbers(j, "at", 3);
     if (!at) return at.error().in("dab");
-    // A tool reaches at most its size past the volume: a dab farther out
-    // changes nothing, and one at 1e30 would only lose float precision.
-    for (int a = 0; a < 3; ++a) {
-      const double margin = kMaxToolSize + 1.0;
-      if ((*at)[a] < -margin || (*at)[a] > dims[a] + margin)
-        return Error("dab: 'at' is more than " + std::to_string(int(margin)) +
-                     " voxels outside the volume");
-    }
+    if (Status st = check_point(at->data(), dims, "'at'"); !st) return st.error().in("dab");
     d.position_vox = glm::vec3((*at)[0], (*at)[1], (*at)[2]);
     const Result<std::string> mode_text = text(j, "mode", "add");
     if (!mode_text) return mode_text.error().in("dab");

@@ -10,6 +10,7 @@
 
 #include "run_sculpt.h"
 #include "sculpt/core/io/nrrd.h"
+#include "sculpt/core/sculpt/stroke.h"
 
 namespace sculpt::station::test {
 namespace {
@@ -105,8 +106,72 @@ TEST_F(ToolCommandsTest, DevicesListsEveryBackendAsJson) {
   std::vector<std::string> names;
   for (const auto& b : j["backends"])
     names.push_back(b["name"]);
-  EXPECT_EQ(names, (std::vector<std::string>{"spnav", "hidapi", "evdev", "libusb"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"spnav", "hidapi", "evdev", "libusb", "openxr"}));
   EXPECT_TRUE(j.contains("summary"));
+}
+
+// The stroke op runs the core's sweep: the volume is the one sweep_stroke()
+// makes through the same points with the same (softened) tool; with a
+// "spacing" the station's sampler re-places the samples, and a straight
+// stroke's result does not depend on where.
+TEST_F(ToolCommandsTest, StampStrokeIsTheCoreSweep) {
+  std::ofstream(dir_ / "stroke.jsonl")
+      << R"({"op":"tool","shape":"sphere","radius":6,"hardness":0.5})"
+         "\n"
+      << R"({"op":"stroke","path":[[10,30.5,32],[30,33,34],[54,33,30]],"mode":"add","strength":0.7})"
+         "\n";
+  const CommandResult r = run_sculpt("stamp --new 64,64,64 --dabs " + path("stroke.jsonl") +
+                                     " -o " + path("stroke.nrrd"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("1 swept strokes through 3 samples"), std::string::npos) << r.out;
+  const auto stamped = sculpt::core::read_nrrd_u8(path("stroke.nrrd"));
+  ASSERT_TRUE(stamped.ok());
+  sculpt::core::Volume v(glm::ivec3(64), uint8_t{0});
+  sculpt::core::Sculptor sculptor(v);
+  sculptor.set_tool(sculpt::core::make_sphere_tool(6.0f, 0.5f));
+  const std::vector<sculpt::core::StrokeSample> samples = {
+      {{10.0f, 30.5f, 32.0f}, {}}, {{30.0f, 33.0f, 34.0f}, {}}, {{54.0f, 33.0f, 30.0f}, {}}};
+  (void)sculpt::core::sweep_stroke(sculptor, samples,
+                                   {sculpt::core::SculptMode::kAdd, 0.7f, false});
+  EXPECT_EQ(stamped->values(), v.to_dense().values());
+
+  std::ofstream(dir_ / "spaced.jsonl")
+      << R"({"op":"tool","shape":"sphere","radius":6})"
+         "\n"
+      << R"({"op":"stroke","path":[[10,32,32],[54,32,32]],"spacing":4})"
+         "\n"
+      << R"({"op":"stroke","path":[[10,32,12],[54,32,12]]})"
+         "\n";
+  const CommandResult spaced = run_sculpt("stamp --new 64,64,64 --dabs " + path("spaced.jsonl") +
+                                          " -o " + path("spaced.nrrd"));
+  ASSERT_EQ(spaced.exit_code, 0) << spaced.err;
+  EXPECT_NE(spaced.out.find("2 swept strokes through 14 samples"), std::string::npos) << spaced.out;
+  const auto g = sculpt::core::read_nrrd_u8(path("spaced.nrrd"));
+  ASSERT_TRUE(g.ok());
+  int worst = 0;
+  for (int z = 0; z < 20; ++z)
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; ++x)
+        worst = std::max(worst, std::abs(int(g->at(x, y, z + 20)) - int(g->at(x, y, z))));
+  EXPECT_LE(worst, 1);
+}
+
+TEST_F(ToolCommandsTest, BadStrokeOrHardnessIsNamedAndNothingIsWritten) {
+  for (const char* bad : {R"({"op":"stroke","path":[[1,2,3]],"quats":[[1,0,0,0],[1,0,0,0]]})",
+                          R"({"op":"stroke","path":[[1,2,3]],"strength":-1})",
+                          R"({"op":"tool","shape":"sphere","radius":4,"hardness":2})"}) {
+    std::ofstream(dir_ / "bad.jsonl") << R"({"op":"tool","shape":"sphere","radius":4})"
+                                         "\n"
+                                      << R"({"op":"stroke","path":[[1,2,3],[9,9,9]]})"
+                                         "\n"
+                                      << bad << "\n";
+    const CommandResult r =
+        run_sculpt("stamp --new 32,32,32 --dabs " + path("bad.jsonl") + " -o " + path("o.nrrd"));
+    EXPECT_EQ(r.exit_code, 1) << bad;
+    EXPECT_EQ(line_count(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("bad.jsonl:3: "), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "o.nrrd"));
+  }
 }
 
 }  // namespace

@@ -78,5 +78,76 @@ TEST(DabScript, AMissingFileOrAFolderIsNamed) {
       << folder.error().message();
 }
 
+TEST(DabScript, ReadsAStrokeAndAToolsHardness) {
+  const auto script =
+      parse_text(R"({"op":"tool","shape":"sphere","radius":6,"hardness":0.25})"
+                 "\n"
+                 R"({"op":"stroke","path":[[1,2,3],[4,5,6]],"quats":[[1,0,0,0],[0,0,0,2]],)"
+                 R"("mode":"subtract","strength":0.5,"spacing":1.5,"accumulate":true})"
+                 "\n"
+                 R"({"op":"stroke","path":[[7,8,9]]})"
+                 "\n");
+  ASSERT_TRUE(script.ok()) << script.error().message();
+  ASSERT_EQ(script->size(), 3u);
+  EXPECT_EQ(std::get<ToolOp>((*script)[0].op).hardness, 0.25);
+  const auto& s = std::get<SweepOp>((*script)[1].op);
+  ASSERT_EQ(s.path.size(), 2u);
+  EXPECT_EQ(s.path[1].position_vox, glm::vec3(4, 5, 6));
+  EXPECT_EQ(s.path[1].orientation, glm::quat(0, 0, 0, 1));  // normalised
+  EXPECT_EQ(s.options.mode, core::SculptMode::kSubtract);
+  EXPECT_EQ(s.options.strength, 0.5f);
+  EXPECT_TRUE(s.options.accumulate);
+  EXPECT_EQ(s.spacing_vox, 1.5);
+  // Defaults: add at full strength, no build-up, the points as samples.
+  const auto& d = std::get<SweepOp>((*script)[2].op);
+  EXPECT_EQ(d.options.mode, core::SculptMode::kAdd);
+  EXPECT_EQ(d.options.strength, 1.0f);
+  EXPECT_FALSE(d.options.accumulate);
+  EXPECT_EQ(d.spacing_vox, 0.0);
+  EXPECT_EQ(d.path[0].orientation, glm::quat(1, 0, 0, 0));
+}
+
+TEST(DabScript, RefusesBadStrokesAndHardnessNamingTheField) {
+  struct Case {
+    const char* line;
+    const char* message;
+  };
+  const Case cases[] = {
+      {R"({"op":"tool","shape":"cube","edge":4,"hardness":1.5})",
+       "s.jsonl:1: tool cube: hardness must be a number in [0, 1], got 1.5"},
+      {R"({"op":"tool","shape":"sphere","radius":4,"hardness":-0.1})",
+       "tool sphere: hardness must be a number in [0, 1]"},
+      {R"({"op":"tool","shape":"file","path":"t.nrrd","hardness":"soft"})",
+       "tool file: 'hardness' must be a finite number"},
+      {R"({"op":"stroke"})", "s.jsonl:1: stroke: 'path' must be a non-empty array"},
+      {R"({"op":"stroke","path":[]})", "stroke: 'path' must be a non-empty array"},
+      {R"({"op":"stroke","path":[[1,2,3],[1,2]]})", "stroke: 'path' must be a non-empty array"},
+      {R"({"op":"stroke","path":[[1,2,3],[1,"2",3]]})", "stroke: 'path' point 1 must be 3 finite"},
+      {R"({"op":"stroke","path":[[1,2,3],[1e30,2,3]]})",
+       "stroke: 'path' point 1 is more than 257 voxels outside the volume"},
+      {R"({"op":"stroke","path":[[1,2,3]],"quats":[]})", "stroke: 'quats' must hold one"},
+      {R"({"op":"stroke","path":[[1,2,3]],"quats":[[0,0,0,0]]})",
+       "stroke: 'quats' entry 0 must not be zero"},
+      {R"({"op":"stroke","path":[[1,2,3]],"quats":[[1,0,0]]})",
+       "stroke: 'quats' entry 0 must be 4 finite numbers"},
+      {R"({"op":"stroke","path":[[1,2,3]],"mode":"smooth"})", "stroke: unknown mode 'smooth'"},
+      {R"({"op":"stroke","path":[[1,2,3]],"mode":7})", "stroke: 'mode' must be a string"},
+      {R"({"op":"stroke","path":[[1,2,3]],"strength":1.5})",
+       "stroke: 'strength' must be a number in [0, 1]"},
+      {R"({"op":"stroke","path":[[1,2,3]],"spacing":0})",
+       "stroke: 'spacing' must be a number above 0"},
+      {R"({"op":"stroke","path":[[0,0,0],[60,60,60]],"spacing":1e-6})",
+       "stroke: 'spacing' places more than 1000000 samples"},
+      {R"({"op":"stroke","path":[[1,2,3]],"accumulate":"yes"})",
+       "stroke: 'accumulate' must be true or false"},
+  };
+  for (const Case& c : cases) {
+    const auto script = parse_text(c.line);
+    ASSERT_FALSE(script.ok()) << c.line;
+    EXPECT_NE(script.error().message().find(c.message), std::string::npos)
+        << c.line << " -> " << script.error().message();
+  }
+}
+
 }  // namespace
 }  // namespace sculpt::station::dab_script

@@ -16,6 +16,15 @@
 //        [0, 1] (default 1), rotation as "euler" (degrees, extrinsic xyz) or
 //        "quat" [w,x,y,z] (default none)
 //   {"op":"undo"}, {"op":"redo"}
+//   {"op":"stroke","path":[[x,y,z],...],"mode":"subtract","strength":0.5}
+//        a swept stroke (core/sculpt/stroke.h) through the path's points:
+//        mode add|subtract|union|difference (default add), strength in
+//        [0, 1] (default 1), optional "quats" (one [w,x,y,z] per point),
+//        "spacing" (voxels: the station's stroke sampler re-places the
+//        samples along the path that far apart, as live input's) and
+//        "accumulate" (true: the stroke builds up where it overlaps itself)
+// Every tool takes an optional "hardness" in [0, 1] (default 1, the hard
+// edge; 0 a smooth bump: core::tool_density()).
 // Every field is checked where it is read (docs/formats.md lists the
 // limits); the whole script is read before anything is applied, and an
 // error names the script, the line and the field.
@@ -31,6 +40,7 @@
 #include "sculpt/base/result.h"
 #include "sculpt/core/grid/box.h"
 #include "sculpt/core/sculpt/sculptor.h"
+#include "sculpt/core/sculpt/stroke.h"
 #include "sculpt/core/tool/tool_rotation.h"
 #include "sculpt/sim/session/command_limits.h"
 
@@ -52,6 +62,7 @@ struct ToolOp {
   double a = 0.0, b = 0.0;
   std::string path;
   core::Box box;
+  double hardness = 1.0;
 };
 struct SaveToolOp {
   std::string path;
@@ -68,7 +79,19 @@ struct StrokeOp {
 struct UndoOp {
   bool redo;
 };
-using Op = std::variant<ToolOp, SaveToolOp, SamplingOp, MirrorOp, StrokeOp, core::Dab, UndoOp>;
+/// Most points a "stroke" line may give, and most samples its "spacing" may
+/// place: a stroke across the largest volume at a tenth of a voxel.
+inline constexpr size_t kMaxStrokePoints = 100000;
+inline constexpr double kMaxStrokeSamples = 1000000.0;
+/// A swept stroke: its points (orientations from "quats", else none), and
+/// the sampler's spacing in voxels (0: the points are the samples).
+struct SweepOp {
+  std::vector<core::StrokeSample> path;
+  core::StrokeOptions options;
+  double spacing_vox = 0.0;
+};
+using Op =
+    std::variant<ToolOp, SaveToolOp, SamplingOp, MirrorOp, StrokeOp, core::Dab, UndoOp, SweepOp>;
 
 /// One operation and the script line it came from (1-based).
 struct Line {
