@@ -38,6 +38,34 @@ uint8_t saturated_value(SculptMode mode) {
   return mode == SculptMode::kAdd || mode == SculptMode::kUnion ? 255 : 0;
 }
 
+inline uint64_t load_u64(const uint8_t* p) {
+  uint64_t v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// Buffers of finished strokes, kept for the next ones on this thread: a
+// stroke reaches hundreds of bricks, and three fresh 32 KiB buffers each
+// (zeroed, then first touched page by page) cost more than the sweep did.
+constexpr size_t kPooledBuffers = 1024;
+thread_local std::vector<std::vector<uint8_t>> buffer_pool;
+
+// A buffer of `size` bytes, contents unspecified (but initialised).
+std::vector<uint8_t> take_buffer(size_t size) {
+  while (!buffer_pool.empty()) {
+    std::vector<uint8_t> b = std::move(buffer_pool.back());
+    buffer_pool.pop_back();
+    if (b.size() == size) return b;
+  }
+  return std::vector<uint8_t>(size);
+}
+
+void give_back(std::vector<uint8_t>& buffer) {
+  if (!buffer.empty() && buffer_pool.size() < kPooledBuffers)
+    buffer_pool.push_back(std::move(buffer));
+  buffer = {};
+}
+
 // Bricks a segment changes at or beyond which they are combined on every core
 // (as Sculptor's big dabs).
 constexpr size_t kParallelBricks = 16;
@@ -109,7 +137,13 @@ void SweptStroke::finish() {
   if (!open_) return;
   open_ = false;
   if (own_undo_stroke_) sculptor_.history_.end_stroke();
+  for (auto& [index, held] : bricks_) {
+    give_back(held->before);
+    give_back(held->current);
+    give_back(held->coverage);
+  }
   bricks_.clear();
+  give_back(sweep_);
 }
 
 DabStats SweptStroke::add(const StrokeSample& sample) {
@@ -231,11 +265,15 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
         // First reached, or stored since by something else (asserted not to
         // happen in a stroke, but a stale copy must never be written back).
         if (held.current.empty() || held.version != volume.brick_version(b)) {
-          held.current.assign(brick_bytes + kCombineRowSlack, 0);
+          if (held.current.empty()) {
+            held.current = take_buffer(brick_bytes + kCombineRowSlack);
+            held.coverage = take_buffer(brick_bytes + kCombineRowSlack);
+            if (!accumulate) held.before = take_buffer(brick_bytes + kCombineRowSlack);
+          }
           volume.decode_brick(b, std::span<uint8_t>(held.current).first(brick_bytes));
           held.version = volume.brick_version(b);
-          if (!accumulate) held.before = held.current;
-          held.coverage.assign(brick_bytes + kCombineRowSlack, 0);
+          if (!accumulate) std::copy(held.current.begin(), held.current.end(), held.before.begin());
+          std::fill(held.coverage.begin(), held.coverage.end(), uint8_t{0});
           held.segment = -1;
           ++stats.bricks_decoded;
         } else {
@@ -258,15 +296,24 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
     // Per row of bb, the stretch [x0, x1) that can change (not saturated in
     // the material the result is made from).
     const glm::ivec3 n = bb.size();
+    const uint64_t word = 0x0101010101010101ull * saturated;
     std::vector<int> x0(static_cast<size_t>(n.y) * n.z), x1(x0.size());
     for (int z = bb.lo.z; z < bb.hi.z; ++z)
       for (int y = bb.lo.y; y < bb.hi.y; ++y) {
         const uint8_t* r = reference + at(origin.x, y, z);
-        int c0 = bb.lo.x, c1 = bb.hi.x;
-        while (c0 < c1 && r[c0 - origin.x] == saturated)
+        int c0 = bb.lo.x - origin.x, c1 = bb.hi.x - origin.x;
+        // Eight voxels at a time through the saturated stretches (the
+        // buffers have kCombineRowSlack bytes past the brick).
+        while (c0 + 8 <= c1 && load_u64(r + c0) == word)
+          c0 += 8;
+        while (c0 < c1 && r[c0] == saturated)
           ++c0;
-        while (c1 > c0 && r[c1 - 1 - origin.x] == saturated)
+        while (c1 - 8 >= c0 && load_u64(r + c1 - 8) == word)
+          c1 -= 8;
+        while (c1 > c0 && r[c1 - 1] == saturated)
           --c1;
+        c0 += origin.x;
+        c1 += origin.x;
         const size_t k = static_cast<size_t>(z - bb.lo.z) * n.y + (y - bb.lo.y);
         x0[k] = c0;
         x1[k] = c1;
@@ -281,7 +328,11 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
         const glm::vec3 ab = sw.b - sw.a;
         const float ab2 = glm::dot(ab, ab);
         const float reach2 = sw.reach * sw.reach;
-        const float depth = sw.radius;
+        const float inv_ab2 = ab2 > 0.0f ? 1.0f / ab2 : 0.0f;
+        // Within radius - 1 a hard ball's density is 255 (no square root).
+        const bool hard = sw.hardness >= 1.0f;
+        const float inner = hard ? std::max(0.0f, sw.radius - 1.0f) : -1.0f;
+        const float inner2 = inner >= 0.0f ? inner * inner : -1.0f;
         for (int z = bb.lo.z; z < bb.hi.z; ++z)
           for (int y = bb.lo.y; y < bb.hi.y; ++y) {
             const size_t k = row_index(y, z);
@@ -296,14 +347,31 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
                 std::max(x0[k], static_cast<int>(std::floor(std::min(sw.a.x, sw.b.x) - half)));
             const int hi =
                 std::min(x1[k], static_cast<int>(std::ceil(std::max(sw.a.x, sw.b.x) + half)) + 1);
-            uint8_t* out = &sweep[at(origin.x, y, z)];
+            const size_t row = at(origin.x, y, z);
+            uint8_t* out = &sweep[row];
+            // Not accumulating, a voxel the stroke has filled fully already
+            // cannot change: consecutive segments overlap mostly there.
+            const uint8_t* full = accumulate ? nullptr : &held.coverage[row];
+            const float apy = static_cast<float>(y) - sw.a.y;
+            const float apz = static_cast<float>(z) - sw.a.z;
+            const float dot_yz = apy * ab.y + apz * ab.z;
             for (int x = lo; x < hi; ++x) {
-              const glm::vec3 p(static_cast<float>(x), static_cast<float>(y),
-                                static_cast<float>(z));
-              const float d = segment_distance(p, sw.a, ab, ab2) - sw.radius;
-              if (d >= 1.0f) continue;
-              uint8_t& o = out[x - origin.x];
-              o = std::max(o, tool_density(d, depth, sw.hardness));
+              const int i = x - origin.x;
+              if (full != nullptr && full[i] == 255) continue;
+              const float apx = static_cast<float>(x) - sw.a.x;
+              const float t = std::clamp((apx * ab.x + dot_yz) * inv_ab2, 0.0f, 1.0f);
+              const float dx = apx - t * ab.x, dy = apy - t * ab.y, dz = apz - t * ab.z;
+              const float d2 = dx * dx + dy * dy + dz * dz;
+              if (d2 >= reach2) continue;
+              uint8_t f = 255;
+              if (d2 > inner2) {
+                const float d = std::sqrt(d2) - sw.radius;
+                // tool_density() of a hard ball, density_from_distance()'s
+                // expression inline: the same float operations, the same bytes.
+                f = hard ? static_cast<uint8_t>(std::clamp(127.5f - d * 127.5f, 0.0f, 255.0f))
+                         : tool_density(d, sw.radius, sw.hardness);
+              }
+              out[i] = std::max(out[i], f);
             }
           }
       } else {
@@ -345,13 +413,21 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
         const uint8_t* sw = &sweep[i0];
         int64_t changed = 0;
         if (!accumulate) {
-          for (int i = 0; i < len; ++i)
+          // Only where this segment fills more than the stroke had.
+          int f = 0, l = len;
+          while (f < l && sw[f] <= cov[f])
+            ++f;
+          while (l > f && sw[l - 1] <= cov[l - 1])
+            --l;
+          if (f == l) continue;
+          for (int i = f; i < l; ++i)
             cov[i] = std::max(cov[i], sw[i]);
-          std::memcpy(row_buf.data(), &held.before[i0], static_cast<size_t>(len));
-          combine_row(mode, row_buf.data(), cov, len, q);
-          for (int i = 0; i < len; ++i)
-            changed += row_buf[i] != cur[i];
-          if (changed != 0) std::memcpy(cur, row_buf.data(), static_cast<size_t>(len));
+          std::memcpy(row_buf.data(), &held.before[i0 + static_cast<size_t>(f)],
+                      static_cast<size_t>(l - f));
+          combine_row(mode, row_buf.data(), cov + f, l - f, q);
+          for (int i = f; i < l; ++i)
+            changed += row_buf[i - f] != cur[i];
+          if (changed != 0) std::memcpy(cur + f, row_buf.data(), static_cast<size_t>(l - f));
         } else {
           for (int i = 0; i < len; ++i) {
             const uint8_t prev = prev_valid ? cov[i] : uint8_t{0};
@@ -387,12 +463,14 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
     all_balls = all_balls && sw.ball;
   if (all_balls && jobs.size() >= kParallelBricks) {
     parallel_for(static_cast<int64_t>(jobs.size()), [&](int64_t k) {
-      std::vector<uint8_t> sweep(brick_bytes + kCombineRowSlack);
+      std::vector<uint8_t> sweep = take_buffer(brick_bytes + kCombineRowSlack);
       std::vector<uint8_t> row_buf(static_cast<size_t>(edge) + kCombineRowSlack);
       run(jobs[static_cast<size_t>(k)], sweep, row_buf);
+      give_back(sweep);
     });
   } else {
-    sweep_.resize(brick_bytes + kCombineRowSlack);
+    if (sweep_.size() != brick_bytes + kCombineRowSlack)
+      sweep_ = take_buffer(brick_bytes + kCombineRowSlack);
     std::vector<uint8_t> row_buf(static_cast<size_t>(edge) + kCombineRowSlack);
     for (Job& job : jobs)
       run(job, sweep_, row_buf);

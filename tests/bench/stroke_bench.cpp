@@ -1,0 +1,95 @@
+// Swept strokes against the dabs they replace (issue 21): a stroke of 100
+// samples with the 32^3 tool (the peers.py ball, radius 0.4 * 32 = 12.8)
+// along a circle on the surface of the 256^3 peers.py sphere (radius
+// 0.35 * 256), against 100 dabs at the same samples in one undo stroke.
+// Iterations alternate subtract and add so the material stays a surface.
+//
+// range(0): 0 = 100 dabs, 1 = one swept stroke through the 100 samples.
+// range(1): 0 = the ball made by make_sphere_tool() (swept exactly, as a
+// capsule), 1 = the same ball as a plain grid (tool_from_grid(), swept by
+// placements along each segment: what a tool file or a sculpture costs).
+// range(2): sample spacing in voxels (3: BM_ToolDab's; 8: the station's
+// default, a quarter of the tool's size).
+// One thread (set_default_threads(1)), timed by the thread's CPU time, so
+// other processes on a shared machine do not count.
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <ctime>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "sculpt/core/sculpt/stroke.h"
+#include "sculpt/core/shapes/analytic_shapes.h"
+#include "sculpt/core/util/parallel_for.h"
+
+namespace sculpt::core {
+namespace {
+
+double thread_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
+}
+
+void BM_StrokeVsDabs(benchmark::State& state) {
+  const bool sweep = state.range(0) != 0;
+  const bool grid_tool = state.range(1) != 0;
+  const float spacing = static_cast<float>(state.range(2));
+  static Volume* material = nullptr;
+  if (material == nullptr) material = new Volume(sphere_volume(256, 0.35f));
+  Volume v = *material;
+  Sculptor sculptor(v);
+  sculptor.set_tool(grid_tool ? tool_from_grid(sphere_density(32, 0.4f))
+                              : make_sphere_tool(0.4f * 32.0f));
+  set_default_threads(1);
+  const glm::vec3 centre(127.5f);
+  const float radius = 0.35f * 256.0f;
+  constexpr int kSamples = 100;
+  DabStats total;
+  int64_t i = 0;
+  for (auto _ : state) {
+    // A new arc each time (a quarter turn on), alternately cut and filled.
+    std::vector<StrokeSample> path;
+    const float start = 1.3f * static_cast<float>(i % 4);
+    for (int k = 0; k < kSamples; ++k) {
+      const float a = start + spacing * static_cast<float>(k) / radius;
+      path.push_back({centre + radius * glm::vec3(std::cos(a), std::sin(a), 0.0f),
+                      glm::quat(1.0f, 0.0f, 0.0f, 0.0f)});
+    }
+    const SculptMode mode = i % 2 ? SculptMode::kAdd : SculptMode::kSubtract;
+    const double t0 = thread_cpu_s();
+    if (sweep) {
+      total += sweep_stroke(sculptor, path, {mode, 1.0f, false});
+    } else {
+      sculptor.begin_stroke();
+      for (const StrokeSample& s : path)
+        total += sculptor.dab({s.position_vox, s.orientation, mode, 1.0f});
+      sculptor.end_stroke();
+    }
+    state.SetIterationTime(thread_cpu_s() - t0);
+    ++i;
+  }
+  set_default_threads(0);
+  // Where the time goes, per iteration (steady clock: counts other
+  // processes' turns too, unlike the CPU time above).
+  const double per = 1e-6 / static_cast<double>(i);
+  state.counters["decode_ms"] = static_cast<double>(total.decode_ns) * per;
+  state.counters["apply_ms"] = static_cast<double>(total.apply_ns) * per;
+  state.counters["encode_ms"] = static_cast<double>(total.encode_ns) * per;
+  state.counters["bricks_changed"] =
+      static_cast<double>(total.bricks_changed) / static_cast<double>(i);
+  state.counters["voxels_changed"] =
+      static_cast<double>(total.voxels_changed) / static_cast<double>(i);
+}
+BENCHMARK(BM_StrokeVsDabs)
+    ->ArgsProduct({{0, 1}, {0, 1}, {3, 8}})
+    ->ArgNames({"sweep", "grid_tool", "spacing"})
+    ->Iterations(20)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace sculpt::core
