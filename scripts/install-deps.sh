@@ -8,7 +8,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
   zlib1g-dev libbz2-dev libglm-dev libeigen3-dev libmeshoptimizer-dev
-  libhidapi-dev libusb-1.0-0-dev libspnav-dev
+  libhidapi-dev libusb-1.0-0-dev libspnav-dev libopenxr-dev libopenxr-loader1
   libglfw3-dev libgl1-mesa-dri xvfb xauth
   libcli11-dev nlohmann-json3-dev libstb-dev libimgui-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev

@@ -3,6 +3,7 @@
 #include "sculpt/hal/parsers/axis_event_parser.h"
 #include "sculpt/hal/parsers/evdev_event_parser.h"
 #include "sculpt/hal/parsers/hid_descriptor_parser.h"
+#include "sculpt/hal/parsers/openxr_report.h"
 #include "sculpt/hal/parsers/spacemouse_parser.h"
 #include "sculpt/hal/parsers/tracker_report_parser.h"
 #include "sculpt/hal/types/quirks.h"
@@ -21,6 +22,8 @@ Result<std::unique_ptr<ReportParser>> make_parser(const DeviceInfo& info) {
   if (info.backend == "vrpn")
     return std::unique_ptr<ReportParser>(
         std::make_unique<TrackerReportParser>(TrackerFormat::kVrpn));
+  if (info.backend == "openxr")
+    return std::unique_ptr<ReportParser>(std::make_unique<OpenXrReportParser>());
   // An evdev device is described by its recorded layout, whatever it is;
   // a known 3D mouse keeps its table row's axis mapping.
   if (info.backend == "evdev") {

@@ -1,6 +1,7 @@
 #include "sculpt/hal/registry/tracker_backends.h"
 
 #include "sculpt/hal/backends/opentrack_backend.h"
+#include "sculpt/hal/backends/openxr_backend.h"
 #include "sculpt/hal/backends/vrpn_backend.h"
 #include "sculpt/hal/registry/device_registry.h"
 
@@ -8,7 +9,8 @@ namespace sculpt::hal {
 
 bool names_tracker(std::string_view device_spec) {
   return device_spec == "opentrack" || device_spec.rfind("opentrack:", 0) == 0 ||
-         device_spec.rfind("vrpn:", 0) == 0;
+         device_spec.rfind("vrpn:", 0) == 0 || device_spec == "openxr" ||
+         device_spec.rfind("openxr:", 0) == 0;
 }
 
 Result<std::unique_ptr<Backend>> make_tracker_backend(const std::string& device_spec,
@@ -18,13 +20,20 @@ Result<std::unique_ptr<Backend>> make_tracker_backend(const std::string& device_
     if (!options) return options.error();
     return make_vrpn_backend(std::move(options).value());
   }
+  if (device_spec == "openxr" || device_spec.rfind("openxr:", 0) == 0) {
+    auto options = parse_openxr_spec(device_spec);
+    if (!options) return options.error();
+    return make_openxr_backend(std::move(options).value());
+  }
   if (names_tracker(device_spec)) {
     auto options = parse_opentrack_spec(device_spec);
     if (!options) return options.error();
     options->listen_address = listen_address;
     return make_opentrack_backend(std::move(options).value());
   }
-  return Error(device_spec + ": not a tracker (want opentrack[:PORT] or vrpn:NAME@HOST[:PORT])");
+  return Error(
+      device_spec +
+      ": not a tracker (want opentrack[:PORT], vrpn:NAME@HOST[:PORT] or openxr[:left|right])");
 }
 
 Result<std::string> add_named_tracker(DeviceRegistry& registry, const std::string& device_spec,

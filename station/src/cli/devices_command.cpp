@@ -7,6 +7,7 @@
 // unavailable. Exit 0 when at least one backend could enumerate, even if it
 // found nothing; 1 when none could.
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -17,6 +18,7 @@
 #include "cli/commands.h"
 #include "sculpt/hal/backends/evdev_ff_backend.h"
 #include "sculpt/hal/backends/falcon_backend.h"
+#include "sculpt/hal/backends/openxr_backend.h"
 #include "sculpt/hal/registry/device_registry.h"
 #include "sculpt/hal/registry/force_devices.h"
 #include "sculpt/hal/registry/tracker_backends.h"
@@ -57,10 +59,16 @@ int run_devices(const DevicesOptions& o) {
   for (const std::string& spec : o.trackers) {
     if (!hal::names_tracker(spec))
       return report(Error("--device " + spec +
-                          ": not a tracker (want opentrack[:PORT] or "
-                          "vrpn:NAME@HOST[:PORT]; other devices are listed without --device)"));
+                          ": not a tracker (want opentrack[:PORT], "
+                          "vrpn:NAME@HOST[:PORT] or openxr[:left|right]; other devices are listed "
+                          "without --device)"));
     if (auto added = hal::add_named_tracker(registry, spec); !added) return report(added.error());
   }
+  // OpenXR is listed (its runtime, or "no OpenXR runtime") but, like the
+  // trackers, opened only with --device openxr.
+  if (std::none_of(o.trackers.begin(), o.trackers.end(),
+                   [](const std::string& s) { return s.rfind("openxr", 0) == 0; }))
+    registry.add_backend(hal::make_openxr_backend());
   const std::vector<hal::BackendListing> listing = registry.list();
   int working = 0;
   size_t found = 0;
@@ -190,7 +198,7 @@ int run_devices(const DevicesOptions& o) {
 void add_devices_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<DevicesOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "devices", "List the 6-DOF devices each backend (spnav, hidapi, evdev, libusb) sees");
+      "devices", "List the 6-DOF devices each backend (spnav, hidapi, evdev, libusb, openxr) sees");
   cmd->add_flag("--json", o->json, "machine-readable output");
   cmd->add_option("--device", o->trackers,
                   "list this network tracker too: opentrack[:PORT] or vrpn:NAME@HOST[:PORT] "

@@ -18,7 +18,8 @@ class DeviceRegistry;
 
 namespace sculpt::hal {
 
-/// True for "opentrack", "opentrack:..." and "vrpn:..." (valid or not: the
+/// True for "opentrack", "opentrack:...", "vrpn:...", "openxr" and "openxr:..."
+/// (an OpenXR controller is opened only when asked for too; valid or not: the
 /// spec is meant for a tracker, and make_tracker_backend() says what is wrong).
 bool names_tracker(std::string_view device_spec);
 
