@@ -385,8 +385,23 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
             for (int y = part.lo.y; y < part.hi.y; ++y) {
               const size_t k = row_index(y, z);
               const auto [ra, rb] = entry.reach(y - pl.anchor.y, z - pl.anchor.z);
-              const int lo = std::max(x0[k], ra + pl.anchor.x);
-              const int hi = std::min(x1[k], rb + pl.anchor.x);
+              int lo = std::max(x0[k], ra + pl.anchor.x);
+              int hi = std::min(x1[k], rb + pl.anchor.x);
+              // Not accumulating, the ends already filled fully (by this
+              // segment's earlier placements or the stroke's earlier
+              // segments) need no rotated voxels: a tool moving along a
+              // row rotates only its leading edge.
+              if (!accumulate && lo < hi) {
+                const uint8_t* cov = &held.coverage[at(origin.x, y, z)];
+                const uint8_t* done = &sweep[at(origin.x, y, z)];
+                auto full = [&](int x) {
+                  return cov[x - origin.x] == 255 || done[x - origin.x] == 255;
+                };
+                while (lo < hi && full(lo))
+                  ++lo;
+                while (hi > lo && full(hi - 1))
+                  --hi;
+              }
               if (lo >= hi) continue;
               const uint8_t* f = entry.row(y - pl.anchor.y, z - pl.anchor.z, lo - pl.anchor.x,
                                            hi - pl.anchor.x, counts);
