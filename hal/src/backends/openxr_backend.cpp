@@ -85,8 +85,8 @@ T xr_struct(XrStructureType type) {
 }
 
 constexpr const char* kNoRuntime =
-    "no OpenXR runtime (no manifest in XR_RUNTIME_JSON, $XDG_CONFIG_HOME/openxr/1, "
-    "$XDG_CONFIG_DIRS/openxr/1 or /etc/openxr/1)";
+    "no OpenXR runtime: no manifest in XR_RUNTIME_JSON, $XDG_CONFIG_HOME/openxr/1, "
+    "$XDG_CONFIG_DIRS/openxr/1 or /etc/openxr/1";
 constexpr const char* kNeedsGraphics =
     "the OpenXR runtime needs a graphics binding (it offers no XR_MND_headless, and the station "
     "has no VR view to give it one)";
