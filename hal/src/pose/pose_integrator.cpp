@@ -30,6 +30,17 @@ void PoseIntegrator::lose_tracking() {
   tracker_filter_.reset();
 }
 
+void PoseIntegrator::set_clutch(bool held) {
+  if (held == clutched_) return;
+  clutched_ = held;
+  if (!held) lose_tracking();
+}
+
+void PoseIntegrator::calibrate_tracker(const TrackerCalibration& calibration) {
+  tracker_.calibrate(calibration);
+  tracker_filter_.reset();
+}
+
 void PoseIntegrator::clamp_position(glm::vec3 lo, glm::vec3 hi) {
   const glm::dvec3 clamped = glm::clamp(position_, glm::dvec3(lo), glm::dvec3(hi));
   if (clamped == position_) return;
@@ -47,6 +58,14 @@ const ToolPose& PoseIntegrator::update(const InputEvent& m) {
   const bool position =
       config_.mode == ControlMode::kPosition || (config_.mode == ControlMode::kAuto && m.absolute);
   if (have_time_ && m.t_ns <= pose_.t_ns) return pose_;
+  if (clutched_) {
+    // The time moves on and a 3D mouse's integral is taken up, so letting
+    // go moves the tool by nothing the hand did while holding.
+    pose_.t_ns = m.t_ns;
+    last_integral_ = m.integral;
+    have_time_ = true;
+    return pose_;
+  }
   if (m.has_pose) {
     // Another sensor's poses must not enter the driving sensor's filter.
     if (tracker_.anchored() && m.pose.sensor != tracker_.sensor()) return pose_;

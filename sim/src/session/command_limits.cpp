@@ -115,6 +115,20 @@ std::optional<std::string> command_problem(const Command& c) {
     }
     case CommandKind::kTouch:
       return choice_below(2, "touch");
+    case CommandKind::kClutch:
+      return choice_below(2, "clutch");
+    case CommandKind::kTracker: {
+      if (!in(c.values[0], kMinTrackerScale, kMaxTrackerScale))
+        return "tracker scale " + number(c.values[0]) + " is outside [" + number(kMinTrackerScale) +
+               ", " + number(kMaxTrackerScale) + "] voxels per mm";
+      // A unit quaternion, to float precision: any other would scale the
+      // motion as well as turn it.
+      float norm2 = 0.0f;
+      for (int i = 1; i < 5; ++i)
+        norm2 += c.values[i] * c.values[i];
+      if (!(std::abs(norm2 - 1.0f) < 1e-3f)) return "tracker rotation is not a unit quaternion";
+      return choice_below(1, "choice");
+    }
     case CommandKind::kPress:
     case CommandKind::kRelease:
     case CommandKind::kUndo:

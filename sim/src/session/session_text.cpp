@@ -269,6 +269,13 @@ ordered record_json(const SessionRecord& r) {
     case CommandKind::kTouch:
       j["on"] = c.choice != 0;
       break;
+    case CommandKind::kClutch:
+      j["held"] = c.choice != 0;
+      break;
+    case CommandKind::kTracker:
+      j["scale_vox_per_mm"] = c.values[0];
+      j["rotation"] = floats(c.values + 1, 4);
+      break;
     default:
       break;
   }
@@ -378,6 +385,13 @@ SessionRecord parse_record(const json& j) {
   throw std::string("expected one of report, axis, button, sync, removed, cmd, haptic");
 }
 
+// A true/false field as a command's choice: 1 or 0.
+uint8_t read_bool(const json& j, const char* key) {
+  const json& v = need(j, key);
+  if (!v.is_boolean()) throw std::string(key) + ": expected true or false";
+  return v.get<bool>() ? 1 : 0;
+}
+
 // An unsigned integer field of at most `max`.
 template <class T>
 T read_unsigned(const json& j, const char* key, uint64_t max) {
@@ -479,12 +493,16 @@ SessionRecord parse_command(const json& j, int64_t t) {
     case CommandKind::kSheet:
       read_sheet(j, c);
       break;
-    case CommandKind::kTouch: {
-      const json& on = need(j, "on");
-      if (!on.is_boolean()) throw std::string("on: expected true or false");
-      c.choice = on.get<bool>() ? 1 : 0;
+    case CommandKind::kTouch:
+      c.choice = read_bool(j, "on");
       break;
-    }
+    case CommandKind::kClutch:
+      c.choice = read_bool(j, "held");
+      break;
+    case CommandKind::kTracker:
+      read_number(j, "scale_vox_per_mm", c.values);
+      read_numbers(j, "rotation", c.values + 1, 4);
+      break;
     default:
       break;
   }

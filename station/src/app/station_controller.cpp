@@ -87,6 +87,20 @@ void StationController::set_touch(bool on, int64_t now_ns) {
                : "touch mode off: the tool passes through the clay";
 }
 
+void StationController::set_clutch(bool held, int64_t now_ns) {
+  // A key held for seconds is one command, not one a frame.
+  if (held == clutch_held_) return;
+  clutch_held_ = held;
+  command(make_command(sim::CommandKind::kClutch, held ? 1 : 0), now_ns);
+}
+void StationController::set_tracker_calibration(const hal::TrackerCalibration& t, int64_t now_ns) {
+  const glm::dquat& q = t.tracker_to_sculpture;
+  command(make_command(sim::CommandKind::kTracker, 0,
+                       {static_cast<float>(t.scale_vox_per_mm), static_cast<float>(q.w),
+                        static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)}),
+          now_ns);
+}
+
 void StationController::set_mirror(std::optional<int> axis, int64_t now_ns) {
   if (!axis) {
     command(make_command(sim::CommandKind::kMirror, sim::kMirrorOff, {0.0f}), now_ns);
@@ -205,6 +219,14 @@ bool StationController::perform(Action action, int64_t now_ns) {
     case Action::kToggleTouch:
       set_touch(!s.touch, now_ns);
       return true;
+    case Action::kCentreTool: {
+      const glm::vec3 centre = glm::vec3(loop_.volume().dims()) * 0.5f;
+      command(make_command(sim::CommandKind::kToolPose, 0,
+                           {centre.x, centre.y, centre.z, 1.0f, 0.0f, 0.0f, 0.0f}),
+              now_ns);
+      status_ = "the tool is at the centre: a tracker's present pose is the centre now";
+      return true;
+    }
     case Action::kToggleDeviceTarget:
       device_target_ =
           device_target_ == DeviceTarget::kTool ? DeviceTarget::kCamera : DeviceTarget::kTool;

@@ -39,6 +39,11 @@ std::vector<sim::Command> StationController::opening_commands(bool with_block) c
                            {s.sheet_editing ? 1.0f : 0.0f, static_cast<float>(drag.influence),
                             static_cast<float>(drag.radius)}));
   c.push_back(make_command(sim::CommandKind::kTouch, s.touch ? 1 : 0));
+  const glm::dquat& q = s.tracker.tracker_to_sculpture;
+  c.push_back(
+      make_command(sim::CommandKind::kTracker, 0,
+                   {static_cast<float>(s.tracker.scale_vox_per_mm), static_cast<float>(q.w),
+                    static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)}));
   c.push_back(make_command(sim::CommandKind::kToolPose, 0,
                            {p.position.x, p.position.y, p.position.z, p.orientation.w,
                             p.orientation.x, p.orientation.y, p.orientation.z}));

@@ -76,6 +76,7 @@ StationLoop::StationLoop(const Options& options)
       integrator_(options.pose),
       sampler_(tool_size_vox(settings_.shape, settings_.size_a_vox, settings_.size_b_vox),
                settings_.spacing) {
+  settings_.tracker = options.pose.tracker;
   new_volume(options.volume_dims, options.volume_fill, options.clay_margin);
   hal::ToolPose start;
   start.position = glm::vec3(options.volume_dims) * 0.5f;
@@ -238,6 +239,18 @@ void StationLoop::handle(const sim::Command& c) {
       settings_.touch = c.choice != 0;
       touch_.reset();
       break;
+    case K::kClutch:
+      clutch_key_ = c.choice != 0;
+      apply_clutch();
+      break;
+    case K::kTracker: {
+      // command_limits.h keeps the scale in range and the rotation unit.
+      const glm::dquat q(c.values[1], c.values[2], c.values[3], c.values[4]);
+      settings_.tracker = {.scale_vox_per_mm = c.values[0],
+                           .tracker_to_sculpture = glm::normalize(q)};
+      integrator_.calibrate_tracker(settings_.tracker);
+      break;
+    }
     case K::kSheet:
       sheet_command(c);
       break;
@@ -371,6 +384,9 @@ void StationLoop::handle(const hal::InputEvent& e) {
       } else if (e.button == 1 && e.pressed) {
         settings_.mode = settings_.mode == core::SculptMode::kAdd ? core::SculptMode::kSubtract
                                                                   : core::SculptMode::kAdd;
+      } else if (e.button == kClutchButton) {
+        clutch_button_ = e.pressed;
+        apply_clutch();
       }
       break;
     case hal::InputKind::kDisconnected:
@@ -388,6 +404,10 @@ void StationLoop::handle(const hal::InputEvent& e) {
     case hal::InputKind::kBattery:
       break;
   }
+}
+
+void StationLoop::apply_clutch() {
+  integrator_.set_clutch(clutch_key_ || clutch_button_);
 }
 
 int64_t StationLoop::update_mesh() {

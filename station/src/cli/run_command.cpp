@@ -12,6 +12,7 @@
 
 #include "cli/commands.h"
 #include "cli/number_checks.h"
+#include "sculpt/hal/pose/tracker_axes.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
 #include "sculpt/station/window/gl_snapshot.h"
 #include "sculpt/station/window/station_window.h"
@@ -157,6 +158,24 @@ void add_run_command(CLI::App& app, Action& action) {
                   "window: material millimetres per force-device millimetre")
       ->capture_default_str()
       ->check(finite_range(0.01, 100));
+  cmd->add_option("--tracker-scale", w.tracker.scale_vox_per_mm,
+                  "window, trackers: voxels per millimetre of tracker motion (Home then sets "
+                  "where the sculpture's centre is: hold the tracker there and press it)")
+      ->capture_default_str()
+      ->check(finite_range(0.001, 1000));
+  cmd->add_option_function<std::string>(
+         "--tracker-axes",
+         [&w = *o](const std::string& v) {
+           w.window.tracker.tracker_to_sculpture = hal::parse_tracker_axes(v).value();
+         },
+         "window, trackers: the tracker's axes that become the sculpture's x, y and z, e.g. "
+         "x,z,-y for a tracker whose z is up (default x,y,z)")
+      ->check(
+          [](const std::string& v) -> std::string {
+            const Result<glm::dquat> axes = hal::parse_tracker_axes(v);
+            return axes.ok() ? std::string() : axes.error().message();
+          },
+          "AXES");
   cmd->add_option("--voxel-mm", w.voxel_mm, "window: the material's voxel size, mm")
       ->capture_default_str()
       ->check(finite_range(0.001, 100));

@@ -60,6 +60,8 @@ std::optional<Action> shortcut(int key, int mods) {
       return Action::kToggleRecording;
     case GLFW_KEY_F:
       return Action::kFrameView;
+    case GLFW_KEY_HOME:
+      return Action::kCentreTool;
     case GLFW_KEY_Q:
       return shift ? Action::kTiltToolUp : Action::kTurnToolLeft;
     case GLFW_KEY_E:
@@ -107,6 +109,8 @@ const char* shortcut_label(Action action) {
       return "C";
     case Action::kToggleTouch:
       return "U";
+    case Action::kCentreTool:
+      return "Home";
     case Action::kToggleRecording:
       return "R";
     case Action::kSave:

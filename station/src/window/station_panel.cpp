@@ -58,6 +58,10 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     bool touch = c_.loop().settings().touch;
     if (ImGui::Checkbox("touch mode: the tool rests on the clay", &touch)) c_.set_touch(touch, now);
     tip(Action::kToggleTouch);
+    if (ImGui::Button("Tool to the centre")) c_.perform(Action::kCentreTool, now);
+    tip(Action::kCentreTool);
+    ImGui::SameLine();
+    ImGui::TextDisabled(c_.loop().clutched() ? "clutch held" : "clutch: hold V");
     ImGui::SliderFloat("sensitivity", &sensitivity_, 0.1f, 4.0f, "%.2f");
     ImGui::SliderFloat("deadzone", &deadzone_, 0.0f, 0.5f, "%.2f");
     if (ImGui::Button("Save input settings")) (void)c_.save_input_settings(sensitivity_, deadzone_);

@@ -245,6 +245,7 @@ int run_window(const WindowOptions& o) {
   co.loop.mesh = false;      // the window meshes what it draws (below), at its levels
   co.loop.clay_margin = 64;  // a slab of clay to carve, 128 voxels a side
   co.loop.undo_max_bytes = static_cast<size_t>(o.undo_mib) << 20;
+  co.loop.pose.tracker = o.tracker;
   co.normalizer_config_path = hal::default_normalizer_config_path();
   StationController controller(co);
   controller.set_distance_normals(o.distance_normals);
@@ -468,8 +469,14 @@ int run_window(const WindowOptions& o) {
         if (space && !pointer.space_held) controller.pointer_down(now);
         if (!space && pointer.space_held) controller.pointer_up(now);
         pointer.space_held = space;
-        // A force device: V held is the clutch (K, a shortcut, turns force on and off).
-        if (haptics) haptics->set_clutch(key(GLFW_KEY_V) > 0);
+        // V held is the clutch: a force device's (K, a shortcut, turns its
+        // force on and off), else the station's, recorded when it changes.
+        const bool clutch = key(GLFW_KEY_V) > 0;
+        if (haptics) {
+          haptics->set_clutch(clutch);
+        } else {
+          controller.set_clutch(clutch, now);
+        }
       }
 
       // Sculpt results to the GPU.

@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "sculpt/hal/pose/deflection_integral.h"
 #include "sculpt/hal/pose/pose_integrator.h"
 
 namespace sculpt::hal {
@@ -111,6 +112,82 @@ TEST(TrackerMapping, PoseIntegratorReanchorsAfterTrackingIsLost) {
   p.reset(moved);
   p.update(pose_event(at(0, 0, 0), 5));
   EXPECT_EQ(p.pose().position, glm::vec3(5));
+}
+
+}  // namespace
+}  // namespace sculpt::hal
+
+namespace sculpt::hal {
+namespace {
+
+PoseIntegrator exact_tracker_integrator(glm::vec3 start_vox) {
+  ToolPose start;
+  start.position = start_vox;
+  PoseIntegratorConfig config;
+  config.tracker_filter.enabled = false;  // exact positions
+  return PoseIntegrator(config, start);
+}
+
+TEST(TrackerClutch, WhileHeldTheToolStaysAndLettingGoReanchorsWhereItIs) {
+  PoseIntegrator p = exact_tracker_integrator({100, 100, 100});
+  p.update(pose_event(at(0, 0, 0), 1));
+  p.update(pose_event(at(20, 0, 0), 2));
+  EXPECT_FLOAT_EQ(p.pose().position.x, 120.0f);
+  // The hand moves back 50 mm with the clutch held: the tool does not.
+  p.set_clutch(true);
+  EXPECT_TRUE(p.clutched());
+  p.update(pose_event(at(-30, 0, 0), 3));
+  EXPECT_FLOAT_EQ(p.pose().position.x, 120.0f);
+  EXPECT_EQ(p.pose().t_ns, 3);  // time moves on
+  p.set_clutch(false);
+  // Let go: the hand's pose there is the tool's, and motion goes on from it.
+  p.update(pose_event(at(-30, 0, 0), 4));
+  EXPECT_FLOAT_EQ(p.pose().position.x, 120.0f);
+  p.update(pose_event(at(-20, 0, 0), 5));
+  EXPECT_FLOAT_EQ(p.pose().position.x, 130.0f);
+}
+
+TEST(TrackerClutch, ARateControlledMouseMovesNothingWhileHeldNorAfterForIt) {
+  DeflectionIntegral integral;  // as MotionPipeline hands samples over
+  auto motion = [&](std::array<float, 6> axes, int64_t t_ns) {
+    InputEvent e;
+    e.kind = InputKind::kMotion;
+    e.axes = axes;
+    e.t_ns = t_ns;
+    integral.accumulate(e);
+    return e;
+  };
+  PoseIntegratorConfig config;
+  config.max_speed = 100.0f;
+  PoseIntegrator p(config);
+  p.update(motion({1, 0, 0, 0, 0, 0}, 0));
+  p.set_clutch(true);
+  constexpr int64_t kPeriodNs = 10'000'000;  // a 100 Hz mouse
+  for (int64_t i = 1; i <= 100; ++i)
+    p.update(motion({1, 0, 0, 0, 0, 0}, i * kPeriodNs));  // a second pushed, held
+  EXPECT_FLOAT_EQ(p.pose().position.x, 0.0f);
+  p.set_clutch(false);
+  for (int64_t i = 101; i <= 110; ++i)
+    p.update(motion({1, 0, 0, 0, 0, 0}, i * kPeriodNs));
+  // Only the tenth of a second after letting go moved it.
+  EXPECT_NEAR(p.pose().position.x, 10.0f, 1e-3f);
+}
+
+TEST(TrackerCalibration, ANewCalibrationReanchorsAndScalesWhatFollows) {
+  PoseIntegrator p = exact_tracker_integrator({0, 0, 0});
+  p.update(pose_event(at(0, 0, 0), 1));
+  p.update(pose_event(at(10, 0, 0), 2));
+  EXPECT_FLOAT_EQ(p.pose().position.x, 10.0f);
+  TrackerCalibration c;
+  c.scale_vox_per_mm = 2.0;
+  c.tracker_to_sculpture = glm::angleAxis(glm::half_pi<double>(), glm::dvec3(0, 0, 1));
+  p.calibrate_tracker(c);
+  EXPECT_EQ(p.tracker_calibration().scale_vox_per_mm, 2.0);
+  p.update(pose_event(at(10, 0, 0), 3));  // anchors: no jump
+  EXPECT_FLOAT_EQ(p.pose().position.x, 10.0f);
+  p.update(pose_event(at(15, 0, 0), 4));  // +5 mm on the tracker's x: +10 voxels on y
+  EXPECT_NEAR(p.pose().position.x, 10.0f, 1e-4f);
+  EXPECT_NEAR(p.pose().position.y, 10.0f, 1e-4f);
 }
 
 }  // namespace

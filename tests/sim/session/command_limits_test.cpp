@@ -37,6 +37,8 @@ TEST(CommandLimits, CommandsTheStationWritesPass) {
   EXPECT_FALSE(command_problem(command(CommandKind::kToolPose, 0, {10, -5, 3, 1, 0, 0, 0})));
   EXPECT_FALSE(command_problem(command(CommandKind::kSheet, 0, {64, 64, 64, 100, 8, 2})));
   EXPECT_FALSE(command_problem(command(CommandKind::kTouch, 1, {})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kClutch, 1, {})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kTracker, 0, {0.25f, 0.5f, 0.5f, 0.5f, 0.5f})));
 }
 
 TEST(CommandLimits, EachOutOfRangeFieldIsNamed) {
@@ -53,6 +55,12 @@ TEST(CommandLimits, EachOutOfRangeFieldIsNamed) {
       {command(CommandKind::kSheet, 0, {0, 0, 0, 10, 8, 7}), "sheet axis 7"},
       {command(CommandKind::kPress, 9, {}), "choice 9 unknown"},
       {command(CommandKind::kTouch, 2, {}), "touch 2 unknown"},
+      {command(CommandKind::kClutch, 2, {}), "clutch 2 unknown"},
+      {command(CommandKind::kTracker, 0, {0, 1, 0, 0, 0}), "tracker scale 0 is outside"},
+      {command(CommandKind::kTracker, 0, {2000, 1, 0, 0, 0}), "tracker scale 2000 is outside"},
+      {command(CommandKind::kTracker, 0, {1, 2, 0, 0, 0}), "not a unit quaternion"},
+      {command(CommandKind::kTracker, 0, {1, 0, 0, 0, 0}), "not a unit quaternion"},
+      {command(CommandKind::kTracker, 0, {1, nan, 0, 0, 0}), "value 1 is not a finite number"},
       {command(CommandKind::kTool, 0, {500, 4}), "tool size 500 is outside (0, 256]"},
       {command(CommandKind::kTool, 0, {nan, 4}), "value 0 is not a finite number"},
       {command(CommandKind::kStrength, 0, {inf}), "value 0 is not a finite number"},

@@ -171,6 +171,53 @@ TEST(SessionText, TouchModeRoundTripsAndABadOneIsRefused) {
       << bad.error().message();
 }
 
+TEST(SessionText, ClutchAndTrackerCalibrationRoundTripAndBadOnesAreRefused) {
+  const std::string head = R"({"sculpt_session": 1, "device": {"vendor_product": "0000:0000"}})"
+                           "\n";
+  const std::string text = head + R"({"t": 1, "cmd": "clutch", "held": true})"
+                                  "\n"
+                                  R"({"t": 2, "cmd": "clutch", "held": false})"
+                                  "\n"
+                                  R"({"t": 3, "cmd": "tracker", "scale_vox_per_mm": 0.5, )"
+                                  R"("rotation": [0.5, 0.5, 0.5, 0.5]})"
+                                  "\n";
+  const auto s = session_from_text(text, "tracker.jsonl");
+  ASSERT_TRUE(s.ok()) << s.error().message();
+  ASSERT_EQ(s->records.size(), 3u);
+  EXPECT_EQ(s->records[0].command.kind, CommandKind::kClutch);
+  EXPECT_EQ(s->records[0].command.choice, 1);
+  EXPECT_EQ(s->records[1].command.choice, 0);
+  EXPECT_EQ(s->records[2].command.kind, CommandKind::kTracker);
+  EXPECT_EQ(s->records[2].command.values[0], 0.5f);
+  EXPECT_EQ(s->records[2].command.values[4], 0.5f);
+  const auto again = session_from_text(session_to_text(*s), "again");
+  ASSERT_TRUE(again.ok()) << again.error().message();
+  EXPECT_EQ(*again, *s);
+  const std::vector<uint8_t> bytes = serialize_session(*s);
+  const auto binary = parse_session_bytes(bytes, "tracker.scs");
+  ASSERT_TRUE(binary.ok()) << binary.error().message();
+  EXPECT_EQ(*binary, *s);
+  const struct {
+    const char* line;
+    const char* says;
+  } bad[] = {
+      {R"({"t": 1, "cmd": "clutch", "held": 1})", "held: expected true or false"},
+      {R"({"t": 1, "cmd": "clutch"})", "missing \"held\""},
+      {R"({"t": 1, "cmd": "tracker", "scale_vox_per_mm": -1, "rotation": [1, 0, 0, 0]})",
+       "tracker scale -1 is outside"},
+      {R"({"t": 1, "cmd": "tracker", "scale_vox_per_mm": 1, "rotation": [1, 1, 0, 0]})",
+       "not a unit quaternion"},
+      {R"({"t": 1, "cmd": "tracker", "scale_vox_per_mm": 1, "rotation": [1, 0, 0]})",
+       "rotation: expected 4 numbers"},
+  };
+  for (const auto& [line, says] : bad) {
+    const auto r = session_from_text(head + line + "\n", "bad.jsonl");
+    ASSERT_FALSE(r.ok()) << line;
+    EXPECT_NE(r.error().message().find(says), std::string::npos) << r.error().message();
+    EXPECT_NE(r.error().message().find("bad.jsonl"), std::string::npos) << r.error().message();
+  }
+}
+
 TEST(SessionText, SheetCommandsRoundTripThroughTextAndBinary) {
   const std::string text =
       R"({"sculpt_session": 1, "device": {"vendor_product": "046d:c626"}})"

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "sculpt/station/app/station_loop.h"
 
 namespace sculpt::station {
@@ -88,6 +90,64 @@ TEST(StationTracker, LosingTrackingEndsTheStrokeAndFindingItAgainNeverJumps) {
   EXPECT_EQ(loop.counters().dabs, dabs);
   loop.handle(button0(true, 7));
   EXPECT_EQ(loop.counters().strokes, 2);
+}
+
+sim::Command command(sim::CommandKind kind, uint8_t choice, std::initializer_list<float> values) {
+  sim::Command c{kind, choice};
+  int i = 0;
+  for (const float v : values)
+    c.values[i++] = v;
+  return c;
+}
+
+hal::InputEvent button(int index, bool pressed, int64_t t_ns) {
+  hal::InputEvent e = button0(pressed, t_ns);
+  e.button = index;
+  return e;
+}
+
+TEST(StationTracker, TheClutchKeyOrGripButtonLetsTheHandMoveBackWithoutTheTool) {
+  StationLoop loop(small_block());
+  const glm::vec3 start = loop.pose().position;
+  loop.handle(pose_at(0, 0, 0, 1));
+  loop.handle(pose_at(10, 0, 0, 2));
+  EXPECT_FLOAT_EQ(loop.pose().position.x, start.x + 10.0f);
+  // The key (a recorded command): the hand goes back 30 mm, the tool stays.
+  loop.handle(command(sim::CommandKind::kClutch, 1, {}));
+  EXPECT_TRUE(loop.clutched());
+  loop.handle(pose_at(-20, 0, 0, 3));
+  EXPECT_FLOAT_EQ(loop.pose().position.x, start.x + 10.0f);
+  loop.handle(command(sim::CommandKind::kClutch, 0, {}));
+  EXPECT_FALSE(loop.clutched());
+  loop.handle(pose_at(-20, 0, 0, 4));  // re-anchors here
+  loop.handle(pose_at(-15, 0, 0, 5));
+  EXPECT_FLOAT_EQ(loop.pose().position.x, start.x + 15.0f);
+  // The grip button (the device's third) does the same, and either held holds.
+  loop.handle(button(StationLoop::kClutchButton, true, 6));
+  loop.handle(command(sim::CommandKind::kClutch, 1, {}));
+  loop.handle(button(StationLoop::kClutchButton, false, 7));
+  EXPECT_TRUE(loop.clutched()) << "the key is still held";
+  loop.handle(pose_at(-40, 0, 0, 8));
+  EXPECT_FLOAT_EQ(loop.pose().position.x, start.x + 15.0f);
+  loop.handle(command(sim::CommandKind::kClutch, 0, {}));
+  loop.handle(pose_at(-40, 0, 0, 9));
+  EXPECT_FLOAT_EQ(loop.pose().position.x, start.x + 15.0f);
+}
+
+TEST(StationTracker, ATrackerCommandScalesAndTurnsWhatFollowsAndIsASetting) {
+  StationLoop loop(small_block());
+  loop.handle(pose_at(0, 0, 0, 1));
+  // 0.5 voxel per mm, the tracker's x is the sculpture's -z (a quarter turn
+  // about +y: w = x = cos 45 deg on y).
+  const float h = std::sqrt(0.5f);
+  loop.handle(command(sim::CommandKind::kTracker, 0, {0.5f, h, 0, h, 0}));
+  EXPECT_EQ(loop.settings().tracker.scale_vox_per_mm, 0.5);
+  const glm::vec3 at = loop.pose().position;
+  loop.handle(pose_at(0, 0, 0, 2));  // re-anchors: no jump
+  EXPECT_EQ(loop.pose().position, at);
+  loop.handle(pose_at(20, 0, 0, 3));
+  EXPECT_NEAR(loop.pose().position.z, at.z - 10.0f, 1e-4f);
+  EXPECT_NEAR(loop.pose().position.x, at.x, 1e-4f);
 }
 
 }  // namespace

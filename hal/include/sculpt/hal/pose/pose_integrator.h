@@ -60,6 +60,16 @@ class PoseIntegrator {
   void reset(ToolPose start);
   /// A tracker lost its target: its next pose anchors where the tool is.
   void lose_tracking();
+  /// The clutch (the station's key or a device button): while held, motion
+  /// samples keep their time but move nothing, so the hand can move back
+  /// without the tool; when let go a tracker anchors again where the tool
+  /// is, and a 3D mouse goes on from there. Absolute axes (a position-
+  /// controlled joystick) have no anchor: they move the tool again at once.
+  void set_clutch(bool held);
+  bool clutched() const { return clutched_; }
+  /// A new tracker calibration; the next pose anchors where the tool is.
+  void calibrate_tracker(const TrackerCalibration& calibration);
+  const TrackerCalibration& tracker_calibration() const { return tracker_.calibration(); }
 
  private:
   PoseIntegratorConfig config_;
@@ -67,6 +77,7 @@ class PoseIntegrator {
   glm::dvec3 position_{0.0};  // accumulated in double: a long session must not drift
   std::array<double, kAxisCount> last_integral_{};
   bool have_time_ = false;
+  bool clutched_ = false;
   TrackerMapping tracker_;
   TrackerPoseFilter tracker_filter_;
 };

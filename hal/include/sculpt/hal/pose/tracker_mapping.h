@@ -36,6 +36,12 @@ class TrackerMapping {
   ToolPose map(const TrackerPose& pose, const ToolPose& tool);
   /// The next pose anchors again (tracking lost, tool placed, clutch).
   void unanchor() { anchored_ = false; }
+  /// A new calibration; the next pose anchors again under it.
+  void calibrate(const TrackerCalibration& calibration) {
+    calibration_ = calibration;
+    anchored_ = false;
+  }
+  const TrackerCalibration& calibration() const { return calibration_; }
   bool anchored() const { return anchored_; }
   /// The sensor that drives the tool (meaningful when anchored).
   int32_t sensor() const { return sensor_; }

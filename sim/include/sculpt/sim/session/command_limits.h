@@ -21,6 +21,10 @@ inline constexpr float kMaxCoordinateVox = 1048576.0f;
 inline constexpr double kMaxVolumeVoxels = 4294967296.0;
 /// Dab spacing, as a fraction of the tool's size.
 inline constexpr float kMaxSpacing = 16.0f;
+/// A tracker's scale, voxels per millimetre: from a 256-voxel block spread
+/// over 256 m of motion to one over a quarter of a millimetre.
+inline constexpr float kMinTrackerScale = 0.001f;
+inline constexpr float kMaxTrackerScale = 1000.0f;
 
 /// What is wrong with `c`, in a few words; nothing when it is in range.
 std::optional<std::string> command_problem(const Command& c);

@@ -49,8 +49,17 @@ enum class CommandKind : uint8_t {
   /// Touch mode for devices without force output: choice 1 on, 0 off (the
   /// tool stops on the material and presses in as the cap is pushed).
   kTouch,
+  /// The clutch: choice 1 held, 0 let go. While held the device moves
+  /// without moving the tool; a tracker re-anchors where the tool is when it
+  /// is let go, so a small reach covers a whole sculpture.
+  kClutch,
+  /// How a tracker's space maps to the sculpture (hal::TrackerCalibration):
+  /// values[0] voxels per millimetre of tracker motion, values[1..4] the
+  /// rotation from tracker axes to the sculpture's as a unit quaternion
+  /// w x y z. The tracker re-anchors where the tool is.
+  kTracker,
 };
-inline constexpr uint8_t kCommandKindCount = 16;
+inline constexpr uint8_t kCommandKindCount = 18;
 inline constexpr uint8_t kVolumeFill = 0;
 inline constexpr uint8_t kVolumeClay = 1;
 

@@ -58,6 +58,9 @@ enum class Action {
   kToggleMirror,
   kToggleDeviceTarget,
   kToggleTouch,  ///< touch mode (touch_mode.h)
+  /// The tool to the block's centre, upright: a tracker held where the
+  /// sculpture's centre should be is calibrated there (it re-anchors).
+  kCentreTool,
   kToggleRecording,
   kSave,
   kExportMesh,
@@ -133,6 +136,11 @@ class StationController {
   /// Touch mode (touch_mode.h): the tool rests on the material and presses
   /// in as the device pushes; for devices without force output.
   void set_touch(bool on, int64_t now_ns);
+  /// The clutch (held: the device moves without the tool; let go: a tracker
+  /// re-anchors where the tool is). Recorded only when it changes.
+  void set_clutch(bool held, int64_t now_ns);
+  /// A tracker's scale and axes (hal::TrackerCalibration); it re-anchors.
+  void set_tracker_calibration(const hal::TrackerCalibration& calibration, int64_t now_ns);
   void undo(int64_t now_ns);
   void redo(int64_t now_ns);
   /// The material's bounding box becomes the tool (false, with the reason
@@ -272,6 +280,7 @@ class StationController {
   bool has_device_ = false;
   int64_t processed_t_ns_ = std::numeric_limits<int64_t>::min();
   bool pointer_down_ = false;
+  bool clutch_held_ = false;  // as last commanded
   InputStatistics stats_;
   uint64_t own_change_ = 0;  // update_mesh()'s change numbers
   int64_t last_camera_t_ns_ = 0;

@@ -55,6 +55,9 @@ struct StationCounters {
 
 class StationLoop {
  public:
+  /// A device's buttons: 0 sculpts while held, 1 switches add and subtract,
+  /// and this one is the clutch while held (a tracker's grip button).
+  static constexpr int kClutchButton = 2;
   struct Options {
     glm::ivec3 volume_dims{256};
     uint8_t volume_fill = 0;
@@ -99,6 +102,8 @@ class StationLoop {
   const StationSettings& settings() const { return settings_; }
   const StationCounters& counters() const { return counters_; }
   bool pressed() const { return pressed_; }
+  /// The clutch is held (the key's command or the device's third button).
+  bool clutched() const { return integrator_.clutched(); }
   const core::Sculptor& sculptor() const { return *sculptor_; }
   const SheetEditor& sheet() const { return sheet_; }
   /// Why the last sheet command or grab did nothing (empty if it worked).
@@ -119,6 +124,7 @@ class StationLoop {
   void sheet_command(const sim::Command& command);
   void sheet_into_material(float thickness_vox, bool add);
   void sheet_as_tool(float thickness_vox);
+  void apply_clutch();
 
   Options options_;
   std::unique_ptr<core::Volume> volume_;
@@ -132,8 +138,10 @@ class StationLoop {
   StationSettings settings_;
   StationCounters counters_;
   bool pressed_ = false;
-  bool sheet_press_ = false;  // pressed_ went to the sheet (sheet editing), not to a stroke
-  bool sheet_held_ = false;   // and grabbed it
+  bool clutch_key_ = false;     // the clutch command: held
+  bool clutch_button_ = false;  // the device's clutch button: held
+  bool sheet_press_ = false;    // pressed_ went to the sheet (sheet editing), not to a stroke
+  bool sheet_held_ = false;     // and grabbed it
   std::vector<hal::Dab> dabs_;
   SheetEditor sheet_;
   TouchMode touch_;

@@ -9,6 +9,7 @@
 
 #include "sculpt/core/grid/box.h"
 #include "sculpt/core/sculpt/sculptor.h"
+#include "sculpt/hal/pose/tracker_mapping.h"
 #include "sculpt/sim/session/session.h"
 
 namespace sculpt::station {
@@ -49,6 +50,8 @@ struct StationSettings {
   /// presses in as the device pushes.
   bool touch = false;
   SheetDragOptions sheet_drag;
+  /// How a tracker's motion maps to the sculpture (scale and axes).
+  hal::TrackerCalibration tracker;
 };
 
 }  // namespace sculpt::station

@@ -10,6 +10,7 @@
 
 #include <string>
 
+#include "sculpt/hal/pose/tracker_mapping.h"
 #include "sculpt/station/view/surface_mesher.h"
 
 namespace sculpt::station {
@@ -45,6 +46,9 @@ struct WindowOptions {
   float haptic_stiffness_n_per_mm = 1.0f;  ///< clamped to the device's limit
   float workspace_scale = 1.0f;            ///< material mm per device mm
   float voxel_mm = 0.5f;                   ///< the material's voxel size
+  /// A tracker's scale and axes; recorded sessions carry it (a tracker
+  /// command), so replays map the same way.
+  hal::TrackerCalibration tracker;
   bool vsync = true;
   bool visible = true;
   int width = 1280;
