@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "sculpt/core/shapes/analytic_shapes.h"
+#include "sculpt/core/util/parallel_for.h"
 
 namespace sculpt::core {
 namespace {
@@ -383,6 +384,24 @@ TEST(SweptStroke, OrientationIsInterpolatedAlongTheSweep) {
   // Beyond every turn's corner the material is untouched.
   const glm::vec3 q = c + 16.0f * glm::vec3(std::cos(a), std::sin(a), 0.0f);
   EXPECT_EQ(g.at(int(std::lround(q.x)), int(std::lround(q.y)), 32), 255);
+}
+
+// A big ball's segments reach dozens of bricks, combined on every core: the
+// same volume, brick for brick, as on one.
+TEST(SweptStroke, ABigBallOnEveryCoreEqualsOneCore) {
+  auto run = [](int threads) {
+    set_default_threads(threads);
+    Volume v = sphere_volume(160, 0.3f);
+    Sculptor s(v);
+    s.set_tool(make_sphere_tool(40.0f, 0.6f));
+    const auto path = straight_path({30.0f, 80.0f, 120.0f}, {130.0f, 75.0f, 110.0f}, 9.0f);
+    const DabStats st = sweep_stroke(s, path, {SculptMode::kSubtract, 0.9f, false});
+    set_default_threads(0);
+    // Bricks combined per segment (decoded or held): enough for every core.
+    EXPECT_GE((st.bricks_decoded + st.bricks_reused) / static_cast<int>(path.size()), 16);
+    return v.content_hash();
+  };
+  EXPECT_EQ(run(1), run(4));
 }
 
 }  // namespace
