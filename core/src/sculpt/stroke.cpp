@@ -317,10 +317,33 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
         const size_t k = static_cast<size_t>(z - bb.lo.z) * n.y + (y - bb.lo.y);
         x0[k] = c0;
         x1[k] = c1;
-        if (c0 < c1) std::memset(&sweep[at(c0, y, z)], 0, static_cast<size_t>(c1 - c0));
       }
     auto row_index = [&](int y, int z) {
       return static_cast<size_t>(z - bb.lo.z) * n.y + (y - bb.lo.y);
+    };
+    // Per row, the stretch [h0, h1) the sweeps reached: only there is the
+    // sweep buffer valid (zeroed when first reached), and only there can
+    // the material change. Rows the sweeps miss cost nothing further.
+    std::vector<int> h0(x0.size(), 0), h1(x0.size(), 0);
+    auto reach_row = [&](size_t k, int y, int z, int lo, int hi) {
+      uint8_t* row = &sweep[at(origin.x, y, z)];
+      auto zero = [&](int a, int b) {
+        if (a < b) std::memset(row + (a - origin.x), 0, static_cast<size_t>(b - a));
+      };
+      if (h0[k] >= h1[k]) {
+        zero(lo, hi);
+        h0[k] = lo;
+        h1[k] = hi;
+        return;
+      }
+      if (lo < h0[k]) {
+        zero(lo, h0[k]);
+        h0[k] = lo;
+      }
+      if (hi > h1[k]) {
+        zero(h1[k], hi);
+        h1[k] = hi;
+      }
     };
 
     for (const Sweep& sw : sweeps) {
@@ -347,6 +370,8 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
                 std::max(x0[k], static_cast<int>(std::floor(std::min(sw.a.x, sw.b.x) - half)));
             const int hi =
                 std::min(x1[k], static_cast<int>(std::ceil(std::max(sw.a.x, sw.b.x) + half)) + 1);
+            if (lo >= hi) continue;
+            reach_row(k, y, z, lo, hi);
             const size_t row = at(origin.x, y, z);
             uint8_t* out = &sweep[row];
             // Not accumulating, a voxel the stroke has filled fully already
@@ -391,7 +416,9 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
               // segment's earlier placements or the stroke's earlier
               // segments) need no rotated voxels: a tool moving along a
               // row rotates only its leading edge.
-              if (!accumulate && lo < hi) {
+              if (lo >= hi) continue;
+              reach_row(k, y, z, lo, hi);
+              if (!accumulate) {
                 const uint8_t* cov = &held.coverage[at(origin.x, y, z)];
                 const uint8_t* done = &sweep[at(origin.x, y, z)];
                 auto full = [&](int x) {
@@ -419,7 +446,7 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
     for (int z = bb.lo.z; z < bb.hi.z; ++z)
       for (int y = bb.lo.y; y < bb.hi.y; ++y) {
         const size_t k = row_index(y, z);
-        const int c0 = x0[k], c1 = x1[k];
+        const int c0 = h0[k], c1 = h1[k];
         if (c0 >= c1) continue;
         const size_t i0 = at(c0, y, z);
         const int len = c1 - c0;
@@ -443,6 +470,13 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
           for (int i = f; i < l; ++i)
             changed += row_buf[i - f] != cur[i];
           if (changed != 0) std::memcpy(cur + f, row_buf.data(), static_cast<size_t>(l - f));
+          // What was re-encoded must cover what changed: this row's [f, l).
+          if (changed != 0) {
+            job.changed += changed;
+            job.touched.lo = glm::min(job.touched.lo, glm::ivec3(c0 + f, y, z));
+            job.touched.hi = glm::max(job.touched.hi, glm::ivec3(c0 + l, y + 1, z + 1));
+          }
+          continue;
         } else {
           for (int i = 0; i < len; ++i) {
             const uint8_t prev = prev_valid ? cov[i] : uint8_t{0};
@@ -462,9 +496,9 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
       for (int z = bb.lo.z; z < bb.hi.z; ++z)
         for (int y = bb.lo.y; y < bb.hi.y; ++y) {
           const size_t k = row_index(y, z);
-          if (x0[k] < x1[k])
-            std::memcpy(&held.coverage[at(x0[k], y, z)], &sweep[at(x0[k], y, z)],
-                        static_cast<size_t>(x1[k] - x0[k]));
+          if (h0[k] < h1[k])
+            std::memcpy(&held.coverage[at(h0[k], y, z)], &sweep[at(h0[k], y, z)],
+                        static_cast<size_t>(h1[k] - h0[k]));
         }
       held.segment = segment_;
     }
