@@ -449,5 +449,50 @@ TEST(SweptStroke, ABigBallOnEveryCoreEqualsOneCore) {
   EXPECT_EQ(run(1), run(4));
 }
 
+// On empty material, adding at full strength leaves each voxel exactly the
+// ball's filling: tool_density() of its distance to the nearest segment,
+// computed here voxel by voxel for paths in every direction.
+TEST(SweptStroke, ABallsSweepIsItsDistanceToThePath) {
+  uint32_t seed = 7;
+  auto rnd = [&](float lo, float hi) {
+    seed = seed * 1664525u + 1013904223u;
+    return lo + (hi - lo) * static_cast<float>(seed >> 8) / 16777216.0f;
+  };
+  for (float hardness : {1.0f, 0.4f}) {
+    const float r = 6.5f;
+    std::vector<StrokeSample> path;
+    for (int i = 0; i < 7; ++i)
+      path.push_back({{rnd(12, 52), rnd(12, 52), rnd(12, 52)}, glm::quat(1, 0, 0, 0)});
+    path.push_back(path.back());  // a segment of length 0
+    path.push_back({path.back().position_vox + glm::vec3(9.0f, 0.0f, 0.0f), {}});  // along x
+    Volume v(glm::ivec3(64), uint8_t{0});
+    Sculptor s(v);
+    s.set_tool(make_sphere_tool(r, hardness));
+    (void)sweep_stroke(s, path, {SculptMode::kAdd, 1.0f, false});
+    const DenseGrid<uint8_t> g = v.to_dense();
+    int64_t off = 0;
+    int worst = 0;
+    for (int z = 0; z < 64; ++z)
+      for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+          const glm::vec3 p(x, y, z);
+          float d = glm::length(p - path[0].position_vox);
+          for (size_t i = 1; i < path.size(); ++i) {
+            const glm::vec3 a = path[i - 1].position_vox, ab = path[i].position_vox - a;
+            const float ab2 = glm::dot(ab, ab);
+            const float t = ab2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / ab2, 0.0f, 1.0f) : 0.0f;
+            d = std::min(d, glm::length(p - a - t * ab));
+          }
+          const int want = tool_density(d - r, r, hardness);
+          const int diff = std::abs(want - int(g.at(x, y, z)));
+          worst = std::max(worst, diff);
+          off += diff != 0;
+        }
+    // Float rounding of the distance may move a voxel by one unit.
+    EXPECT_LE(worst, 1) << "hardness " << hardness;
+    EXPECT_LT(off, 200) << "hardness " << hardness;
+  }
+}
+
 }  // namespace
 }  // namespace sculpt::core
