@@ -78,14 +78,60 @@ inline float segment_distance(glm::vec3 p, glm::vec3 a, glm::vec3 ab, float ab2)
   return std::sqrt(glm::dot(d, d));
 }
 
-// Distance from the 2D point p to the 2D segment a -> b.
-float segment_distance_2d(float px, float py, float ax, float ay, float bx, float by) {
-  const float abx = bx - ax, aby = by - ay;
-  const float apx = px - ax, apy = py - ay;
-  const float ab2 = abx * abx + aby * aby;
-  const float t = ab2 > 0.0f ? std::clamp((apx * abx + apy * aby) / ab2, 0.0f, 1.0f) : 0.0f;
-  const float dx = apx - t * abx, dy = apy - t * aby;
-  return std::sqrt(dx * dx + dy * dy);
+// The stretch [lo, hi] of the row line (x, y, z), x real, within sqrt(rho2)
+// of the segment a -> a + ab (ab2 = |ab|^2); false when the row misses. The
+// capsule is convex, so this is the hull of its end balls' stretches and its
+// cylinder's (perpendicular distance, a quadratic in x, with the projection
+// inside the segment, linear in x). Where the quadratic is too flat to solve
+// in float (the segment nearly along x), `outer` takes the whole line (more
+// voxels measured one by one), else none (the ends alone): an outer stretch
+// never misses a voxel, an inner one never takes too many.
+bool capsule_row(glm::vec3 a, glm::vec3 ab, float ab2, float y, float z, float rho2, bool outer,
+                 float& lo, float& hi) {
+  constexpr float kFar = 1e30f;
+  lo = kFar;
+  hi = -kFar;
+  auto ball = [&](glm::vec3 c) {
+    const float r2 = rho2 - (y - c.y) * (y - c.y) - (z - c.z) * (z - c.z);
+    if (r2 < 0.0f) return;
+    const float s = std::sqrt(r2);
+    lo = std::min(lo, c.x - s);
+    hi = std::max(hi, c.x + s);
+  };
+  ball(a);
+  ball(a + ab);
+  if (ab2 <= 0.0f) return lo <= hi;
+  const float wy = y - a.y, wz = z - a.z;
+  const float k = wy * ab.y + wz * ab.z;
+  // The projection t(u) = (u ab.x + k) / ab2 in [0, 1], u = x - a.x.
+  float t0 = -kFar, t1 = kFar;
+  if (std::abs(ab.x) > 1e-6f * std::sqrt(ab2)) {
+    const float p = -k / ab.x, q = (ab2 - k) / ab.x;
+    t0 = std::min(p, q);
+    t1 = std::max(p, q);
+  } else if (k < 0.0f || k > ab2) {
+    return lo <= hi;
+  }
+  // Perpendicular distance squared: A u^2 + B u + C + rho2.
+  const float aa = 1.0f - ab.x * ab.x / ab2;
+  const float bb = -2.0f * ab.x * k / ab2;
+  const float cc = wy * wy + wz * wz - k * k / ab2 - rho2;
+  float p0 = -kFar, p1 = kFar;
+  if (aa > 1e-3f) {
+    const float disc = bb * bb - 4.0f * aa * cc;
+    if (disc < 0.0f) return lo <= hi;
+    const float r = std::sqrt(disc);
+    p0 = (-bb - r) / (2.0f * aa);
+    p1 = (-bb + r) / (2.0f * aa);
+  } else if (!outer) {
+    return lo <= hi;
+  }
+  const float c0 = std::max(t0, p0), c1 = std::min(t1, p1);
+  if (c0 <= c1) {
+    lo = std::min(lo, a.x + c0);
+    hi = std::max(hi, a.x + c1);
+  }
+  return lo <= hi;
 }
 
 Box box_around(glm::vec3 lo, glm::vec3 hi, float margin) {
@@ -294,30 +340,29 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
              static_cast<size_t>(x - origin.x);
     };
     // Per row of bb, the stretch [x0, x1) that can change (not saturated in
-    // the material the result is made from).
+    // the material the result is made from), found when a sweep first
+    // reaches the row (kUnset before): most rows of the box it misses.
     const glm::ivec3 n = bb.size();
     const uint64_t word = 0x0101010101010101ull * saturated;
-    std::vector<int> x0(static_cast<size_t>(n.y) * n.z), x1(x0.size());
-    for (int z = bb.lo.z; z < bb.hi.z; ++z)
-      for (int y = bb.lo.y; y < bb.hi.y; ++y) {
-        const uint8_t* r = reference + at(origin.x, y, z);
-        int c0 = bb.lo.x - origin.x, c1 = bb.hi.x - origin.x;
-        // Eight voxels at a time through the saturated stretches (the
-        // buffers have kCombineRowSlack bytes past the brick).
-        while (c0 + 8 <= c1 && load_u64(r + c0) == word)
-          c0 += 8;
-        while (c0 < c1 && r[c0] == saturated)
-          ++c0;
-        while (c1 - 8 >= c0 && load_u64(r + c1 - 8) == word)
-          c1 -= 8;
-        while (c1 > c0 && r[c1 - 1] == saturated)
-          --c1;
-        c0 += origin.x;
-        c1 += origin.x;
-        const size_t k = static_cast<size_t>(z - bb.lo.z) * n.y + (y - bb.lo.y);
-        x0[k] = c0;
-        x1[k] = c1;
-      }
+    constexpr int kUnset = std::numeric_limits<int>::min();
+    std::vector<int> x0(static_cast<size_t>(n.y) * n.z, kUnset), x1(x0.size(), 0);
+    auto trim = [&](size_t k, int y, int z) {
+      if (x0[k] != kUnset) return;
+      const uint8_t* r = reference + at(origin.x, y, z);
+      int c0 = bb.lo.x - origin.x, c1 = bb.hi.x - origin.x;
+      // Eight voxels at a time through the saturated stretches (the
+      // buffers have kCombineRowSlack bytes past the brick).
+      while (c0 + 8 <= c1 && load_u64(r + c0) == word)
+        c0 += 8;
+      while (c0 < c1 && r[c0] == saturated)
+        ++c0;
+      while (c1 - 8 >= c0 && load_u64(r + c1 - 8) == word)
+        c1 -= 8;
+      while (c1 > c0 && r[c1 - 1] == saturated)
+        --c1;
+      x0[k] = c0 + origin.x;
+      x1[k] = c1 + origin.x;
+    };
     auto row_index = [&](int y, int z) {
       return static_cast<size_t>(z - bb.lo.z) * n.y + (y - bb.lo.y);
     };
@@ -356,21 +401,35 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
         const bool hard = sw.hardness >= 1.0f;
         const float inner = hard ? std::max(0.0f, sw.radius - 1.0f) : -1.0f;
         const float inner2 = inner >= 0.0f ? inner * inner : -1.0f;
-        for (int z = bb.lo.z; z < bb.hi.z; ++z)
-          for (int y = bb.lo.y; y < bb.hi.y; ++y) {
+        const float z_lo = std::min(sw.a.z, sw.b.z), z_hi = std::max(sw.a.z, sw.b.z);
+        const float y_lo = std::min(sw.a.y, sw.b.y), y_hi = std::max(sw.a.y, sw.b.y);
+        for (int z = bb.lo.z; z < bb.hi.z; ++z) {
+          // The plane's rows within reach of the segment's y extent.
+          const float fz0 = static_cast<float>(z);
+          const float gap = fz0 < z_lo ? z_lo - fz0 : fz0 > z_hi ? fz0 - z_hi : 0.0f;
+          if (gap >= sw.reach) continue;
+          const float hy = std::sqrt(reach2 - gap * gap);
+          const int ya = std::max(bb.lo.y, static_cast<int>(std::floor(y_lo - hy)));
+          const int yb = std::min(bb.hi.y, static_cast<int>(std::ceil(y_hi + hy)) + 1);
+          for (int y = ya; y < yb; ++y) {
             const size_t k = row_index(y, z);
-            if (x0[k] >= x1[k]) continue;
-            // The row (y, z) is a line along x: its distance to the segment is
-            // that of (y, z) to the segment's shadow on the yz plane.
-            const float dyz = segment_distance_2d(static_cast<float>(y), static_cast<float>(z),
-                                                  sw.a.y, sw.a.z, sw.b.y, sw.b.z);
-            if (dyz * dyz >= reach2) continue;
-            const float half = std::sqrt(reach2 - dyz * dyz);
-            const int lo =
-                std::max(x0[k], static_cast<int>(std::floor(std::min(sw.a.x, sw.b.x) - half)));
-            const int hi =
-                std::min(x1[k], static_cast<int>(std::ceil(std::max(sw.a.x, sw.b.x) + half)) + 1);
+            // The row's stretch within reach, widened by a voxel against
+            // float rounding (its voxels are measured one by one).
+            const float fy = static_cast<float>(y), fz = static_cast<float>(z);
+            float rlo = 0.0f, rhi = 0.0f;
+            if (!capsule_row(sw.a, ab, ab2, fy, fz, reach2, true, rlo, rhi)) continue;
+            trim(k, y, z);
+            const int lo = std::max(x0[k], static_cast<int>(std::floor(rlo)) - 1);
+            const int hi = std::min(x1[k], static_cast<int>(std::ceil(rhi)) + 2);
             if (lo >= hi) continue;
+            // A hard ball is 255 within radius - 1: that stretch, narrowed
+            // by a voxel, is filled without measuring.
+            int in_lo = hi, in_hi = hi;
+            float ilo = 0.0f, ihi = 0.0f;
+            if (inner2 > 0.0f && capsule_row(sw.a, ab, ab2, fy, fz, inner2, false, ilo, ihi)) {
+              in_lo = std::clamp(static_cast<int>(std::ceil(ilo)) + 1, lo, hi);
+              in_hi = std::clamp(static_cast<int>(std::floor(ihi)), in_lo, hi);
+            }
             reach_row(k, y, z, lo, hi);
             const size_t row = at(origin.x, y, z);
             uint8_t* out = &sweep[row];
@@ -380,7 +439,11 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
             const float apy = static_cast<float>(y) - sw.a.y;
             const float apz = static_cast<float>(z) - sw.a.z;
             const float dot_yz = apy * ab.y + apz * ab.z;
+            if (in_lo < in_hi)
+              std::memset(out + (in_lo - origin.x), 255, static_cast<size_t>(in_hi - in_lo));
             for (int x = lo; x < hi; ++x) {
+              if (x == in_lo) x = in_hi;
+              if (x >= hi) break;
               const int i = x - origin.x;
               if (full != nullptr && full[i] == 255) continue;
               const float apx = static_cast<float>(x) - sw.a.x;
@@ -399,6 +462,7 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
               out[i] = std::max(out[i], f);
             }
           }
+        }
       } else {
         for (const RotatedToolCache::Placement& pl : sw.placements) {
           RotatedToolEntry& entry = *pl.entry;
@@ -410,6 +474,8 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
             for (int y = part.lo.y; y < part.hi.y; ++y) {
               const size_t k = row_index(y, z);
               const auto [ra, rb] = entry.reach(y - pl.anchor.y, z - pl.anchor.z);
+              if (ra >= rb) continue;
+              trim(k, y, z);
               int lo = std::max(x0[k], ra + pl.anchor.x);
               int hi = std::min(x1[k], rb + pl.anchor.x);
               // Not accumulating, the ends already filled fully (by this
