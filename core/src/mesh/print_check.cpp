@@ -22,13 +22,17 @@ bool segment_hits_triangle(glm::dvec3 p, glm::dvec3 q, glm::dvec3 a, glm::dvec3 
   if (std::abs(det) < kEps * glm::length(e1) * glm::length(e2) * glm::length(dir)) return false;
   const double inv = 1.0 / det;
   const glm::dvec3 s = p - a;
+  // Strictly inside, by a margin: a segment that only touches the triangle
+  // (a vertex on the other's edge after a collapse) is contact, not a
+  // crossing, and rounding must not make a shared edge one.
+  constexpr double kInside = 1e-7;
   const double u = inv * glm::dot(s, h);
-  if (u < 0.0 || u > 1.0) return false;
+  if (u <= kInside || u >= 1.0 - kInside) return false;
   const glm::dvec3 qv = glm::cross(s, e1);
   const double v = inv * glm::dot(dir, qv);
-  if (v < 0.0 || u + v > 1.0) return false;
+  if (v <= kInside || u + v >= 1.0 - kInside) return false;
   const double t = inv * glm::dot(e2, qv);
-  return t >= 0.0 && t <= 1.0;
+  return t > kInside && t < 1.0 - kInside;
 }
 
 bool triangles_intersect(const glm::dvec3 (&x)[3], const glm::dvec3 (&y)[3]) {

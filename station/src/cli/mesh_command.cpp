@@ -18,6 +18,7 @@
 
 #include "cli/commands.h"
 #include "cli/field_options.h"
+#include "cli/mesh_export_options.h"
 #include "cli/number_checks.h"
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/mesh/mesh_io.h"
@@ -37,6 +38,7 @@ struct MeshOptions {
   bool ascii = false;
   bool check = false;
   double voxel_mm = 1.0;
+  core::MeshSimplifyOptions simplify;
   int threads = 0;
   DensityOptions density;
 };
@@ -78,30 +80,39 @@ void print_check_report(const core::PrintCheck& c, double voxel_mm) {
               static_cast<double>(size.y), static_cast<double>(size.z));
 }
 
-// A mesh file in: checked, and converted when it passes.
-int check_mesh_file(const MeshOptions& o) {
-  if (!o.check) return report(Error(o.input + ": a mesh is read only to --check it"));
+// A mesh file in: simplified when asked, checked when asked (and then
+// written only when it passes), written in the output's format.
+int mesh_file(const MeshOptions& o) {
+  const bool simplify = o.simplify.ratio < 1.0 || o.simplify.max_error > 0.0f;
+  if (!o.check && !simplify)
+    return report(Error(o.input + ": a mesh read in is checked (--check) or simplified "
+                                  "(--simplify, --max-error); a volume is meshed"));
+  if (!o.check && o.output.empty())
+    return report(Error(o.input + ": --output is needed for the simplified mesh"));
   std::optional<core::MeshFormat> format;
   if (!o.output.empty()) {
     auto f = core::mesh_format_for(o.output, o.ascii);
     if (!f) return report(f.error());
     format = *f;
   }
-  const auto mesh = core::read_mesh(o.input);
-  if (!mesh) return report(mesh.error());
-  const core::PrintCheck c = core::check_print(*mesh, o.voxel_mm);
+  const auto read = core::read_mesh(o.input);
+  if (!read) return report(read.error());
   std::printf("mesh        %s: %zu vertices, %zu triangles\n", o.input.c_str(),
-              mesh->positions.size(), mesh->triangles.size());
-  print_check_report(c, o.voxel_mm);
-  if (!c.printable()) return report(Error(o.input + ": " + print_problems(c)));
+              read->positions.size(), read->triangles.size());
+  const core::Mesh mesh = simplify_for_export(*read, o.simplify);
+  if (o.check) {
+    const core::PrintCheck c = core::check_print(mesh, o.voxel_mm);
+    print_check_report(c, o.voxel_mm);
+    if (!c.printable()) return report(Error(o.input + ": " + print_problems(c)));
+  }
   if (!format) return 0;
-  if (Status st = core::write_mesh(o.output, *mesh, *format); !st) return report(st.error());
+  if (Status st = core::write_mesh(o.output, mesh, *format); !st) return report(st.error());
   std::printf("wrote       %s\n", o.output.c_str());
   return 0;
 }
 
 int run_mesh(const MeshOptions& o) {
-  if (core::mesh_format_for(o.input).ok()) return check_mesh_file(o);
+  if (core::mesh_format_for(o.input).ok()) return mesh_file(o);
   if (o.output.empty()) return report(Error(o.input + ": --output is needed for a volume's mesh"));
   // Check the output's name before the (possibly long) read.
   auto format = core::mesh_format_for(o.output, o.ascii);
@@ -120,7 +131,7 @@ int run_mesh(const MeshOptions& o) {
   const auto t1 = clock::now();
   core::MeshCache cache(o.lod, core::MarchingCubesOptions{o.iso, o.threads});
   const core::MeshUpdate u = cache.update(*volume);
-  const core::Mesh mesh = cache.welded_mesh();
+  const core::Mesh mesh = simplify_for_export(cache.welded_mesh(), o.simplify);
   const auto t2 = clock::now();
   if (o.check) {
     const core::PrintCheck c = core::check_print(mesh, o.voxel_mm);
@@ -177,6 +188,7 @@ void add_mesh_command(CLI::App& app, Action& action) {
                   "--check: millimetres per voxel (per unit of a mesh read in)")
       ->capture_default_str()
       ->check(finite_range(1e-6, 1e6));
+  add_simplify_options(cmd, o->simplify);
   add_threads_option(cmd, o->threads);
   cmd->callback([o, &action] { action = [o] { return run_mesh(*o); }; });
 }

@@ -54,12 +54,32 @@ TEST_F(MeshCheckCommandTest, AMeshFileIsCheckedAndConvertedOnlyWhenItWouldPrint)
   // Reading a mesh is only for checking it; a volume's mesh needs an output.
   const CommandResult no_check = run_sculpt("mesh " + kData + "octahedron.obj -o " + path("x.ply"));
   EXPECT_EQ(no_check.exit_code, 1);
-  EXPECT_NE(no_check.err.find("a mesh is read only to --check it"), std::string::npos)
+  EXPECT_NE(no_check.err.find("a mesh read in is checked (--check) or simplified"),
+            std::string::npos)
       << no_check.err;
   const CommandResult bad_size =
       run_sculpt("mesh " + kData + "octahedron.obj --check --voxel-mm nan");
   EXPECT_EQ(bad_size.exit_code, 1);
   EXPECT_NE(bad_size.err.find("--voxel-mm"), std::string::npos) << bad_size.err;
+}
+
+TEST_F(MeshCheckCommandTest, SimplifyingAnExportKeepsItPrintableAndSaysHowFarItMoved) {
+  const std::string volume = path("sphere.nrrd");
+  ASSERT_TRUE(core::write_nrrd(volume, core::sphere_density(48)).ok());
+  const CommandResult r = run_sculpt(
+      "mesh " + volume + " --simplify 0.2 --max-error 0.5 --check -o " + path("light.ply"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("simplified  "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("print check printable"), std::string::npos) << r.out;
+  // And a mesh from elsewhere: simplified and written without a check.
+  const CommandResult again =
+      run_sculpt("mesh " + path("light.ply") + " --simplify 0.5 -o " + path("lighter.stl"));
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_TRUE(fs::exists(path("lighter.stl")));
+  const CommandResult bad = run_sculpt("mesh " + volume + " --simplify 0 -o " + path("x.ply"));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("--simplify"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(path("x.ply")));
 }
 
 }  // namespace

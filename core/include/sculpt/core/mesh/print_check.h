@@ -7,8 +7,9 @@
 // through a uniform grid of cells about the mean triangle size) and that
 // share no vertex is tested edge against triangle (Moller-Trumbore). Pairs
 // sharing a vertex are neighbours on the surface and are not tested (a fold
-// at a shared vertex is left to the manifold check); coplanar overlaps are
-// not counted (marching cubes makes none between non-neighbours).
+// at a shared vertex is left to the manifold check); coplanar overlaps and
+// mere contact (a vertex lying on another triangle) are not counted:
+// marching cubes makes neither between non-neighbours.
 
 #include <cstdint>
 
