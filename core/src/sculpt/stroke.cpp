@@ -401,6 +401,8 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
         const bool hard = sw.hardness >= 1.0f;
         const float inner = hard ? std::max(0.0f, sw.radius - 1.0f) : -1.0f;
         const float inner2 = inner >= 0.0f ? inner * inner : -1.0f;
+        const bool skip_behind = !accumulate && segment_ > 0 && ab2 > 0.0f;
+        const bool along_x = std::abs(ab.x) > 1e-3f * std::sqrt(ab2);
         const float z_lo = std::min(sw.a.z, sw.b.z), z_hi = std::max(sw.a.z, sw.b.z);
         const float y_lo = std::min(sw.a.y, sw.b.y), y_hi = std::max(sw.a.y, sw.b.y);
         for (int z = bb.lo.z; z < bb.hi.z; ++z) {
@@ -416,11 +418,24 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
             // The row's stretch within reach, widened by a voxel against
             // float rounding (its voxels are measured one by one).
             const float fy = static_cast<float>(y), fz = static_cast<float>(z);
+            // Behind the segment's start (projection t <= 0) its filling is
+            // the start ball's, which the previous segment, ending there,
+            // gave already: not accumulating, only t > 0 can add anything.
+            const float kyz = (fy - sw.a.y) * ab.y + (fz - sw.a.z) * ab.z;
+            if (skip_behind && !along_x && kyz <= 0.0f) continue;
             float rlo = 0.0f, rhi = 0.0f;
             if (!capsule_row(sw.a, ab, ab2, fy, fz, reach2, true, rlo, rhi)) continue;
             trim(k, y, z);
-            const int lo = std::max(x0[k], static_cast<int>(std::floor(rlo)) - 1);
-            const int hi = std::min(x1[k], static_cast<int>(std::ceil(rhi)) + 2);
+            int lo = std::max(x0[k], static_cast<int>(std::floor(rlo)) - 1);
+            int hi = std::min(x1[k], static_cast<int>(std::ceil(rhi)) + 2);
+            if (skip_behind && along_x) {
+              // t(x) = ((x - a.x) ab.x + kyz) / ab2 is 0 at x_start.
+              const float x_start = sw.a.x - kyz / ab.x;
+              if (ab.x > 0.0f)
+                lo = std::max(lo, static_cast<int>(std::floor(x_start)) - 1);
+              else
+                hi = std::min(hi, static_cast<int>(std::ceil(x_start)) + 2);
+            }
             if (lo >= hi) continue;
             // A hard ball is 255 within radius - 1: that stretch, narrowed
             // by a voxel, is filled without measuring.
