@@ -153,6 +153,10 @@ struct SweptStroke::Sweep {
   // Ball: the capsule a -> b of radius `radius`, reaching `reach`.
   glm::vec3 a{0.0f}, b{0.0f};
   float radius = 0.0f, reach = 0.0f, hardness = 1.0f;
+  // Ball: per row (y, z) of the segment's region, y fastest, the stretch
+  // [x, y) of voxels to measure and within it [z, w) to fill with 255
+  // (empty when x >= y): solved once per segment, shared by its bricks.
+  std::vector<glm::ivec4> spans;
   // Tool: its placements (entries kept alive while the segment is applied).
   std::vector<RotatedToolCache::Placement> placements;
   Box box;  // material voxels it can reach
@@ -262,6 +266,65 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
     region = hull(region, sw.box);
   region = intersect(region, Box{glm::ivec3(0), volume.dims()});
   if (region.empty()) return stats;
+
+  // Each ball's row stretches over the region (see Sweep::spans).
+  for (Sweep& sw : sweeps) {
+    if (!sw.ball) continue;
+    const glm::vec3 ab = sw.b - sw.a;
+    const float ab2 = glm::dot(ab, ab);
+    const float reach2 = sw.reach * sw.reach;
+    // Within radius - 1 a hard ball's density is 255 (no square root).
+    const float inner = sw.hardness >= 1.0f ? std::max(0.0f, sw.radius - 1.0f) : -1.0f;
+    const float inner2 = inner >= 0.0f ? inner * inner : -1.0f;
+    // Behind the segment's start (projection t <= 0) its filling is the
+    // start ball's, which the previous segment, ending there, gave already:
+    // not accumulating, only t > 0 can add anything.
+    const bool skip_behind = !accumulate && segment_ > 0 && ab2 > 0.0f;
+    const bool along_x = std::abs(ab.x) > 1e-3f * std::sqrt(ab2);
+    const glm::ivec3 rn = region.size();
+    sw.spans.assign(static_cast<size_t>(rn.y) * rn.z, glm::ivec4(0, 0, 0, 0));
+    const float z_lo = std::min(sw.a.z, sw.b.z), z_hi = std::max(sw.a.z, sw.b.z);
+    const float y_lo = std::min(sw.a.y, sw.b.y), y_hi = std::max(sw.a.y, sw.b.y);
+    for (int z = region.lo.z; z < region.hi.z; ++z) {
+      // The plane's rows within reach of the segment's y extent.
+      const float fz = static_cast<float>(z);
+      const float gap = fz < z_lo ? z_lo - fz : fz > z_hi ? fz - z_hi : 0.0f;
+      if (gap >= sw.reach) continue;
+      const float hy = std::sqrt(reach2 - gap * gap);
+      const int ya = std::max(region.lo.y, static_cast<int>(std::floor(y_lo - hy)));
+      const int yb = std::min(region.hi.y, static_cast<int>(std::ceil(y_hi + hy)) + 1);
+      for (int y = ya; y < yb; ++y) {
+        const float fy = static_cast<float>(y);
+        const float kyz = (fy - sw.a.y) * ab.y + (fz - sw.a.z) * ab.z;
+        if (skip_behind && !along_x && kyz <= 0.0f) continue;
+        // The row's stretch within reach, widened by a voxel against float
+        // rounding (its voxels are measured one by one).
+        float rlo = 0.0f, rhi = 0.0f;
+        if (!capsule_row(sw.a, ab, ab2, fy, fz, reach2, true, rlo, rhi)) continue;
+        int lo = static_cast<int>(std::floor(rlo)) - 1;
+        int hi = static_cast<int>(std::ceil(rhi)) + 2;
+        if (skip_behind && along_x) {
+          // t(x) = ((x - a.x) ab.x + kyz) / ab2 is 0 at x_start.
+          const float x_start = sw.a.x - kyz / ab.x;
+          if (ab.x > 0.0f)
+            lo = std::max(lo, static_cast<int>(std::floor(x_start)) - 1);
+          else
+            hi = std::min(hi, static_cast<int>(std::ceil(x_start)) + 2);
+        }
+        if (lo >= hi) continue;
+        // A hard ball's stretch within radius - 1, narrowed by a voxel, is
+        // filled without measuring.
+        int in_lo = hi, in_hi = hi;
+        float ilo = 0.0f, ihi = 0.0f;
+        if (inner2 > 0.0f && capsule_row(sw.a, ab, ab2, fy, fz, inner2, false, ilo, ihi)) {
+          in_lo = static_cast<int>(std::ceil(ilo)) + 1;
+          in_hi = static_cast<int>(std::floor(ihi));
+        }
+        sw.spans[static_cast<size_t>(z - region.lo.z) * rn.y + (y - region.lo.y)] =
+            glm::ivec4(lo, hi, in_lo, in_hi);
+      }
+    }
+  }
 
   const int edge = volume.brick_edge();
   const size_t brick_bytes = static_cast<size_t>(edge) * edge * edge;
@@ -401,50 +464,19 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
         const bool hard = sw.hardness >= 1.0f;
         const float inner = hard ? std::max(0.0f, sw.radius - 1.0f) : -1.0f;
         const float inner2 = inner >= 0.0f ? inner * inner : -1.0f;
-        const bool skip_behind = !accumulate && segment_ > 0 && ab2 > 0.0f;
-        const bool along_x = std::abs(ab.x) > 1e-3f * std::sqrt(ab2);
-        const float z_lo = std::min(sw.a.z, sw.b.z), z_hi = std::max(sw.a.z, sw.b.z);
-        const float y_lo = std::min(sw.a.y, sw.b.y), y_hi = std::max(sw.a.y, sw.b.y);
-        for (int z = bb.lo.z; z < bb.hi.z; ++z) {
-          // The plane's rows within reach of the segment's y extent.
-          const float fz0 = static_cast<float>(z);
-          const float gap = fz0 < z_lo ? z_lo - fz0 : fz0 > z_hi ? fz0 - z_hi : 0.0f;
-          if (gap >= sw.reach) continue;
-          const float hy = std::sqrt(reach2 - gap * gap);
-          const int ya = std::max(bb.lo.y, static_cast<int>(std::floor(y_lo - hy)));
-          const int yb = std::min(bb.hi.y, static_cast<int>(std::ceil(y_hi + hy)) + 1);
-          for (int y = ya; y < yb; ++y) {
+        const glm::ivec3 rn = region.size();
+        for (int z = bb.lo.z; z < bb.hi.z; ++z)
+          for (int y = bb.lo.y; y < bb.hi.y; ++y) {
+            const glm::ivec4 sp =
+                sw.spans[static_cast<size_t>(z - region.lo.z) * rn.y + (y - region.lo.y)];
+            if (sp.x >= sp.y || sp.y <= bb.lo.x || sp.x >= bb.hi.x) continue;
             const size_t k = row_index(y, z);
-            // The row's stretch within reach, widened by a voxel against
-            // float rounding (its voxels are measured one by one).
-            const float fy = static_cast<float>(y), fz = static_cast<float>(z);
-            // Behind the segment's start (projection t <= 0) its filling is
-            // the start ball's, which the previous segment, ending there,
-            // gave already: not accumulating, only t > 0 can add anything.
-            const float kyz = (fy - sw.a.y) * ab.y + (fz - sw.a.z) * ab.z;
-            if (skip_behind && !along_x && kyz <= 0.0f) continue;
-            float rlo = 0.0f, rhi = 0.0f;
-            if (!capsule_row(sw.a, ab, ab2, fy, fz, reach2, true, rlo, rhi)) continue;
             trim(k, y, z);
-            int lo = std::max(x0[k], static_cast<int>(std::floor(rlo)) - 1);
-            int hi = std::min(x1[k], static_cast<int>(std::ceil(rhi)) + 2);
-            if (skip_behind && along_x) {
-              // t(x) = ((x - a.x) ab.x + kyz) / ab2 is 0 at x_start.
-              const float x_start = sw.a.x - kyz / ab.x;
-              if (ab.x > 0.0f)
-                lo = std::max(lo, static_cast<int>(std::floor(x_start)) - 1);
-              else
-                hi = std::min(hi, static_cast<int>(std::ceil(x_start)) + 2);
-            }
+            const int lo = std::max(x0[k], sp.x);
+            const int hi = std::min(x1[k], sp.y);
             if (lo >= hi) continue;
-            // A hard ball is 255 within radius - 1: that stretch, narrowed
-            // by a voxel, is filled without measuring.
-            int in_lo = hi, in_hi = hi;
-            float ilo = 0.0f, ihi = 0.0f;
-            if (inner2 > 0.0f && capsule_row(sw.a, ab, ab2, fy, fz, inner2, false, ilo, ihi)) {
-              in_lo = std::clamp(static_cast<int>(std::ceil(ilo)) + 1, lo, hi);
-              in_hi = std::clamp(static_cast<int>(std::floor(ihi)), in_lo, hi);
-            }
+            const int in_lo = std::clamp(sp.z, lo, hi);
+            const int in_hi = std::clamp(sp.w, in_lo, hi);
             reach_row(k, y, z, lo, hi);
             const size_t row = at(origin.x, y, z);
             uint8_t* out = &sweep[row];
@@ -477,7 +509,6 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
               out[i] = std::max(out[i], f);
             }
           }
-        }
       } else {
         for (const RotatedToolCache::Placement& pl : sw.placements) {
           RotatedToolEntry& entry = *pl.entry;
