@@ -71,11 +71,19 @@ float tool_size_vox(sim::ToolShape shape, float a, float b) {
   return 2 * a;
 }
 
+namespace {
+
+// The sampler for the default settings: sampler_ is built before settings_
+// (their order in the class), so it cannot read them.
+hal::StrokeSampler default_sampler() {
+  const StationSettings s;
+  return hal::StrokeSampler(tool_size_vox(s.shape, s.size_a_vox, s.size_b_vox), s.spacing);
+}
+
+}  // namespace
+
 StationLoop::StationLoop(const Options& options)
-    : options_(options),
-      integrator_(options.pose),
-      sampler_(tool_size_vox(settings_.shape, settings_.size_a_vox, settings_.size_b_vox),
-               settings_.spacing) {
+    : options_(options), integrator_(options.pose), sampler_(default_sampler()) {
   settings_.tracker = options.pose.tracker;
   new_volume(options.volume_dims, options.volume_fill, options.clay_margin);
   hal::ToolPose start;
