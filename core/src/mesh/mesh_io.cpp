@@ -10,6 +10,8 @@
 
 #include <glm/geometric.hpp>
 
+#include <nlohmann/json.hpp>
+
 #include "sculpt/base/atomic_file.h"
 
 namespace sculpt::core {
@@ -155,6 +157,97 @@ void write_stl(Buffered& out, const Mesh& mesh) {
   }
 }
 
+// Binary glTF 2.0 (the Khronos specification, "GLB File Format"): a 12-byte
+// header, a JSON chunk padded with spaces to 4 bytes, a BIN chunk padded
+// with zeros. Units stay voxels; glTF's +Y up is the sculpture's (DESIGN.md
+// §3), and triangles are counter-clockwise seen from outside in both.
+void write_glb(Buffered& out, const Mesh& mesh) {
+  if (mesh.triangles.empty()) {
+    // glTF forbids empty buffers: no surface is a scene with nothing in it.
+    std::string text = R"({"asset":{"version":"2.0","generator":"sculpt station"},)"
+                       R"("scene":0,"scenes":[{}]})";
+    text.append((4 - text.size() % 4) % 4, ' ');
+    out.text("glTF");
+    out.value<uint32_t>(2);
+    out.value<uint32_t>(static_cast<uint32_t>(12 + 8 + text.size()));
+    out.value<uint32_t>(static_cast<uint32_t>(text.size()));
+    out.text("JSON");
+    out.text(text);
+    return;
+  }
+  const bool normals = mesh.normals.size() == mesh.positions.size();
+  const size_t vertices = mesh.positions.size();
+  const size_t vec3_bytes = vertices * sizeof(glm::vec3);
+  const size_t index_bytes = mesh.triangles.size() * sizeof(glm::uvec3);
+  const size_t normal_offset = vec3_bytes;
+  const size_t index_offset = vec3_bytes * (normals ? 2 : 1);
+  const size_t bin_bytes = index_offset + index_bytes;  // every part a multiple of 4
+  glm::vec3 lo(0.0f), hi(0.0f);
+  if (vertices > 0) {
+    lo = hi = mesh.positions[0];
+    for (const glm::vec3& p : mesh.positions) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+  }
+  using json = nlohmann::json;
+  constexpr int kFloat = 5126, kUnsignedInt = 5125;            // componentType
+  constexpr int kArrayBuffer = 34962, kElementBuffer = 34963;  // bufferView target
+  json attributes = {{"POSITION", 0}};
+  json views = json::array(
+      {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", vec3_bytes}, {"target", kArrayBuffer}}});
+  json accessors = json::array({{{"bufferView", 0},
+                                 {"componentType", kFloat},
+                                 {"count", vertices},
+                                 {"type", "VEC3"},
+                                 {"min", {lo.x, lo.y, lo.z}},
+                                 {"max", {hi.x, hi.y, hi.z}}}});
+  if (normals) {
+    attributes["NORMAL"] = 1;
+    views.push_back({{"buffer", 0},
+                     {"byteOffset", normal_offset},
+                     {"byteLength", vec3_bytes},
+                     {"target", kArrayBuffer}});
+    accessors.push_back(
+        {{"bufferView", 1}, {"componentType", kFloat}, {"count", vertices}, {"type", "VEC3"}});
+  }
+  const int index_view = normals ? 2 : 1;
+  views.push_back({{"buffer", 0},
+                   {"byteOffset", index_offset},
+                   {"byteLength", index_bytes},
+                   {"target", kElementBuffer}});
+  accessors.push_back({{"bufferView", index_view},
+                       {"componentType", kUnsignedInt},
+                       {"count", mesh.triangles.size() * 3},
+                       {"type", "SCALAR"}});
+  const json gltf = {
+      {"asset", {{"version", "2.0"}, {"generator", "sculpt station"}}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}, {"name", "sculpture"}}}},
+      {"meshes",
+       {{{"name", "sculpture"},
+         {"primitives", {{{"attributes", attributes}, {"indices", index_view}, {"mode", 4}}}}}}},
+      {"accessors", accessors},
+      {"bufferViews", views},
+      {"buffers", {{{"byteLength", bin_bytes}}}},
+  };
+  std::string text = gltf.dump();
+  text.append((4 - text.size() % 4) % 4, ' ');
+  const auto total = static_cast<uint32_t>(12 + 8 + text.size() + 8 + bin_bytes);
+  out.text("glTF");
+  out.value<uint32_t>(2);
+  out.value<uint32_t>(total);
+  out.value<uint32_t>(static_cast<uint32_t>(text.size()));
+  out.text("JSON");
+  out.text(text);
+  out.value<uint32_t>(static_cast<uint32_t>(bin_bytes));
+  out.text(std::string_view("BIN\0", 4));
+  out.bytes(mesh.positions.data(), vec3_bytes);
+  if (normals) out.bytes(mesh.normals.data(), vec3_bytes);
+  out.bytes(mesh.triangles.data(), index_bytes);
+}
+
 }  // namespace
 
 Result<MeshFormat> mesh_format_for(const std::filesystem::path& path, bool ascii_ply) {
@@ -164,7 +257,9 @@ Result<MeshFormat> mesh_format_for(const std::filesystem::path& path, bool ascii
   if (ext == ".ply") return ascii_ply ? MeshFormat::kPlyAscii : MeshFormat::kPlyBinary;
   if (ext == ".obj") return MeshFormat::kObj;
   if (ext == ".stl") return MeshFormat::kStl;
-  return Error(path.string() + ": unknown mesh format '" + ext + "' (expected .ply, .obj or .stl)");
+  if (ext == ".glb") return MeshFormat::kGlb;
+  return Error(path.string() + ": unknown mesh format '" + ext +
+               "' (expected .ply, .obj, .stl or .glb)");
 }
 
 namespace {
@@ -203,6 +298,11 @@ Status write_mesh(const std::filesystem::path& path, const Mesh& mesh, MeshForma
     return Error(path.string() + ": " + std::to_string(mesh.triangles.size()) +
                  " triangles do not fit a binary STL file");
   }
+  // A GLB's lengths are 32-bit: at most 4 GiB in all.
+  if (format == MeshFormat::kGlb &&
+      mesh.positions.size() * 24 + mesh.triangles.size() * 12 > (uint64_t{1} << 32) - (1 << 16)) {
+    return Error(path.string() + ": the mesh does not fit a GLB file's 4 GiB");
+  }
   AtomicFileWriter file(path);
   if (!file.ok()) return file.error();
   {
@@ -219,6 +319,9 @@ Status write_mesh(const std::filesystem::path& path, const Mesh& mesh, MeshForma
         break;
       case MeshFormat::kStl:
         write_stl(out, mesh);
+        break;
+      case MeshFormat::kGlb:
+        write_glb(out, mesh);
         break;
     }
   }

@@ -175,7 +175,8 @@ void add_mesh_command(CLI::App& app, Action& action) {
       ->check(input_file());
   add_density_options(cmd, o->density);
   cmd->add_option("-o,--output", o->output,
-                  "output mesh: .ply, .obj or .stl (a checked mesh: written only if it passes)");
+                  "output mesh: .ply, .obj, .stl or .glb (glTF 2.0; a checked mesh: written only "
+                  "if it passes)");
   cmd->add_option("--iso", o->iso, "iso-level in density units, 0 <= V < 255 (default 127.5)")
       ->check(finite_range(0.0f, 254.999f));
   cmd->add_option("--lod", o->lod, "level of detail: 0 = full resolution .. 5 = 1/32")

@@ -17,6 +17,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <iterator>
+
 #include "sculpt/core/mesh/marching_cubes.h"
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
@@ -81,7 +84,7 @@ TEST_F(MeshIo, EveryFormatReadsBackWhole) {
     bool ascii;
   };
   for (const Case c : {Case{"binary.ply", false}, Case{"ascii.ply", true}, Case{"mesh.obj", false},
-                       Case{"mesh.stl", false}}) {
+                       Case{"mesh.stl", false}, Case{"mesh.glb", false}}) {
     const fs::path file = dir_ / c.name;
     auto format = mesh_format_for(file, c.ascii);
     ASSERT_TRUE(format.ok());
@@ -107,6 +110,7 @@ TEST_F(MeshIo, UnknownExtensionIsRefusedByName) {
   EXPECT_EQ(*mesh_format_for(dir_ / "a.ply", true), MeshFormat::kPlyAscii);
   EXPECT_EQ(*mesh_format_for(dir_ / "a.Obj"), MeshFormat::kObj);
   EXPECT_EQ(*mesh_format_for(dir_ / "a.stl"), MeshFormat::kStl);
+  EXPECT_EQ(*mesh_format_for(dir_ / "a.GLB"), MeshFormat::kGlb);
 }
 
 TEST_F(MeshIo, UnwritableTargetLeavesNothingAndNamesThePath) {
@@ -129,6 +133,42 @@ TEST_F(MeshIo, BinaryPlyLayoutIsExact) {
   EXPECT_EQ(fs::file_size(file), expected);
 }
 
+// GLB (glTF 2.0 binary): the header's length is the file's, both chunks are
+// 4-byte aligned, the BIN chunk holds positions, normals and indices whole;
+// no surface is a valid empty scene (glTF forbids an empty buffer).
+TEST_F(MeshIo, GlbLayoutIsExactAndAnEmptyMeshIsAnEmptyScene) {
+  auto read_u32 = [](const std::string& b, size_t at) {
+    uint32_t v = 0;
+    std::memcpy(&v, b.data() + at, 4);
+    return v;
+  };
+  for (const bool empty : {false, true}) {
+    const fs::path file = dir_ / "layout.glb";
+    ASSERT_TRUE(write_mesh(file, empty ? Mesh{} : mesh_, MeshFormat::kGlb).ok());
+    std::ifstream in(file, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_GE(bytes.size(), 20u);
+    EXPECT_EQ(bytes.substr(0, 4), "glTF");
+    EXPECT_EQ(read_u32(bytes, 4), 2u);
+    EXPECT_EQ(read_u32(bytes, 8), bytes.size());
+    const uint32_t json_bytes = read_u32(bytes, 12);
+    EXPECT_EQ(bytes.substr(16, 4), "JSON");
+    EXPECT_EQ(json_bytes % 4, 0u);
+    if (empty) {
+      EXPECT_EQ(bytes.size(), 20u + json_bytes);
+      continue;
+    }
+    const size_t bin_at = 20 + json_bytes;
+    const size_t bin_bytes = mesh_.positions.size() * 24 + mesh_.triangles.size() * 12;
+    EXPECT_EQ(read_u32(bytes, bin_at), bin_bytes);
+    EXPECT_EQ(bytes.substr(bin_at + 4, 4), std::string("BIN\0", 4));
+    EXPECT_EQ(bytes.size(), bin_at + 8 + bin_bytes);
+    EXPECT_EQ(
+        std::memcmp(bytes.data() + bin_at + 8, mesh_.positions.data(), mesh_.positions.size() * 12),
+        0);
+  }
+}
+
 TEST_F(MeshIo, RefusesNonFiniteCoordinatesAndStrayIndicesInEveryFormat) {
   Mesh nan_vertex = mesh_;
   nan_vertex.positions[1].y = std::nanf("");
@@ -140,8 +180,8 @@ TEST_F(MeshIo, RefusesNonFiniteCoordinatesAndStrayIndicesInEveryFormat) {
       {&nan_vertex, "vertex 1 is not a finite position"},
       {&inf_normal, "the normal of vertex 2 is not finite"},
       {&stray_index, "names a vertex beyond"}};
-  for (MeshFormat format :
-       {MeshFormat::kPlyBinary, MeshFormat::kPlyAscii, MeshFormat::kObj, MeshFormat::kStl}) {
+  for (MeshFormat format : {MeshFormat::kPlyBinary, MeshFormat::kPlyAscii, MeshFormat::kObj,
+                            MeshFormat::kStl, MeshFormat::kGlb}) {
     for (const auto& [mesh, what] : cases) {
       const fs::path file = dir_ / "bad.mesh";
       const Status st = write_mesh(file, *mesh, format);

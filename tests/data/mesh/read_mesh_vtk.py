@@ -19,12 +19,23 @@ def main():
         reader = vtk.vtkOBJReader()
     elif lower.endswith(".stl"):
         reader = vtk.vtkSTLReader()  # merges the per-triangle vertices again
+    elif lower.endswith(".glb"):
+        reader = vtk.vtkGLTFReader()  # a scene: its one mesh is taken out below
     else:
         print(f"{path}: unknown extension", file=sys.stderr)
         return 1
     reader.SetFileName(path)
     reader.Update()
-    mesh = reader.GetOutput()
+    if lower.endswith(".glb"):
+        merged = vtk.vtkCompositeDataGeometryFilter()
+        merged.SetInputConnection(reader.GetOutputPort())
+        merged.Update()
+        mesh = merged.GetOutput()
+        if mesh.GetPointData().GetNormals() is None:
+            print(f"{path}: VTK found no normals", file=sys.stderr)
+            return 1
+    else:
+        mesh = reader.GetOutput()
     if mesh is None or mesh.GetNumberOfPolys() == 0:
         print(f"{path}: VTK read no polygons", file=sys.stderr)
         return 1

@@ -12,10 +12,14 @@
 
 namespace sculpt::core {
 
-enum class MeshFormat { kPlyBinary, kPlyAscii, kObj, kStl };
+/// kGlb: binary glTF 2.0, one mesh of one triangle primitive with POSITION
+/// (and NORMAL when the mesh has them) as float VEC3 and uint32 indices, in
+/// one buffer; what Blender, game engines and web viewers open.
+enum class MeshFormat { kPlyBinary, kPlyAscii, kObj, kStl, kGlb };
 
-/// The format `path`'s extension names (.ply, .obj, .stl, any case); PLY is
-/// binary unless `ascii_ply`. The error names the path and the extension.
+/// The format `path`'s extension names (.ply, .obj, .stl, .glb, any case);
+/// PLY is binary unless `ascii_ply`. The error names the path and the
+/// extension.
 Result<MeshFormat> mesh_format_for(const std::filesystem::path& path, bool ascii_ply = false);
 
 /// Writes `mesh` as `format`. The error names the path.
