@@ -12,7 +12,7 @@
 #include "chunked_groups.h"
 #include "sculpt/core/distance/exact_edt.h"
 #include "sculpt/core/distance/narrow_band.h"
-#include "sculpt/core/distance/point_triangle.h"
+#include "sculpt/core/mesh/point_triangle.h"
 #include "sculpt/core/util/parallel_for.h"
 
 namespace sculpt::core {

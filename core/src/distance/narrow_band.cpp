@@ -11,7 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "chunked_groups.h"
-#include "sculpt/core/distance/point_triangle.h"
+#include "sculpt/core/mesh/point_triangle.h"
 #include "sculpt/core/util/parallel_for.h"
 
 // The band kernel is compiled twice, for AVX2 (8 voxels at once) and for

@@ -13,7 +13,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "sculpt/core/distance/point_triangle.h"
+#include "sculpt/core/mesh/point_triangle.h"
 #include "sculpt/core/util/parallel_for.h"
 
 namespace sculpt::core {

@@ -11,8 +11,8 @@
 #include "sculpt/core/distance/chamfer_distance.h"
 #include "sculpt/core/distance/exact_edt.h"
 #include "sculpt/core/distance/octree_distance.h"
-#include "sculpt/core/distance/point_triangle.h"
 #include "sculpt/core/distance/vector_distance.h"
+#include "sculpt/core/mesh/point_triangle.h"
 #include "sculpt/core/util/parallel_for.h"
 
 namespace sculpt::core {

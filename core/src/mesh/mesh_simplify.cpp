@@ -8,9 +8,9 @@
 
 #include <glm/common.hpp>
 
-#include "sculpt/core/distance/point_triangle.h"
 #include "sculpt/core/mesh/brick_mesh.h"
 #include "sculpt/core/mesh/brick_simplify.h"
+#include "sculpt/core/mesh/point_triangle.h"
 
 namespace sculpt::core {
 namespace {

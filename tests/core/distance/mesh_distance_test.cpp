@@ -13,7 +13,7 @@
 
 #include "reference_distance.h"
 #include "sculpt/core/distance/narrow_band.h"
-#include "sculpt/core/distance/point_triangle.h"
+#include "sculpt/core/mesh/point_triangle.h"
 #include "sculpt/core/util/parallel_for.h"
 
 namespace sculpt::core {

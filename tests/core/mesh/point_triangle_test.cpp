@@ -1,7 +1,7 @@
 // The exact point-to-triangle distance against an independent double-precision
 // reference, on ordinary triangles, slivers and degenerate ones.
 
-#include "sculpt/core/distance/point_triangle.h"
+#include "sculpt/core/mesh/point_triangle.h"
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 // square root and no division except in the region that wins. Slivers (see
 // is_sliver) run the same tests in double precision.
 
-#include "sculpt/core/distance/point_triangle.h"
+#include "sculpt/core/mesh/point_triangle.h"
 
 #include <algorithm>
 
