@@ -8,6 +8,7 @@
 #include <cstring>
 #include <limits>
 
+#include "saturated_run.h"
 #include "sculpt/core/sculpt/combine_row.h"
 #include "sculpt/core/util/parallel_for.h"
 
@@ -29,12 +30,6 @@ inline int floor_int(float x) {
 inline int ceil_int(float x) {
   const int i = static_cast<int>(x);
   return i + (x > static_cast<float>(i));
-}
-
-inline uint64_t load_u64(const uint8_t* p) {
-  uint64_t v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
 }
 
 // Dabs that change at least this many bricks are combined on every core.
@@ -283,18 +278,7 @@ DabStats Sculptor::apply(RotatedToolCache& cache, const Dab& dab) {
                              (xa - origin.x)];
         // Contact: rotate only where the material can change.
         int c0 = 0, c1 = xb - xa;
-        if (saturated >= 0) {
-          // Eight voxels at a time through the saturated stretches.
-          const uint64_t word = 0x0101010101010101ull * static_cast<uint64_t>(saturated);
-          while (c0 + 8 <= c1 && load_u64(m + c0) == word)
-            c0 += 8;
-          while (c0 < c1 && m[c0] == saturated)
-            ++c0;
-          while (c1 - 8 >= c0 && load_u64(m + c1 - 8) == word)
-            c1 -= 8;
-          while (c1 > c0 && m[c1 - 1] == saturated)
-            --c1;
-        }
+        if (saturated >= 0) trim_saturated(m, static_cast<uint8_t>(saturated), c0, c1);
         if (c0 >= c1) continue;
         const uint8_t* f =
             entry.row(y - anchor.y, z - anchor.z, xa + c0 - anchor.x, xa + c1 - anchor.x, rows);

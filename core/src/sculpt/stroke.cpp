@@ -20,6 +20,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "saturated_run.h"
 #include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/sculpt/combine_row.h"
 #include "sculpt/core/util/parallel_for.h"
@@ -36,12 +37,6 @@ int64_t now_ns() {
 // The material value a voxel cannot leave under `mode`.
 uint8_t saturated_value(SculptMode mode) {
   return mode == SculptMode::kAdd || mode == SculptMode::kUnion ? 255 : 0;
-}
-
-inline uint64_t load_u64(const uint8_t* p) {
-  uint64_t v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
 }
 
 // Buffers of finished strokes, kept for the next ones on this thread: a
@@ -406,23 +401,13 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
     // the material the result is made from), found when a sweep first
     // reaches the row (kUnset before): most rows of the box it misses.
     const glm::ivec3 n = bb.size();
-    const uint64_t word = 0x0101010101010101ull * saturated;
     constexpr int kUnset = std::numeric_limits<int>::min();
     std::vector<int> x0(static_cast<size_t>(n.y) * n.z, kUnset), x1(x0.size(), 0);
     auto trim = [&](size_t k, int y, int z) {
       if (x0[k] != kUnset) return;
       const uint8_t* r = reference + at(origin.x, y, z);
       int c0 = bb.lo.x - origin.x, c1 = bb.hi.x - origin.x;
-      // Eight voxels at a time through the saturated stretches (the
-      // buffers have kCombineRowSlack bytes past the brick).
-      while (c0 + 8 <= c1 && load_u64(r + c0) == word)
-        c0 += 8;
-      while (c0 < c1 && r[c0] == saturated)
-        ++c0;
-      while (c1 - 8 >= c0 && load_u64(r + c1 - 8) == word)
-        c1 -= 8;
-      while (c1 > c0 && r[c1 - 1] == saturated)
-        --c1;
+      trim_saturated(r, saturated, c0, c1);
       x0[k] = c0 + origin.x;
       x1[k] = c1 + origin.x;
     };

@@ -89,8 +89,7 @@ void StationController::set_touch(bool on, int64_t now_ns) {
 
 void StationController::set_clutch(bool held, int64_t now_ns) {
   // A key held for seconds is one command, not one a frame.
-  if (held == clutch_held_) return;
-  clutch_held_ = held;
+  if (held == loop_.clutch_key_held()) return;
   command(make_command(sim::CommandKind::kClutch, held ? 1 : 0), now_ns);
 }
 void StationController::set_tracker_calibration(const hal::TrackerCalibration& t, int64_t now_ns) {

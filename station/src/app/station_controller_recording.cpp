@@ -39,6 +39,9 @@ std::vector<sim::Command> StationController::opening_commands(bool with_block) c
                            {s.sheet_editing ? 1.0f : 0.0f, static_cast<float>(drag.influence),
                             static_cast<float>(drag.radius)}));
   c.push_back(make_command(sim::CommandKind::kTouch, s.touch ? 1 : 0));
+  // A recording started with the clutch key held replays clutched too, and
+  // re-anchors when the key is let go, as the live station does.
+  c.push_back(make_command(sim::CommandKind::kClutch, loop_.clutch_key_held() ? 1 : 0));
   const glm::dquat& q = s.tracker.tracker_to_sculpture;
   c.push_back(
       make_command(sim::CommandKind::kTracker, 0,

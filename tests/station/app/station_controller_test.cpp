@@ -132,6 +132,32 @@ TEST(StationController, ARecordingReplaysToTheSameVolume) {
   EXPECT_TRUE(replayed.settings().custom_tool);
 }
 
+// The clutch key is a recorded command, once per change; a recording started
+// with it held opens with it held, so the replay re-anchors where the live
+// station did when it is let go.
+TEST(StationController, ARecordingStartedWithTheClutchHeldOpensClutched) {
+  test::ScratchDir dir;
+  StationController c(small_block(dir));
+  int64_t t = 1000 * kMs;
+  c.set_clutch(true, t += kMs);
+  ASSERT_TRUE(c.start_recording(dir.path() / "r.scs", t += kMs).ok());
+  c.set_clutch(true, t += kMs);  // still held: nothing recorded
+  c.set_clutch(false, t += kMs);
+  c.tick(t);
+  ASSERT_TRUE(c.stop_recording().ok());
+  auto session = sim::read_session_file(dir.path() / "r.scs");
+  ASSERT_TRUE(session.ok()) << session.error().message();
+  std::vector<int> clutch;
+  for (const sim::SessionRecord& r : session->records)
+    if (r.kind == sim::SessionRecord::Kind::kCommand && r.command.kind == sim::CommandKind::kClutch)
+      clutch.push_back(r.command.choice);
+  EXPECT_EQ(clutch, (std::vector<int>{1, 0}));
+  StationLoop replayed(StationLoop::Options{});
+  ASSERT_TRUE(replay_session(*session, "r.scs", replayed).ok());
+  EXPECT_FALSE(replayed.clutch_key_held());
+  EXPECT_FALSE(c.loop().clutch_key_held());
+}
+
 TEST(StationController, SculptureBecomesAToolOnlyWhenThereIsOneOfToolSize) {
   test::ScratchDir dir;
   ControllerOptions o = small_block(dir);

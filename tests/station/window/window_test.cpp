@@ -365,7 +365,7 @@ TEST(StationWindow, TheSimulatedArmCarvesWithForceAndItsRecordingReplays) {
   // The forces too: every tick the window's loop ran, run again bit for bit.
   HapticReplay haptics(loop, "touch");
   ReplayOptions ro;
-  ro.on_haptic = [&](const sim::HapticRecord& h) { return haptics.handle(h); };
+  ro.on_haptic = [&](const sim::HapticRecord& record) { return haptics.handle(record); };
   ro.fast = true;
   ASSERT_TRUE(replay_session(*recorded, "touch", loop, ro).ok());
   EXPECT_EQ(loop.counters().dabs, stats["dabs"].get<int64_t>());

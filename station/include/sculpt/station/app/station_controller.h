@@ -280,7 +280,6 @@ class StationController {
   bool has_device_ = false;
   int64_t processed_t_ns_ = std::numeric_limits<int64_t>::min();
   bool pointer_down_ = false;
-  bool clutch_held_ = false;  // as last commanded
   InputStatistics stats_;
   uint64_t own_change_ = 0;  // update_mesh()'s change numbers
   int64_t last_camera_t_ns_ = 0;

@@ -104,6 +104,8 @@ class StationLoop {
   bool pressed() const { return pressed_; }
   /// The clutch is held (the key's command or the device's third button).
   bool clutched() const { return integrator_.clutched(); }
+  /// The clutch key is held, as the clutch commands last said.
+  bool clutch_key_held() const { return clutch_key_; }
   const core::Sculptor& sculptor() const { return *sculptor_; }
   const SheetEditor& sheet() const { return sheet_; }
   /// Why the last sheet command or grab did nothing (empty if it worked).
