@@ -23,22 +23,33 @@ glm::vec3 voxel_gradient(const DenseGrid<float>& d, glm::ivec3 v) {
   return g;
 }
 
-}  // namespace
-
-glm::vec3 distance_gradient(const DenseGrid<float>& d, glm::vec3 p) {
+// The trilinear blend at p of a value per voxel (value_at), p clamped onto
+// the grid of d.
+template <class T, class ValueAt>
+T trilinear_blend(const DenseGrid<float>& d, glm::vec3 p, ValueAt value_at) {
   const glm::ivec3 dims = d.dims();
-  if (dims.x == 0 || dims.y == 0 || dims.z == 0) return glm::vec3(0.0f);
+  if (dims.x == 0 || dims.y == 0 || dims.z == 0) return T(0.0f);
   const glm::vec3 q = glm::clamp(p, glm::vec3(0.0f), glm::vec3(dims - 1));
   const glm::ivec3 b = glm::min(glm::ivec3(glm::floor(q)), glm::max(dims - 2, glm::ivec3(0)));
   const glm::vec3 t = q - glm::vec3(b);
-  glm::vec3 g(0.0f);
+  T sum(0.0f);
   for (int c = 0; c < 8; ++c) {
     const glm::ivec3 o(c & 1, (c >> 1) & 1, c >> 2);
     const glm::ivec3 v = glm::min(b + o, dims - 1);
     const float w = (o.x ? t.x : 1 - t.x) * (o.y ? t.y : 1 - t.y) * (o.z ? t.z : 1 - t.z);
-    g += w * voxel_gradient(d, v);
+    sum += w * value_at(v);
   }
-  return g;
+  return sum;
+}
+
+}  // namespace
+
+float sample_trilinear(const DenseGrid<float>& d, glm::vec3 p) {
+  return trilinear_blend<float>(d, p, [&](glm::ivec3 v) { return d.at(v.x, v.y, v.z); });
+}
+
+glm::vec3 distance_gradient(const DenseGrid<float>& d, glm::vec3 p) {
+  return trilinear_blend<glm::vec3>(d, p, [&](glm::ivec3 v) { return voxel_gradient(d, v); });
 }
 
 glm::vec3 distance_normal(const DenseGrid<float>& d, glm::vec3 p) {

@@ -11,6 +11,9 @@
 
 namespace sculpt::core {
 
+/// The field's trilinear value at p (voxel coordinates), clamped onto the
+/// grid as distance_gradient(); any float field (a density too).
+float sample_trilinear(const DenseGrid<float>& field, glm::vec3 p);
 /// Gradient of `distance` at p (voxel coordinates), per voxel unit.
 glm::vec3 distance_gradient(const DenseGrid<float>& distance, glm::vec3 p);
 /// The unit gradient at p ((0,0,0) where the gradient vanishes).

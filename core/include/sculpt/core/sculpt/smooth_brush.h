@@ -15,12 +15,14 @@
 // kept within 0.01% (tests/core/sculpt/smooth_brush_test.cpp).
 //
 // One undo step through Sculptor::external_edit(). Not yet: the sculptor's
-// mirror plane, a "smooth" stamp op, the station's brush panel. Cost grows
-// with the region times the path's segments (each voxel measures its
-// distance to every segment).
+// mirror plane, the station's brush panel. Cost grows with the region times
+// the path's segments (each voxel measures its distance to every segment).
 
+#include <cstdint>
 #include <span>
 
+#include "sculpt/base/result.h"
+#include "sculpt/core/sculpt/brush_limits.h"
 #include "sculpt/core/sculpt/stroke.h"
 
 namespace sculpt::core {
@@ -35,8 +37,17 @@ struct SmoothBrushOptions {
   int passes = 4;
 };
 
+/// Most blur rounds accepted: 64 rounds blur over about 6 voxels each way.
+inline constexpr int kMaxSmoothPasses = 64;
+
+/// The options from outside (a script, a setting) checked: radius in
+/// (0, kMaxBrushRadiusVox], hardness and strength in [0, 1], passes in
+/// [1, kMaxSmoothPasses]; the error names the field ('radius', ...).
+Status check_smooth_brush(const SmoothBrushOptions& options);
+
 /// Smooths `volume` (the volume `sculptor` sculpts, asserted) under the ball
-/// swept through `path` (at least one sample). Returns the voxels changed.
+/// swept through `path` (at least one sample; options checked, asserted).
+/// Returns the voxels changed.
 int64_t smooth_stroke(Volume& volume, Sculptor& sculptor, std::span<const StrokeSample> path,
                       const SmoothBrushOptions& options);
 

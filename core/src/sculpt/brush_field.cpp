@@ -1,0 +1,192 @@
+// The ball brushes' shared part (brush_field.h). Each brush reads the
+// material under the ball once, before it changes anything, and computes
+// every voxel from that copy: the result does not depend on the order the
+// voxels are visited in, and the stroke is one external edit, one undo step.
+
+#include "brush_field.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <sstream>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "sculpt/core/distance/distance_normals.h"
+#include "sculpt/core/tool/tool.h"
+
+namespace sculpt::core::brush {
+namespace {
+
+float segment_distance(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3& closest) {
+  const glm::vec3 ab = b - a;
+  const float ab2 = glm::dot(ab, ab);
+  const float t = ab2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / ab2, 0.0f, 1.0f) : 0.0f;
+  closest = a + t * ab;
+  return glm::length(p - closest);
+}
+
+// One [1 2 1] / 4 pass along `axis` over g, edges clamped.
+void blur_axis(DenseGrid<float>& g, int axis, std::vector<float>& tmp) {
+  const glm::ivec3 d = g.dims();
+  tmp = g.values();
+  const int64_t stride = axis == 0 ? 1 : axis == 1 ? d.x : int64_t{d.x} * d.y;
+  for (int z = 0; z < d.z; ++z)
+    for (int y = 0; y < d.y; ++y)
+      for (int x = 0; x < d.x; ++x) {
+        const glm::ivec3 p(x, y, z);
+        const auto i = static_cast<int64_t>(g.index(x, y, z));
+        const float prev = p[axis] > 0 ? tmp[static_cast<size_t>(i - stride)] : tmp[i];
+        const float next = p[axis] + 1 < d[axis] ? tmp[static_cast<size_t>(i + stride)] : tmp[i];
+        g[static_cast<size_t>(i)] =
+            0.25f * prev + 0.5f * tmp[static_cast<size_t>(i)] + 0.25f * next;
+      }
+}
+
+}  // namespace
+
+float Ball::weight(float distance_vox) const {
+  if (distance_vox >= reach()) return 0.0f;
+  return strength * tool_density(distance_vox - radius_vox, radius_vox, hardness) / 255.0f;
+}
+
+Status check_range(const char* key, double value, double lo, double hi) {
+  if (value >= lo && value <= hi) return {};
+  std::ostringstream s;
+  s << "'" << key << "' must be a number in [" << lo << ", " << hi << "], got " << value;
+  return Error(s.str());
+}
+
+Status check_positive(const char* key, double value, double hi) {
+  if (value > 0.0 && value <= hi) return {};
+  std::ostringstream s;
+  s << "'" << key << "' must be a number in (0, " << hi << "] voxels, got " << value;
+  return Error(s.str());
+}
+
+Status check_ball(const Ball& ball) {
+  if (Status st = check_positive("radius", ball.radius_vox, kMaxBrushRadiusVox); !st) return st;
+  if (Status st = check_range("hardness", ball.hardness, 0.0, 1.0); !st) return st;
+  return check_range("strength", ball.strength, 0.0, 1.0);
+}
+
+float path_distance(glm::vec3 p, std::span<const StrokeSample> path, glm::vec3* closest) {
+  assert(!path.empty());
+  glm::vec3 best = path[0].position_vox;
+  float dist = glm::length(p - best);
+  for (size_t i = 1; i < path.size(); ++i) {
+    glm::vec3 c;
+    const float d = segment_distance(p, path[i - 1].position_vox, path[i].position_vox, c);
+    if (d < dist) {
+      dist = d;
+      best = c;
+    }
+  }
+  if (closest != nullptr) *closest = best;
+  return dist;
+}
+
+Box path_box(std::span<const StrokeSample> path, float reach) {
+  assert(!path.empty());
+  glm::vec3 lo = path[0].position_vox, hi = lo;
+  for (const StrokeSample& s : path) {
+    lo = glm::min(lo, s.position_vox);
+    hi = glm::max(hi, s.position_vox);
+  }
+  return Box{glm::ivec3(glm::floor(lo - reach)), glm::ivec3(glm::ceil(hi + reach)) + 1};
+}
+
+Box reach_box(const Volume& volume, std::span<const StrokeSample> path, const Ball& ball) {
+  return intersect(path_box(path, ball.reach()), Box{glm::ivec3(0), volume.dims()});
+}
+
+void blur(DenseGrid<float>& g, int passes) {
+  std::vector<float> tmp;
+  for (int k = 0; k < passes; ++k)
+    for (int axis = 0; axis < 3; ++axis)
+      blur_axis(g, axis, tmp);
+}
+
+Field::Field(const Volume& volume, const Box& box, int margin)
+    : box_(intersect(Box{box.lo - margin, box.hi + margin}, Box{glm::ivec3(0), volume.dims()})) {
+  const DenseGrid<uint8_t> g = volume.read(box_, 0);
+  grid_ = DenseGrid<float>(g.dims());
+  std::copy(g.values().begin(), g.values().end(), grid_.values().begin());
+}
+
+float Field::at(glm::ivec3 v) const {
+  const glm::ivec3 q = v - box_.lo;
+  return grid_.at(q.x, q.y, q.z);
+}
+
+float Field::sample(glm::vec3 p) const {
+  return sample_trilinear(grid_, p - glm::vec3(box_.lo));
+}
+
+glm::vec3 Field::gradient(glm::vec3 p) const {
+  return distance_gradient(grid_, p - glm::vec3(box_.lo));
+}
+
+float Plane::distance(glm::vec3 p) const {
+  return glm::dot(p - point, normal);
+}
+
+float Plane::density(glm::ivec3 v) const {
+  return tool_density(distance(glm::vec3(v)), 1.0f, 1.0f);
+}
+
+bool fit_plane(const Field& field, std::span<const StrokeSample> path, const Ball& ball,
+               Plane& plane) {
+  const Box region = intersect(path_box(path, ball.reach()), field.box());
+  glm::dvec3 normal(0.0), centroid(0.0);
+  double mass = 0.0;
+  for (int z = region.lo.z; z < region.hi.z; ++z)
+    for (int y = region.lo.y; y < region.hi.y; ++y)
+      for (int x = region.lo.x; x < region.hi.x; ++x) {
+        const glm::vec3 p(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
+        // The plane's fit ignores the strength: a weak stroke flattens
+        // toward the same plane, less far.
+        const float d = path_distance(p, path);
+        if (d >= ball.reach()) continue;
+        const float w = tool_density(d - ball.radius_vox, ball.radius_vox, ball.hardness) / 255.0f;
+        const glm::vec3 g = field.gradient(p);
+        const float m = w * glm::length(g);
+        if (m <= 0.0f) continue;
+        normal -= glm::dvec3(w * g);
+        centroid += glm::dvec3(p) * static_cast<double>(m);
+        mass += m;
+      }
+  if (mass <= 0.0 || glm::length(normal) <= 0.0) return false;
+  plane.normal = glm::vec3(glm::normalize(normal));
+  plane.point = glm::vec3(centroid / mass);
+  return true;
+}
+
+int64_t write(Volume& volume, Sculptor& sculptor, const Field& before, const Box& region,
+              std::span<const StrokeSample> path, const Ball& ball,
+              const std::function<float(glm::ivec3 v, float w, float d)>& value) {
+  assert(&sculptor.volume() == &volume);
+  if (region.empty()) return 0;
+  DenseGrid<uint8_t> out = volume.read(region, 0);
+  int64_t changed = 0;
+  for (int z = region.lo.z; z < region.hi.z; ++z)
+    for (int y = region.lo.y; y < region.hi.y; ++y)
+      for (int x = region.lo.x; x < region.hi.x; ++x) {
+        const glm::ivec3 v(x, y, z);
+        const float d = path_distance(glm::vec3(v), path);
+        const float w = ball.weight(d);
+        if (w <= 0.0f) continue;
+        const float m = before.at(v);
+        const auto r = static_cast<uint8_t>(std::clamp(std::round(value(v, w, d)), 0.0f, 255.0f));
+        if (r == static_cast<uint8_t>(m)) continue;
+        ++changed;
+        const glm::ivec3 q = v - region.lo;
+        out.at(q.x, q.y, q.z) = r;
+      }
+  if (changed == 0) return 0;
+  sculptor.external_edit(region, [&] { volume.write(region.lo, out); });
+  return changed;
+}
+
+}  // namespace sculpt::core::brush
