@@ -180,6 +180,10 @@ void Sculptor::set_sampling(Sampling sampling) {
 }
 
 void Sculptor::rebuild_caches() {
+  const RotatedToolCacheStats held = rotation_cache_stats();
+  retired_cache_stats_ = held;
+  retired_cache_stats_.bytes = 0;
+  retired_cache_stats_.entries = 0;
   cache_ = std::make_unique<RotatedToolCache>(std::make_shared<const PreparedTool>(*tool_),
                                               options_.sampling, options_.cache_max_bytes,
                                               options_.subvoxel_steps);
@@ -191,6 +195,14 @@ const RotatedToolCache& Sculptor::cache(bool mirrored) const {
   assert(cache_);
   if (mirrored && mirror_ && mirror_caches_[mirror_->axis]) return *mirror_caches_[mirror_->axis];
   return *cache_;
+}
+
+RotatedToolCacheStats Sculptor::rotation_cache_stats() const {
+  RotatedToolCacheStats sum = retired_cache_stats_;
+  if (cache_) sum += cache_->stats();
+  for (const auto& c : mirror_caches_)
+    if (c) sum += c->stats();
+  return sum;
 }
 
 RotatedToolCache& Sculptor::mirror_cache(int axis) {

@@ -6,6 +6,18 @@
 #include <cstring>
 
 namespace sculpt::core {
+
+RotatedToolCacheStats& RotatedToolCacheStats::operator+=(const RotatedToolCacheStats& o) {
+  placements += o.placements;
+  placement_hits += o.placement_hits;
+  voxels_requested += o.voxels_requested;
+  voxels_reused += o.voxels_reused;
+  voxels_rotated += o.voxels_rotated;
+  evictions += o.evictions;
+  bytes += o.bytes;
+  entries += o.entries;
+  return *this;
+}
 namespace {
 
 constexpr double kQuatSteps = 1 << 20;

@@ -93,7 +93,7 @@ StationLoop::StationLoop(const Options& options)
 
 void StationLoop::new_volume(glm::ivec3 dims, uint8_t fill, int clay_margin) {
   if (pressed_) release();
-  sculptor_.reset();
+  retire_sculptor();
   volume_ = clay_margin > 0 ? std::make_unique<core::Volume>(clay_block(dims, clay_margin))
                             : std::make_unique<core::Volume>(dims, fill);
   ++volume_generation_;
@@ -107,7 +107,7 @@ void StationLoop::restore(std::unique_ptr<core::Volume> volume, const StationSet
                           std::optional<core::Tool> custom_tool,
                           std::optional<core::nurbs::NurbsSurface> sheet) {
   if (pressed_) release();
-  sculptor_.reset();
+  retire_sculptor();
   volume_ = std::move(volume);
   ++volume_generation_;
   sculptor_ = std::make_unique<core::Sculptor>(*volume_, sculptor_options());
@@ -118,6 +118,20 @@ void StationLoop::restore(std::unique_ptr<core::Volume> volume, const StationSet
   apply_tool();
   sculptor_->set_mirror(settings_.mirror);
   mesh_ = core::MeshCache(0);
+}
+
+void StationLoop::retire_sculptor() {
+  if (!sculptor_) return;
+  retired_cache_stats_ = rotation_cache_stats();
+  retired_cache_stats_.bytes = 0;
+  retired_cache_stats_.entries = 0;
+  sculptor_.reset();
+}
+
+core::RotatedToolCacheStats StationLoop::rotation_cache_stats() const {
+  core::RotatedToolCacheStats sum = retired_cache_stats_;
+  if (sculptor_) sum += sculptor_->rotation_cache_stats();
+  return sum;
 }
 
 core::SculptorOptions StationLoop::sculptor_options() const {

@@ -18,6 +18,7 @@
 #include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/core/util/parallel_for.h"
 #include "sculpt/core/volume/volume_io.h"
+#include "sculpt/station/app/rotation_cache_figures.h"
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/session_replay.h"
 #include "sculpt/station/app/session_start.h"
@@ -165,6 +166,7 @@ int replay_to_outputs(const ReplayCliOptions& o) {
       {"unknown_reports", result->unknown_reports},
       {"short_reports", result->short_reports},
       {"invalid_reports", result->invalid_reports},
+      {"rotation_cache", rotation_cache_figures(loop.rotation_cache_stats())},
   };
   const HapticReplayFigures haptic = haptics.figures();
   if (haptic.loops > 0 || haptic.unverified_ticks > 0) stats["haptics"] = haptics_json(haptic);

@@ -28,6 +28,7 @@
 #include "sculpt/sim/replay/sim_backend.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
 #include "sculpt/station/app/input_hub.h"
+#include "sculpt/station/app/rotation_cache_figures.h"
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/session_start.h"
 #include "sculpt/station/app/station_controller.h"
@@ -196,6 +197,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
         {"free_mib", static_cast<double>(heap.fordblks) / (1 << 20)}}},
       {"dabs", c.loop().counters().dabs},
       {"strokes", c.loop().counters().strokes},
+      {"rotation_cache", rotation_cache_figures(c.loop().rotation_cache_stats())},
       {"volume_hash", c.loop().volume().content_hash()},
       {"solid_voxels", solid_voxels(c.loop().volume())},
       {"triangles", f.triangles},

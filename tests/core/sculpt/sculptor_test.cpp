@@ -258,6 +258,26 @@ TEST(Sculptor, ABigDabOnEveryCoreEqualsItsBricksOneByOne) {
   }
 }
 
+TEST(Sculptor, RotationCacheCountsOutliveToolChanges) {
+  Volume v({48, 48, 48}, 0);
+  Sculptor s(v);
+  s.set_tool(make_sphere_tool(5.0f));
+  const Dab d{{20.25f, 24.0f, 24.0f}, kTurn, SculptMode::kAdd, 1.0f};
+  (void)s.dab(d);
+  (void)s.dab(d);  // the same placement: a hit
+  EXPECT_EQ(s.rotation_cache_stats().placements, 2);
+  EXPECT_EQ(s.rotation_cache_stats().placement_hits, 1);
+  s.set_tool(make_cube_tool(6.0f));  // a new cache; the counts stay
+  s.set_mirror(MirrorPlane{0, 24.0f});
+  (void)s.dab(d);
+  const RotatedToolCacheStats all = s.rotation_cache_stats();
+  EXPECT_EQ(all.placements, 4);  // the cube's dab and its mirror image
+  EXPECT_EQ(all.placement_hits, 1);
+  EXPECT_DOUBLE_EQ(all.placement_hit_rate(), 0.25);
+  EXPECT_EQ(all.entries, 2u);  // held now: the cube's and its mirror's
+  EXPECT_EQ(s.cache().stats().placements, 1);
+}
+
 TEST(Sculptor, ModeNamesRoundTrip) {
   for (const char* n : {"add", "subtract", "union", "difference", "smooth"}) {
     const auto m = parse_sculpt_mode(n);

@@ -93,6 +93,11 @@ TEST_F(ReplayCommandTest, WritesVolumeMeshStatsAndSamples) {
   EXPECT_GT(stats["triangles"].get<int>(), 1000);
   EXPECT_GT(stats["dab_latency_us"]["count"].get<int>(), 50);
   EXPECT_TRUE(stats["volume_hash"].is_number_unsigned());
+  // Every dab (and mirror image) places the tool once through the cache.
+  EXPECT_GE(stats["rotation_cache"]["placements"].get<int>(), stats["dabs"].get<int>());
+  const double hit_rate = stats["rotation_cache"]["voxel_hit_rate"].get<double>();
+  EXPECT_GE(hit_rate, 0.0);
+  EXPECT_LE(hit_rate, 1.0);
   // One JSON object a line, the first the device's connection.
   std::ifstream samples(dir_ / "x.jsonl");
   std::string first;

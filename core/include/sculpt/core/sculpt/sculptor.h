@@ -125,6 +125,9 @@ class Sculptor {
   const UndoHistory& history() const { return history_; }
   /// The cache of the tool (mirrored = false) or of its mirror image.
   const RotatedToolCache& cache(bool mirrored = false) const;
+  /// The rotation caches' counts over this sculptor's life: every tool's
+  /// caches, mirror images included (bytes and entries: those held now).
+  RotatedToolCacheStats rotation_cache_stats() const;
   const Volume& volume() const { return volume_; }
 
  private:
@@ -142,6 +145,8 @@ class Sculptor {
   std::optional<Tool> tool_;
   std::unique_ptr<RotatedToolCache> cache_;
   std::unique_ptr<RotatedToolCache> mirror_caches_[3];
+  // The counts of the caches set_tool() and set_sampling() dropped.
+  RotatedToolCacheStats retired_cache_stats_;
   std::optional<MirrorPlane> mirror_;
   UndoHistory history_;
   struct DecodedBrick {

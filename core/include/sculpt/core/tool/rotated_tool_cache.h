@@ -41,6 +41,12 @@ struct RotatedToolCacheStats {
   int64_t evictions = 0;
   size_t bytes = 0;  // held by the cached entries
   size_t entries = 0;
+  /// Share of placements that found their entry, in [0, 1].
+  double placement_hit_rate() const {
+    return placements ? static_cast<double>(placement_hits) / static_cast<double>(placements) : 0.0;
+  }
+  /// Counts summed (bytes and entries too: both are what is held now).
+  RotatedToolCacheStats& operator+=(const RotatedToolCacheStats& o);
   /// Share of requested voxels served without rotating, in [0, 1].
   double voxel_hit_rate() const {
     return voxels_requested

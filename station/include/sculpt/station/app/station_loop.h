@@ -107,6 +107,9 @@ class StationLoop {
   /// The clutch key is held, as the clutch commands last said.
   bool clutch_key_held() const { return clutch_key_; }
   const core::Sculptor& sculptor() const { return *sculptor_; }
+  /// The tool rotation caches' counts over the loop's life (every volume's
+  /// sculptor; bytes and entries: those held now).
+  core::RotatedToolCacheStats rotation_cache_stats() const;
   const SheetEditor& sheet() const { return sheet_; }
   /// Why the last sheet command or grab did nothing (empty if it worked).
   const std::string& sheet_problem() const { return sheet_problem_; }
@@ -115,6 +118,8 @@ class StationLoop {
   void new_volume(glm::ivec3 dims, uint8_t fill, int clay_margin);
   void apply_tool();
   core::SculptorOptions sculptor_options() const;
+  // Drops the sculptor, keeping its rotation cache counts.
+  void retire_sculptor();
   void reset_sampler();
   void move_tool(const float* values, bool keep_stroke);
   void press();
@@ -133,6 +138,8 @@ class StationLoop {
   uint64_t volume_generation_ = 0;
   uint64_t tool_version_ = 0;
   std::unique_ptr<core::Sculptor> sculptor_;
+  // The rotation cache counts of the sculptors new volumes replaced.
+  core::RotatedToolCacheStats retired_cache_stats_;
   core::Tool tool_;  // what the sculptor holds, kept for drawing
   core::MeshCache mesh_;
   hal::PoseIntegrator integrator_;
