@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -59,6 +60,27 @@ std::vector<core::StrokeSample> stroke_samples(const SweepOp& op) {
 }
 
 struct StampOptions {
+// A brush line's stroke (the ball brushes need no tool): the voxels changed.
+int64_t apply_brush(core::Volume& volume, core::Sculptor& sculptor, const BrushOp& op) {
+  return std::visit(
+      [&](const auto& o) -> int64_t {
+        using O = std::decay_t<decltype(o)>;
+        if constexpr (std::is_same_v<O, core::SmoothBrushOptions>)
+          return core::smooth_stroke(volume, sculptor, op.path, o);
+        else if constexpr (std::is_same_v<O, core::ClayBrushOptions>)
+          return core::clay_stroke(volume, sculptor, op.path, o);
+        else if constexpr (std::is_same_v<O, core::FlattenBrushOptions>)
+          return core::flatten_stroke(volume, sculptor, op.path, o);
+        else if constexpr (std::is_same_v<O, core::InflateBrushOptions>)
+          return core::inflate_stroke(volume, sculptor, op.path, o);
+        else if constexpr (std::is_same_v<O, core::PinchBrushOptions>)
+          return core::pinch_stroke(volume, sculptor, op.path, o);
+        else
+          return core::grab_stroke(volume, sculptor, op.path, o);
+      },
+      op.options);
+}
+
   std::string input;
   std::vector<int> new_dims;
   std::string dabs;
@@ -94,6 +116,8 @@ int run_stamp(const StampOptions& o) {
   int strokes = 0;
   int64_t stroke_samples_total = 0;
   // The tools the script saves and the volume appear together, or none of
+  int brushes = 0;
+  int64_t brush_voxels = 0;
   // them if a later line fails.
   OutputSet outputs;
   const auto t0 = std::chrono::steady_clock::now();
@@ -142,6 +166,9 @@ int run_stamp(const StampOptions& o) {
       total += sculptor.dab(*d);
       ++dabs;
     } else if (auto* sw = std::get_if<SweepOp>(&op)) {
+    } else if (auto* b = std::get_if<BrushOp>(&op)) {
+      brush_voxels += apply_brush(*volume, sculptor, *b);
+      ++brushes;
       if (!tool) return report(Error("stroke before any tool").in(where));
       const std::vector<core::StrokeSample> samples = stroke_samples(*sw);
       total += core::sweep_stroke(sculptor, samples, sw->options);
@@ -165,6 +192,10 @@ int run_stamp(const StampOptions& o) {
                 static_cast<long long>(stroke_samples_total));
   }
   std::printf("time: decode %.2f ms, rotate on contact + combine %.2f ms, re-encode %.2f ms\n",
+  if (brushes > 0) {
+    std::printf("%d brush strokes: %lld voxels changed\n", brushes,
+                static_cast<long long>(brush_voxels));
+  }
               static_cast<double>(total.decode_ns) * 1e-6,
               static_cast<double>(total.apply_ns) * 1e-6,
               static_cast<double>(total.encode_ns) * 1e-6);

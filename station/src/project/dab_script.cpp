@@ -3,6 +3,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
+#include <type_traits>
+#include <utility>
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/vector_relational.hpp>
@@ -79,30 +82,42 @@ Status check_point(const double* p, glm::ivec3 dims, const std::string& what) {
   return {};
 }
 
-Result<Op> parse_stroke(const json& j, glm::ivec3 dims) {
-  SweepOp s;
-  const std::string bad_path = "stroke: 'path' must be a non-empty array of [x, y, z] points";
+// The "path" of a stroke or brush line `op`: 1 to kMaxStrokePoints points,
+// each checked by check_point().
+Result<std::vector<core::StrokeSample>> read_path(const json& j, glm::ivec3 dims,
+                                                  const std::string& op) {
+  const std::string bad_path = op + ": 'path' must be a non-empty array of [x, y, z] points";
   if (!j.contains("path") || !j["path"].is_array() || j["path"].empty()) return Error(bad_path);
   const json& path = j["path"];
   if (path.size() > kMaxStrokePoints) {
-    return Error("stroke: 'path' has more than " + std::to_string(kMaxStrokePoints) + " points");
+    return Error(op + ": 'path' has more than " + std::to_string(kMaxStrokePoints) + " points");
   }
+  std::vector<core::StrokeSample> out;
   for (size_t i = 0; i < path.size(); ++i) {
     const json& p = path[i];
     if (!p.is_array() || p.size() != 3) return Error(bad_path);
     double v[3];
     for (int a = 0; a < 3; ++a) {
       if (!p[a].is_number() || !std::isfinite(p[a].get<double>())) {
-        return Error("stroke: 'path' point " + std::to_string(i) + " must be 3 finite numbers");
+        return Error(op + ": 'path' point " + std::to_string(i) + " must be 3 finite numbers");
       }
       v[a] = p[a].get<double>();
     }
     if (Status st = check_point(v, dims, "'path' point " + std::to_string(i)); !st)
-      return st.error().in("stroke");
+      return st.error().in(op);
     core::StrokeSample sample;
     sample.position_vox = glm::vec3(v[0], v[1], v[2]);
-    s.path.push_back(sample);
+    out.push_back(sample);
   }
+  return out;
+}
+
+Result<Op> parse_stroke(const json& j, glm::ivec3 dims) {
+  SweepOp s;
+  auto read = read_path(j, dims, "stroke");
+  if (!read) return read.error();
+  s.path = std::move(read.value());
+  const json& path = j["path"];
   if (j.contains("quats")) {
     const json& quats = j["quats"];
     if (!quats.is_array() || quats.size() != path.size())
@@ -154,6 +169,54 @@ Result<Op> parse_stroke(const json& j, glm::ivec3 dims) {
     s.spacing_vox = *sp;
   }
   return Op{std::move(s)};
+}
+
+// A ball brush's line: "op" `name`, its "path", and the keys that set its
+// options (`keys`, each read by `set` as a finite number, "passes" as a
+// whole one), any other key refused; then the brush's own check.
+template <class Options>
+Result<Op> parse_brush(const json& j, glm::ivec3 dims, const std::string& name,
+                       std::initializer_list<std::pair<const char*, float Options::*>> keys,
+                       Status (*check)(const Options&)) {
+  BrushOp b;
+  auto path = read_path(j, dims, name);
+  if (!path) return path.error();
+  b.path = std::move(path.value());
+  Options o;
+  for (const auto& item : j.items()) {
+    const std::string& key = item.key();
+    const json& value = item.value();
+    if (key == "op" || key == "path") continue;
+    if constexpr (std::is_same_v<Options, core::SmoothBrushOptions>) {
+      if (key == "passes") {
+        const std::string range = "[1, " + std::to_string(core::kMaxSmoothPasses) + "]";
+        if (!value.is_number_integer() || value.get<int64_t>() < 1 ||
+            value.get<int64_t>() > core::kMaxSmoothPasses)
+          return Error(name + ": 'passes' must be a whole number in " + range + ", got " +
+                       value.dump());
+        o.passes = value.get<int>();
+        continue;
+      }
+    }
+    bool known = false;
+    for (const auto& [k, member] : keys) {
+      if (key != k) continue;
+      auto v = number(j, k);
+      if (!v) return v.error().in(name);
+      o.*member = static_cast<float>(*v);
+      known = true;
+    }
+    if (!known) {
+      std::string allowed = "op, path";
+      for (const auto& [k, member] : keys)
+        allowed += std::string(", ") + k;
+      if constexpr (std::is_same_v<Options, core::SmoothBrushOptions>) allowed += ", passes";
+      return Error(name + ": unknown key '" + key + "' (" + allowed + ")");
+    }
+  }
+  if (Status st = check(o); !st) return st.error().in(name);
+  b.options = o;
+  return Op{std::move(b)};
 }
 
 Result<Op> parse_op(const json& j, glm::ivec3 dims) {
@@ -249,6 +312,46 @@ Result<Op> parse_op(const json& j, glm::ivec3 dims) {
   if (op == "begin" || op == "end") return Op{StrokeOp{op == "begin"}};
   if (op == "undo" || op == "redo") return Op{UndoOp{op == "redo"}};
   if (op == "stroke") return parse_stroke(j, dims);
+  using core::ClayBrushOptions, core::FlattenBrushOptions, core::GrabBrushOptions,
+      core::InflateBrushOptions, core::PinchBrushOptions, core::SmoothBrushOptions;
+  if (op == "smooth")
+    return parse_brush<SmoothBrushOptions>(j, dims, op,
+                                           {{"radius", &SmoothBrushOptions::radius_vox},
+                                            {"hardness", &SmoothBrushOptions::hardness},
+                                            {"strength", &SmoothBrushOptions::strength}},
+                                           core::check_smooth_brush);
+  if (op == "clay")
+    return parse_brush<ClayBrushOptions>(j, dims, op,
+                                         {{"radius", &ClayBrushOptions::radius_vox},
+                                          {"hardness", &ClayBrushOptions::hardness},
+                                          {"strength", &ClayBrushOptions::strength},
+                                          {"layer", &ClayBrushOptions::layer}},
+                                         core::check_clay_brush);
+  if (op == "flatten")
+    return parse_brush<FlattenBrushOptions>(j, dims, op,
+                                            {{"radius", &FlattenBrushOptions::radius_vox},
+                                             {"hardness", &FlattenBrushOptions::hardness},
+                                             {"strength", &FlattenBrushOptions::strength}},
+                                            core::check_flatten_brush);
+  if (op == "inflate")
+    return parse_brush<InflateBrushOptions>(j, dims, op,
+                                            {{"radius", &InflateBrushOptions::radius_vox},
+                                             {"hardness", &InflateBrushOptions::hardness},
+                                             {"strength", &InflateBrushOptions::strength},
+                                             {"distance", &InflateBrushOptions::distance_vox}},
+                                            core::check_inflate_brush);
+  if (op == "pinch")
+    return parse_brush<PinchBrushOptions>(j, dims, op,
+                                          {{"radius", &PinchBrushOptions::radius_vox},
+                                           {"hardness", &PinchBrushOptions::hardness},
+                                           {"strength", &PinchBrushOptions::strength}},
+                                          core::check_pinch_brush);
+  if (op == "grab")
+    return parse_brush<GrabBrushOptions>(j, dims, op,
+                                         {{"radius", &GrabBrushOptions::radius_vox},
+                                          {"hardness", &GrabBrushOptions::hardness},
+                                          {"strength", &GrabBrushOptions::strength}},
+                                         core::check_grab_brush);
   if (op == "dab") {
     core::Dab d;
     auto at = numbers(j, "at", 3);

@@ -6,10 +6,18 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <span>
 
 #include "run_sculpt.h"
 #include "sculpt/core/io/nrrd.h"
+#include "sculpt/core/sculpt/clay_brush.h"
+#include "sculpt/core/sculpt/flatten_brush.h"
+#include "sculpt/core/sculpt/grab_brush.h"
+#include "sculpt/core/sculpt/inflate_brush.h"
+#include "sculpt/core/sculpt/pinch_brush.h"
+#include "sculpt/core/sculpt/smooth_brush.h"
 #include "sculpt/core/sculpt/stroke.h"
 
 namespace sculpt::station::test {
@@ -170,6 +178,84 @@ TEST_F(ToolCommandsTest, BadStrokeOrHardnessIsNamedAndNothingIsWritten) {
     EXPECT_EQ(r.exit_code, 1) << bad;
     EXPECT_EQ(line_count(r.err), 1) << r.err;
     EXPECT_NE(r.err.find("bad.jsonl:3: "), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "o.nrrd"));
+  }
+}
+
+// Each ball brush op runs the core's brush: the volume is the one the
+// brush function makes from the same ball with the same options.
+TEST_F(ToolCommandsTest, StampBrushOpsAreTheCoreBrushes) {
+  using namespace sculpt::core;  // NOLINT(google-build-using-namespace)
+  using Apply = std::function<int64_t(Volume&, Sculptor&, std::span<const StrokeSample>)>;
+  SmoothBrushOptions smooth;
+  smooth.radius_vox = 6.0f;
+  smooth.passes = 3;
+  ClayBrushOptions clay;
+  clay.layer = 0.3f;
+  InflateBrushOptions inflate;
+  inflate.radius_vox = 10.0f;
+  inflate.distance_vox = 1.5f;
+  PinchBrushOptions pinch;
+  pinch.strength = 0.7f;
+  GrabBrushOptions grab;
+  grab.radius_vox = 10.0f;
+  const std::vector<std::pair<std::string, Apply>> ops = {
+      {R"({"op":"smooth","path":[[32,32,44],[40,32,42]],"radius":6,"passes":3})",
+       [&](Volume& v, Sculptor& s, auto p) { return smooth_stroke(v, s, p, smooth); }},
+      {R"({"op":"clay","path":[[32,32,44],[40,32,42]],"layer":0.3})",
+       [&](Volume& v, Sculptor& s, auto p) { return clay_stroke(v, s, p, clay); }},
+      {R"({"op":"flatten","path":[[32,32,44],[40,32,42]]})",
+       [&](Volume& v, Sculptor& s, auto p) { return flatten_stroke(v, s, p, {}); }},
+      {R"({"op":"inflate","path":[[32,32,44],[40,32,42]],"radius":10,"distance":1.5})",
+       [&](Volume& v, Sculptor& s, auto p) { return inflate_stroke(v, s, p, inflate); }},
+      {R"({"op":"pinch","path":[[32,32,44],[40,32,42]],"strength":0.7})",
+       [&](Volume& v, Sculptor& s, auto p) { return pinch_stroke(v, s, p, pinch); }},
+      {R"({"op":"grab","path":[[32,32,44],[40,32,42]],"radius":10})",
+       [&](Volume& v, Sculptor& s, auto p) { return grab_stroke(v, s, p, grab); }},
+  };
+  const std::vector<StrokeSample> samples = {{{32.0f, 32.0f, 44.0f}, {}},
+                                             {{40.0f, 32.0f, 42.0f}, {}}};
+  for (const auto& [line, apply] : ops) {
+    std::ofstream(dir_ / "brush.jsonl") << R"({"op":"tool","shape":"sphere","radius":12})"
+                                           "\n"
+                                        << R"({"op":"dab","at":[32,32,32]})"
+                                           "\n"
+                                        << line << "\n";
+    const CommandResult r = run_sculpt("stamp --new 64,64,64 --dabs " + path("brush.jsonl") +
+                                       " -o " + path("brush.nrrd"));
+    ASSERT_EQ(r.exit_code, 0) << line << r.err;
+    EXPECT_NE(r.out.find("1 brush strokes: "), std::string::npos) << r.out;
+    const auto stamped = read_nrrd_u8(path("brush.nrrd"));
+    ASSERT_TRUE(stamped.ok());
+    Volume v(glm::ivec3(64), uint8_t{0});
+    Sculptor sculptor(v);
+    sculptor.set_tool(make_sphere_tool(12.0f));
+    (void)sculptor.dab({{32.0f, 32.0f, 32.0f}, {}, SculptMode::kAdd, 1.0f});
+    const uint64_t before = v.content_hash();
+    EXPECT_GT(apply(v, sculptor, samples), 0) << line;
+    EXPECT_NE(v.content_hash(), before) << line;
+    EXPECT_EQ(stamped->values(), v.to_dense().values()) << line;
+  }
+}
+
+TEST_F(ToolCommandsTest, BadBrushKeyOrValueIsNamedAndNothingIsWritten) {
+  const std::pair<const char*, const char*> bad[] = {
+      {R"({"op":"smooth","path":[[1,2,3]],"passes":0})", "smooth: 'passes'"},
+      {R"({"op":"clay","path":[[1,2,3]],"strenght":1})", "clay: unknown key 'strenght'"},
+      {R"({"op":"flatten","path":[[1,2,3]],"hardness":7})", "flatten: 'hardness'"},
+      {R"({"op":"inflate","path":[[1,2,3]],"distance":0})", "inflate: 'distance'"},
+      {R"({"op":"pinch","path":[[1,2,3]],"radius":"big"})", "pinch: 'radius'"},
+      {R"({"op":"grab","path":[]})", "grab: 'path'"},
+  };
+  for (const auto& [line, message] : bad) {
+    std::ofstream(dir_ / "bad.jsonl") << R"({"op":"tool","shape":"sphere","radius":4})"
+                                         "\n"
+                                      << line << "\n";
+    const CommandResult r =
+        run_sculpt("stamp --new 32,32,32 --dabs " + path("bad.jsonl") + " -o " + path("o.nrrd"));
+    EXPECT_EQ(r.exit_code, 1) << line;
+    EXPECT_EQ(line_count(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(std::string("bad.jsonl:2: ") + message), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "o.nrrd"));
   }
 }

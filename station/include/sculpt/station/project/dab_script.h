@@ -23,6 +23,11 @@
 //        "spacing" (voxels: the station's stroke sampler re-places the
 //        samples along the path that far apart, as live input's) and
 //        "accumulate" (true: the stroke builds up where it overlaps itself)
+//   {"op":"clay","path":[[x,y,z],...],"radius":8,"hardness":0.5,"strength":1}
+//        a ball brush (core/sculpt/*_brush.h) swept through the path: smooth
+//        ("passes"), clay ("layer"), flatten, inflate ("distance"), pinch,
+//        grab; every key but "op" and "path" optional (the brush's
+//        defaults), any other key refused
 // Every tool takes an optional "hardness" in [0, 1] (default 1, the hard
 // edge; 0 a smooth bump: core::tool_density()).
 // Every field is checked where it is read (docs/formats.md lists the
@@ -39,7 +44,13 @@
 
 #include "sculpt/base/result.h"
 #include "sculpt/core/grid/box.h"
+#include "sculpt/core/sculpt/clay_brush.h"
+#include "sculpt/core/sculpt/flatten_brush.h"
+#include "sculpt/core/sculpt/grab_brush.h"
+#include "sculpt/core/sculpt/inflate_brush.h"
+#include "sculpt/core/sculpt/pinch_brush.h"
 #include "sculpt/core/sculpt/sculptor.h"
+#include "sculpt/core/sculpt/smooth_brush.h"
 #include "sculpt/core/sculpt/stroke.h"
 #include "sculpt/core/tool/tool_rotation.h"
 #include "sculpt/sim/session/command_limits.h"
@@ -90,8 +101,16 @@ struct SweepOp {
   core::StrokeOptions options;
   double spacing_vox = 0.0;
 };
-using Op =
-    std::variant<ToolOp, SaveToolOp, SamplingOp, MirrorOp, StrokeOp, core::Dab, UndoOp, SweepOp>;
+/// A ball brush's stroke: its path (positions only) and the brush, named by
+/// its options' type.
+struct BrushOp {
+  std::vector<core::StrokeSample> path;
+  std::variant<core::SmoothBrushOptions, core::ClayBrushOptions, core::FlattenBrushOptions,
+               core::InflateBrushOptions, core::PinchBrushOptions, core::GrabBrushOptions>
+      options;
+};
+using Op = std::variant<ToolOp, SaveToolOp, SamplingOp, MirrorOp, StrokeOp, core::Dab, UndoOp,
+                        SweepOp, BrushOp>;
 
 /// One operation and the script line it came from (1-based).
 struct Line {
