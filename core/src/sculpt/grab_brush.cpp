@@ -25,6 +25,9 @@ namespace {
 
 // Fixed-point rounds per step: each step contracts the error by 1/2 or more.
 constexpr int kInverseRounds = 12;
+// Most steps: each voxel costs steps x rounds falloff evaluations, and a
+// drag needing more (over 170 voxels with a hard ball) is not one gesture.
+constexpr int kMaxSteps = 256;
 
 }  // namespace
 
@@ -48,7 +51,8 @@ int64_t grab_stroke(Volume& volume, Sculptor& sculptor, std::span<const StrokeSa
   // over 2 + (1 - hardness)(radius - 1) voxels.
   const float taper = 2.0f + (1.0f - o.hardness) * std::max(0.0f, o.radius_vox - 1.0f);
   const float slope = o.strength * 1.5f / taper;
-  const int steps = std::max(1, static_cast<int>(std::ceil(length * slope / 0.5f)));
+  const int steps =
+      std::clamp(static_cast<int>(std::ceil(std::min(length * slope / 0.5f, 1e6f))), 1, kMaxSteps);
   const glm::vec3 step = displacement / static_cast<float>(steps);
   return brush::write(volume, sculptor, before, region, ends, ball,
                       [&](glm::ivec3 v, float, float) {

@@ -142,7 +142,7 @@ Result<Op> parse_stroke(const json& j, glm::ivec3 dims) {
   const auto m = core::parse_sculpt_mode(*mode_text);
   if (!m || *m == core::SculptMode::kSmooth) {
     return Error("stroke: unknown mode '" + *mode_text +
-                 "' (add, subtract, union, difference; smoothing is done by dabs)");
+                 "' (add, subtract, union, difference; to smooth, the \"smooth\" op)");
   }
   s.options.mode = *m;
   if (j.contains("strength")) {

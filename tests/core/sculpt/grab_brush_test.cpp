@@ -71,6 +71,25 @@ TEST(GrabBrush, TheBumpMovesByTheDisplacementKeepingItsVolume) {
   EXPECT_EQ(v.content_hash(), before);
 }
 
+// A hard ball (its falloff drops over 2 voxels) dragged 14 voxels: 21 steps,
+// and the bump under its core arrives whole.
+TEST(GrabBrush, ALongDragWithAHardBallKeepsTheBump) {
+  DenseGrid<uint8_t> slab_only;
+  Volume v = slab_with_bump(slab_only);
+  const Bump b0 = bump(v, slab_only);
+  Sculptor s(v);
+  GrabBrushOptions o;
+  o.radius_vox = 16.0f;
+  o.hardness = 1.0f;
+  const auto path = test::line_path({24.0f, 32.0f, kTop + 1.0f}, {38.0f, 32.0f, kTop + 1.0f});
+  EXPECT_GT(grab_stroke(v, s, path, o), 100);
+  const Bump b1 = bump(v, slab_only);
+  std::printf("grab, hard: centroid moved %.3f, bump volume %.2f -> %.2f\n",
+              b1.centroid.x - b0.centroid.x, b0.mass, b1.mass);
+  EXPECT_NEAR(b1.centroid.x - b0.centroid.x, 14.0, 0.2);
+  EXPECT_NEAR(b1.mass, b0.mass, 0.02 * b0.mass);
+}
+
 TEST(GrabBrush, AStillPathChangesNothing) {
   DenseGrid<uint8_t> slab_only;
   Volume v = slab_with_bump(slab_only);

@@ -8,7 +8,9 @@
 // it from (each step's inverse solved by fixed-point iteration, starting at
 // x - w(x) D / n, trilinear sampling). n is the least that keeps each step
 // from folding (|D| / n times the falloff's steepest slope <= 1/2), so a
-// long drag stays a smooth, invertible warp. Material within the ball's
+// long drag stays a smooth, invertible warp (up to 256 steps: a longer drag,
+// over 170 voxels for a hard ball, takes longer steps and may fold). Cost:
+// the capsule's voxels times the steps. Material within the ball's
 // full-weight core moves rigidly, so a bump there keeps its volume.
 // Measured (tests/core/sculpt/grab_brush_test.cpp): a bump of radius 3 on a
 // slab dragged by (7.5, 2.5, 0) voxels with a ball of radius 16 moves its
