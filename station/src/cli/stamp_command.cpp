@@ -59,7 +59,6 @@ std::vector<core::StrokeSample> stroke_samples(const SweepOp& op) {
   return out;
 }
 
-struct StampOptions {
 // A brush line's stroke (the ball brushes need no tool): the voxels changed.
 int64_t apply_brush(core::Volume& volume, core::Sculptor& sculptor, const BrushOp& op) {
   return std::visit(
@@ -81,6 +80,7 @@ int64_t apply_brush(core::Volume& volume, core::Sculptor& sculptor, const BrushO
       op.options);
 }
 
+struct StampOptions {
   std::string input;
   std::vector<int> new_dims;
   std::string dabs;
@@ -115,9 +115,9 @@ int run_stamp(const StampOptions& o) {
   int dabs = 0;
   int strokes = 0;
   int64_t stroke_samples_total = 0;
-  // The tools the script saves and the volume appear together, or none of
   int brushes = 0;
   int64_t brush_voxels = 0;
+  // The tools the script saves and the volume appear together, or none of
   // them if a later line fails.
   OutputSet outputs;
   const auto t0 = std::chrono::steady_clock::now();
@@ -165,10 +165,10 @@ int run_stamp(const StampOptions& o) {
       if (!tool) return report(Error("dab before any tool").in(where));
       total += sculptor.dab(*d);
       ++dabs;
-    } else if (auto* sw = std::get_if<SweepOp>(&op)) {
     } else if (auto* b = std::get_if<BrushOp>(&op)) {
       brush_voxels += apply_brush(*volume, sculptor, *b);
       ++brushes;
+    } else if (auto* sw = std::get_if<SweepOp>(&op)) {
       if (!tool) return report(Error("stroke before any tool").in(where));
       const std::vector<core::StrokeSample> samples = stroke_samples(*sw);
       total += core::sweep_stroke(sculptor, samples, sw->options);
@@ -191,11 +191,11 @@ int run_stamp(const StampOptions& o) {
     std::printf("%d swept strokes through %lld samples\n", strokes,
                 static_cast<long long>(stroke_samples_total));
   }
-  std::printf("time: decode %.2f ms, rotate on contact + combine %.2f ms, re-encode %.2f ms\n",
   if (brushes > 0) {
     std::printf("%d brush strokes: %lld voxels changed\n", brushes,
                 static_cast<long long>(brush_voxels));
   }
+  std::printf("time: decode %.2f ms, rotate on contact + combine %.2f ms, re-encode %.2f ms\n",
               static_cast<double>(total.decode_ns) * 1e-6,
               static_cast<double>(total.apply_ns) * 1e-6,
               static_cast<double>(total.encode_ns) * 1e-6);
