@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <glm/common.hpp>
@@ -19,12 +20,11 @@
 namespace sculpt::core::brush {
 namespace {
 
-float segment_distance(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3& closest) {
+glm::vec3 segment_closest(glm::vec3 p, glm::vec3 a, glm::vec3 b) {
   const glm::vec3 ab = b - a;
   const float ab2 = glm::dot(ab, ab);
   const float t = ab2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / ab2, 0.0f, 1.0f) : 0.0f;
-  closest = a + t * ab;
-  return glm::length(p - closest);
+  return a + t * ab;
 }
 
 // One [1 2 1] / 4 pass along `axis` over g, edges clamped.
@@ -71,20 +71,46 @@ Status check_ball(const Ball& ball) {
   return check_range("strength", ball.strength, 0.0, 1.0);
 }
 
-float path_distance(glm::vec3 p, std::span<const StrokeSample> path, glm::vec3* closest) {
+PathDistance::PathDistance(std::span<const StrokeSample> path, const Box& box, float reach)
+    : path_(path),
+      box_(box),
+      distance_(box.size(), std::numeric_limits<float>::infinity()),
+      segment_(box.size(), 0) {
   assert(!path.empty());
-  glm::vec3 best = path[0].position_vox;
-  float dist = glm::length(p - best);
-  for (size_t i = 1; i < path.size(); ++i) {
-    glm::vec3 c;
-    const float d = segment_distance(p, path[i - 1].position_vox, path[i].position_vox, c);
-    if (d < dist) {
-      dist = d;
-      best = c;
-    }
+  // The first point, then each segment, a voxel taking a segment only when
+  // strictly nearer: the nearest point is the first of the path's nearest.
+  for (size_t i = 0; i < path.size(); ++i) {
+    const glm::vec3 a = path[i == 0 ? 0 : i - 1].position_vox;
+    const glm::vec3 b = path[i].position_vox;
+    const Box reached = intersect(Box{glm::ivec3(glm::floor(glm::min(a, b) - reach)),
+                                      glm::ivec3(glm::ceil(glm::max(a, b) + reach)) + 1},
+                                  box_);
+    for (int z = reached.lo.z; z < reached.hi.z; ++z)
+      for (int y = reached.lo.y; y < reached.hi.y; ++y)
+        for (int x = reached.lo.x; x < reached.hi.x; ++x) {
+          const glm::vec3 p(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
+          const float d = glm::length(p - segment_closest(p, a, b));
+          if (d >= reach) continue;
+          const glm::ivec3 q = glm::ivec3(x, y, z) - box_.lo;
+          const size_t k = distance_.index(q.x, q.y, q.z);
+          if (d < distance_[k]) {
+            distance_[k] = d;
+            segment_[k] = static_cast<int32_t>(i);
+          }
+        }
   }
-  if (closest != nullptr) *closest = best;
-  return dist;
+}
+
+float PathDistance::at(glm::ivec3 v) const {
+  const glm::ivec3 q = v - box_.lo;
+  return distance_.at(q.x, q.y, q.z);
+}
+
+glm::vec3 PathDistance::closest(glm::ivec3 v) const {
+  const glm::ivec3 q = v - box_.lo;
+  const auto i = static_cast<size_t>(segment_.at(q.x, q.y, q.z));
+  return segment_closest(glm::vec3(v), path_[i == 0 ? 0 : i - 1].position_vox,
+                         path_[i].position_vox);
 }
 
 Box path_box(std::span<const StrokeSample> path, float reach) {
@@ -139,6 +165,7 @@ float Plane::density(glm::ivec3 v) const {
 bool fit_plane(const Field& field, std::span<const StrokeSample> path, const Ball& ball,
                Plane& plane) {
   const Box region = intersect(path_box(path, ball.reach()), field.box());
+  const PathDistance distance(path, region, ball.reach());
   glm::dvec3 normal(0.0), centroid(0.0);
   double mass = 0.0;
   for (int z = region.lo.z; z < region.hi.z; ++z)
@@ -147,7 +174,7 @@ bool fit_plane(const Field& field, std::span<const StrokeSample> path, const Bal
         const glm::vec3 p(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
         // The plane's fit ignores the strength: a weak stroke flattens
         // toward the same plane, less far.
-        const float d = path_distance(p, path);
+        const float d = distance.at(glm::ivec3(x, y, z));
         if (d >= ball.reach()) continue;
         const float w = tool_density(d - ball.radius_vox, ball.radius_vox, ball.hardness) / 255.0f;
         const glm::vec3 g = field.gradient(p);
@@ -165,20 +192,23 @@ bool fit_plane(const Field& field, std::span<const StrokeSample> path, const Bal
 
 int64_t write(Volume& volume, Sculptor& sculptor, const Field& before, const Box& region,
               std::span<const StrokeSample> path, const Ball& ball,
-              const std::function<float(glm::ivec3 v, float w, float d)>& value) {
+              const std::function<float(glm::ivec3 v, float w, glm::vec3 c)>& value) {
   assert(&sculptor.volume() == &volume);
   if (region.empty()) return 0;
+  const PathDistance distance(path, region, ball.reach());
   DenseGrid<uint8_t> out = volume.read(region, 0);
   int64_t changed = 0;
   for (int z = region.lo.z; z < region.hi.z; ++z)
     for (int y = region.lo.y; y < region.hi.y; ++y)
       for (int x = region.lo.x; x < region.hi.x; ++x) {
         const glm::ivec3 v(x, y, z);
-        const float d = path_distance(glm::vec3(v), path);
+        const float d = distance.at(v);
+        if (d >= ball.reach()) continue;
         const float w = ball.weight(d);
         if (w <= 0.0f) continue;
         const float m = before.at(v);
-        const auto r = static_cast<uint8_t>(std::clamp(std::round(value(v, w, d)), 0.0f, 255.0f));
+        const auto r = static_cast<uint8_t>(
+            std::clamp(std::round(value(v, w, distance.closest(v))), 0.0f, 255.0f));
         if (r == static_cast<uint8_t>(m)) continue;
         ++changed;
         const glm::ivec3 q = v - region.lo;

@@ -42,9 +42,27 @@ Status check_range(const char* key, double value, double lo, double hi);
 /// A length in voxels: `value` in (0, hi], else an error naming `key`.
 Status check_positive(const char* key, double value, double hi);
 
-/// Distance from p to the polyline of the path's positions (a single
-/// sample: its point); `closest`, if given, receives the nearest point.
-float path_distance(glm::vec3 p, std::span<const StrokeSample> path, glm::vec3* closest = nullptr);
+/// The distance from each voxel of a box to the polyline of the path's
+/// positions (a single sample: its point), where it is below `reach`, and
+/// the nearest point of the path. Each segment measures only the voxels
+/// within reach of it, so a long path costs its length, not the box's
+/// voxels times its segments.
+class PathDistance {
+ public:
+  /// The path (at least one sample) is kept by reference.
+  PathDistance(std::span<const StrokeSample> path, const Box& box, float reach);
+  /// Distance from voxel v of the box to the path; infinity where no part
+  /// of the path comes within reach.
+  float at(glm::ivec3 v) const;
+  /// The path's nearest point to v (v within reach).
+  glm::vec3 closest(glm::ivec3 v) const;
+
+ private:
+  std::span<const StrokeSample> path_;
+  Box box_;
+  DenseGrid<float> distance_;
+  DenseGrid<int32_t> segment_;  // the nearest segment, ending at that sample; 0: the first point
+};
 
 /// A box holding every voxel within `reach` of the path's positions (not
 /// clipped).
@@ -96,12 +114,12 @@ bool fit_plane(const Field& field, std::span<const StrokeSample> path, const Bal
                Plane& plane);
 
 /// Writes, for every voxel of `region` the ball swept through `path` weighs
-/// (weight w > 0 at its distance d to the path), round(value(v, w, d))
+/// (weight w > 0; c the path's nearest point), round(value(v, w, c))
 /// clamped to 0..255, as one undo step of `sculptor` (its volume is
 /// `volume`, asserted). `before` holds region's material. Returns the voxels
 /// changed (0: nothing written, no undo step).
 int64_t write(Volume& volume, Sculptor& sculptor, const Field& before, const Box& region,
               std::span<const StrokeSample> path, const Ball& ball,
-              const std::function<float(glm::ivec3 v, float w, float d)>& value);
+              const std::function<float(glm::ivec3 v, float w, glm::vec3 c)>& value);
 
 }  // namespace sculpt::core::brush

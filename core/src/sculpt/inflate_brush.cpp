@@ -34,7 +34,7 @@ int64_t inflate_stroke(Volume& volume, Sculptor& sculptor, std::span<const Strok
   brush::Field blurred = before;
   brush::blur(blurred.grid(), passes);
   return brush::write(volume, sculptor, before, region, path, ball,
-                      [&](glm::ivec3 v, float w, float) {
+                      [&](glm::ivec3 v, float w, glm::vec3) {
                         const glm::vec3 p(v);
                         const glm::vec3 g = blurred.gradient(p);
                         const float len = glm::length(g);

@@ -24,11 +24,8 @@ int64_t pinch_stroke(Volume& volume, Sculptor& sculptor, std::span<const StrokeS
   // A voxel at the reach reads up to twice as far from the path.
   const brush::Field before(volume, region, static_cast<int>(std::ceil(ball.reach())) + 2);
   return brush::write(volume, sculptor, before, region, path, ball,
-                      [&](glm::ivec3 v, float w, float) {
-                        const glm::vec3 p(v);
-                        glm::vec3 c;
-                        (void)brush::path_distance(p, path, &c);
-                        return before.sample(c + (1.0f + w) * (p - c));
+                      [&](glm::ivec3 v, float w, glm::vec3 c) {
+                        return before.sample(c + (1.0f + w) * (glm::vec3(v) - c));
                       });
 }
 

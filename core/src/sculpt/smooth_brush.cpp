@@ -32,7 +32,7 @@ int64_t smooth_stroke(Volume& volume, Sculptor& sculptor, std::span<const Stroke
   brush::Field blurred = before;
   brush::blur(blurred.grid(), o.passes);
   return brush::write(volume, sculptor, before, region, path, ball,
-                      [&](glm::ivec3 v, float w, float) {
+                      [&](glm::ivec3 v, float w, glm::vec3) {
                         const float m = before.at(v);
                         return m + w * (blurred.at(v) - m);
                       });

@@ -15,8 +15,9 @@
 // kept within 0.01% (tests/core/sculpt/smooth_brush_test.cpp).
 //
 // One undo step through Sculptor::external_edit(). Not yet: the sculptor's
-// mirror plane, the station's brush panel. Cost grows with the region times
-// the path's segments (each voxel measures its distance to every segment).
+// mirror plane, the station's brush panel. Each segment of the path measures
+// the distance of the voxels within its reach only, so the cost grows with
+// the path's length times the ball's cross-section.
 
 #include <cstdint>
 #include <span>
