@@ -8,16 +8,18 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
   zlib1g-dev libbz2-dev libglm-dev libeigen3-dev libmeshoptimizer-dev
+  libopenvdb-dev libboost-iostreams-dev
   libhidapi-dev libusb-1.0-0-dev libspnav-dev libopenxr-dev libopenxr-loader1
   libglfw3-dev libgl1-mesa-dri xvfb xauth
   libcli11-dev nlohmann-json3-dev libstb-dev libimgui-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
-  python3 python3-numpy python3-vtk9
+  python3 python3-numpy python3-vtk9 python3-openvdb
 )
 for arg in "$@"; do
   case "$arg" in
-    --peers) packages+=(python3-scipy python3-skimage python3-pywt python3-openvdb) ;;
-    --ci) packages+=(clang libclang-rt-14-dev) ;;
+    --peers) packages+=(python3-scipy python3-skimage python3-pywt) ;;
+    # The fuzz build links OpenVDB (core's .vdb reader): in the list above, named again here.
+    --ci) packages+=(clang libclang-rt-14-dev libopenvdb-dev libboost-iostreams-dev) ;;
     *) echo "install-deps.sh: unknown option $arg" >&2; exit 2 ;;
   esac
 done

@@ -15,6 +15,7 @@
 #include "cli/number_checks.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/morphology.h"
+#include "sculpt/core/files/volume_file.h"
 #include "sculpt/core/io/nrrd.h"
 
 namespace sculpt::station::cli {
@@ -29,7 +30,7 @@ struct CloseOptions {
 
 int run_close(const CloseOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
-  auto in = core::read_surface_nrrd(o.input);
+  auto in = core::read_surface_file(o.input);
   if (!in) return report(in.error());
   // A float output is a distance field, which does not exist without a
   // surface; a density output of an empty or solid block is that block.
@@ -58,10 +59,10 @@ void add_close_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<CloseOptions>();
   CLI::App* cmd =
       app.add_subcommand("close", "True 3D morphological closing on the distance field");
-  cmd->add_option("input", o->input, "uint8 density or float32 NRRD")
+  cmd->add_option("input", o->input, "uint8 density or float32 NRRD, or .vdb")
       ->required()
       ->check(input_file());
-  cmd->add_option("-o,--output", o->output, "output NRRD")->required();
+  cmd->add_option("-o,--output", o->output, "output volume (.nrrd or .vdb)")->required();
   cmd->add_option("--radius", o->radius, "closing radius, voxels (> 0)")
       ->required()
       ->check(finite_range(0.001f, 1024.0f));

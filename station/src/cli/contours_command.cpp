@@ -34,13 +34,14 @@ int run_contours(const ContoursOptions& o) {
   std::string ext = out.extension().string();
   for (char& c : ext)
     c = char(std::tolower(static_cast<unsigned char>(c)));
-  const bool volume_out = ext == ".nrrd";
+  const bool volume_out = ext == ".nrrd" || ext == ".vdb";
   core::MeshFormat format = core::MeshFormat::kPlyBinary;
   if (!volume_out) {
     auto f = core::mesh_format_for(out);
-    if (!f) return report(Error(o.output + ": output must be .nrrd, .ply, .obj or .stl"));
+    if (!f) return report(Error(o.output + ": output must be .nrrd, .vdb, .ply, .obj or .stl"));
     format = *f;
-    if (o.sdf) return report(Error(o.output + ": --sdf applies to .nrrd output only"));
+    if (o.sdf)
+      return report(Error(o.output + ": --sdf applies to volume output (.nrrd, .vdb) only"));
   }
   auto stack = core::read_contours(o.input);
   if (!stack) return report(stack.error());
@@ -80,8 +81,9 @@ void add_contours_command(CLI::App& app, Action& action) {
   cmd->add_option("input", o->input, "contour text file (sculpt-contours 1)")
       ->required()
       ->check(input_file());
-  cmd->add_option("-o,--output", o->output, "output: .nrrd, .ply, .obj or .stl")->required();
-  cmd->add_flag("--sdf", o->sdf, "write the float32 signed distance (.nrrd only)");
+  cmd->add_option("-o,--output", o->output, "output: .nrrd, .vdb, .ply, .obj or .stl")->required();
+  cmd->add_flag("--sdf", o->sdf,
+                "write the signed distance (.nrrd as float32, .vdb as a level set)");
   add_threads_option(cmd, o->threads);
   cmd->callback([o, &action] { action = [o] { return run_contours(*o); }; });
 }

@@ -17,6 +17,7 @@
 #include "sculpt/core/distance/distance_comparison.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/signed_distance.h"
+#include "sculpt/core/files/volume_file.h"
 #include "sculpt/core/io/nrrd.h"
 #include "sculpt/core/util/parallel_for.h"
 
@@ -85,7 +86,7 @@ int run_distance(const DistanceOptions& o) {
   if (!init) return report(init.error());
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
-  auto in = core::read_surface_nrrd(o.input);
+  auto in = core::read_surface_file(o.input);
   if (!in) return report(in.error());
   const glm::ivec3 d = in->phi.dims();
   if (*method == core::DistanceMethod::kBrute && core::voxel_count(d) > kBruteMaxVoxels)
@@ -101,7 +102,7 @@ int run_distance(const DistanceOptions& o) {
   const core::DenseGrid<float> field =
       core::compute_signed_distance(prepared, *method, *init, o.threads);
   const auto t3 = clock::now();
-  if (Status st = core::write_nrrd(o.output, field); !st) return report(st.error());
+  if (Status st = core::write_distance_file(o.output, field); !st) return report(st.error());
   float lo = 0, hi = 0;
   for (float v : field.values()) {
     lo = std::min(lo, v);
@@ -128,8 +129,10 @@ void add_distance_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<DistanceOptions>();
   CLI::App* cmd = app.add_subcommand(
       "distance", "Signed distance field of a volume's surface (float32, voxels, negative inside)");
-  cmd->add_option("input", o->input, "uint8 density or float32 NRRD volume")->check(input_file());
-  cmd->add_option("-o,--output", o->output, "output float32 NRRD");
+  cmd->add_option("input", o->input, "uint8 density or float32 NRRD, or .vdb volume")
+      ->check(input_file());
+  cmd->add_option("-o,--output", o->output,
+                  "output: float32 NRRD, or .vdb (level set and density)");
   cmd->add_option(
       "--method", o->method,
       "exact (default), brute, octree, chamfer-city, chamfer-345, chamfer-5x5x5, evdt, vcvdt");

@@ -4,6 +4,8 @@
 
 #include "cli/number_checks.h"
 #include "sculpt/core/distance/distance_io.h"
+#include "sculpt/core/files/vdb_file.h"
+#include "sculpt/core/files/volume_file.h"
 #include "sculpt/core/io/nrrd.h"
 
 namespace sculpt::station::cli {
@@ -26,6 +28,12 @@ void add_density_options(CLI::App* command, DensityOptions& options) {
 
 Result<std::optional<core::DensityWindow>> density_window(const DensityOptions& options,
                                                           const std::string& path) {
+  const bool mapping = options.window.size() == 2 || std::isfinite(options.data_iso);
+  if (mapping && core::is_vdb_path(path)) {
+    return Error(path +
+                 ": --window and --data-iso map NRRD voxels to density; a .vdb density "
+                 "needs no mapping");
+  }
   if (options.window.size() == 2) {
     if (!(options.window[1] > options.window[0])) return Error("--window: HI must be above LO");
     return std::optional(core::DensityWindow{options.window[0], options.window[1]});
@@ -44,8 +52,8 @@ CLI::Option* add_threads_option(CLI::App* command, int& threads) {
 }
 
 Status write_field(const std::string& path, const core::DenseGrid<float>& field, bool as_distance) {
-  return as_distance ? core::write_nrrd(path, field)
-                     : core::write_nrrd(path, core::density_from_distance_field(field));
+  return as_distance ? core::write_distance_file(path, field)
+                     : core::write_density_file(path, core::density_from_distance_field(field));
 }
 
 const char* field_kind(bool as_distance) {

@@ -20,6 +20,7 @@
 #include "cli/field_options.h"
 #include "cli/number_checks.h"
 #include "sculpt/base/atomic_file.h"
+#include "sculpt/core/files/volume_file.h"
 #include "sculpt/core/haptics/distance_patch.h"
 #include "sculpt/core/haptics/haptic_renderer.h"
 #include "sculpt/core/haptics/press_dab.h"
@@ -52,7 +53,7 @@ Result<core::Tool> tool_from_spec(const std::string& spec) {
   const size_t colon = spec.find(':');
   const std::string shape = spec.substr(0, colon);
   if (colon == std::string::npos) {
-    auto tool = core::read_tool_nrrd(spec);
+    auto tool = core::read_tool_file(spec);
     if (!tool) return tool.error();
     return std::move(tool).value();
   }
@@ -85,7 +86,7 @@ Result<core::Tool> tool_from_spec(const std::string& spec) {
 int run_trace(const TraceOptions& o) {
   const auto window = density_window(o.density, o.volume);
   if (!window) return report(window.error());
-  auto density = core::read_nrrd_density(o.volume, window->has_value() ? &**window : nullptr);
+  auto density = core::read_density_file(o.volume, window->has_value() ? &**window : nullptr);
   if (!density) return report(density.error());
   const Status valid = core::Volume::validate(density->dims(), {});
   if (!valid) return report(valid.error().in(o.volume));
@@ -189,7 +190,7 @@ int run_trace(const TraceOptions& o) {
   if (!out.ok()) return report(out.error());
   out.write(text);
   if (!o.carved.empty()) {
-    const Status carved = core::write_nrrd(o.carved, volume.to_dense());
+    const Status carved = core::write_density_file(o.carved, volume.to_dense());
     if (!carved) return report(carved.error());
   }
   const Status st = out.commit();
@@ -209,7 +210,7 @@ void add_haptics_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<TraceOptions>();
   CLI::App* cmd = haptics->add_subcommand(
       "trace", "Run the haptic tick along a device path and write the force at each step");
-  cmd->add_option("volume", o->volume, "density NRRD (uint8, or any type with --window)")
+  cmd->add_option("volume", o->volume, "density: NRRD (uint8, or any type with --window) or .vdb")
       ->required()
       ->check(input_file());
   add_density_options(cmd, o->density);
@@ -241,7 +242,7 @@ void add_haptics_command(CLI::App& app, Action& action) {
       ->check(finite_range(0.0, 1000.0));
   cmd->add_option("--press-depth", o->press_depth_vox_per_n, "carving depth per newton, voxels/N")
       ->check(finite_range(0.0, 100.0));
-  cmd->add_option("--carved", o->carved, "write the carved volume (uint8 NRRD)");
+  cmd->add_option("--carved", o->carved, "write the carved volume (uint8 NRRD, or .vdb)");
   cmd->callback([o, &action] { action = [o] { return run_trace(*o); }; });
 }
 

@@ -20,6 +20,7 @@
 #include "cli/field_options.h"
 #include "cli/mesh_export_options.h"
 #include "cli/number_checks.h"
+#include "sculpt/core/files/volume_file.h"
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/core/mesh/mesh_reader.h"
@@ -126,7 +127,7 @@ int run_mesh(const MeshOptions& o) {
   const auto t0 = clock::now();
   const auto window = density_window(o.density, o.input);
   if (!window) return report(window.error());
-  auto volume = core::read_volume_nrrd(o.input, vo, {}, window->has_value() ? &**window : nullptr);
+  auto volume = core::read_volume_file(o.input, vo, {}, window->has_value() ? &**window : nullptr);
   if (!volume) return report(volume.error());
   const auto t1 = clock::now();
   core::MeshCache cache(o.lod, core::MarchingCubesOptions{o.iso, o.threads});
@@ -168,9 +169,10 @@ void add_mesh_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<MeshOptions>();
   CLI::App* cmd =
       app.add_subcommand("mesh", "Iso-surface of a volume (marching cubes) to PLY, OBJ or STL");
-  cmd->add_option("input", o->input,
-                  "NRRD volume (uint8 density, or any type with --window); or a mesh (.stl, .ply, "
-                  ".obj) to --check")
+  cmd->add_option(
+         "input", o->input,
+         "NRRD (uint8 density, or any type with --window) or .vdb volume; or a mesh (.stl, .ply, "
+         ".obj) to --check")
       ->required()
       ->check(input_file());
   add_density_options(cmd, o->density);

@@ -13,6 +13,7 @@
 #include "cli/number_checks.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/morphology.h"
+#include "sculpt/core/files/volume_file.h"
 #include "sculpt/core/io/nrrd.h"
 
 namespace sculpt::station::cli {
@@ -26,7 +27,7 @@ struct OffsetOptions {
 };
 
 int run_offset(const OffsetOptions& o) {
-  auto in = core::read_surface_nrrd(o.input);
+  auto in = core::read_surface_file(o.input);
   if (!in) return report(in.error());
   // A float output is a distance field, which does not exist without a
   // surface; a density output of an empty or solid block is that block.
@@ -54,10 +55,10 @@ void add_offset_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<OffsetOptions>();
   CLI::App* cmd =
       app.add_subcommand("offset", "Inflate (D > 0) or deflate (D < 0) a surface by D voxels");
-  cmd->add_option("input", o->input, "uint8 density or float32 NRRD")
+  cmd->add_option("input", o->input, "uint8 density or float32 NRRD, or .vdb")
       ->required()
       ->check(input_file());
-  cmd->add_option("-o,--output", o->output, "output NRRD")->required();
+  cmd->add_option("-o,--output", o->output, "output volume (.nrrd or .vdb)")->required();
   cmd->add_option("--by", o->by, "offset D, voxels")
       ->required()
       ->check(finite_range(-1024.0f, 1024.0f));

@@ -16,6 +16,7 @@
 
 #include "cli/commands.h"
 #include "cli/number_checks.h"
+#include "sculpt/core/files/volume_file.h"
 #include "sculpt/core/tool/tool.h"
 #include "sculpt/core/tool/tool_rotation.h"
 
@@ -35,7 +36,7 @@ int run_rotate(const RotateOptions& o) {
   for (float a : o.euler) {
     if (!std::isfinite(a)) return report(Error("--euler: angles must be finite numbers"));
   }
-  auto tool = core::read_tool_nrrd(o.input);
+  auto tool = core::read_tool_file(o.input);
   if (!tool) return report(tool.error());
   // The rotated box can be sqrt(3) times the tool's edge: keep it a tool.
   constexpr int kMaxToolEdge = 1024;
@@ -63,7 +64,7 @@ int run_rotate(const RotateOptions& o) {
   for (uint8_t v : rotated.density.values())
     mass_out += v;
   const core::Tool out{std::move(rotated.density), pivot - glm::vec3(rotated.origin)};
-  if (Status st = core::write_tool_nrrd(o.output, out); !st) return report(st.error());
+  if (Status st = core::write_tool_file(o.output, out); !st) return report(st.error());
   std::printf(
       "rotated %dx%dx%d by (%g, %g, %g) deg about (%g, %g, %g), %s%s: %dx%dx%d in %.3f ms\n",
       in_dims.x, in_dims.y, in_dims.z, o.euler[0], o.euler[1], o.euler[2], pivot.x, pivot.y,
@@ -81,7 +82,7 @@ void add_rotate_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<RotateOptions>();
   CLI::App* cmd =
       app.add_subcommand("rotate", "rotate a tool volume into the bounding box of its rotation");
-  cmd->add_option("tool", o->input, "uint8 NRRD tool (optional sculpt_pivot:=X Y Z line)")
+  cmd->add_option("tool", o->input, "tool: uint8 NRRD (optional sculpt_pivot:=X Y Z line) or .vdb")
       ->required()
       ->check(input_file());
   cmd->add_option("--euler", o->euler, "RX,RY,RZ in degrees, extrinsic x then y then z")
@@ -94,7 +95,7 @@ void add_rotate_command(CLI::App& app, Action& action) {
   cmd->add_flag("--aa", o->aa, "trilinear antialiasing (default nearest voxel)");
   cmd->add_option("--about", o->about, "rotate about the grid centre or the file's pivot")
       ->check(CLI::IsMember({"centre", "pivot"}));
-  cmd->add_option("-o,--output", o->output, "output NRRD tool")->required();
+  cmd->add_option("-o,--output", o->output, "output tool (.nrrd or .vdb)")->required();
   cmd->callback([o, &action] { action = [o] { return run_rotate(*o); }; });
 }
 

@@ -21,6 +21,7 @@
 #include "cli/field_options.h"
 #include "cli/number_checks.h"
 #include "sculpt/base/output_set.h"
+#include "sculpt/core/files/volume_file.h"
 #include "sculpt/core/sculpt/sculptor.h"
 #include "sculpt/core/sculpt/stroke.h"
 #include "sculpt/core/tool/tool.h"
@@ -100,7 +101,7 @@ int run_stamp(const StampOptions& o) {
   } else {
     const auto window = density_window(o.density, o.input);
     if (!window) return report(window.error());
-    auto v = core::read_volume_nrrd(o.input, {}, {}, window->has_value() ? &**window : nullptr);
+    auto v = core::read_volume_file(o.input, {}, {}, window->has_value() ? &**window : nullptr);
     if (!v) return report(v.error());
     volume.emplace(std::move(v.value()));
   }
@@ -130,7 +131,7 @@ int run_stamp(const StampOptions& o) {
       if (t->shape == "region") tool = core::tool_from_volume(*volume, t->box);
       if (t->shape == "file") {
         const std::filesystem::path p(t->path);
-        auto loaded = core::read_tool_nrrd(p.is_absolute() ? p : script_dir / p);
+        auto loaded = core::read_tool_file(p.is_absolute() ? p : script_dir / p);
         if (!loaded) return report(loaded.error().in(where));
         if (glm::any(glm::greaterThan(loaded->density.dims(), glm::ivec3(kMaxToolEdge)))) {
           return report(
@@ -146,7 +147,7 @@ int run_stamp(const StampOptions& o) {
       if (!tool) return report(Error("save_tool before any tool").in(where));
       const std::filesystem::path p(s->path);
       if (Status st =
-              core::write_tool_nrrd(outputs.stage(p.is_absolute() ? p : script_dir / p), *tool);
+              core::write_tool_file(outputs.stage(p.is_absolute() ? p : script_dir / p), *tool);
           !st) {
         return report(outputs.named(st.error()).in(where));
       }
@@ -179,7 +180,7 @@ int run_stamp(const StampOptions& o) {
   sculptor.end_stroke();
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  if (Status st = core::write_volume_nrrd(outputs.stage(o.output), *volume); !st) {
+  if (Status st = core::write_volume_file(outputs.stage(o.output), *volume); !st) {
     return report(outputs.named(st.error()));
   }
   if (Status st = outputs.commit(); !st) return report(st.error());
@@ -219,7 +220,8 @@ void add_stamp_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<StampOptions>();
   CLI::App* cmd =
       app.add_subcommand("stamp", "apply a JSON Lines script of tools and dabs to a volume");
-  cmd->add_option("input", o->input, "NRRD volume to sculpt (uint8, or any type with --window)")
+  cmd->add_option("input", o->input,
+                  "volume to sculpt: NRRD (uint8, or any type with --window) or .vdb")
       ->check(input_file());
   add_density_options(cmd, o->density);
   cmd->add_option("--new", o->new_dims, "start from an empty volume of NX,NY,NZ voxels")
@@ -228,7 +230,7 @@ void add_stamp_command(CLI::App& app, Action& action) {
   cmd->add_option("--dabs", o->dabs, "JSON Lines script (see docs/formats.md)")
       ->required()
       ->check(input_file());
-  cmd->add_option("-o,--output", o->output, "output NRRD volume")->required();
+  cmd->add_option("-o,--output", o->output, "output volume (.nrrd or .vdb)")->required();
   cmd->callback([o, &action] { action = [o] { return run_stamp(*o); }; });
 }
 

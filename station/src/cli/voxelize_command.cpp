@@ -76,7 +76,7 @@ void add_voxelize_command(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand(
       "voxelize", "Closed mesh (OBJ/PLY/STL) to a density or signed distance volume");
   cmd->add_option("input", o->input, "mesh: .obj, .ply or .stl")->required()->check(input_file());
-  cmd->add_option("-o,--output", o->output, "output NRRD")->required();
+  cmd->add_option("-o,--output", o->output, "output volume (.nrrd or .vdb)")->required();
   cmd->add_option("--size", o->size, "grid edge N (N^3 voxels, 8..1024)")
       ->required()
       ->check(finite_range(8, 1024));

@@ -4,14 +4,18 @@
 // bit for bit). Without: verifies the round trip and prints the sizes and the
 // share of zero detail coefficients.
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cli/commands.h"
 #include "cli/field_options.h"
 #include "cli/number_checks.h"
+#include "sculpt/core/files/vdb_file.h"
+#include "sculpt/core/files/volume_file.h"
 #include "sculpt/core/volume/volume_io.h"
 
 namespace sculpt::station::cli {
@@ -39,22 +43,32 @@ int run_wavelet(const WaveletOptions& o) {
   const auto window = density_window(o.density, o.input);
   if (!window) return report(window.error());
   const core::DensityWindow* mapping = window->has_value() ? &**window : nullptr;
-  auto volume = core::read_volume_nrrd(o.input, vo, {}, mapping);
+  auto volume = core::read_volume_file(o.input, vo, {}, mapping);
   if (!volume) return report(volume.error());
   const double build_s = std::chrono::duration<double>(clock::now() - t0).count();
 
   if (o.lod >= 0) {
     if (o.output.empty()) return report(Error("--lod needs an output file (-o OUT.nrrd)"));
-    if (Status st = core::write_volume_nrrd(o.output, *volume, o.lod); !st)
+    if (Status st = core::write_volume_file(o.output, *volume, o.lod); !st)
       return report(st.error());
     const glm::ivec3 d = volume->level_dims(o.lod);
     std::printf("wrote level %d (%dx%dx%d) to %s\n", o.lod, d.x, d.y, d.z, o.output.c_str());
     return 0;
   }
 
-  // Round trip: decode everything and compare with the file, slice by slice.
-  auto reader = core::NrrdReader::open(o.input);
-  if (!reader) return report(reader.error());
+  // Round trip: decode everything and compare with the file, slice by slice
+  // (a .vdb has no slices to stream: it is read again whole).
+  std::optional<core::NrrdReader> reader;
+  std::optional<core::DenseGrid<uint8_t>> whole;
+  if (core::is_vdb_path(o.input)) {
+    auto grid = core::read_density_file(o.input, mapping);
+    if (!grid) return report(grid.error());
+    whole = std::move(*grid);
+  } else {
+    auto opened = core::NrrdReader::open(o.input);
+    if (!opened) return report(opened.error());
+    reader.emplace(std::move(*opened));
+  }
   const glm::ivec3 d = volume->dims();
   const auto t1 = clock::now();
   const core::DenseGrid<uint8_t> decoded = volume->to_dense(0);
@@ -62,7 +76,9 @@ int run_wavelet(const WaveletOptions& o) {
   std::vector<uint8_t> slice(static_cast<size_t>(d.x) * d.y);
   int64_t mismatches = 0;
   for (int z = 0; z < d.z; ++z) {
-    if (Status st = reader->read_density_slices(1, mapping, slice); !st) {
+    if (whole) {
+      std::copy_n(whole->data() + z * slice.size(), slice.size(), slice.data());
+    } else if (Status st = reader->read_density_slices(1, mapping, slice); !st) {
       return report(st.error());
     }
     for (size_t i = 0; i < slice.size(); ++i)
@@ -94,7 +110,7 @@ int run_wavelet(const WaveletOptions& o) {
   }
   std::printf("round trip  bit-exact\n");
   if (!o.output.empty()) {
-    if (Status st = core::write_volume_nrrd(o.output, *volume, 0); !st) return report(st.error());
+    if (Status st = core::write_volume_file(o.output, *volume, 0); !st) return report(st.error());
   }
   return 0;
 }
@@ -105,13 +121,14 @@ void add_wavelet_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<WaveletOptions>();
   CLI::App* cmd = app.add_subcommand(
       "wavelet", "3D Haar wavelet volume: extract a level, or verify the round trip");
-  cmd->add_option("input", o->input, "NRRD volume (uint8 density, or any type with --window)")
+  cmd->add_option("input", o->input,
+                  "NRRD (uint8 density, or any type with --window) or .vdb volume")
       ->required()
       ->check(input_file());
   add_density_options(cmd, o->density);
   cmd->add_option("--levels", o->levels, "wavelet levels (1..7)")->check(finite_range(0, 7));
   cmd->add_option("--lod", o->lod, "level to write (0 = the input)")->check(finite_range(0, 7));
-  cmd->add_option("-o,--output", o->output, "output NRRD");
+  cmd->add_option("-o,--output", o->output, "output volume (.nrrd, or .vdb: OpenVDB)");
   cmd->callback([o, &action] { action = [o] { return run_wavelet(*o); }; });
 }
 
