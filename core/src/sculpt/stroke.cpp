@@ -457,9 +457,20 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
             if (sp.x >= sp.y || sp.y <= bb.lo.x || sp.x >= bb.hi.x) continue;
             const size_t k = row_index(y, z);
             trim(k, y, z);
-            const int lo = std::max(x0[k], sp.x);
-            const int hi = std::min(x1[k], sp.y);
+            int lo = std::max(x0[k], sp.x);
+            int hi = std::min(x1[k], sp.y);
             if (lo >= hi) continue;
+            if (!accumulate) {
+              // The ends the stroke has filled fully already cannot change:
+              // a big ball moving a little measures only its leading part.
+              reach_row(k, y, z, lo, hi);
+              const size_t r0 = at(origin.x, y, z);
+              int c0 = lo - origin.x, c1 = hi - origin.x;
+              trim_full(&held.coverage[r0], &sweep[r0], c0, c1);
+              lo = c0 + origin.x;
+              hi = c1 + origin.x;
+              if (lo >= hi) continue;
+            }
             const int in_lo = std::clamp(sp.z, lo, hi);
             const int in_hi = std::clamp(sp.w, in_lo, hi);
             reach_row(k, y, z, lo, hi);
@@ -554,8 +565,14 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
         if (!accumulate) {
           // Only where this segment fills more than the stroke had.
           int f = 0, l = len;
+          // Where the stroke had filled fully already, eight at a time.
+          constexpr uint64_t kFull = ~uint64_t{0};
+          while (f + 8 <= l && load_u64(cov + f) == kFull)
+            f += 8;
           while (f < l && sw[f] <= cov[f])
             ++f;
+          while (l - 8 >= f && load_u64(cov + l - 8) == kFull)
+            l -= 8;
           while (l > f && sw[l - 1] <= cov[l - 1])
             --l;
           if (f == l) continue;

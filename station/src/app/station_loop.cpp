@@ -247,6 +247,7 @@ void StationLoop::handle(const sim::Command& c) {
       } else {
         settings_.mirror = core::MirrorPlane{c.choice, c.values[0]};
       }
+      interrupt_stroke();  // a swept stroke keeps one mirror throughout
       sculptor_->set_mirror(settings_.mirror);
       break;
     case K::kUndo:
@@ -368,18 +369,45 @@ void StationLoop::release() {
     return;
   }
   sampler_.end();
+  stroke_.reset();  // finishes it
+  resume_stroke_ = false;
   sculptor_->end_stroke();
+}
+
+void StationLoop::interrupt_stroke() {
+  if (!stroke_) return;
+  stroke_.reset();
+  resume_stroke_ = true;
 }
 
 void StationLoop::sculpt(const std::vector<hal::Dab>& dabs) {
   for (const hal::Dab& d : dabs) {
-    core::Dab dab;
-    dab.position_vox = d.position;
-    dab.orientation = d.orientation;
-    dab.mode = settings_.mode;
-    dab.strength = settings_.strength;
-    sculptor_->dab(dab);
     ++counters_.dabs;
+    if (settings_.mode == core::SculptMode::kSmooth) {
+      stroke_.reset();
+      core::Dab dab;
+      dab.position_vox = d.position;
+      dab.orientation = d.orientation;
+      dab.mode = settings_.mode;
+      dab.strength = settings_.strength;
+      sculptor_->dab(dab);
+      continue;
+    }
+    const core::StrokeSample sample{d.position, d.orientation};
+    if (stroke_ && (stroke_options_.mode != settings_.mode ||
+                    stroke_options_.strength != settings_.strength)) {
+      interrupt_stroke();
+    }
+    if (!stroke_) {
+      stroke_options_ = {settings_.mode, settings_.strength, false};
+      stroke_ = std::make_unique<core::SweptStroke>(*sculptor_, stroke_options_);
+      // After an interruption the rest of the press sweeps on from where
+      // the tool was, not from a gap.
+      if (resume_stroke_) stroke_->add(stroke_last_);
+      resume_stroke_ = false;
+    }
+    stroke_->add(sample);
+    stroke_last_ = sample;
   }
 }
 

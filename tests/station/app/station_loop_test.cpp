@@ -60,5 +60,76 @@ TEST(StationLoop, TheToolVersionMovesWithTheToolOnly) {
   EXPECT_EQ(loop.settings().mode, core::SculptMode::kSubtract);
 }
 
+// A stroke in the station sweeps the tool between the sampler's dabs
+// (core/sculpt/stroke.h): a groove cut with a ball at the default spacing (a
+// quarter of the tool's size) has a flat floor. As a row of dabs it had
+// ridges of 0.24 voxel between them.
+TEST(StationLoop, AStrokeCutsAGrooveWithAFlatFloor) {
+  StationLoop::Options o;
+  o.volume_dims = glm::ivec3(96);
+  o.clay_margin = 8;  // clay up to z = 88
+  o.mesh = false;
+  StationLoop loop(o);
+  loop.handle(
+      sim::Command{sim::CommandKind::kTool, choice_of(sim::ToolShape::kSphere), {8.0f, 0.0f}});
+  loop.handle(sim::Command{sim::CommandKind::kMode, choice_of(core::SculptMode::kSubtract)});
+  auto pose = [](float x) {
+    return sim::Command{sim::CommandKind::kPointer, 0, {x, 48.0f, 84.0f, 1.0f, 0.0f, 0.0f, 0.0f}};
+  };
+  sim::Command start = pose(20.0f);
+  start.kind = sim::CommandKind::kToolPose;
+  loop.handle(start);
+  loop.handle(sim::Command{sim::CommandKind::kPress});
+  for (int x = 21; x <= 76; ++x)
+    loop.handle(pose(static_cast<float>(x)));
+  loop.handle(sim::Command{sim::CommandKind::kRelease});
+  ASSERT_GT(loop.counters().dabs, 10);
+  EXPECT_EQ(loop.sculptor().history().undo_depth(), 1u);  // one stroke, one undo step
+  // The floor under the path: where the density rises through 127.5 going
+  // down each column, to a sub-voxel height by linear interpolation.
+  const core::Volume& v = loop.volume();
+  float lowest = 1e9f, highest = -1e9f;
+  for (int x = 30; x <= 66; ++x) {
+    for (int z = 94; z > 60; --z) {
+      const float above = v.voxel({x, 48, z}), below = v.voxel({x, 48, z - 1});
+      if (above < 127.5f && below >= 127.5f) {
+        const float floor_z = static_cast<float>(z) - (127.5f - above) / (below - above);
+        lowest = std::min(lowest, floor_z);
+        highest = std::max(highest, floor_z);
+        break;
+      }
+    }
+  }
+  EXPECT_NEAR(lowest, 76.0f, 0.1f);    // the ball's lowest point passed at z = 76
+  EXPECT_LE(highest - lowest, 0.02f);  // no scallop
+}
+
+// A mode or mirror change mid-press ends the swept stroke and starts the
+// next at the tool, within the press's one undo step.
+TEST(StationLoop, AModeChangeMidPressStaysOneUndoStep) {
+  StationLoop::Options o;
+  o.volume_dims = glm::ivec3(64);
+  o.clay_margin = 8;
+  o.mesh = false;
+  StationLoop loop(o);
+  const uint64_t before = loop.volume().content_hash();
+  auto at = [](float x) {
+    return sim::Command{sim::CommandKind::kPointer, 0, {x, 32.0f, 56.0f, 1.0f, 0.0f, 0.0f, 0.0f}};
+  };
+  loop.handle(sim::Command{sim::CommandKind::kMode, choice_of(core::SculptMode::kSubtract)});
+  loop.handle(sim::Command{sim::CommandKind::kPress});
+  for (int x = 20; x <= 30; ++x)
+    loop.handle(at(static_cast<float>(x)));
+  loop.handle(sim::Command{sim::CommandKind::kMode, choice_of(core::SculptMode::kAdd)});
+  loop.handle(sim::Command{sim::CommandKind::kMirror, 0, {32.0f}});
+  for (int x = 31; x <= 40; ++x)
+    loop.handle(at(static_cast<float>(x)));
+  loop.handle(sim::Command{sim::CommandKind::kRelease});
+  EXPECT_NE(loop.volume().content_hash(), before);
+  EXPECT_EQ(loop.sculptor().history().undo_depth(), 1u);
+  loop.handle(sim::Command{sim::CommandKind::kUndo});
+  EXPECT_EQ(loop.volume().content_hash(), before);
+}
+
 }  // namespace
 }  // namespace sculpt::station

@@ -21,6 +21,7 @@
 
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/sculpt/sculptor.h"
+#include "sculpt/core/sculpt/stroke.h"
 #include "sculpt/core/volume/volume.h"
 #include "sculpt/hal/pose/pose_integrator.h"
 #include "sculpt/hal/stroke/stroke_sampler.h"
@@ -125,6 +126,9 @@ class StationLoop {
   void press();
   void release();
   void sculpt(const std::vector<hal::Dab>& dabs);
+  // Finishes the press's swept stroke; its next sample starts a new one at
+  // the last sample (same undo step).
+  void interrupt_stroke();
   void tool_moved();
   // Touch mode's half of a motion sample: the tool onto the proxy.
   void touch_moved(const hal::InputEvent& e);
@@ -152,6 +156,14 @@ class StationLoop {
   bool sheet_press_ = false;    // pressed_ went to the sheet (sheet editing), not to a stroke
   bool sheet_held_ = false;     // and grabbed it
   std::vector<hal::Dab> dabs_;
+  // The press's swept stroke (stroke.h): between two of the sampler's dabs
+  // the tool's swept volume, so a stroke leaves no scallop; none in smooth
+  // mode, which places dabs. Restarted at its last sample when the mode or
+  // strength changes mid-press (one undo step still).
+  std::unique_ptr<core::SweptStroke> stroke_;
+  core::StrokeOptions stroke_options_;
+  core::StrokeSample stroke_last_;
+  bool resume_stroke_ = false;
   SheetEditor sheet_;
   TouchMode touch_;
   std::string sheet_problem_;
