@@ -14,6 +14,7 @@
 #include "sculpt/core/distance/narrow_band.h"
 #include "sculpt/core/mesh/point_triangle.h"
 #include "sculpt/core/util/parallel_for.h"
+#include "sculpt/core/util/progress.h"
 
 namespace sculpt::core {
 
@@ -135,13 +136,20 @@ float MeshDistance::signed_distance_brute(glm::vec3 p) const {
   return mesh_.triangles.empty() ? kInf : signed_distance_to(p, best_t);
 }
 
-DenseGrid<float> mesh_signed_distance(const MeshDistance& md, glm::ivec3 dims, int threads) {
+DenseGrid<float> mesh_signed_distance(const MeshDistance& md, glm::ivec3 dims, int threads,
+                                      Progress* progress) {
+  // Units: the band and the feature transform count as one pass over the
+  // slices each, then the fill steps per slice.
+  ProgressStage stage(progress, 0.0, 1.0, int64_t(dims.z) * 3);
+  if (!stage.step(0)) return DenseGrid<float>(dims, kInf);
   const NarrowBand band = mesh_narrow_band(md, dims, NarrowBandOptions{2.0f, threads});
+  if (!stage.step(dims.z)) return DenseGrid<float>(dims, kInf);
   const DenseGrid<int32_t> triangle = band.dense_triangle(threads);
   DenseGrid<uint8_t> seeds(dims, 0);
   for (size_t i = 0; i < seeds.size(); ++i)
     seeds[i] = triangle[i] >= 0;
   const FeatureTransform ft = feature_transform(seeds, 1, threads);
+  if (!stage.step(dims.z)) return DenseGrid<float>(dims, kInf);
   DenseGrid<float> out = band.dense_distance(threads);
   const Mesh& mesh = md.mesh();
   parallel_for(
@@ -178,7 +186,7 @@ DenseGrid<float> mesh_signed_distance(const MeshDistance& md, glm::ivec3 dims, i
           out[i] = out[size_t(s)] < 0.0f ? -d : d;
         }
       },
-      threads);
+      threads, stage);
   return out;
 }
 

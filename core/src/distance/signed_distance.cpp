@@ -14,6 +14,7 @@
 #include "sculpt/core/distance/vector_distance.h"
 #include "sculpt/core/mesh/point_triangle.h"
 #include "sculpt/core/util/parallel_for.h"
+#include "sculpt/core/util/progress.h"
 
 namespace sculpt::core {
 namespace {
@@ -71,7 +72,7 @@ void apply_sign(DenseGrid<float>& dist, const DenseGrid<uint8_t>& inside) {
 // (torus); without step 3, mean 0.005 / 0.002. Wider searches cut the mean
 // further but cost several times as much (the search is most of the time).
 // Shell voxels keep their own distances (exact, distance_shell.h).
-DenseGrid<float> hybrid_exact(const DistanceInput& in, int threads) {
+DenseGrid<float> hybrid_exact(const DistanceInput& in, int threads, Progress* progress) {
   const DistanceShell& shell = *in.shell;
   const std::vector<Triangle3>& tris = in.surface->triangles();
   const glm::ivec3 d = in.phi.dims();
@@ -81,8 +82,14 @@ DenseGrid<float> hybrid_exact(const DistanceInput& in, int threads) {
     seeds[size_t(v)] = 1;
   DenseGrid<float> best2(d, kInf);
   DenseGrid<int32_t> cand(d, -1);
+  // Units: the feature transform counts as one pass over the slices, then
+  // each loop below steps once per slice (z) or row (y).
+  ProgressStage stage(progress, 0.0, 1.0, int64_t(d.z) * 7 + int64_t(d.y) * 2);
+  stage.step(0);
+  if (stage.cancelled()) return DenseGrid<float>(d, kInf);
   {
     const FeatureTransform ft = feature_transform(seeds, 1, threads);
+    stage.step(d.z);
     parallel_for(
         d.z,
         [&](int64_t z) {
@@ -101,7 +108,7 @@ DenseGrid<float> hybrid_exact(const DistanceInput& in, int threads) {
             }
           }
         },
-        threads);
+        threads, stage);
   }
   // Offers the triangle of voxel q to voxel p (not a shell voxel). Along a
   // line most neighbours hold the same triangle, which costs one compare.
@@ -128,7 +135,7 @@ DenseGrid<float> hybrid_exact(const DistanceInput& in, int threads) {
               offer(r + x, r + x + 1, glm::vec3(float(x), float(y), float(z)));
           }
         },
-        threads);
+        threads, stage);
     // y lines, per z-slice, a row at a time.
     parallel_for(
         d.z,
@@ -144,7 +151,7 @@ DenseGrid<float> hybrid_exact(const DistanceInput& in, int threads) {
               offer(r + x, r + x + d.x, glm::vec3(float(x), float(y), float(z)));
           }
         },
-        threads);
+        threads, stage);
     // z lines, per y, a row at a time.
     parallel_for(
         d.y,
@@ -160,7 +167,7 @@ DenseGrid<float> hybrid_exact(const DistanceInput& in, int threads) {
               offer(r + x, r + x + slice, glm::vec3(float(x), float(y), float(z)));
           }
         },
-        threads);
+        threads, stage);
   }
   DenseGrid<float> out(d, kInf);
   parallel_for(
@@ -183,7 +190,7 @@ DenseGrid<float> hybrid_exact(const DistanceInput& in, int threads) {
               in.surface->nearest_in_cells(pos, lo, hi, {c, best2[i], t}).distance_squared);
         }
       },
-      threads);
+      threads, stage);
   return out;
 }
 
@@ -212,22 +219,28 @@ Result<DistanceInit> parse_distance_init(const std::string& name) {
   return Error("--init: unknown initialisation '" + name + "' (binary, shell)");
 }
 
-DistanceInput prepare_distance_input(DenseGrid<float> phi, DistanceInit init, int threads) {
+DistanceInput prepare_distance_input(DenseGrid<float> phi, DistanceInit init, int threads,
+                                     Progress* progress) {
   DistanceInput in;
+  // The two shell steps take about the same time; the mask is quick.
+  if (progress != nullptr && !progress->report(0.0)) return in;
   in.inside = inside_mask(phi);
   if (init == DistanceInit::kBinary) {
     in.boundary = boundary_voxels(in.inside, threads);
   } else {
     in.surface.emplace(phi, threads);
+    if (progress != nullptr && !progress->report(0.5)) return in;
     in.shell = distance_shell(phi, *in.surface, threads);
   }
+  if (progress != nullptr) progress->report(1.0);
   in.phi = std::move(phi);
   return in;
 }
 
 DenseGrid<float> compute_signed_distance(const DistanceInput& in, DistanceMethod method,
-                                         DistanceInit init, int threads) {
+                                         DistanceInit init, int threads, Progress* progress) {
   const glm::ivec3 d = in.phi.dims();
+  if (progress != nullptr && !progress->report(0.0)) return DenseGrid<float>(d, kInf);
   const bool binary = init == DistanceInit::kBinary;
   assert(binary || in.shell.has_value());
   DenseGrid<float> out;
@@ -241,7 +254,7 @@ DenseGrid<float> compute_signed_distance(const DistanceInput& in, DistanceMethod
                    : octree_distance_to_triangles(d, in.surface->triangles(), threads);
       break;
     case DistanceMethod::kExact:
-      out = binary ? exact_edt(in.boundary, 1, threads) : hybrid_exact(in, threads);
+      out = binary ? exact_edt(in.boundary, 1, threads) : hybrid_exact(in, threads, progress);
       break;
     case DistanceMethod::kChamferCity:
     case DistanceMethod::kChamfer345:
@@ -277,14 +290,18 @@ DenseGrid<float> compute_signed_distance(const DistanceInput& in, DistanceMethod
       break;
     }
   }
+  if (cancelled(progress)) return out;
   apply_sign(out, in.inside);
+  if (progress != nullptr) progress->report(1.0);
   return out;
 }
 
 DenseGrid<float> signed_distance(const DenseGrid<float>& phi, DistanceMethod method,
-                                 DistanceInit init, int threads) {
-  const DistanceInput in = prepare_distance_input(phi, init, threads);
-  return compute_signed_distance(in, method, init, threads);
+                                 DistanceInit init, int threads, Progress* progress) {
+  SubProgress prepare(progress, 0.0, 0.3), compute(progress, 0.3, 1.0);
+  const DistanceInput in = prepare_distance_input(phi, init, threads, prepare.get());
+  if (cancelled(progress)) return DenseGrid<float>(phi.dims(), kInf);
+  return compute_signed_distance(in, method, init, threads, compute.get());
 }
 
 DenseGrid<float> signed_distance(const DenseGrid<uint8_t>& density, DistanceMethod method,

@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "sculpt/core/util/parallel_for.h"
+#include "sculpt/core/util/progress.h"
 
 namespace sculpt::core {
 
@@ -324,7 +325,7 @@ void MeshCache::remesh(glm::ivec3 b, std::vector<uint8_t>& scratch) {
   march_block(block, cb.mesh);
 }
 
-MeshUpdate MeshCache::update(const Volume& volume) {
+MeshUpdate MeshCache::update(const Volume& volume, Progress* progress) {
   const bool first = volume_ != &volume || volume.dims() != dims_ || volume.brick_grid() != grid_ ||
                      (volume.brick_edge() >> level_) != m_;
   if (first) reset(volume);
@@ -340,6 +341,9 @@ MeshUpdate MeshCache::update(const Volume& volume) {
   stats.bricks_changed = static_cast<int64_t>(changed.size());
   if (changed.empty()) return stats;
 
+  // Decoding takes about as long per brick as marching it.
+  ProgressStage refreshing(progress, 0.0, 0.4, static_cast<int64_t>(changed.size()));
+  refreshing.step(0);
   std::vector<uint32_t> masks(changed.size());
   std::atomic<int64_t> decoded{0};
   parallel_for(
@@ -349,8 +353,12 @@ MeshUpdate MeshCache::update(const Volume& volume) {
         if (!volume.brick(b).is_uniform()) decoded.fetch_add(1, std::memory_order_relaxed);
         masks[static_cast<size_t>(k)] = refresh(volume, b, first);
       },
-      threads_for(static_cast<int64_t>(changed.size()), options_.threads));
+      threads_for(static_cast<int64_t>(changed.size()), options_.threads), refreshing);
   stats.bricks_decoded = decoded.load();
+  if (cancelled(progress)) {
+    volume_ = nullptr;  // half-refreshed bricks: the next update starts over
+    return stats;
+  }
 
   std::vector<int64_t> dirty;
   if (first) {
@@ -396,14 +404,19 @@ MeshUpdate MeshCache::update(const Volume& volume) {
       bricks_[static_cast<size_t>(i)].mesh.clear();
     }
   }
+  ProgressStage marching(progress, 0.4, 1.0, static_cast<int64_t>(to_march.size()));
   parallel_for(
       static_cast<int64_t>(to_march.size()),
       [&](int64_t k) {
         thread_local std::vector<uint8_t> scratch;
         remesh(coord(to_march[static_cast<size_t>(k)]), scratch);
       },
-      threads_for(static_cast<int64_t>(to_march.size()), options_.threads));
+      threads_for(static_cast<int64_t>(to_march.size()), options_.threads), marching);
   stats.bricks_meshed = static_cast<int64_t>(to_march.size());
+  if (cancelled(progress))
+    volume_ = nullptr;
+  else if (progress != nullptr)
+    progress->report(1.0);
   return stats;
 }
 

@@ -14,6 +14,7 @@
 #include "sculpt/base/result.h"
 #include "sculpt/core/grid/dense_grid.h"
 #include "sculpt/core/mesh/mesh.h"
+#include "sculpt/core/util/progress.h"
 
 namespace sculpt::core {
 
@@ -38,8 +39,10 @@ class MeshDistance {
 
 /// The signed distance of every voxel: exact in a band of 2 voxels, beyond it
 /// the distance to the closest triangle of the nearest band voxel (found by
-/// an exact feature transform) with that voxel's sign.
-DenseGrid<float> mesh_signed_distance(const MeshDistance& mesh, glm::ivec3 dims, int threads = 0);
+/// an exact feature transform) with that voxel's sign. `progress` (optional,
+/// progress.h): a cancelled call returns a field to discard.
+DenseGrid<float> mesh_signed_distance(const MeshDistance& mesh, glm::ivec3 dims, int threads = 0,
+                                      Progress* progress = nullptr);
 
 /// How `voxelize_mesh` placed the mesh: grid = mesh * scale + offset.
 struct VoxelizeMapping {

@@ -26,6 +26,7 @@
 #include "sculpt/core/distance/distance_shell.h"
 #include "sculpt/core/distance/surface_index.h"
 #include "sculpt/core/grid/dense_grid.h"
+#include "sculpt/core/util/progress.h"
 
 namespace sculpt::core {
 
@@ -60,15 +61,21 @@ struct DistanceInput {
   std::optional<DistanceShell> shell;
 };
 
-DistanceInput prepare_distance_input(DenseGrid<float> phi, DistanceInit init, int threads = 0);
+/// `progress` (optional, progress.h): reported 0..1; when it is cancelled
+/// the returned input is incomplete and must be discarded.
+DistanceInput prepare_distance_input(DenseGrid<float> phi, DistanceInit init, int threads = 0,
+                                     Progress* progress = nullptr);
 
 /// The signed field of `input` by `method` (input prepared for `init`).
+/// `progress` as above: exact reports per slice, the other methods before and
+/// after; a cancelled call returns a field to discard.
 DenseGrid<float> compute_signed_distance(const DistanceInput& input, DistanceMethod method,
-                                         DistanceInit init, int threads = 0);
+                                         DistanceInit init, int threads = 0,
+                                         Progress* progress = nullptr);
 
-/// prepare + compute in one call.
+/// prepare + compute in one call (progress: prepare 0..0.3, compute 0.3..1).
 DenseGrid<float> signed_distance(const DenseGrid<float>& phi, DistanceMethod method,
-                                 DistanceInit init, int threads = 0);
+                                 DistanceInit init, int threads = 0, Progress* progress = nullptr);
 DenseGrid<float> signed_distance(const DenseGrid<uint8_t>& density, DistanceMethod method,
                                  DistanceInit init, int threads = 0);
 

@@ -30,6 +30,7 @@
 #include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/mesh/marching_cubes.h"
 #include "sculpt/core/mesh/mesh.h"
+#include "sculpt/core/util/progress.h"
 #include "sculpt/core/volume/volume.h"
 
 namespace sculpt::core {
@@ -49,7 +50,9 @@ class MeshCache {
 
   /// Brings the meshes up to date with `volume`. A different volume (or one
   /// of another shape) than the previous call's is meshed from scratch.
-  MeshUpdate update(const Volume& volume);
+  /// `progress` (optional, progress.h) counts bricks; a cancelled update
+  /// leaves meshes to discard, and the next update starts from scratch.
+  MeshUpdate update(const Volume& volume, Progress* progress = nullptr);
 
   int level() const { return level_; }
   float iso() const { return options_.iso; }
