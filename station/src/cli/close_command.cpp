@@ -13,6 +13,7 @@
 #include "cli/commands.h"
 #include "cli/field_options.h"
 #include "cli/number_checks.h"
+#include "cli/progress_bar.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/morphology.h"
 #include "sculpt/core/files/volume_file.h"
@@ -29,6 +30,7 @@ struct CloseOptions {
 };
 
 int run_close(const CloseOptions& o) {
+  ProgressBar bar("close");
   const auto t0 = std::chrono::steady_clock::now();
   auto in = core::read_surface_file(o.input);
   if (!in) return report(in.error());
@@ -36,7 +38,10 @@ int run_close(const CloseOptions& o) {
   // surface; a density output of an empty or solid block is that block.
   if (o.sdf || !in->from_density)
     if (Status st = core::require_surface(*in, o.input); !st) return report(st.error());
-  const core::DenseGrid<float> closed = core::close_distance(in->phi, o.radius, o.threads);
+  const core::DenseGrid<float> closed =
+      core::close_distance(in->phi, o.radius, o.threads, bar.progress());
+  if (bar.cancelled()) return bar.cancel_exit();
+  bar.finish();
   const bool as_float = o.sdf || !in->from_density;
   const Status st = write_field(o.output, closed, as_float);
   if (!st) return report(st.error());

@@ -14,6 +14,7 @@
 #include "cli/commands.h"
 #include "cli/field_options.h"
 #include "cli/number_checks.h"
+#include "cli/progress_bar.h"
 #include "sculpt/core/distance/distance_comparison.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/signed_distance.h"
@@ -85,6 +86,7 @@ int run_distance(const DistanceOptions& o) {
   auto init = core::parse_distance_init(o.init);
   if (!init) return report(init.error());
   using clock = std::chrono::steady_clock;
+  ProgressBar bar("distance");
   const auto t0 = clock::now();
   auto in = core::read_surface_file(o.input);
   if (!in) return report(in.error());
@@ -96,12 +98,17 @@ int run_distance(const DistanceOptions& o) {
                         "exact or octree"));
   if (Status st = core::require_surface(*in, o.input); !st) return report(st.error());
   const auto t1 = clock::now();
+  // The shell takes about a third of the exact transform's time.
+  core::SubProgress preparing(bar.progress(), 0.0, 0.3), computing(bar.progress(), 0.3, 1.0);
   const core::DistanceInput prepared =
-      core::prepare_distance_input(std::move(in->phi), *init, o.threads);
+      core::prepare_distance_input(std::move(in->phi), *init, o.threads, preparing.get());
+  if (bar.cancelled()) return bar.cancel_exit();
   const auto t2 = clock::now();
   const core::DenseGrid<float> field =
-      core::compute_signed_distance(prepared, *method, *init, o.threads);
+      core::compute_signed_distance(prepared, *method, *init, o.threads, computing.get());
   const auto t3 = clock::now();
+  if (bar.cancelled()) return bar.cancel_exit();
+  bar.finish();
   if (Status st = core::write_distance_file(o.output, field); !st) return report(st.error());
   float lo = 0, hi = 0;
   for (float v : field.values()) {

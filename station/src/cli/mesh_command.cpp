@@ -20,6 +20,7 @@
 #include "cli/field_options.h"
 #include "cli/mesh_export_options.h"
 #include "cli/number_checks.h"
+#include "cli/progress_bar.h"
 #include "sculpt/core/files/volume_file.h"
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/mesh/mesh_io.h"
@@ -124,6 +125,7 @@ int run_mesh(const MeshOptions& o) {
   core::VolumeOptions vo;
   vo.threads = o.threads;
   using clock = std::chrono::steady_clock;
+  ProgressBar bar("mesh");
   const auto t0 = clock::now();
   const auto window = density_window(o.density, o.input);
   if (!window) return report(window.error());
@@ -131,7 +133,9 @@ int run_mesh(const MeshOptions& o) {
   if (!volume) return report(volume.error());
   const auto t1 = clock::now();
   core::MeshCache cache(o.lod, core::MarchingCubesOptions{o.iso, o.threads});
-  const core::MeshUpdate u = cache.update(*volume);
+  const core::MeshUpdate u = cache.update(*volume, bar.progress());
+  if (bar.cancelled()) return bar.cancel_exit();
+  bar.finish();
   const core::Mesh mesh = simplify_for_export(cache.welded_mesh(), o.simplify);
   const auto t2 = clock::now();
   if (o.check) {

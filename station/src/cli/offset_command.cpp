@@ -11,6 +11,7 @@
 #include "cli/commands.h"
 #include "cli/field_options.h"
 #include "cli/number_checks.h"
+#include "cli/progress_bar.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/morphology.h"
 #include "sculpt/core/files/volume_file.h"
@@ -27,6 +28,7 @@ struct OffsetOptions {
 };
 
 int run_offset(const OffsetOptions& o) {
+  ProgressBar bar("offset");
   auto in = core::read_surface_file(o.input);
   if (!in) return report(in.error());
   // A float output is a distance field, which does not exist without a
@@ -34,7 +36,9 @@ int run_offset(const OffsetOptions& o) {
   if (o.sdf || !in->from_density)
     if (Status st = core::require_surface(*in, o.input); !st) return report(st.error());
   const core::DenseGrid<float> moved =
-      core::offset_distance(core::surface_distance(in->phi, o.threads), o.by);
+      core::offset_distance(core::surface_distance(in->phi, o.threads, bar.progress()), o.by);
+  if (bar.cancelled()) return bar.cancel_exit();
+  bar.finish();
   const bool as_float = o.sdf || !in->from_density;
   const Status st = write_field(o.output, moved, as_float);
   if (!st) return report(st.error());

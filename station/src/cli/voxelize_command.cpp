@@ -14,6 +14,7 @@
 #include "cli/commands.h"
 #include "cli/field_options.h"
 #include "cli/number_checks.h"
+#include "cli/progress_bar.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/distance/mesh_distance.h"
 #include "sculpt/core/io/nrrd.h"
@@ -35,6 +36,7 @@ int run_voxelize(const VoxelizeOptions& o) {
     return report(Error("--margin " + std::to_string(o.margin) + " leaves no room in --size " +
                         std::to_string(o.size)));
   using clock = std::chrono::steady_clock;
+  ProgressBar bar("voxelize");
   const auto t0 = clock::now();
   auto mesh = core::read_mesh(o.input);
   if (!mesh) return report(mesh.error());
@@ -51,8 +53,10 @@ int run_voxelize(const VoxelizeOptions& o) {
   const auto t1 = clock::now();
   const core::MeshDistance md(placed);
   const core::DenseGrid<float> field =
-      core::mesh_signed_distance(md, glm::ivec3(o.size), o.threads);
+      core::mesh_signed_distance(md, glm::ivec3(o.size), o.threads, bar.progress());
   const auto t2 = clock::now();
+  if (bar.cancelled()) return bar.cancel_exit();
+  bar.finish();
   // A mesh wound clockwise (inward normals) reads as inside-out: every
   // voxel on the border would be inside.
   if (field.at(0, 0, 0) < 0.0f)
