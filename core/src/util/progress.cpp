@@ -38,7 +38,9 @@ Status Progress::status() const {
 
 SubProgress::SubProgress(Progress* parent, double begin, double end)
     : parent_(parent), progress_([parent, begin, end](double f) {
-        return parent == nullptr || parent->report(begin + (end - begin) * f);
+        // The end exactly: the last report of a part must not fall a rounding
+        // error short of it (and be skipped as too small a step).
+        return parent == nullptr || parent->report(f >= 1.0 ? end : begin + (end - begin) * f);
       }) {}
 
 void parallel_for(int64_t count, const std::function<void(int64_t)>& body, int threads,
