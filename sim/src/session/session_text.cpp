@@ -237,6 +237,7 @@ ordered record_json(const SessionRecord& r) {
       break;
     case CommandKind::kStrength:
     case CommandKind::kSpacing:
+    case CommandKind::kHardness:
       j["value"] = c.values[0];
       break;
     case CommandKind::kMirror:
@@ -459,6 +460,7 @@ SessionRecord parse_command(const json& j, int64_t t) {
       break;
     case CommandKind::kStrength:
     case CommandKind::kSpacing:
+    case CommandKind::kHardness:
       read_number(j, "value", c.values);
       break;
     case CommandKind::kMirror: {

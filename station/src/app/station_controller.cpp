@@ -78,6 +78,9 @@ void StationController::set_mode(core::SculptMode mode, int64_t now_ns) {
 void StationController::set_strength(float s, int64_t now_ns) {
   command(make_command(sim::CommandKind::kStrength, 0, {std::clamp(s, 0.0f, 1.0f)}), now_ns);
 }
+void StationController::set_hardness(float h, int64_t now_ns) {
+  command(make_command(sim::CommandKind::kHardness, 0, {std::clamp(h, 0.0f, 1.0f)}), now_ns);
+}
 void StationController::set_spacing(float s, int64_t now_ns) {
   command(make_command(sim::CommandKind::kSpacing, 0, {std::max(s, 0.01f)}), now_ns);
 }

@@ -17,22 +17,23 @@ constexpr float kMinSize = 0.5f;
 
 }  // namespace
 
-core::Tool make_tool(sim::ToolShape shape, float a, float b) {
+core::Tool make_tool(sim::ToolShape shape, float a, float b, float hardness) {
+  hardness = std::clamp(hardness, 0.0f, 1.0f);
   a = std::max(a, kMinSize);
   b = std::max(b, kMinSize);
   switch (shape) {
     case sim::ToolShape::kSphere:
-      return core::make_sphere_tool(a);
+      return core::make_sphere_tool(a, hardness);
     case sim::ToolShape::kCube:
-      return core::make_cube_tool(a);
+      return core::make_cube_tool(a, hardness);
     case sim::ToolShape::kCylinder:
-      return core::make_cylinder_tool(a, b);
+      return core::make_cylinder_tool(a, b, hardness);
     case sim::ToolShape::kRing:
-      return core::make_ring_tool(a, b);
+      return core::make_ring_tool(a, b, hardness);
     case sim::ToolShape::kCone:
-      return core::make_cone_tool(a, b);
+      return core::make_cone_tool(a, b, hardness);
   }
-  return core::make_sphere_tool(a);
+  return core::make_sphere_tool(a, hardness);
 }
 
 core::Volume clay_block(glm::ivec3 dims, int margin) {
@@ -143,7 +144,8 @@ core::SculptorOptions StationLoop::sculptor_options() const {
 void StationLoop::apply_tool() {
   // A custom tool (tool_ already holds it) outlives the material it came from.
   if (!settings_.custom_tool) {
-    tool_ = make_tool(settings_.shape, settings_.size_a_vox, settings_.size_b_vox);
+    tool_ =
+        make_tool(settings_.shape, settings_.size_a_vox, settings_.size_b_vox, settings_.hardness);
   }
   sculptor_->set_tool(tool_);
   ++tool_version_;
@@ -235,6 +237,12 @@ void StationLoop::handle(const sim::Command& c) {
       break;
     case K::kStrength:
       settings_.strength = std::clamp(c.values[0], 0.0f, 1.0f);
+      break;
+    case K::kHardness:
+      // A new tool: as a tool change, it ends the stroke.
+      if (pressed_) release();
+      settings_.hardness = std::clamp(c.values[0], 0.0f, 1.0f);
+      apply_tool();
       break;
     case K::kSpacing:
       if (pressed_) release();

@@ -42,6 +42,7 @@ json settings_json(const StationSettings& s) {
             {"size", {s.size_a_vox, s.size_b_vox}},
             {"mode", sim::sculpt_mode_name(to_session(s.mode))},
             {"strength", s.strength},
+            {"hardness", s.hardness},
             {"spacing", s.spacing},
             {"custom_tool", s.custom_tool},
             {"custom_region",
@@ -299,6 +300,8 @@ StationSettings settings_of(const json& j) {
   if (!mode) bad(at + ".mode", "unknown mode");
   s.mode = to_core(*mode);
   s.strength = float_in(field(j, "strength", at), 0.0, 1.0, at + ".strength");
+  // Projects saved before tools had a hardness have hard tools.
+  if (j.contains("hardness")) s.hardness = float_in(j["hardness"], 0.0, 1.0, at + ".hardness");
   s.spacing = float_in(field(j, "spacing", at), 1e-3, sim::kMaxSpacing, at + ".spacing");
   s.custom_tool = flag(field(j, "custom_tool", at), at + ".custom_tool");
   const json& r = array_of(field(j, "custom_region", at), 6, at + ".custom_region");

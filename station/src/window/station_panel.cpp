@@ -108,6 +108,11 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     float strength = s.strength;
     ImGui::SliderFloat("strength", &strength, 0.0f, 1.0f, "%.2f");
     if (ImGui::IsItemDeactivatedAfterEdit()) c_.set_strength(strength, now);
+    float hardness = s.hardness;
+    ImGui::SliderFloat("hardness", &hardness, 0.0f, 1.0f, "%.2f");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("1: a hard edge; 0: a smooth bump (built-in tools)");
+    if (ImGui::IsItemDeactivatedAfterEdit()) c_.set_hardness(hardness, now);
     float spacing = s.spacing;
     ImGui::SliderFloat("dab spacing", &spacing, 0.05f, 1.0f, "%.2f of size");
     if (ImGui::IsItemDeactivatedAfterEdit()) c_.set_spacing(spacing, now);

@@ -39,6 +39,8 @@ TEST(CommandLimits, CommandsTheStationWritesPass) {
   EXPECT_FALSE(command_problem(command(CommandKind::kTouch, 1, {})));
   EXPECT_FALSE(command_problem(command(CommandKind::kClutch, 1, {})));
   EXPECT_FALSE(command_problem(command(CommandKind::kTracker, 0, {0.25f, 0.5f, 0.5f, 0.5f, 0.5f})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kHardness, 0, {0.0f})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kHardness, 0, {1.0f})));
 }
 
 TEST(CommandLimits, EachOutOfRangeFieldIsNamed) {
@@ -65,6 +67,9 @@ TEST(CommandLimits, EachOutOfRangeFieldIsNamed) {
       {command(CommandKind::kTool, 0, {nan, 4}), "value 0 is not a finite number"},
       {command(CommandKind::kStrength, 0, {inf}), "value 0 is not a finite number"},
       {command(CommandKind::kStrength, 0, {1.5f}), "strength 1.5 is outside [0, 1]"},
+      {command(CommandKind::kHardness, 0, {-0.5f}), "hardness -0.5 is outside [0, 1]"},
+      {command(CommandKind::kHardness, 0, {nan}), "value 0 is not a finite number"},
+      {command(CommandKind::kHardness, 3, {0.5f}), "choice 3 unknown"},
       {command(CommandKind::kSpacing, 0, {0}), "spacing 0 is outside (0, 16]"},
       {command(CommandKind::kVolume, 0, {1 << 20, 1 << 20, 1 << 20, 0}), "over the limit of 2^32"},
       {command(CommandKind::kVolume, 0, {64.5f, 64, 64, 0}), "volume side 64.5"},

@@ -180,10 +180,14 @@ TEST(SessionText, ClutchAndTrackerCalibrationRoundTripAndBadOnesAreRefused) {
                                   "\n"
                                   R"({"t": 3, "cmd": "tracker", "scale_vox_per_mm": 0.5, )"
                                   R"("rotation": [0.5, 0.5, 0.5, 0.5]})"
+                                  "\n"
+                                  R"({"t": 4, "cmd": "hardness", "value": 0.25})"
                                   "\n";
   const auto s = session_from_text(text, "tracker.jsonl");
   ASSERT_TRUE(s.ok()) << s.error().message();
-  ASSERT_EQ(s->records.size(), 3u);
+  ASSERT_EQ(s->records.size(), 4u);
+  EXPECT_EQ(s->records[3].command.kind, CommandKind::kHardness);
+  EXPECT_EQ(s->records[3].command.values[0], 0.25f);
   EXPECT_EQ(s->records[0].command.kind, CommandKind::kClutch);
   EXPECT_EQ(s->records[0].command.choice, 1);
   EXPECT_EQ(s->records[1].command.choice, 0);

@@ -104,6 +104,39 @@ TEST(StationLoop, AStrokeCutsAGrooveWithAFlatFloor) {
   EXPECT_LE(highest - lowest, 0.02f);  // no scallop
 }
 
+// The hardness command remakes the built-in tool with that falloff: the same
+// groove cut soft is shallower at its rim, and the setting holds for the
+// next tool chosen.
+TEST(StationLoop, HardnessSoftensTheBuiltInTools) {
+  auto groove = [](float hardness) {
+    StationLoop::Options o;
+    o.volume_dims = glm::ivec3(64);
+    o.clay_margin = 8;
+    o.mesh = false;
+    StationLoop loop(o);
+    loop.handle(sim::Command{sim::CommandKind::kHardness, 0, {hardness}});
+    loop.handle(
+        sim::Command{sim::CommandKind::kTool, choice_of(sim::ToolShape::kSphere), {8.0f, 0.0f}});
+    EXPECT_EQ(loop.settings().hardness, hardness);
+    EXPECT_EQ(loop.tool().hardness, hardness);
+    loop.handle(sim::Command{sim::CommandKind::kMode, choice_of(core::SculptMode::kSubtract)});
+    loop.handle(sim::Command{sim::CommandKind::kPress});
+    for (int x = 20; x <= 44; ++x)
+      loop.handle(sim::Command{sim::CommandKind::kPointer,
+                               0,
+                               {static_cast<float>(x), 32.0f, 56.0f, 1.0f, 0.0f, 0.0f, 0.0f}});
+    loop.handle(sim::Command{sim::CommandKind::kRelease});
+    int64_t removed = 0;  // density taken from the block
+    for (int z = 0; z < 64; ++z)
+      for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+          removed += loop.volume().voxel({x, y, z});
+    return removed;
+  };
+  const int64_t hard = groove(1.0f), soft = groove(0.0f);
+  EXPECT_GT(soft, hard);  // a soft ball takes less: its falloff spends its outer part
+}
+
 // A mode or mirror change mid-press ends the swept stroke and starts the
 // next at the tool, within the press's one undo step.
 TEST(StationLoop, AModeChangeMidPressStaysOneUndoStep) {

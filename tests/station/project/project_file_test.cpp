@@ -37,6 +37,7 @@ class ProjectFile : public ::testing::Test {
     s.size_b_vox = 2.25f;
     s.mode = core::SculptMode::kSmooth;
     s.strength = 0.625f;
+    s.hardness = 0.375f;
     s.spacing = 0.3f;
     s.mirror = core::MirrorPlane{2, 34.5f};
     return s;
@@ -66,6 +67,7 @@ TEST_F(ProjectFile, RoundTripsVolumeSettingsToolAndView) {
   EXPECT_EQ(p->settings.size_b_vox, s.size_b_vox);
   EXPECT_EQ(p->settings.mode, s.mode);
   EXPECT_EQ(p->settings.strength, s.strength);
+  EXPECT_EQ(p->settings.hardness, s.hardness);
   EXPECT_EQ(p->settings.spacing, s.spacing);
   ASSERT_TRUE(p->settings.mirror.has_value());
   EXPECT_EQ(p->settings.mirror->axis, 2);
@@ -180,6 +182,7 @@ TEST_F(ProjectFile, EveryDescriptionFieldIsTypedAndBounded) {
       {"/settings/size/0", 1e30, "settings.size[0]: not in [0, 256]"},
       {"/settings/spacing", 0, "settings.spacing: not in"},
       {"/settings/strength", nullptr, "settings.strength: expected a number"},
+      {"/settings/hardness", 2, "settings.hardness: not in [0, 1]"},
       {"/settings/custom_region/3", int64_t{4'000'000'000}, "settings.custom_region[3]: not in"},
       {"/settings/mirror/axis", 7, "settings.mirror.axis: not in [0, 2]"},
       {"/settings/custom_tool", 1, "settings.custom_tool: expected true or false"},

@@ -58,8 +58,11 @@ enum class CommandKind : uint8_t {
   /// rotation from tracker axes to the sculpture's as a unit quaternion
   /// w x y z. The tracker re-anchors where the tool is.
   kTracker,
+  /// The built-in tools' hardness (core::Tool::hardness): values[0] in
+  /// [0, 1], 1 the hard edge, 0 a smooth bump (its falloff over the tool).
+  kHardness,
 };
-inline constexpr uint8_t kCommandKindCount = 18;
+inline constexpr uint8_t kCommandKindCount = 19;
 inline constexpr uint8_t kVolumeFill = 0;
 inline constexpr uint8_t kVolumeClay = 1;
 

@@ -130,6 +130,8 @@ class StationController {
   void set_tool(sim::ToolShape shape, float size_a_vox, float size_b_vox, int64_t now_ns);
   void set_mode(core::SculptMode mode, int64_t now_ns);
   void set_strength(float strength, int64_t now_ns);
+  /// The built-in tools' hardness in [0, 1] (a new tool: ends a stroke).
+  void set_hardness(float hardness, int64_t now_ns);
   void set_spacing(float spacing, int64_t now_ns);
   /// axis 0..2 mirrors across the block's middle plane on that axis.
   void set_mirror(std::optional<int> axis, int64_t now_ns);

@@ -34,7 +34,8 @@
 namespace sculpt::station {
 
 /// The tool a shape and sizes describe (sizes are clamped to at least 0.5 voxel).
-core::Tool make_tool(sim::ToolShape shape, float size_a_vox, float size_b_vox);
+core::Tool make_tool(sim::ToolShape shape, float size_a_vox, float size_b_vox,
+                     float hardness = 1.0f);
 /// A block of `dims` voxels holding a slab of clay inset by `margin` voxels
 /// on every side (a 2-voxel density ramp at its faces).
 core::Volume clay_block(glm::ivec3 dims, int margin);

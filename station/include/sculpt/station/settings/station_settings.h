@@ -41,6 +41,9 @@ struct StationSettings {
   float size_b_vox = 0.0f;  ///< cylinder/cone height, ring minor radius
   core::SculptMode mode = core::SculptMode::kAdd;
   float strength = 1.0f;
+  /// The built-in tools' hardness: 1 a hard edge, 0 a smooth bump
+  /// (core::Tool::hardness; a custom tool keeps its own).
+  float hardness = 1.0f;
   float spacing = 0.25f;  ///< dab spacing, fraction of the tool's size
   std::optional<core::MirrorPlane> mirror;
   /// Device presses grab the NURBS sheet instead of sculpting, and Undo and
