@@ -37,7 +37,6 @@ ProgressBar::ProgressBar(std::string command)
 
 ProgressBar::~ProgressBar() {
   finish();
-  sigaction(SIGINT, &g_previous, nullptr);
 }
 
 bool ProgressBar::cancelled() const {
@@ -53,6 +52,10 @@ int ProgressBar::cancel_exit() {
 void ProgressBar::finish() {
   if (terminal_ && drawn_) std::fputs("\r\033[K", stderr);
   drawn_ = false;
+  // Writing follows: Ctrl-C goes back to the handler that removes the
+  // temporaries and ends the process (base/temp_files.h).
+  if (handling_) sigaction(SIGINT, &g_previous, nullptr);
+  handling_ = false;
 }
 
 bool ProgressBar::draw(double fraction) {

@@ -7,7 +7,8 @@
 // (Ctrl-C) sets a flag that the core's progress callback returns; the
 // command then discards its work, writes nothing, prints "distance:
 // cancelled" and exits with kCancelledExit. A second Ctrl-C ends the process
-// at once (the handler resets itself).
+// at once (the handler resets itself), and so does one after finish(), once
+// the command is writing.
 
 #include <chrono>
 #include <string>
@@ -35,7 +36,9 @@ class ProgressBar {
   bool cancelled() const;
   /// Clears the bar, prints "<command>: cancelled" and returns kCancelledExit.
   int cancel_exit();
-  /// Clears the bar (call before printing the command's report).
+  /// Clears the bar and gives SIGINT back to the previous handler (the one
+  /// that removes temporaries and ends the process): call it when the work
+  /// is done, before writing.
   void finish();
 
  private:
@@ -47,6 +50,7 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_, last_draw_;
   int last_decile_ = -1;
   bool drawn_ = false;
+  bool handling_ = true;  // our SIGINT handler is installed
 };
 
 }  // namespace sculpt::station::cli
