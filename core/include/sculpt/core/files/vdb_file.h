@@ -41,6 +41,20 @@ struct VdbLimits {
   int64_t max_voxels = int64_t{1} << 32;
   /// Longest edge, voxels.
   int max_edge = 1 << 16;
+  /// Address space of the child process that parses the file with OpenVDB
+  /// (RLIMIT_AS; not set in sanitizer builds, whose shadow memory needs
+  /// terabytes). A damaged file whose lengths ask for more is refused (std::
+  /// bad_alloc in the child) instead of taking the machine's memory. 4 GiB:
+  /// the most one length OpenVDB reads (uint32) can claim, so with the
+  /// program mapped beside it no such claim is granted; and OpenVDB's tree of a fully dense 512^3
+  /// float grid is 0.5 GiB (a file needing more than 4 GiB of tree is refused
+  /// as asking for too much memory). The dense result is streamed out in
+  /// 1 MiB chunks, so it does not count against this.
+  int64_t reader_address_space = int64_t{4} << 30;
+  /// The child's stderr goes to /dev/null, so that a crash inside OpenVDB
+  /// (glibc's "malloc(): corrupted top size", a sanitizer's report) leaves
+  /// only the parent's one error line. False to see what it said.
+  bool reader_stderr_to_null = true;
 };
 
 /// What write_vdb() writes; a null grid is left out (at least one is needed).
@@ -68,9 +82,12 @@ bool is_vdb_path(const std::filesystem::path& path);
 /// Writes the grids: all of the file, or nothing (AtomicFileWriter).
 Status write_vdb(const std::filesystem::path& path, const VdbGridsOut& grids);
 
-/// Reads a .vdb file; errors name `path`.
+/// Reads a .vdb file; errors name `path`. OpenVDB parses it in a child
+/// process (fork): a file that crashes OpenVDB, or a child that dies, is an
+/// error line ("OpenVDB could not read it (crashed: signal 6)"), and what the
+/// child sends back is checked against `limits` before it is allocated.
 Result<VdbGridsIn> read_vdb(const std::filesystem::path& path, const VdbLimits& limits = {});
-/// The same from a stream (the fuzz target); errors name `name`.
+/// The same from a stream (the fuzz target; the child reads it); errors name `name`.
 Result<VdbGridsIn> read_vdb(std::istream& in, const std::string& name,
                             const VdbLimits& limits = {});
 
