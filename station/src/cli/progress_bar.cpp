@@ -22,12 +22,14 @@ constexpr int kBarWidth = 30;
 
 }  // namespace
 
-ProgressBar::ProgressBar(std::string command)
+ProgressBar::ProgressBar(std::string command, CtrlC ctrl_c)
     : command_(std::move(command)),
       terminal_(isatty(STDERR_FILENO) != 0),
       progress_([this](double f) { return draw(f); }),
       start_(std::chrono::steady_clock::now()) {
   g_interrupted = 0;
+  handling_ = ctrl_c == CtrlC::kCancel;
+  if (!handling_) return;
   struct sigaction sa {};
   sa.sa_handler = on_sigint;
   sigemptyset(&sa.sa_mask);

@@ -22,9 +22,14 @@ inline constexpr int kCancelledExit = 130;
 
 class ProgressBar {
  public:
-  /// Installs the SIGINT handler until destruction; `command` names the
-  /// lines ("distance").
-  explicit ProgressBar(std::string command);
+  /// What Ctrl-C does while the bar is up.
+  enum class CtrlC {
+    kCancel,   ///< sets the flag that the progress callback returns
+    kDefault,  ///< left as it was (work that cannot stop early: replay)
+  };
+  /// Installs the SIGINT handler (with kCancel) until finish(); `command`
+  /// names the lines ("distance").
+  explicit ProgressBar(std::string command, CtrlC ctrl_c = CtrlC::kCancel);
   ~ProgressBar();
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;

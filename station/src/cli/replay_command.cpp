@@ -4,14 +4,18 @@
 // Replays a recorded session (binary or text) through the real parsers,
 // normaliser, pose integration, stroke sampler, sculptor and mesh cache.
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 #include "cli/number_checks.h"
+#include "cli/progress_bar.h"
 #include "sculpt/base/atomic_file.h"
 #include "sculpt/base/output_set.h"
 #include "sculpt/core/distance/surface_normals.h"
@@ -134,7 +138,22 @@ int replay_to_outputs(const ReplayCliOptions& o) {
   if (auto started = restore_session_start(o.session, loop); !started) {
     return report(started.error());
   }
+  // --fast replays can take minutes (the 512^3 bust): progress by session
+  // time, on a terminal only (scripts check that a bad output is one line
+  // on stderr, and replay finds it after the work). The replay cannot stop
+  // early (it is the station's own loop), so Ctrl-C keeps its usual effect:
+  // the process ends, nothing is written.
+  std::optional<ProgressBar> bar;
+  if (o.fast && isatty(STDERR_FILENO) != 0) {
+    bar.emplace("replay", ProgressBar::CtrlC::kDefault);
+    const int64_t start = session->start_t_ns(), span = session->end_t_ns() - start;
+    options.on_sample = [&, sample = std::move(options.on_sample)](const hal::InputEvent& e) {
+      if (sample) sample(e);
+      if (span > 0) bar->progress()->report(double(e.t_ns - start) / double(span));
+    };
+  }
   auto result = replay_session(*session, o.session, loop, options);
+  if (bar) bar->finish();
   if (!result) return report(result.error());
 
   const core::Volume& volume = loop.volume();
