@@ -2,19 +2,22 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <csignal>
 #include <cstdio>
 
 namespace sculpt::station::cli {
 namespace {
 
-// Only an async-signal-safe store happens in the handler; the progress
-// callback, on the working threads, reads the flag.
-volatile std::sig_atomic_t g_interrupted = 0;
+// Only an async-signal-safe store happens in the handler (a lock-free
+// atomic, so the working threads that read it in the progress callback do not
+// race with it either).
+std::atomic<bool> g_interrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
 struct sigaction g_previous {};
 
 extern "C" void on_sigint(int) {
-  g_interrupted = 1;
+  g_interrupted.store(true, std::memory_order_relaxed);
 }
 
 constexpr auto kRedraw = std::chrono::milliseconds(100);
@@ -27,7 +30,7 @@ ProgressBar::ProgressBar(std::string command, CtrlC ctrl_c)
       terminal_(isatty(STDERR_FILENO) != 0),
       progress_([this](double f) { return draw(f); }),
       start_(std::chrono::steady_clock::now()) {
-  g_interrupted = 0;
+  g_interrupted.store(false);
   handling_ = ctrl_c == CtrlC::kCancel;
   if (!handling_) return;
   struct sigaction sa {};
@@ -42,7 +45,7 @@ ProgressBar::~ProgressBar() {
 }
 
 bool ProgressBar::cancelled() const {
-  return g_interrupted != 0 || progress_.cancelled();
+  return g_interrupted.load(std::memory_order_relaxed) || progress_.cancelled();
 }
 
 int ProgressBar::cancel_exit() {
@@ -61,7 +64,7 @@ void ProgressBar::finish() {
 }
 
 bool ProgressBar::draw(double fraction) {
-  if (g_interrupted != 0) return false;
+  if (g_interrupted.load(std::memory_order_relaxed)) return false;
   const auto now = std::chrono::steady_clock::now();
   const int percent = int(fraction * 100.0);
   if (!terminal_) {
