@@ -154,6 +154,12 @@ void add_run_command(CLI::App& app, Action& action) {
                   "device's limit)")
       ->capture_default_str()
       ->check(finite_range(0.01, 100));
+  cmd->add_option("--haptic-spin-us", w.haptic_spin_us,
+                  "window: the haptic thread wakes this many microseconds before each 1 ms "
+                  "tick and polls the clock to it, absorbing late wake-ups for that share of a "
+                  "core")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 500));
   cmd->add_option("--workspace-scale", w.workspace_scale,
                   "window: material millimetres per force-device millimetre")
       ->capture_default_str()

@@ -337,6 +337,7 @@ int run_window(const WindowOptions& o) {
     ho.contact.haptic.coupling.stiffness_n_per_mm = o.haptic_stiffness_n_per_mm;
     ho.contact.workspace_scale = o.workspace_scale;
     ho.contact.voxel_mm = o.voxel_mm;
+    ho.thread.spin_ns = int64_t{o.haptic_spin_us} * 1000;
     ho.drives_tool = sim_backend == nullptr;  // a playing session owns the tool
     haptics = std::make_unique<HapticStation>(std::move(device).value(), ho);
   }

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "sculpt/hal/types/clock.h"
+
 namespace sculpt::hal {
 namespace {
 
@@ -52,6 +54,27 @@ TEST(HapticThread, TicksUntilStoppedThenLeavesTheDeviceWithZeroForce) {
   // Ticks are not bunched up to catch up: each period is one deadline or more,
   // so the ticks never outnumber the deadlines passed.
   EXPECT_EQ(loop.periods().count(), ticks - 1);
+}
+
+// Waking early and polling never runs a tick before its deadline: however
+// the machine is loaded, the ticks never outnumber the deadlines passed.
+TEST(HapticThread, PollingToTheDeadlineNeverTicksEarly) {
+  CountingDevice device;
+  NoForce law;
+  HapticLoop loop(device, law);
+  HapticThreadOptions options;
+  options.spin_ns = 300'000;
+  HapticThread thread(loop, device, options);
+  const int64_t start_ns = monotonic_ns();
+  thread.start();
+  while (loop.live().ticks.load() < 30)
+    std::this_thread::yield();
+  thread.stop();
+  const int64_t elapsed_ns = monotonic_ns() - start_ns;
+  const int64_t ticks = loop.live().ticks.load();
+  EXPECT_GE(ticks, 30);
+  EXPECT_LE(ticks, elapsed_ns / options.period_ns + 1);
+  EXPECT_GE(device.zeroes.load(), 1);
 }
 
 TEST(HapticThread, EndsByItselfWhenTheDeviceGoesAway) {

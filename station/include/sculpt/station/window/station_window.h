@@ -45,7 +45,10 @@ struct WindowOptions {
   std::string falcon_firmware;             ///< the Novint firmware file, for --haptic falcon
   float haptic_stiffness_n_per_mm = 1.0f;  ///< clamped to the device's limit
   float workspace_scale = 1.0f;            ///< material mm per device mm
-  float voxel_mm = 0.5f;                   ///< the material's voxel size
+  /// The haptic thread wakes this early and polls to each tick's deadline
+  /// (hal::HapticThreadOptions::spin_ns), microseconds.
+  int haptic_spin_us = 0;
+  float voxel_mm = 0.5f;  ///< the material's voxel size
   /// A tracker's scale and axes; recorded sessions carry it (a tracker
   /// command), so replays map the same way.
   hal::TrackerCalibration tracker;
