@@ -151,6 +151,9 @@ void HapticStation::sculpting_side(StationController& controller, int64_t now_ns
   }
   for (hal::HapticTickRecord t; loop_->records().try_pop(t);) {
     tick_ = t;
+    const bool mode_button = (t.buttons & 2u) != 0;
+    if (mode_button && !mode_button_) ++mode_presses_;
+    mode_button_ = mode_button;
     if (recording) controller.record_haptic(tick_record(t), now_ns);
   }
   if (have_contact_ && options_.drives_tool) drive_tool(controller, now_ns);
@@ -166,15 +169,14 @@ void HapticStation::sculpting_side(StationController& controller, int64_t now_ns
 }
 
 void HapticStation::drive_tool(StationController& controller, int64_t now_ns) {
-  // Button 1 switches between add and subtract, as on a 3D mouse.
-  const bool mode_button = (tick_.buttons & 2u) != 0;
-  if (mode_button && !mode_button_) {
+  // Button 1 switches between add and subtract, as on a 3D mouse: once per
+  // press seen in any tick since the last poll.
+  for (; mode_presses_ > 0; --mode_presses_) {
     const core::SculptMode mode = controller.loop().settings().mode;
     controller.set_mode(
         mode == core::SculptMode::kAdd ? core::SculptMode::kSubtract : core::SculptMode::kAdd,
         now_ns);
   }
-  mode_button_ = mode_button;
   const bool button = (tick_.buttons & 1u) != 0 && !contact_.clutched;
   glm::vec3 at = contact_.proxy_vox;
   bool stroke = false;

@@ -212,12 +212,28 @@ TEST(VdbFile, ReadsALevelSetOfAnotherProgramInVoxelUnits) {
   EXPECT_NEAR(dims.x, 2 * (5 + 3) + 1, 2);
 }
 
-void expect_refused(const fs::path& file, const std::string& what) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+#else
+constexpr bool kSanitized = false;
+#endif
+
+// `or_what`, when given, is accepted instead of `what`.
+void expect_refused(const fs::path& file, const std::string& what,
+                    const std::string& or_what = {}) {
   auto grids = read_vdb(file);
   ASSERT_FALSE(grids.ok()) << file;
   const std::string message = grids.error().message();
   EXPECT_NE(message.find(file.string()), std::string::npos) << message;
-  EXPECT_NE(message.find(what), std::string::npos) << message;
+  EXPECT_TRUE(message.find(what) != std::string::npos ||
+              (!or_what.empty() && message.find(or_what) != std::string::npos))
+      << message;
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
 
@@ -230,12 +246,16 @@ TEST(VdbFile, RefusesCorruptFiles) {
 
   const fs::path bad = temp_path("bad.vdb");
   // Cut off in the middle, its magic number broken, and not a VDB at all.
+  // Under the sanitizers OpenVDB's own undefined behaviour on the cut file
+  // (a byte read as a bool, RootNode.h) can end the reading child before
+  // OpenVDB throws: the error is then the child's end, one line still.
+  const std::string or_ended = kSanitized ? "OpenVDB could not read it" : "";
   std::ofstream(bad, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
-  expect_refused(bad, "not a readable OpenVDB file");
+  expect_refused(bad, "not a readable OpenVDB file", or_ended);
   std::string broken = bytes;
   broken[0] = static_cast<char>(broken[0] ^ 0x5a);
   std::ofstream(bad, std::ios::binary) << broken;
-  expect_refused(bad, "not a readable OpenVDB file");
+  expect_refused(bad, "not a readable OpenVDB file", or_ended);
   std::ofstream(bad, std::ios::binary) << "NRRD0004\ntype: uint8\n";
   expect_refused(bad, "not a readable OpenVDB file");
   std::ofstream(bad, std::ios::binary) << "";
@@ -274,18 +294,6 @@ TEST(VdbFile, AFileThatCrashesOpenVdbIsAnErrorNotACrash) {
   const fs::path file = data("crafted_blosc_heap_overflow.vdb");
   expect_refused(file, "OpenVDB");
 }
-
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
 
 TEST(VdbFile, AHugeLengthIsRefusedWithoutThisProcessAllocatingIt) {
   if (kSanitized) GTEST_SKIP() << "no address space limit under a sanitizer";

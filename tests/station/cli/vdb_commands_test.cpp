@@ -90,6 +90,18 @@ TEST_F(VdbCommandsTest, MeshDistanceVoxelizeRotateAndStampTakeVdb) {
   EXPECT_TRUE(saved->pivot.has_value());
 }
 
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+#else
+constexpr bool kSanitized = false;
+#endif
+
 void expect_refused(const CommandResult& r, const std::string& input, const std::string& what,
                     const std::string& output) {
   EXPECT_EQ(r.exit_code, 1) << r.err;
@@ -105,8 +117,14 @@ TEST_F(VdbCommandsTest, BadVdbInputIsOneLineExitOneAndNothingWritten) {
   const std::string bytes = read_text(path("v.vdb"));
   std::ofstream(path("cut.vdb"), std::ios::binary) << bytes.substr(0, bytes.size() / 2);
   const std::string out = path("out.nrrd");
-  expect_refused(run_sculpt("wavelet " + path("cut.vdb") + " -o " + out), path("cut.vdb"),
-                 "not a readable OpenVDB file", out);
+  // Under the sanitizers OpenVDB's own undefined behaviour on the cut file can
+  // end the reading child before OpenVDB throws: still one line naming it.
+  const CommandResult cut = run_sculpt("wavelet " + path("cut.vdb") + " -o " + out);
+  expect_refused(cut, path("cut.vdb"),
+                 kSanitized && cut.err.find("could not read it") != std::string::npos
+                     ? "OpenVDB could not read it"
+                     : "not a readable OpenVDB file",
+                 out);
 
   const struct {
     const char* file;

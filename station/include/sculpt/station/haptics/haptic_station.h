@@ -156,6 +156,10 @@ class HapticStation final : public PollListener {
   bool tool_seen_ = false;
   bool pressing_ = false;
   bool mode_button_ = false;
+  // Presses of the mode button among the ticks popped but not yet acted on:
+  // a click shorter than the gap between two polls (a slow frame) is still
+  // a click, though the newest tick no longer holds it.
+  int mode_presses_ = 0;
   float proxy_radius_vox_ = 0.0f;  // full-resolution voxels
   int volume_levels_ = 5;          // of the volume the patch is read from
   glm::vec3 last_tool_vox_{-1e9f};
