@@ -21,6 +21,7 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include "sanitized.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/files/volume_file.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
@@ -212,17 +213,7 @@ TEST(VdbFile, ReadsALevelSetOfAnotherProgramInVoxelUnits) {
   EXPECT_NEAR(dims.x, 2 * (5 + 3) + 1, 2);
 }
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
+using sculpt::test::kSanitized;
 
 // `or_what`, when given, is accepted instead of `what`.
 void expect_refused(const fs::path& file, const std::string& what,

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "run_sculpt.h"
+#include "sanitized.h"
 #include "sculpt/core/files/vdb_file.h"
 #include "sculpt/core/io/nrrd.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
@@ -90,17 +91,7 @@ TEST_F(VdbCommandsTest, MeshDistanceVoxelizeRotateAndStampTakeVdb) {
   EXPECT_TRUE(saved->pivot.has_value());
 }
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
+using sculpt::test::kSanitized;
 
 void expect_refused(const CommandResult& r, const std::string& input, const std::string& what,
                     const std::string& output) {
