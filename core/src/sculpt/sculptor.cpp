@@ -180,10 +180,7 @@ void Sculptor::set_sampling(Sampling sampling) {
 }
 
 void Sculptor::rebuild_caches() {
-  const RotatedToolCacheStats held = rotation_cache_stats();
-  retired_cache_stats_ = held;
-  retired_cache_stats_.bytes = 0;
-  retired_cache_stats_.entries = 0;
+  retired_cache_stats_ = rotation_cache_stats().retired();
   cache_ = std::make_unique<RotatedToolCache>(std::make_shared<const PreparedTool>(*tool_),
                                               options_.sampling, options_.cache_max_bytes,
                                               options_.subvoxel_steps);

@@ -460,21 +460,19 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
             int lo = std::max(x0[k], sp.x);
             int hi = std::min(x1[k], sp.y);
             if (lo >= hi) continue;
+            reach_row(k, y, z, lo, hi);
+            const size_t row = at(origin.x, y, z);
             if (!accumulate) {
               // The ends the stroke has filled fully already cannot change:
               // a big ball moving a little measures only its leading part.
-              reach_row(k, y, z, lo, hi);
-              const size_t r0 = at(origin.x, y, z);
               int c0 = lo - origin.x, c1 = hi - origin.x;
-              trim_full(&held.coverage[r0], &sweep[r0], c0, c1);
+              trim_full(&held.coverage[row], &sweep[row], c0, c1);
               lo = c0 + origin.x;
               hi = c1 + origin.x;
               if (lo >= hi) continue;
             }
             const int in_lo = std::clamp(sp.z, lo, hi);
             const int in_hi = std::clamp(sp.w, in_lo, hi);
-            reach_row(k, y, z, lo, hi);
-            const size_t row = at(origin.x, y, z);
             uint8_t* out = &sweep[row];
             // Not accumulating, a voxel the stroke has filled fully already
             // cannot change: consecutive segments overlap mostly there.

@@ -123,9 +123,7 @@ void StationLoop::restore(std::unique_ptr<core::Volume> volume, const StationSet
 
 void StationLoop::retire_sculptor() {
   if (!sculptor_) return;
-  retired_cache_stats_ = rotation_cache_stats();
-  retired_cache_stats_.bytes = 0;
-  retired_cache_stats_.entries = 0;
+  retired_cache_stats_ = rotation_cache_stats().retired();
   sculptor_.reset();
 }
 

@@ -47,6 +47,13 @@ struct RotatedToolCacheStats {
   }
   /// Counts summed (bytes and entries too: both are what is held now).
   RotatedToolCacheStats& operator+=(const RotatedToolCacheStats& o);
+  /// The counts of a cache being dropped: as these, holding nothing.
+  RotatedToolCacheStats retired() const {
+    RotatedToolCacheStats r = *this;
+    r.bytes = 0;
+    r.entries = 0;
+    return r;
+  }
   /// Share of requested voxels served without rotating, in [0, 1].
   double voxel_hit_rate() const {
     return voxels_requested
