@@ -32,6 +32,8 @@ int main(int argc, char** argv) {
   cli::add_contours_command(app, action);
   cli::add_nurbs_command(app, action);
   cli::add_haptics_command(app, action);
+  cli::add_export_command(app, action);
+  cli::add_import_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ValidationError& e) {

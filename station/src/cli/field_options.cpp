@@ -1,6 +1,9 @@
 #include "cli/field_options.h"
 
+#include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 
 #include "cli/number_checks.h"
 #include "sculpt/core/distance/distance_io.h"
@@ -58,6 +61,32 @@ Status write_field(const std::string& path, const core::DenseGrid<float>& field,
 
 const char* field_kind(bool as_distance) {
   return as_distance ? "float32 signed distance" : "uint8 density";
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+bool is_volume_file_name(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".nrrd" || ext == ".vdb";
+}
+
+Result<core::Volume> read_volume_input(const std::string& path, const DensityOptions& density,
+                                       const core::VolumeOptions& options) {
+  const auto window = density_window(density, path);
+  if (!window) return window.error();
+  return core::read_volume_file(path, options, {}, window->has_value() ? &**window : nullptr);
+}
+
+Status write_volume_level(const std::string& path, const core::Volume& volume, int lod) {
+  if (Status st = core::write_volume_file(path, volume, lod); !st) return st;
+  const glm::ivec3 d = volume.level_dims(lod);
+  std::printf("wrote level %d (%dx%dx%d) to %s\n", lod, d.x, d.y, d.z, path.c_str());
+  return {};
 }
 
 }  // namespace sculpt::station::cli

@@ -14,6 +14,7 @@
 #include "sculpt/base/result.h"
 #include "sculpt/core/grid/dense_grid.h"
 #include "sculpt/core/io/nrrd.h"
+#include "sculpt/core/volume/volume.h"
 
 namespace sculpt::station::cli {
 
@@ -29,6 +30,19 @@ void add_density_options(CLI::App* command, DensityOptions& options);
 /// voxels are density as they are).
 Result<std::optional<core::DensityWindow>> density_window(const DensityOptions& options,
                                                           const std::string& path);
+
+/// `path`'s extension in lower case, with its dot (".vdb"), or "".
+std::string lower_extension(const std::string& path);
+/// Whether `path`'s extension names a volume file (.nrrd, .vdb, any case).
+bool is_volume_file_name(const std::string& path);
+
+/// The volume at `path` (.nrrd, .vdb) as density, mapped as `density`
+/// asks: what every command that reads a volume to mesh or convert it reads.
+Result<core::Volume> read_volume_input(const std::string& path, const DensityOptions& density,
+                                       const core::VolumeOptions& options);
+/// Writes level `lod` of `volume` to `path` (.nrrd, or .vdb with its level
+/// set) and says so on stdout; an error names the path.
+Status write_volume_level(const std::string& path, const core::Volume& volume, int lod);
 
 /// --threads N: 0 (all cores) to 1024.
 CLI::Option* add_threads_option(CLI::App* command, int& threads);

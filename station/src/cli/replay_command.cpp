@@ -1,4 +1,5 @@
-// sculpt replay SESSION [--fast|--speed X] [--volume V.nrrd] [--mesh M.ply]
+// sculpt replay SESSION [--fast|--speed X] [--volume V.{nrrd,vdb}] [--mesh M.{ply,obj,stl,glb}]
+//                       [--simplify R] [--max-error E] [--check [--voxel-mm S]] [--ascii]
 //                       [--stats S.json] [--samples S.jsonl] [--forces F.jsonl]
 //
 // Replays a recorded session (binary or text) through the real parsers,
@@ -19,6 +20,7 @@
 #include "sculpt/base/atomic_file.h"
 #include "sculpt/base/output_set.h"
 #include "sculpt/core/distance/surface_normals.h"
+#include "sculpt/core/files/volume_file.h"
 #include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/core/util/parallel_for.h"
 #include "sculpt/core/volume/volume_io.h"
@@ -108,7 +110,7 @@ int replay_to_outputs(const ReplayCliOptions& o) {
   // Check every output's format before the (possibly long) replay.
   std::optional<core::MeshFormat> mesh_format;
   if (!o.mesh.empty()) {
-    auto f = core::mesh_format_for(o.mesh);
+    auto f = mesh_export_format(o.mesh, o.mesh_export);
     if (!f) return report(f.error());
     mesh_format = *f;
   }
@@ -194,7 +196,7 @@ int replay_to_outputs(const ReplayCliOptions& o) {
   OutputSet outputs;
   const auto failed = [&](const Status& st) { return report(outputs.named(st.error())); };
   if (!o.volume.empty()) {
-    if (Status st = core::write_volume_nrrd(outputs.stage(o.volume), volume); !st) {
+    if (Status st = core::write_volume_file(outputs.stage(o.volume), volume); !st) {
       return failed(st);
     }
   }
@@ -206,7 +208,10 @@ int replay_to_outputs(const ReplayCliOptions& o) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   if (mesh_format) {
-    if (Status st = core::write_mesh(outputs.stage(o.mesh), mesh, *mesh_format); !st) {
+    // Simplified and checked for the file only: the picture shows the full mesh.
+    const auto exported = prepare_mesh_export(mesh, o.mesh_export, o.mesh + ": not written");
+    if (!exported) return report(exported.error());
+    if (Status st = core::write_mesh(outputs.stage(o.mesh), *exported, *mesh_format); !st) {
       return failed(st);
     }
   }
@@ -280,8 +285,9 @@ void add_replay_command(CLI::App& app, Action& action) {
   cmd->add_option("--threads", o->threads,
                   "threads for volume work (0 = all cores); never changes the result")
       ->check(finite_range(0, 256));
-  cmd->add_option("--volume", o->volume, "write the resulting volume (NRRD)");
-  cmd->add_option("--mesh", o->mesh, "write the resulting surface (.ply, .obj, .stl)");
+  cmd->add_option("--volume", o->volume, "write the resulting volume (.nrrd, or .vdb: OpenVDB)");
+  cmd->add_option("--mesh", o->mesh, "write the resulting surface (.ply, .obj, .stl, .glb)");
+  add_mesh_export_options(cmd, o->mesh_export);
   cmd->add_option("--png", o->png, "write a picture of the result (PNG)");
   cmd->add_option("--renderer", o->renderer,
                   "for --png: gl (an invisible window), software (no display needed), or auto "

@@ -49,10 +49,7 @@ int run_wavelet(const WaveletOptions& o) {
 
   if (o.lod >= 0) {
     if (o.output.empty()) return report(Error("--lod needs an output file (-o OUT.nrrd)"));
-    if (Status st = core::write_volume_file(o.output, *volume, o.lod); !st)
-      return report(st.error());
-    const glm::ivec3 d = volume->level_dims(o.lod);
-    std::printf("wrote level %d (%dx%dx%d) to %s\n", o.lod, d.x, d.y, d.z, o.output.c_str());
+    if (Status st = write_volume_level(o.output, *volume, o.lod); !st) return report(st.error());
     return 0;
   }
 
