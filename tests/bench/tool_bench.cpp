@@ -21,9 +21,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <ctime>
 #include <vector>
 
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include "sculpt/core/sculpt/sculptor.h"
@@ -89,6 +92,105 @@ BENCHMARK(BM_ToolRotate)
     ->ArgNames({"m", "method", "aa", "angles"})
     ->ArgsProduct({{16, 32, 64}, {0, 1}, {0, 1}, {0}})
     ->ArgsProduct({{8, 16, 32, 64}, {0, 1}, {0, 1}, {1}})
+    ->Unit(benchmark::kMicrosecond);
+
+// Reproductions of the paper's §3.1-3.2 beyond BM_ToolRotate's sphere
+// (issue 23), all in its worst case: the whole tool rotated, nothing cached.
+//
+// method: 0 brute force (a fixed-point matrix product, a bounds test and a
+// plain sample per voxel of the rotated box); 1 optimised, as the sculptor
+// rotates (Algorithm 1, reach clipping and core fill, AVX2 kernels when the
+// CPU has them); 2 Algorithm 1 alone (RotationClipping::kNone: every voxel of
+// the box sampled by incremental steps, lines cut to the tool's grid, AVX2
+// kernels); 3 as 2 on the scalar kernel (nearest is then the paper's loop;
+// trilinear still reads an equal-cornered cell with one load).
+// aa: 0 nearest, 1 trilinear (the paper's antialiasing).
+//
+// Graphs 1-2 (time against angle, 16^3 tool): BM_ToolRotateAngle. The paper
+// names neither the axis nor the shape, so two of each: about z (the rotated
+// box grows in x and y only, to sqrt 2 at 45 degrees) and about the diagonal
+// (1, 1, 1) (it grows in all three); the peers.py sphere and the cube.
+//   build/bin/sculpt_bench --benchmark_filter=BM_ToolRotateAngle
+//
+// Table 2 per shape: BM_ToolRotateShape, the average over the 16 orientations
+// of BM_ToolRotate's angles:1 cases, for tools whose grid's largest side is m.
+//   build/bin/sculpt_bench --benchmark_filter=BM_ToolRotateShape
+
+enum class Shape { kSphere, kCube, kCylinder, kRing };
+
+// A tool of the shape whose grid's largest side is m voxels (the built-in
+// tools' grids are the shape plus its 2-voxel ramp and one voxel: m - 3
+// across). The sphere is BM_ToolRotate's (peers.py's sphere_density).
+Tool shape_tool(Shape shape, int m) {
+  const float across = static_cast<float>(m - 3);
+  switch (shape) {
+    case Shape::kSphere:
+      return peers_tool(m);
+    case Shape::kCube:
+      return make_cube_tool(across);
+    case Shape::kCylinder:
+      return make_cylinder_tool(across / 2.0f, across);
+    case Shape::kRing:
+      return make_ring_tool(across / 3.0f, across / 6.0f);
+  }
+  return {};
+}
+
+// Rotates `tool` by each of `rotations` in turn with the method and the
+// sampling in the benchmark's last two arguments.
+void run_rotations(benchmark::State& state, const PreparedTool& tool,
+                   const std::vector<glm::mat3>& rotations, int method_arg) {
+  const int method = static_cast<int>(state.range(method_arg));
+  const Sampling sampling =
+      state.range(method_arg + 1) != 0 ? Sampling::kTrilinear : Sampling::kNearest;
+  const RotationMethod how = method == 0 ? RotationMethod::kBrute : RotationMethod::kIncremental;
+  const RotationClipping clipping =
+      method >= 2 ? RotationClipping::kNone : RotationClipping::kReachAndCore;
+  (void)use_vector_kernel(method != 3);
+  size_t i = 0;
+  int64_t voxels = 0;
+  for (auto _ : state) {
+    const RotatedTool r = rotate_tool_about_pivot(tool, rotations[i], how, sampling, clipping);
+    voxels += static_cast<int64_t>(r.density.size());
+    benchmark::DoNotOptimize(r.density.data());
+    i = (i + 1) % rotations.size();
+  }
+  (void)use_vector_kernel(true);
+  state.counters["out_voxels"] =
+      static_cast<double>(voxels) / static_cast<double>(state.iterations());
+  state.SetItemsProcessed(voxels);
+}
+
+// range: shape (0 sphere, 1 cube), axis (0 z, 1 diagonal), degrees, method, aa.
+void BM_ToolRotateAngle(benchmark::State& state) {
+  const PreparedTool tool(shape_tool(static_cast<Shape>(state.range(0)), 16));
+  const glm::vec3 axis = state.range(1) == 0 ? glm::vec3(0, 0, 1) : glm::normalize(glm::vec3(1));
+  const float degrees = static_cast<float>(state.range(2));
+  glm::mat3 r(glm::rotate(glm::mat4(1.0f), glm::radians(degrees), axis));
+  // Float noise (cos 90 deg = -4e-8) to 0, so 0 and 90 about z are exact
+  // quarter turns, as euler_xyz_deg() makes them.
+  for (int c = 0; c < 3; ++c)
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(r[c][k]) < 1e-6f) r[c][k] = 0.0f;
+  run_rotations(state, tool, {r}, 3);
+}
+BENCHMARK(BM_ToolRotateAngle)
+    ->ArgNames({"shape", "axis", "deg", "method", "aa"})
+    ->ArgsProduct({{0, 1}, {0, 1}, benchmark::CreateDenseRange(0, 90, 10), {0, 1, 2, 3}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
+
+// range: shape (0 sphere, 1 cube, 2 cylinder, 3 ring), m, method, aa.
+void BM_ToolRotateShape(benchmark::State& state) {
+  const PreparedTool tool(
+      shape_tool(static_cast<Shape>(state.range(0)), static_cast<int>(state.range(1))));
+  std::vector<glm::mat3> rotations;
+  for (const glm::quat& q : orientations(16, 12345))
+    rotations.push_back(glm::mat3_cast(q));
+  run_rotations(state, tool, rotations, 2);
+}
+BENCHMARK(BM_ToolRotateShape)
+    ->ArgNames({"shape", "m", "method", "aa"})
+    ->ArgsProduct({{0, 1, 2, 3}, {8, 16, 32, 64}, {0, 1, 2, 3}, {0, 1}})
     ->Unit(benchmark::kMicrosecond);
 
 // One-off preparation of a reference tool (padding and the uniform-cell table).

@@ -9,7 +9,8 @@
 // kernel skips equal-cornered cells (PreparedTool's cell table), so the cost
 // follows the tool's surface rather than its rotated box. Rows are planned
 // first and sampled in batches. Memory is x fastest, so the innermost step
-// is along x (the paper steps along z).
+// is along x (the paper steps along z). RotationClipping::kNone turns the
+// reach clipping and the core fill off, to measure Algorithm 1 alone.
 //
 // This file holds the map (RotationFrame) and its batching; the inner loops
 // are in rotation_kernels*.cpp, chosen by kernels() below, PreparedTool in
@@ -102,7 +103,7 @@ bool use_vector_kernel(bool enabled) {
 }
 
 RotationFrame::RotationFrame(const PreparedTool& tool, const glm::mat3& rotation,
-                             glm::vec3 position, Sampling sampling)
+                             glm::vec3 position, Sampling sampling, RotationClipping clipping)
     : sampling_(sampling) {
   const glm::dvec3 pivot(tool.pivot());
   const glm::dvec3 pos(position);
@@ -171,6 +172,20 @@ RotationFrame::RotationFrame(const PreparedTool& tool, const glm::mat3& rotation
   clip_support_ = false;
   for (int i = 0; i < 3; ++i)
     if (pivot[i] - reach < -kPad || pivot[i] + reach >= d[i] + 1.0) clip_support_ = true;
+  if (clipping == RotationClipping::kNone) {
+    // A reach ball holding the whole box (a voxel to spare for the float
+    // spans), no core, and lines cut to the tool's grid: every voxel of the
+    // box sampled, as brute force samples it, but by Algorithm 1's steps.
+    double far2 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double c = centre_[i];
+      const double e = std::max(std::abs(c), std::abs(size[i] - 1 - c)) + 1.0;
+      far2 += e * e;
+    }
+    reach2_ = static_cast<float>(far2);
+    core2_ = -1.0f;
+    clip_support_ = true;
+  }
 }
 
 uint8_t RotationFrame::sample_voxel(const PreparedTool& tool, glm::ivec3 k) const {
@@ -343,8 +358,8 @@ void RotationFrame::sample_box(const PreparedTool& tool, uint8_t* out) const {
 }
 
 RotatedTool rotate_tool(const PreparedTool& tool, const glm::mat3& rotation, glm::vec3 position,
-                        RotationMethod method, Sampling sampling) {
-  const RotationFrame frame(tool, rotation, position, sampling);
+                        RotationMethod method, Sampling sampling, RotationClipping clipping) {
+  const RotationFrame frame(tool, rotation, position, sampling, clipping);
   const Box& box = frame.box();
   RotatedTool out{DenseGrid<uint8_t>(box.size()), box.lo};
   uint8_t* dst = out.density.data();
@@ -361,8 +376,9 @@ RotatedTool rotate_tool(const PreparedTool& tool, const glm::mat3& rotation, glm
 }
 
 RotatedTool rotate_tool_about_pivot(const PreparedTool& tool, const glm::mat3& rotation,
-                                    RotationMethod method, Sampling sampling) {
-  return rotate_tool(tool, rotation, tool.pivot(), method, sampling);
+                                    RotationMethod method, Sampling sampling,
+                                    RotationClipping clipping) {
+  return rotate_tool(tool, rotation, tool.pivot(), method, sampling, clipping);
 }
 
 RotatedTool rotate_tool_direct(const PreparedTool& tool, const glm::mat3& rotation,

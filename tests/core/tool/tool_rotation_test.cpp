@@ -110,6 +110,41 @@ TEST(ToolRotation, CoreFillMatchesBruteForce) {
   }
 }
 
+// With the reach and core shortcuts off (the benchmarks' "Algorithm 1
+// alone"), every voxel of the box is sampled by Algorithm 1's steps: the
+// default result, bit for bit, for the built-in shapes (the ring's core is
+// its hole, value 0), a tool whose reach ball leaves the padded grid (8^3
+// trilinear) and an asymmetric one; both kernels, both samplings.
+TEST(ToolRotation, ClippingOffGivesTheDefaultResultBitForBit) {
+  const Tool tools[] = {make_sphere_tool(9.0f),
+                        make_cube_tool(13.0f),
+                        make_cylinder_tool(6.5f, 13.0f),
+                        make_ring_tool(9.0f, 3.0f),
+                        tool_from_grid(sphere_density(8, 0.4f)),
+                        textured_tool({9, 12, 7})};
+  for (const Tool& t : tools) {
+    const PreparedTool tool(t);
+    for (bool vector : {false, true}) {
+      (void)use_vector_kernel(vector);
+      for (glm::vec3 angles : kAngles)
+        for (glm::vec3 pos : {tool.pivot(), glm::vec3(3.25f, -1.7f, 0.5f)})
+          for (Sampling s : {Sampling::kNearest, Sampling::kTrilinear}) {
+            const glm::mat3 r = euler_xyz_deg(angles);
+            const RotatedTool clipped = rotate_tool(tool, r, pos, RotationMethod::kIncremental, s);
+            const RotatedTool whole =
+                rotate_tool(tool, r, pos, RotationMethod::kIncremental, s, RotationClipping::kNone);
+            ASSERT_EQ(clipped.origin, whole.origin);
+            ASSERT_EQ(clipped.density.dims(), whole.density.dims());
+            EXPECT_TRUE(clipped.density == whole.density)
+                << "tool " << t.density.dims().x << "x" << t.density.dims().y << "x"
+                << t.density.dims().z << " vector " << vector << " angles " << angles.x << ","
+                << angles.y << "," << angles.z << " trilinear " << (s == Sampling::kTrilinear);
+          }
+    }
+  }
+  (void)use_vector_kernel(true);
+}
+
 TEST(ToolRotation, VectorAndScalarKernelsAgreeExactly) {
   const PreparedTool tool(textured_tool({21, 17, 23}));
   for (glm::vec3 angles : kAngles)

@@ -34,6 +34,12 @@ namespace sculpt::core {
 
 enum class Sampling { kNearest, kTrilinear };
 enum class RotationMethod { kBrute, kIncremental };
+/// What the incremental method may leave unsampled. kReachAndCore (the
+/// default): rows are cut to the tool's reach ball and the core ball is
+/// filled with the core value. kNone: every voxel of the rotated box is
+/// sampled (lines still stop at the tool's grid, as brute force's bounds test
+/// does), for measuring Algorithm 1 alone; same results, bit for bit.
+enum class RotationClipping { kReachAndCore, kNone };
 
 /// The rotation of Euler angles in degrees, extrinsic about x, then y, then z:
 /// Rz * Ry * Rx, the matrix of scipy's Rotation.from_euler("xyz", deg, degrees=True).
@@ -111,7 +117,7 @@ class RotationFrame {
  public:
   /// Frame of `tool` rotated by `rotation` with its pivot at `position`.
   RotationFrame(const PreparedTool& tool, const glm::mat3& rotation, glm::vec3 position,
-                Sampling sampling);
+                Sampling sampling, RotationClipping clipping = RotationClipping::kReachAndCore);
 
   /// Target voxels that can be non-zero: the bounding box of the 8 rotated
   /// corners of the tool's support (§3.1.1).
@@ -185,13 +191,16 @@ struct RotatedTool {
 };
 
 /// Rotates the whole tool (the worst case of Table 2) by the inverse method.
+/// `clipping` applies to the incremental method only (brute force never clips).
 RotatedTool rotate_tool(const PreparedTool& tool, const glm::mat3& rotation, glm::vec3 position,
-                        RotationMethod method, Sampling sampling);
+                        RotationMethod method, Sampling sampling,
+                        RotationClipping clipping = RotationClipping::kReachAndCore);
 
 /// Rotation about the tool's own pivot (position = pivot): quarter turns of
 /// a tool whose pivot is its centre map voxels exactly onto voxels.
 RotatedTool rotate_tool_about_pivot(const PreparedTool& tool, const glm::mat3& rotation,
-                                    RotationMethod method, Sampling sampling);
+                                    RotationMethod method, Sampling sampling,
+                                    RotationClipping clipping = RotationClipping::kReachAndCore);
 
 /// The direct (forward) method of §3.1.2, kept only as a reference that shows
 /// its holes: each tool voxel is sent to the target voxel nearest to its
