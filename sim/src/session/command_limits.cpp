@@ -119,6 +119,8 @@ std::optional<std::string> command_problem(const Command& c) {
     }
     case CommandKind::kTouch:
       return choice_below(2, "touch");
+    case CommandKind::kAccumulate:
+      return choice_below(2, "accumulate");
     case CommandKind::kClutch:
       return choice_below(2, "clutch");
     case CommandKind::kTracker: {

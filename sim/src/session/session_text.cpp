@@ -268,6 +268,7 @@ ordered record_json(const SessionRecord& r) {
       sheet_json(c, j);
       break;
     case CommandKind::kTouch:
+    case CommandKind::kAccumulate:
       j["on"] = c.choice != 0;
       break;
     case CommandKind::kClutch:
@@ -496,6 +497,7 @@ SessionRecord parse_command(const json& j, int64_t t) {
       read_sheet(j, c);
       break;
     case CommandKind::kTouch:
+    case CommandKind::kAccumulate:
       c.choice = read_bool(j, "on");
       break;
     case CommandKind::kClutch:

@@ -75,6 +75,12 @@ void StationController::set_tool(sim::ToolShape shape, float a, float b, int64_t
 void StationController::set_mode(core::SculptMode mode, int64_t now_ns) {
   command(make_command(sim::CommandKind::kMode, choice_of(mode)), now_ns);
 }
+void StationController::set_brush(BallBrush brush, int64_t now_ns) {
+  command(make_command(sim::CommandKind::kMode, choice_of(brush)), now_ns);
+}
+void StationController::set_accumulate(bool on, int64_t now_ns) {
+  command(make_command(sim::CommandKind::kAccumulate, on ? 1 : 0), now_ns);
+}
 void StationController::set_strength(float s, int64_t now_ns) {
   command(make_command(sim::CommandKind::kStrength, 0, {std::clamp(s, 0.0f, 1.0f)}), now_ns);
 }
@@ -189,6 +195,24 @@ bool StationController::perform(Action action, int64_t now_ns) {
       return true;
     case Action::kSmooth:
       set_mode(core::SculptMode::kSmooth, now_ns);
+      return true;
+    case Action::kBrushClay:
+      set_brush(BallBrush::kClay, now_ns);
+      return true;
+    case Action::kBrushFlatten:
+      set_brush(BallBrush::kFlatten, now_ns);
+      return true;
+    case Action::kBrushInflate:
+      set_brush(BallBrush::kInflate, now_ns);
+      return true;
+    case Action::kBrushPinch:
+      set_brush(BallBrush::kPinch, now_ns);
+      return true;
+    case Action::kBrushGrab:
+      set_brush(BallBrush::kGrab, now_ns);
+      return true;
+    case Action::kToggleAccumulate:
+      set_accumulate(!s.accumulate, now_ns);
       return true;
     case Action::kToolSphere:
       return tool(sim::ToolShape::kSphere);

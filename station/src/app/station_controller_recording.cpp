@@ -29,9 +29,12 @@ std::vector<sim::Command> StationController::opening_commands(bool with_block) c
   c.push_back(
       make_command(sim::CommandKind::kTool, choice_of(s.shape), {s.size_a_vox, s.size_b_vox}));
   c.push_back(make_command(sim::CommandKind::kMode, choice_of(s.mode)));
+  // The brush after the mode: a replay keeps both, as the station had them.
+  if (s.brush) c.push_back(make_command(sim::CommandKind::kMode, choice_of(*s.brush)));
   c.push_back(make_command(sim::CommandKind::kStrength, 0, {s.strength}));
   c.push_back(make_command(sim::CommandKind::kHardness, 0, {s.hardness}));
   c.push_back(make_command(sim::CommandKind::kSpacing, 0, {s.spacing}));
+  c.push_back(make_command(sim::CommandKind::kAccumulate, s.accumulate ? 1 : 0));
   c.push_back(s.mirror ? make_command(sim::CommandKind::kMirror,
                                       static_cast<uint8_t>(s.mirror->axis), {s.mirror->centre_vox})
                        : make_command(sim::CommandKind::kMirror, sim::kMirrorOff, {0.0f}));

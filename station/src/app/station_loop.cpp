@@ -3,6 +3,11 @@
 #include <glm/geometric.hpp>
 
 #include "sculpt/core/distance/hypertexture.h"
+#include "sculpt/core/sculpt/clay_brush.h"
+#include "sculpt/core/sculpt/flatten_brush.h"
+#include "sculpt/core/sculpt/grab_brush.h"
+#include "sculpt/core/sculpt/inflate_brush.h"
+#include "sculpt/core/sculpt/pinch_brush.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 #include "sculpt/sim/session/command_limits.h"
 #include "sculpt/station/settings/command_codec.h"
@@ -70,6 +75,34 @@ float tool_size_vox(sim::ToolShape shape, float a, float b) {
       return 2 * (a + b);
   }
   return 2 * a;
+}
+
+int64_t ball_brush_stroke(core::Volume& volume, core::Sculptor& sculptor, BallBrush brush,
+                          std::span<const core::StrokeSample> path, float radius_vox,
+                          float hardness, float strength) {
+  // Every option in range, so the core's asserts hold whatever a session says.
+  const float r = std::clamp(radius_vox, kMinSize, core::kMaxBrushRadiusVox);
+  const float h = std::clamp(hardness, 0.0f, 1.0f);
+  const float w = std::clamp(strength, 0.0f, 1.0f);
+  auto with = [&](auto o) {
+    o.radius_vox = r;
+    o.hardness = h;
+    o.strength = w;
+    return o;
+  };
+  switch (brush) {
+    case BallBrush::kClay:
+      return core::clay_stroke(volume, sculptor, path, with(core::ClayBrushOptions{}));
+    case BallBrush::kFlatten:
+      return core::flatten_stroke(volume, sculptor, path, with(core::FlattenBrushOptions{}));
+    case BallBrush::kInflate:
+      return core::inflate_stroke(volume, sculptor, path, with(core::InflateBrushOptions{}));
+    case BallBrush::kPinch:
+      return core::pinch_stroke(volume, sculptor, path, with(core::PinchBrushOptions{}));
+    case BallBrush::kGrab:
+      return core::grab_stroke(volume, sculptor, path, with(core::GrabBrushOptions{}));
+  }
+  return 0;
 }
 
 namespace {
@@ -231,7 +264,15 @@ void StationLoop::handle(const sim::Command& c) {
       apply_tool();
       break;
     case K::kMode:
-      settings_.mode = sculpt_mode_of_choice(c.choice).value_or(settings_.mode);
+      if (const auto brush = ball_brush_of_choice(c.choice)) {
+        settings_.brush = brush;
+      } else if (const auto mode = sculpt_mode_of_choice(c.choice)) {
+        settings_.mode = *mode;
+        settings_.brush.reset();
+      }
+      break;
+    case K::kAccumulate:
+      settings_.accumulate = c.choice != 0;
       break;
     case K::kStrength:
       settings_.strength = std::clamp(c.values[0], 0.0f, 1.0f);
@@ -378,17 +419,47 @@ void StationLoop::release() {
   stroke_.reset();  // finishes it
   resume_stroke_ = false;
   sculptor_->end_stroke();
+  finish_brush();
 }
 
 void StationLoop::interrupt_stroke() {
-  if (!stroke_) return;
+  if (!stroke_ && brush_path_.empty()) return;
   stroke_.reset();
+  if (!brush_path_.empty()) {
+    finish_brush();
+    // The rest of the press is one undo step again.
+    if (pressed_) sculptor_->begin_stroke();
+  }
   resume_stroke_ = true;
+}
+
+void StationLoop::finish_brush() {
+  if (brush_path_.empty()) return;
+  ball_brush_stroke(*volume_, *sculptor_, brush_, brush_path_, tool_size() * 0.5f,
+                    settings_.hardness, brush_strength_);
+  brush_path_.clear();
 }
 
 void StationLoop::sculpt(const std::vector<hal::Dab>& dabs) {
   for (const hal::Dab& d : dabs) {
     ++counters_.dabs;
+    const core::StrokeSample sample{d.position, d.orientation};
+    if (settings_.brush) {
+      if (stroke_ || (!brush_path_.empty() &&
+                      (brush_ != *settings_.brush || brush_strength_ != settings_.strength))) {
+        interrupt_stroke();
+      }
+      if (brush_path_.empty()) {
+        brush_ = *settings_.brush;
+        brush_strength_ = settings_.strength;
+        if (resume_stroke_) brush_path_.push_back(stroke_last_);
+        resume_stroke_ = false;
+      }
+      brush_path_.push_back(sample);
+      stroke_last_ = sample;
+      continue;
+    }
+    if (!brush_path_.empty()) interrupt_stroke();
     if (settings_.mode == core::SculptMode::kSmooth) {
       stroke_.reset();
       core::Dab dab;
@@ -399,13 +470,13 @@ void StationLoop::sculpt(const std::vector<hal::Dab>& dabs) {
       sculptor_->dab(dab);
       continue;
     }
-    const core::StrokeSample sample{d.position, d.orientation};
-    if (stroke_ && (stroke_options_.mode != settings_.mode ||
-                    stroke_options_.strength != settings_.strength)) {
+    if (stroke_ &&
+        (stroke_options_.mode != settings_.mode || stroke_options_.strength != settings_.strength ||
+         stroke_options_.accumulate != settings_.accumulate)) {
       interrupt_stroke();
     }
     if (!stroke_) {
-      stroke_options_ = {settings_.mode, settings_.strength, false};
+      stroke_options_ = {settings_.mode, settings_.strength, settings_.accumulate};
       stroke_ = std::make_unique<core::SweptStroke>(*sculptor_, stroke_options_);
       // After an interruption the rest of the press sweeps on from where
       // the tool was, not from a gap.
@@ -440,6 +511,7 @@ void StationLoop::handle(const hal::InputEvent& e) {
       } else if (e.button == 1 && e.pressed) {
         settings_.mode = settings_.mode == core::SculptMode::kAdd ? core::SculptMode::kSubtract
                                                                   : core::SculptMode::kAdd;
+        settings_.brush.reset();
       } else if (e.button == kClutchButton) {
         clutch_button_ = e.pressed;
         apply_clutch();

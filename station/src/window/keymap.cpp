@@ -32,6 +32,16 @@ std::optional<Action> shortcut(int key, int mods) {
       return Action::kToggleAddSubtract;
     case GLFW_KEY_M:
       return Action::kSmooth;
+    // The ball brushes on Blender's keys where they are free here (C and G
+    // already mean the device's target and sheet editing: Shift with them).
+    case GLFW_KEY_T:
+      return shift ? std::optional(Action::kBrushFlatten) : std::nullopt;
+    case GLFW_KEY_I:
+      return Action::kBrushInflate;
+    case GLFW_KEY_P:
+      return Action::kBrushPinch;
+    case GLFW_KEY_A:
+      return shift ? std::optional(Action::kToggleAccumulate) : std::nullopt;
     case GLFW_KEY_1:
       return Action::kToolSphere;
     case GLFW_KEY_2:
@@ -53,7 +63,7 @@ std::optional<Action> shortcut(int key, int mods) {
     case GLFW_KEY_X:
       return Action::kToggleMirror;
     case GLFW_KEY_C:
-      return Action::kToggleDeviceTarget;
+      return shift ? Action::kBrushClay : Action::kToggleDeviceTarget;
     case GLFW_KEY_U:
       return Action::kToggleTouch;
     case GLFW_KEY_R:
@@ -69,7 +79,7 @@ std::optional<Action> shortcut(int key, int mods) {
     case GLFW_KEY_N:
       return shift ? Action::kRemoveSheet : Action::kNewSheet;
     case GLFW_KEY_G:
-      return Action::kToggleSheetEditing;
+      return shift ? Action::kBrushGrab : Action::kToggleSheetEditing;
     default:
       return std::nullopt;
   }
@@ -85,6 +95,18 @@ const char* shortcut_label(Action action) {
       return "Tab";
     case Action::kSmooth:
       return "M";
+    case Action::kBrushClay:
+      return "Shift+C";
+    case Action::kBrushFlatten:
+      return "Shift+T";
+    case Action::kBrushInflate:
+      return "I";
+    case Action::kBrushPinch:
+      return "P";
+    case Action::kBrushGrab:
+      return "Shift+G";
+    case Action::kToggleAccumulate:
+      return "Shift+A";
     case Action::kToolSphere:
       return "1";
     case Action::kToolCube:

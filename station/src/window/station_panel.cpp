@@ -90,21 +90,36 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     if (ImGui::Button("Hypertexture around the tool")) c_.hypertexture(now);
     tip(Action::kHypertexture);
 
-    int mode = s.mode == core::SculptMode::kSubtract ? 1
-               : s.mode == core::SculptMode::kSmooth ? 2
-                                                     : 0;
+    // One choice: the three modes, then the ball brushes (a press applies the
+    // brush to its whole path when it ends).
+    constexpr const char* kModeLabels[] = {"add",     "subtract", "smooth", "clay",
+                                           "flatten", "inflate",  "pinch",  "grab"};
+    constexpr Action kBrushActions[] = {Action::kBrushClay, Action::kBrushFlatten,
+                                        Action::kBrushInflate, Action::kBrushPinch,
+                                        Action::kBrushGrab};
+    int mode = s.brush                                 ? 3 + static_cast<int>(*s.brush)
+               : s.mode == core::SculptMode::kSubtract ? 1
+               : s.mode == core::SculptMode::kSmooth   ? 2
+                                                       : 0;
     const int before = mode;
-    ImGui::RadioButton("add", &mode, 0);
-    ImGui::SameLine();
-    ImGui::RadioButton("subtract", &mode, 1);
-    ImGui::SameLine();
-    ImGui::RadioButton("smooth", &mode, 2);
-    if (mode != before) {
-      c_.set_mode(mode == 0   ? core::SculptMode::kAdd
-                  : mode == 1 ? core::SculptMode::kSubtract
-                              : core::SculptMode::kSmooth,
-                  now);
+    for (int i = 0; i < IM_ARRAYSIZE(kModeLabels); ++i) {
+      if (i % 4 != 0) ImGui::SameLine();
+      ImGui::RadioButton(kModeLabels[i], &mode, i);
+      if (i >= 3) tip(kBrushActions[i - 3]);
     }
+    if (mode != before) {
+      if (mode >= 3) {
+        c_.set_brush(static_cast<BallBrush>(mode - 3), now);
+      } else {
+        c_.set_mode(mode == 0   ? core::SculptMode::kAdd
+                    : mode == 1 ? core::SculptMode::kSubtract
+                                : core::SculptMode::kSmooth,
+                    now);
+      }
+    }
+    bool accumulate = s.accumulate;
+    if (ImGui::Checkbox("accumulate", &accumulate)) c_.set_accumulate(accumulate, now);
+    tip(Action::kToggleAccumulate);
     float strength = s.strength;
     ImGui::SliderFloat("strength", &strength, 0.0f, 1.0f, "%.2f");
     if (ImGui::IsItemDeactivatedAfterEdit()) c_.set_strength(strength, now);

@@ -41,6 +41,10 @@ TEST(CommandLimits, CommandsTheStationWritesPass) {
   EXPECT_FALSE(command_problem(command(CommandKind::kTracker, 0, {0.25f, 0.5f, 0.5f, 0.5f, 0.5f})));
   EXPECT_FALSE(command_problem(command(CommandKind::kHardness, 0, {0.0f})));
   EXPECT_FALSE(command_problem(command(CommandKind::kHardness, 0, {1.0f})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kMode, 5, {})));  // clay
+  EXPECT_FALSE(command_problem(command(CommandKind::kMode, 9, {})));  // grab
+  EXPECT_FALSE(command_problem(command(CommandKind::kAccumulate, 0, {})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kAccumulate, 1, {})));
 }
 
 TEST(CommandLimits, EachOutOfRangeFieldIsNamed) {
@@ -51,7 +55,8 @@ TEST(CommandLimits, EachOutOfRangeFieldIsNamed) {
     const char* says;
   } cases[] = {
       {command(CommandKind::kTool, 200, {4, 4}), "tool shape 200 unknown"},
-      {command(CommandKind::kMode, 5, {}), "sculpt mode 5 unknown"},
+      {command(CommandKind::kMode, 10, {}), "sculpt mode 10 unknown"},
+      {command(CommandKind::kAccumulate, 2, {}), "accumulate 2 unknown"},
       {command(CommandKind::kMirror, 3, {0}), "mirror axis 3 unknown"},
       {command(CommandKind::kSheet, 6, {0, 0, 0, 0, 0, 0}), "sheet action 6 unknown"},
       {command(CommandKind::kSheet, 0, {0, 0, 0, 10, 8, 7}), "sheet axis 7"},
@@ -99,6 +104,55 @@ TEST(CommandLimits, ABinarySessionStopsAtTheBadCommandWithAWarning) {
             std::string::npos)
       << info.warning;
   EXPECT_NE(session_to_text(*r).find("press"), std::string::npos);
+}
+
+// A brush id past the last and an accumulate that is neither on nor off:
+// the binary reader stops at the record with one warning naming it, the
+// text reader refuses the line.
+TEST(CommandLimits, BadBrushAndAccumulateValuesAreRefusedByBothReaders) {
+  const struct {
+    Command c;
+    const char* binary_says;
+  } cases[] = {
+      {command(CommandKind::kMode, kSculptModeCount, {}),
+       "bad.scs: record 2: mode command: sculpt mode 10 unknown"},
+      {command(CommandKind::kAccumulate, 7, {}),
+       "bad.scs: record 2: accumulate command: accumulate 7 unknown"},
+  };
+  for (const auto& [c, says] : cases) {
+    SessionReadInfo info;
+    const auto r = parse_session_bytes(serialize_session(with(c)), "bad.scs", &info);
+    ASSERT_TRUE(r.ok());
+    EXPECT_EQ(r->records.size(), 1u);
+    EXPECT_NE(info.warning.find(says), std::string::npos) << info.warning;
+  }
+  const std::string head = session_to_text(with(command(CommandKind::kPress, 0, {})));
+  const auto mode = session_from_text(
+      head + "{\"t\": 3000, \"cmd\": \"mode\", \"mode\": \"smudge\"}\n", "bad.jsonl");
+  ASSERT_FALSE(mode.ok());
+  EXPECT_NE(mode.error().message().find("bad.jsonl:4: "), std::string::npos)
+      << mode.error().message();
+  EXPECT_NE(mode.error().message().find("smudge"), std::string::npos) << mode.error().message();
+  const auto accumulate =
+      session_from_text(head + "{\"t\": 3000, \"cmd\": \"accumulate\", \"on\": 2}\n", "bad.jsonl");
+  ASSERT_FALSE(accumulate.ok());
+  EXPECT_NE(accumulate.error().message().find("bad.jsonl:4: "), std::string::npos)
+      << accumulate.error().message();
+  EXPECT_NE(accumulate.error().message().find("on: expected true or false"), std::string::npos)
+      << accumulate.error().message();
+  // And the good ones read in both forms, the brush by its name.
+  const auto good =
+      session_from_text(head + "{\"t\": 3000, \"cmd\": \"mode\", \"mode\": \"grab\"}\n" +
+                            "{\"t\": 3001, \"cmd\": \"accumulate\", \"on\": true}\n",
+                        "good.jsonl");
+  ASSERT_TRUE(good.ok()) << good.error().message();
+  ASSERT_EQ(good->records.size(), 4u);
+  EXPECT_EQ(good->records[2].command.choice, static_cast<uint8_t>(SculptModeId::kGrab));
+  EXPECT_EQ(good->records[3].command.kind, CommandKind::kAccumulate);
+  EXPECT_EQ(good->records[3].command.choice, 1);
+  const auto binary = parse_session_bytes(serialize_session(*good), "good.scs");
+  ASSERT_TRUE(binary.ok()) << binary.error().message();
+  EXPECT_EQ(*binary, *good);
 }
 
 TEST(CommandLimits, TheTextFormRefusesTheSameWithTheLine) {

@@ -37,5 +37,21 @@ TEST(StationShortcuts, ReachTheSheetAndTurnTheTool) {
   EXPECT_STREQ(shortcut_label(Action::kToggleTouch), "U");
 }
 
+// The ball brushes on Blender's keys where they are free; C and G alone keep
+// their meaning (the device's target, sheet editing).
+TEST(StationShortcuts, ChooseTheBallBrushesAndAccumulate) {
+  EXPECT_EQ(shortcut(GLFW_KEY_C, GLFW_MOD_SHIFT), Action::kBrushClay);
+  EXPECT_EQ(shortcut(GLFW_KEY_C, 0), Action::kToggleDeviceTarget);
+  EXPECT_EQ(shortcut(GLFW_KEY_T, GLFW_MOD_SHIFT), Action::kBrushFlatten);
+  EXPECT_EQ(shortcut(GLFW_KEY_T, 0), std::nullopt);
+  EXPECT_EQ(shortcut(GLFW_KEY_I, 0), Action::kBrushInflate);
+  EXPECT_EQ(shortcut(GLFW_KEY_P, 0), Action::kBrushPinch);
+  EXPECT_EQ(shortcut(GLFW_KEY_G, GLFW_MOD_SHIFT), Action::kBrushGrab);
+  EXPECT_EQ(shortcut(GLFW_KEY_G, 0), Action::kToggleSheetEditing);
+  EXPECT_EQ(shortcut(GLFW_KEY_A, GLFW_MOD_SHIFT), Action::kToggleAccumulate);
+  EXPECT_STREQ(shortcut_label(Action::kBrushClay), "Shift+C");
+  EXPECT_STREQ(shortcut_label(Action::kToggleAccumulate), "Shift+A");
+}
+
 }  // namespace
 }  // namespace sculpt::station

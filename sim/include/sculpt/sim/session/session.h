@@ -23,7 +23,7 @@ enum class CommandKind : uint8_t {
   kPress = 1,  ///< the tool goes down: a stroke starts
   kRelease,    ///< the tool comes up: the stroke ends
   kTool,       ///< shape + size: choice = ToolShape, values[0..1] = sizes in voxels
-  kMode,       ///< choice = SculptModeId
+  kMode,       ///< choice = SculptModeId (a mode, or a ball brush from kClay on)
   kStrength,   ///< values[0] in [0, 1]
   kSpacing,    ///< values[0]: dab spacing as a fraction of the tool's size, > 0
   kMirror,     ///< choice = axis 0..2, or kMirrorOff; values[0] = plane position, voxels
@@ -61,16 +61,40 @@ enum class CommandKind : uint8_t {
   /// The built-in tools' hardness (core::Tool::hardness): values[0] in
   /// [0, 1], 1 the hard edge, 0 a smooth bump (its falloff over the tool).
   kHardness,
+  /// Swept strokes build up where they overlap themselves: choice 1 on, 0
+  /// off (core::StrokeOptions::accumulate; off, a stroke applies its
+  /// strength once per voxel).
+  kAccumulate,
 };
-inline constexpr uint8_t kCommandKindCount = 19;
+inline constexpr uint8_t kCommandKindCount = 20;
+static_assert(static_cast<uint8_t>(CommandKind::kAccumulate) == kCommandKindCount,
+              "a new command kind: add its name and value count in session.cpp");
 inline constexpr uint8_t kVolumeFill = 0;
 inline constexpr uint8_t kVolumeClay = 1;
 
 enum class ToolShape : uint8_t { kSphere, kCube, kCylinder, kRing, kCone };
 inline constexpr uint8_t kToolShapeCount = 5;
-/// The order of sculpt::core::SculptMode.
-enum class SculptModeId : uint8_t { kAdd, kSubtract, kUnion, kDifference, kSmooth };
-inline constexpr uint8_t kSculptModeCount = 5;
+/// The first five in the order of sculpt::core::SculptMode; from kClay on
+/// the ball brushes (core/sculpt/*_brush.h), which the station applies to a
+/// press's whole path when it ends. Values are stored in sessions and
+/// projects: only ever append.
+enum class SculptModeId : uint8_t {
+  kAdd,
+  kSubtract,
+  kUnion,
+  kDifference,
+  kSmooth,
+  kClay,
+  kFlatten,
+  kInflate,
+  kPinch,
+  kGrab,
+};
+inline constexpr uint8_t kSculptModeCount = 10;
+/// The first ball brush's id: ids below it are core::SculptMode's.
+inline constexpr uint8_t kFirstBallBrushMode = 5;
+static_assert(static_cast<uint8_t>(SculptModeId::kClay) == kFirstBallBrushMode);
+static_assert(static_cast<uint8_t>(SculptModeId::kGrab) + 1 == kSculptModeCount);
 inline constexpr uint8_t kMirrorOff = 255;
 
 /// What a kSheet command does, and its values.

@@ -46,6 +46,15 @@ enum class Action {
   kRedo,
   kToggleAddSubtract,
   kSmooth,
+  /// The ball brushes (StationSettings::brush): a press applies the brush to
+  /// its whole path when it ends.
+  kBrushClay,
+  kBrushFlatten,
+  kBrushInflate,
+  kBrushPinch,
+  kBrushGrab,
+  /// Swept strokes build up where they overlap themselves, or not.
+  kToggleAccumulate,
   kToolSphere,
   kToolCube,
   kToolCylinder,
@@ -128,7 +137,12 @@ class StationController {
     if (recorder_.recording()) recorder_.haptic(record, stamp(now_ns));
   }
   void set_tool(sim::ToolShape shape, float size_a_vox, float size_b_vox, int64_t now_ns);
+  /// A mode (and no brush), or a ball brush (the mode kept for later).
   void set_mode(core::SculptMode mode, int64_t now_ns);
+  void set_brush(BallBrush brush, int64_t now_ns);
+  /// Swept strokes build up where they overlap themselves (on) or apply
+  /// their strength once (off).
+  void set_accumulate(bool on, int64_t now_ns);
   void set_strength(float strength, int64_t now_ns);
   /// The built-in tools' hardness in [0, 1] (a new tool: ends a stroke).
   void set_hardness(float hardness, int64_t now_ns);

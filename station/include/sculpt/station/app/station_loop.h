@@ -5,17 +5,22 @@
 // session ran.
 //
 // Device buttons: button 0 presses the tool into the material while held;
-// button 1 switches between add and subtract. In touch mode (touch_mode.h)
-// the tool rests on the material and button 0 sculpts only where the device
-// pushes past the press threshold. A device that vanishes while
-// pressed ends the stroke cleanly, and so does a tracker losing its target
-// (its next pose re-anchors where the tool is: the tool never jumps).
+// button 1 switches between add and subtract (leaving a ball brush). With a
+// ball brush chosen (settings().brush) a press collects the sampler's dabs
+// as its path and applies the brush to the whole path when it ends: one undo
+// step, the tool's radius as the ball's (its diameter for other shapes),
+// the hardness and strength settings; grab uses the first and last sample. In touch mode
+// (touch_mode.h) the tool rests on the material and button 0 sculpts only where the device pushes
+// past the press threshold. A device that vanishes while pressed ends the stroke cleanly, and so
+// does a tracker losing its target (its next pose re-anchors where the tool is: the tool never
+// jumps).
 //
 // Thread safety: one thread (the main loop) calls everything.
 
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -41,6 +46,16 @@ core::Tool make_tool(sim::ToolShape shape, float size_a_vox, float size_b_vox,
 core::Volume clay_block(glm::ivec3 dims, int margin);
 /// The diameter of that tool, voxels: what dab spacing is relative to.
 float tool_size_vox(sim::ToolShape shape, float size_a_vox, float size_b_vox);
+
+/// A ball brush's stroke along `path` (at least one sample) on `volume` (the
+/// one `sculptor` sculpts): the core brush (core/sculpt/*_brush.h) with a
+/// ball of `radius_vox` (clamped to (0, core::kMaxBrushRadiusVox]),
+/// `hardness` and `strength` (clamped to [0, 1]), its other options the
+/// core's defaults (clay's layer, inflate's distance). One undo step; not
+/// mirrored. Returns the voxels changed.
+int64_t ball_brush_stroke(core::Volume& volume, core::Sculptor& sculptor, BallBrush brush,
+                          std::span<const core::StrokeSample> path, float radius_vox,
+                          float hardness, float strength);
 
 struct StationCounters {
   int64_t dabs = 0;
@@ -127,9 +142,11 @@ class StationLoop {
   void press();
   void release();
   void sculpt(const std::vector<hal::Dab>& dabs);
-  // Finishes the press's swept stroke; its next sample starts a new one at
-  // the last sample (same undo step).
+  // Finishes the press's swept stroke or brush path; its next sample starts
+  // a new one at the last sample (same undo step for a swept stroke).
   void interrupt_stroke();
+  // Applies the ball brush to the path collected (nothing if none).
+  void finish_brush();
   void tool_moved();
   // Touch mode's half of a motion sample: the tool onto the proxy.
   void touch_moved(const hal::InputEvent& e);
@@ -165,6 +182,12 @@ class StationLoop {
   core::StrokeOptions stroke_options_;
   core::StrokeSample stroke_last_;
   bool resume_stroke_ = false;
+  // A ball brush's press: the brush and strength it started with and the
+  // path so far, applied by finish_brush() when the press ends or either
+  // changes.
+  BallBrush brush_ = BallBrush::kClay;
+  float brush_strength_ = 1.0f;
+  std::vector<core::StrokeSample> brush_path_;
   SheetEditor sheet_;
   TouchMode touch_;
   std::string sheet_problem_;

@@ -30,6 +30,12 @@ struct SheetDragOptions {
   double reach_vox = 6.0;
 };
 
+/// The ball brushes (core/sculpt/*_brush.h) offered next to the modes: a
+/// press collects its path and the brush applies to all of it, as one undo
+/// step, when the press ends. Same order as sim::SculptModeId from kClay.
+enum class BallBrush : uint8_t { kClay, kFlatten, kInflate, kPinch, kGrab };
+inline constexpr uint8_t kBallBrushCount = 5;
+
 /// What the user has chosen (the UI panel's state).
 struct StationSettings {
   sim::ToolShape shape = sim::ToolShape::kSphere;
@@ -40,11 +46,17 @@ struct StationSettings {
   float size_a_vox = 8.0f;  ///< sphere radius, cube edge, cylinder/cone radius, ring major radius
   float size_b_vox = 0.0f;  ///< cylinder/cone height, ring minor radius
   core::SculptMode mode = core::SculptMode::kAdd;
+  /// Set: presses apply this brush (ball of the tool's radius, the hardness
+  /// and strength below) instead of `mode`.
+  std::optional<BallBrush> brush;
   float strength = 1.0f;
   /// The built-in tools' hardness: 1 a hard edge, 0 a smooth bump
   /// (core::Tool::hardness; a custom tool keeps its own).
   float hardness = 1.0f;
   float spacing = 0.25f;  ///< dab spacing, fraction of the tool's size
+  /// Swept strokes build up where they overlap themselves
+  /// (core::StrokeOptions::accumulate); off, the strength applies once.
+  bool accumulate = false;
   std::optional<core::MirrorPlane> mirror;
   /// Device presses grab the NURBS sheet instead of sculpting, and Undo and
   /// Redo act on the sheet.
