@@ -40,10 +40,13 @@ json vec_json(glm::vec3 v) {
 json settings_json(const StationSettings& s) {
   json j = {{"shape", sim::tool_shape_name(s.shape)},
             {"size", {s.size_a_vox, s.size_b_vox}},
-            {"mode", sim::sculpt_mode_name(to_session(s.mode))},
+            // A ball brush is saved as the mode, as a session's mode command
+            // carries it.
+            {"mode", sim::sculpt_mode_name(static_cast<sim::SculptModeId>(mode_choice_of(s)))},
             {"strength", s.strength},
             {"hardness", s.hardness},
             {"spacing", s.spacing},
+            {"accumulate", s.accumulate},
             {"custom_tool", s.custom_tool},
             {"custom_region",
              {s.custom_region.lo.x, s.custom_region.lo.y, s.custom_region.lo.z,
@@ -298,11 +301,17 @@ StationSettings settings_of(const json& j) {
   s.size_b_vox = float_in(size[1], 0.0, sim::kMaxToolSizeVox, at + ".size[1]");
   const auto mode = sim::parse_sculpt_mode_id(text_of(field(j, "mode", at), at + ".mode"));
   if (!mode) bad(at + ".mode", "unknown mode");
-  s.mode = to_core(*mode);
+  if (const auto brush = ball_brush_of_choice(static_cast<uint8_t>(*mode))) {
+    s.brush = brush;
+  } else {
+    s.mode = to_core(*mode);
+  }
   s.strength = float_in(field(j, "strength", at), 0.0, 1.0, at + ".strength");
   // Projects saved before tools had a hardness have hard tools.
   if (j.contains("hardness")) s.hardness = float_in(j["hardness"], 0.0, 1.0, at + ".hardness");
   s.spacing = float_in(field(j, "spacing", at), 1e-3, sim::kMaxSpacing, at + ".spacing");
+  // Projects saved before the option apply a stroke's strength once.
+  if (j.contains("accumulate")) s.accumulate = flag(j["accumulate"], at + ".accumulate");
   s.custom_tool = flag(field(j, "custom_tool", at), at + ".custom_tool");
   const json& r = array_of(field(j, "custom_region", at), 6, at + ".custom_region");
   int corner[6];

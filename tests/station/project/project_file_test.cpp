@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <utility>
@@ -138,9 +139,8 @@ TEST_F(ProjectFile, RefusesDamagedFilesWithOneClearError) {
 // A project whose description says `edit` (a JSON pointer and a value),
 // sealed with a valid checksum: what a hostile or buggy writer could hand
 // us, past the CRC.
-std::vector<uint8_t> with_description_edit(const std::vector<char>& good,
-                                           const std::string& pointer,
-                                           const nlohmann::json& value) {
+std::vector<uint8_t> with_description(const std::vector<char>& good,
+                                      const std::function<void(nlohmann::json&)>& edit) {
   auto u32 = [&](size_t at) {
     uint32_t v = 0;
     for (int i = 0; i < 4; ++i)
@@ -149,7 +149,7 @@ std::vector<uint8_t> with_description_edit(const std::vector<char>& good,
   };
   const uint32_t n = u32(12);
   nlohmann::json j = nlohmann::json::parse(good.begin() + 16, good.begin() + 16 + n);
-  j[nlohmann::json::json_pointer(pointer)] = value;
+  edit(j);
   const std::string text = j.dump();
   std::vector<uint8_t> out(good.begin(), good.begin() + 12);
   for (int i = 0; i < 4; ++i)
@@ -160,6 +160,13 @@ std::vector<uint8_t> with_description_edit(const std::vector<char>& good,
   for (int i = 0; i < 4; ++i)
     out.push_back(uint8_t(crc >> (8 * i)));
   return out;
+}
+
+std::vector<uint8_t> with_description_edit(const std::vector<char>& good,
+                                           const std::string& pointer,
+                                           const nlohmann::json& value) {
+  return with_description(
+      good, [&](nlohmann::json& j) { j[nlohmann::json::json_pointer(pointer)] = value; });
 }
 
 // Reproducers from the hardening review: fields past the checksum were read
@@ -183,6 +190,8 @@ TEST_F(ProjectFile, EveryDescriptionFieldIsTypedAndBounded) {
       {"/settings/spacing", 0, "settings.spacing: not in"},
       {"/settings/strength", nullptr, "settings.strength: expected a number"},
       {"/settings/hardness", 2, "settings.hardness: not in [0, 1]"},
+      {"/settings/accumulate", 1, "settings.accumulate: expected true or false"},
+      {"/settings/mode", "smudge", "settings.mode: unknown mode"},
       {"/settings/custom_region/3", int64_t{4'000'000'000}, "settings.custom_region[3]: not in"},
       {"/settings/mirror/axis", 7, "settings.mirror.axis: not in [0, 2]"},
       {"/settings/custom_tool", 1, "settings.custom_tool: expected true or false"},
@@ -236,6 +245,33 @@ TEST_F(ProjectFile, ASaveThatWouldNotLoadBackIsRefusedAndTheOldFileKept) {
     EXPECT_NE(st.error().message().find("would not load back"), std::string::npos);
   }
   EXPECT_EQ(bytes_of(path), before);
+}
+
+// A ball brush is saved as the mode and the accumulate option beside it; a
+// project saved before either loads with the old defaults (the mode it
+// names, no brush, accumulate off).
+TEST_F(ProjectFile, KeepsTheBrushAndAccumulateAndOldProjectsLoadWithoutThem) {
+  StationSettings s = settings();
+  s.brush = BallBrush::kInflate;
+  s.accumulate = true;
+  const auto path = dir_.path() / "b.sculpt";
+  ASSERT_TRUE(save_project(path, volume_, s, nullptr, {}).ok());
+  const auto p = load_project(path);
+  ASSERT_TRUE(p.ok()) << p.error().message();
+  EXPECT_EQ(p->settings.brush, BallBrush::kInflate);
+  EXPECT_TRUE(p->settings.accumulate);
+
+  ASSERT_TRUE(save_project(path, volume_, settings(), nullptr, {}).ok());
+  const auto old = parse_project(with_description(bytes_of(path),
+                                                  [](nlohmann::json& j) {
+                                                    j["settings"].erase("accumulate");
+                                                    ASSERT_EQ(j["settings"]["mode"], "smooth");
+                                                  }),
+                                 "old");
+  ASSERT_TRUE(old.ok()) << old.error().message();
+  EXPECT_FALSE(old->settings.brush.has_value());
+  EXPECT_EQ(old->settings.mode, core::SculptMode::kSmooth);
+  EXPECT_FALSE(old->settings.accumulate);
 }
 
 }  // namespace
