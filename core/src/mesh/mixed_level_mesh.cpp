@@ -487,6 +487,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
     for (const CachedBrick& cb : bricks_)
       versions = std::max(versions, cb.mesh_version);
     bricks_.assign(static_cast<size_t>(volume.brick_count()), CachedBrick{});
+    kept_bytes_ = 0;
     for (CachedBrick& cb : bricks_)
       cb.mesh_version = versions;
     seen_versions_.assign(static_cast<size_t>(volume.brick_count()), 0);
@@ -515,6 +516,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
   // nothing kept sat among uniform bricks, which were not meshed (nothing
   // was read): its whole box counts as changed.
   std::vector<Box> changed;
+  std::vector<glm::ivec3> version_moved;
   std::vector<uint8_t> old;
   for (int z = 0; z < grid_.z; ++z)
     for (int y = 0; y < grid_.y; ++y)
@@ -523,6 +525,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         uint64_t& seen = seen_versions_[index(n)];
         if (seen == volume.brick_version(n)) continue;
         seen = volume.brick_version(n);
+        version_moved.push_back(n);
         bool kept = false;
         for (int k = 0; k <= volume.levels(); ++k) {
           auto it = decoded_.find(static_cast<uint64_t>(index(n)) * 8 + static_cast<uint64_t>(k));
@@ -546,8 +549,21 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         }
         if (!kept) changed.push_back(Box{n * edge_, (n + 1) * edge_});
       }
+  // Meshes kept from other levels may read voxels of levels no longer
+  // decoded, so `changed` cannot vouch for them: every brick that could read
+  // a brick whose version moved drops its kept meshes.
+  const int widest_margin = 2 << volume.levels();
+  for (glm::ivec3 n : version_moved) {
+    const Box around =
+        volume.bricks_overlapping(Box{n * edge_ - widest_margin, (n + 1) * edge_ + widest_margin});
+    for (int z = around.lo.z; z < around.hi.z; ++z)
+      for (int y = around.lo.y; y < around.hi.y; ++y)
+        for (int x = around.lo.x; x < around.hi.x; ++x)
+          drop_kept_meshes(bricks_[index({x, y, z})]);
+  }
   std::vector<int8_t> levels;
   std::vector<glm::ivec3> stale_bricks;
+  std::vector<glm::ivec3> reused_bricks;
   auto consider = [&](glm::ivec3 b) {
     CachedBrick& cb = bricks_[index(b)];
     const int k = level_of(b);
@@ -563,18 +579,29 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
     // two above (normals), face samples from voxels on its boundary.
     const int margin = 2 << k;
     const Box reads{b * edge_ - margin, (b + 1) * edge_ + margin};
-    bool stale = cb.level != k || cb.levels != levels;
-    for (size_t i = 0; i < changed.size() && !stale; ++i)
-      stale = !intersect(changed[i], reads).empty();
-    if (!stale) return;
+    const bool levels_moved_here = cb.level != k || cb.levels != levels;
+    bool reads_changed = false;
+    for (size_t i = 0; i < changed.size() && !reads_changed; ++i)
+      reads_changed = !intersect(changed[i], reads).empty();
+    if (!levels_moved_here && !reads_changed) return;
     ++stats.bricks_changed;
+    const bool had_mesh = !cb.mesh.empty();
+    // Only its level or its neighbours' moved: its mesh stays right for
+    // the levels it was made at, so it is kept for when they come back.
+    if (!reads_changed && cb.level >= 0) keep_mesh(cb);
     cb.level = k;
-    cb.levels.swap(levels);
+    cb.levels.assign(levels.begin(), levels.end());
     if (uniform_around(b, r)) {
       // No crossing anywhere it reads: no surface, nothing to decode.
-      if (!cb.mesh.empty()) ++cb.mesh_version;
+      if (had_mesh) ++cb.mesh_version;
       cb.mesh.clear();
       cb.stats = {};
+      return;
+    }
+    if (!reads_changed && take_kept_mesh(cb)) {
+      ++cb.mesh_version;
+      ++stats.bricks_reused;
+      reused_bricks.push_back(b);
       return;
     }
     stale_bricks.push_back(b);
@@ -588,10 +615,10 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
     // Levels as before: only bricks that read a changed box can be stale,
     // those within the widest margin of one (a big volume has tens of
     // thousands of bricks; a dab changes a few).
-    const int margin = 2 << volume.levels();
     std::vector<int64_t> near;
     for (const Box& box : changed) {
-      const Box around = volume.bricks_overlapping(Box{box.lo - margin, box.hi + margin});
+      const Box around =
+          volume.bricks_overlapping(Box{box.lo - widest_margin, box.hi + widest_margin});
       for (int z = around.lo.z; z < around.hi.z; ++z)
         for (int y = around.lo.y; y < around.hi.y; ++y)
           for (int x = around.lo.x; x < around.hi.x; ++x)
@@ -604,8 +631,12 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
   }
   // Decode what the stale bricks read (their neighbourhood, at every level
   // found in it), then mesh them in parallel: each writes only its own
-  // cached brick and reads the decoded voxels, which stay as they are.
-  for (glm::ivec3 b : stale_bricks) {
+  // cached brick and reads the decoded voxels, which stay as they are. A
+  // reused mesh's reads are decoded too: the next edit finds what changed
+  // under it by comparing them.
+  std::vector<glm::ivec3> to_decode = stale_bricks;
+  to_decode.insert(to_decode.end(), reused_bricks.begin(), reused_bricks.end());
+  for (glm::ivec3 b : to_decode) {
     const int k = level_of(b);
     const int r = reach(k);
     uint8_t used = static_cast<uint8_t>(1u << k);
@@ -653,8 +684,71 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         }
     return true;
   });
+  trim_kept_meshes();
   stats.bricks_decoded = decodes_;
   return stats;
+}
+
+namespace {
+
+size_t mesh_bytes(const BrickMesh& m) {
+  return m.mesh.positions.capacity() * sizeof(m.mesh.positions[0]) +
+         m.mesh.normals.capacity() * sizeof(m.mesh.normals[0]) +
+         m.mesh.triangles.capacity() * sizeof(m.mesh.triangles[0]) +
+         m.seams.capacity() * sizeof(m.seams[0]);
+}
+
+}  // namespace
+
+void MixedLevelMeshCache::keep_mesh(CachedBrick& cb) {
+  if (kept_budget_bytes_ == 0) return;
+  LevelMesh& kept = cb.kept.emplace_back();
+  kept.level = cb.level;
+  kept.levels = cb.levels;
+  kept.mesh = std::move(cb.mesh);
+  kept.stats = cb.stats;
+  kept.kept_order = kept_count_++;
+  kept_bytes_ += mesh_bytes(kept.mesh);
+  cb.mesh = {};
+}
+
+bool MixedLevelMeshCache::take_kept_mesh(CachedBrick& cb) {
+  const auto it = std::find_if(cb.kept.begin(), cb.kept.end(), [&](const LevelMesh& kept) {
+    return kept.level == cb.level && kept.levels == cb.levels;
+  });
+  if (it == cb.kept.end()) return false;
+  kept_bytes_ -= mesh_bytes(it->mesh);
+  cb.mesh = std::move(it->mesh);
+  cb.stats = it->stats;
+  cb.kept.erase(it);
+  return true;
+}
+
+void MixedLevelMeshCache::drop_kept_meshes(CachedBrick& cb) {
+  for (const LevelMesh& kept : cb.kept)
+    kept_bytes_ -= mesh_bytes(kept.mesh);
+  cb.kept.clear();
+}
+
+void MixedLevelMeshCache::trim_kept_meshes() {
+  if (kept_bytes_ <= kept_budget_bytes_) return;
+  // The order in which meshes were kept, oldest first, with their sizes:
+  // drop the oldest until what is left fits.
+  std::vector<std::pair<uint64_t, size_t>> order_bytes;
+  for (const CachedBrick& cb : bricks_)
+    for (const LevelMesh& kept : cb.kept)
+      order_bytes.emplace_back(kept.kept_order, mesh_bytes(kept.mesh));
+  std::sort(order_bytes.begin(), order_bytes.end());
+  size_t left = kept_bytes_;
+  uint64_t keep_from = 0;
+  for (const auto& [order, bytes] : order_bytes) {
+    if (left <= kept_budget_bytes_) break;
+    left -= bytes;
+    keep_from = order + 1;
+  }
+  for (CachedBrick& cb : bricks_)
+    std::erase_if(cb.kept, [&](const LevelMesh& kept) { return kept.kept_order < keep_from; });
+  kept_bytes_ = left;
 }
 
 MixedLevelStats MixedLevelMeshCache::stats() const {

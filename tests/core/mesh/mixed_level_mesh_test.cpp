@@ -251,6 +251,89 @@ TEST(MixedLevelMeshCache, MaterialAppearingAmongUniformBricksIsMeshed) {
   EXPECT_EQ(cache.triangle_count(), 0);
 }
 
+TEST(MixedLevelMeshCache, ZoomingBackReMeshesNothing) {
+  // Levels by camera distance: near (fine), then far (coarse), then near
+  // again. The way back gives every brick the mesh it had, marching none.
+  const Volume v = sphere_volume(128);
+  const std::vector<int> near = levels_by(v, [](glm::ivec3 b) { return b.x < 2 ? 0 : 1; });
+  const std::vector<int> far = levels_by(v, [](glm::ivec3 b) { return b.x < 2 ? 2 : 3; });
+  MixedLevelMeshCache cache;
+  const MeshUpdate first = cache.update(v, near);
+  const Mesh near_mesh = cache.welded_mesh();
+  const MeshUpdate zoomed_out = cache.update(v, far);
+  EXPECT_GT(zoomed_out.bricks_meshed, 0);
+  EXPECT_EQ(zoomed_out.bricks_reused, 0);
+  EXPECT_GT(cache.kept_mesh_bytes(), 0u);
+  const MeshUpdate zoomed_in = cache.update(v, near);
+  EXPECT_EQ(zoomed_in.bricks_meshed, 0);
+  EXPECT_GE(zoomed_in.bricks_reused, first.bricks_meshed);  // the empty ones too
+  EXPECT_EQ(zoomed_in.bricks_reused, zoomed_in.bricks_changed);
+  EXPECT_EQ(cache.welded_mesh(), near_mesh);
+  // And out again: the far meshes were kept in their turn.
+  EXPECT_EQ(cache.update(v, far).bricks_meshed, 0);
+  EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, far));
+}
+
+TEST(MixedLevelMeshCache, AnEditUnderAReusedMeshIsSeen) {
+  // Fine bricks beside coarse ones, zoomed out and back (their meshes
+  // reused), then a cut a coarse level does not show: the fine bricks'
+  // meshes follow it, as meshing from scratch would.
+  Volume v = sphere_volume(128);
+  const std::vector<int> near = levels_by(v, [](glm::ivec3 b) { return b.x < 2 ? 0 : 2; });
+  const std::vector<int> far = levels_by(v, [](glm::ivec3) { return 3; });
+  MixedLevelMeshCache cache;
+  cache.update(v, near);
+  cache.update(v, far);
+  EXPECT_GT(cache.update(v, near).bricks_reused, 0);
+  v.write({30, 64, 93}, DenseGrid<uint8_t>(glm::ivec3(1, 1, 1), 0));  // just inside
+  cache.update(v, near);
+  EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, near));
+}
+
+TEST(MixedLevelMeshCache, AnEditDropsTheKeptMeshesThatReadIt) {
+  // Zoom out, carve near (fine-level detail the coarse levels may not even
+  // show), zoom back in: the bricks around the cut are marched again and
+  // the surface is what meshing from scratch gives; far from it, reused.
+  Volume v = sphere_volume(128);
+  const std::vector<int> near = levels_by(v, [](glm::ivec3) { return 0; });
+  const std::vector<int> far = levels_by(v, [](glm::ivec3) { return 2; });
+  MixedLevelMeshCache cache;
+  cache.update(v, near);
+  cache.update(v, far);
+  v.write({62, 62, 104}, DenseGrid<uint8_t>(glm::ivec3(2, 2, 2), 0));  // on the surface
+  cache.update(v, far);
+  const MeshUpdate back = cache.update(v, near);
+  EXPECT_GT(back.bricks_meshed, 0);
+  EXPECT_GT(back.bricks_reused, 0);
+  EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, near));
+}
+
+TEST(MixedLevelMeshCache, KeptMeshesStayWithinTheirBudget) {
+  // A budget of a few bricks' meshes: the least recently kept are dropped,
+  // what is left is within it, and the surface is still right.
+  const Volume v = sphere_volume(128);
+  const std::vector<int> a = levels_by(v, [](glm::ivec3) { return 0; });
+  const std::vector<int> b = levels_by(v, [](glm::ivec3) { return 1; });
+  MixedLevelMeshCache unbounded;
+  unbounded.update(v, a);
+  unbounded.update(v, b);
+  const size_t all = unbounded.kept_mesh_bytes();
+  ASSERT_GT(all, 0u);
+  MixedLevelMeshCache cache;
+  cache.set_kept_mesh_budget(all / 4);
+  cache.update(v, a);
+  cache.update(v, b);
+  EXPECT_LE(cache.kept_mesh_bytes(), all / 4);
+  EXPECT_GT(cache.kept_mesh_bytes(), 0u);
+  const MeshUpdate back = cache.update(v, a);
+  EXPECT_GT(back.bricks_meshed, 0);
+  EXPECT_GT(back.bricks_reused, 0);
+  EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, a));
+  cache.set_kept_mesh_budget(0);
+  cache.update(v, b);
+  EXPECT_EQ(cache.kept_mesh_bytes(), 0u);
+}
+
 TEST(MixedLevelMeshCache, BrickMeshesDrawTheWholeSurface) {
   // What a renderer draws: every brick's own mesh; together (welded by
   // their seam keys) a closed surface, whichever bricks are coarse.

@@ -40,6 +40,9 @@ struct MeshUpdate {
   int64_t bricks_changed = 0;  ///< bricks whose version differed
   int64_t bricks_decoded = 0;  ///< of those, non-uniform ones decoded
   int64_t bricks_meshed = 0;   ///< bricks marched (uniform neighbourhoods excluded)
+  /// Bricks given back a mesh kept from an earlier level of detail instead
+  /// of marched (MixedLevelMeshCache only: zooming back re-meshes nothing).
+  int64_t bricks_reused = 0;
 };
 
 class MeshCache {

@@ -29,6 +29,7 @@
 
 #include <array>
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <unordered_map>
@@ -68,11 +69,26 @@ struct MixedLevelStats {
 /// everything else is kept. Decoded level voxels are kept per brick and
 /// level, checked against brick versions.
 ///
+/// A brick whose level changes while the voxels its mesh reads do not keeps
+/// the mesh it had (per level and neighbours' levels, as the discrete-tools
+/// paper caches per level), so changing the level of detail back, as when
+/// zooming out and in again, re-meshes nothing it meshed before. Kept meshes
+/// are bounded in bytes (kept_mesh_budget); the least recently kept go first,
+/// and any change to the voxels a brick reads drops that brick's.
+///
 /// Thread safety: update() needs exclusive access to the cache and read
 /// access to the volume; const members may run concurrently.
 class MixedLevelMeshCache {
  public:
+  /// Default bound on the meshes kept from other levels: a 512^3 sculpture's
+  /// full-detail surface (about 2 M triangles) is some 100 MB.
+  static constexpr size_t kDefaultKeptMeshBudget = size_t{256} << 20;
+
   explicit MixedLevelMeshCache(const MarchingCubesOptions& options = {});
+
+  /// Bytes the meshes kept from other levels may take (0: keep none).
+  void set_kept_mesh_budget(size_t bytes) { kept_budget_bytes_ = bytes; }
+  size_t kept_mesh_bytes() const { return kept_bytes_; }
 
   /// Brings the meshes up to date with `volume` and `brick_levels` (one per
   /// brick, index (b.z * grid.y + b.y) * grid.x + b.x, each in
@@ -102,14 +118,20 @@ class MixedLevelMeshCache {
   Mesh welded_mesh() const;
 
  private:
-  struct CachedBrick {
+  // A brick's mesh at one level among given neighbours' levels.
+  struct LevelMesh {
     int level = -1;
     // Levels of the bricks around, in neighbourhood order; empty before the
     // first meshing.
     std::vector<int8_t> levels;
-    uint64_t mesh_version = 0;
     BrickMesh mesh;
     MixedLevelStats stats;
+    uint64_t kept_order = 0;  // when it was kept (least recent dropped first)
+  };
+  struct CachedBrick : LevelMesh {
+    uint64_t mesh_version = 0;
+    // Its meshes at other levels, valid while the voxels it reads stay.
+    std::vector<LevelMesh> kept;
   };
   struct Decoded {
     uint64_t version = 0;
@@ -142,6 +164,13 @@ class MixedLevelMeshCache {
   // Meshes brick b at cb.level into cb; `block` is the caller's scratch.
   void mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<float>& block);
   void stitch(glm::ivec3 b, int k, BrickMesh& out, MixedLevelStats& st) const;
+  // Moves cb's current mesh into its kept ones / gives it back the kept mesh
+  // for its (new) level and levels around, if there is one / drops them all.
+  void keep_mesh(CachedBrick& cb);
+  bool take_kept_mesh(CachedBrick& cb);
+  void drop_kept_meshes(CachedBrick& cb);
+  // Drops the least recently kept meshes until the budget holds.
+  void trim_kept_meshes();
 
   MarchingCubesOptions options_;
   const Volume* volume_ = nullptr;
@@ -168,6 +197,9 @@ class MixedLevelMeshCache {
     void add() { n.fetch_add(1, std::memory_order_relaxed); }
   };
   Counter unforeseen_decodes_;
+  size_t kept_budget_bytes_ = kDefaultKeptMeshBudget;
+  size_t kept_bytes_ = 0;
+  uint64_t kept_count_ = 0;  // meshes kept so far: the next one's kept_order
 };
 
 /// The surface of `volume` with brick b at level brick_levels[i], i the brick
