@@ -14,9 +14,10 @@
 namespace sculpt::core {
 
 enum class VectorScheme {
-  /// Mullikin's EVDT (CVGIP:GMIP 54(6) 1992) as we read it: a forward and a
-  /// backward raster pass over the 13 already-visited 26-neighbours, each
-  /// row followed by a reverse scan along x.
+  /// Mullikin's EVDT (CVGIP:GMIP 54(6) 1992) as we read it: Danielsson's 2D
+  /// scheme on every slice (rows in both y directions, each row scanned in
+  /// both x directions), once per z direction, each slice first taking from
+  /// the 3x3 voxels of the slice behind; every voxel is visited 8 times.
   kEvdt,
   /// Satherley & Jones' eight-pass Vector-City VDT: one raster pass per
   /// octant direction, each taking from the 3 face neighbours behind it.
