@@ -50,6 +50,48 @@ TEST(StationController, TheCameraFramesTheMaterialNotTheBlock) {
   EXPECT_EQ(c.camera().target(), 0.5f * glm::vec3(clay->lo + clay->hi));
 }
 
+// The brush keys choose the ball brushes; a mouse stroke with one is one
+// undo step; a recording opens with the brush, the mode under it and the
+// accumulate option, so its replay starts as the station was.
+TEST(StationController, BrushKeysStrokeAndRecordingsOpenWithTheBrush) {
+  test::ScratchDir dir;
+  StationController c(small_block(dir));
+  int64_t t = 0;
+  const std::pair<Action, BallBrush> keys[] = {{Action::kBrushClay, BallBrush::kClay},
+                                               {Action::kBrushFlatten, BallBrush::kFlatten},
+                                               {Action::kBrushPinch, BallBrush::kPinch},
+                                               {Action::kBrushGrab, BallBrush::kGrab},
+                                               {Action::kBrushInflate, BallBrush::kInflate}};
+  EXPECT_TRUE(c.perform(Action::kToggleAddSubtract, t));  // subtract, kept under the brush
+  for (const auto& [action, brush] : keys) {
+    EXPECT_TRUE(c.perform(action, t));
+    EXPECT_EQ(c.loop().settings().brush, brush);
+  }
+  EXPECT_TRUE(c.perform(Action::kToggleAccumulate, t));
+  EXPECT_TRUE(c.loop().settings().accumulate);
+  const uint64_t before = c.loop().volume().content_hash();
+  stroke(c, t, 40.0f);
+  EXPECT_NE(c.loop().volume().content_hash(), before);
+  EXPECT_EQ(c.loop().sculptor().history().undo_depth(), 1u);
+
+  ASSERT_TRUE(c.start_recording(dir.path() / "brush.scs", t += kMs).ok());
+  ASSERT_TRUE(c.stop_recording().ok());
+  const auto recorded = sim::read_session_file(dir.path() / "brush.scs");
+  ASSERT_TRUE(recorded.ok()) << recorded.error().message();
+  StationLoop::Options o;
+  o.volume_dims = glm::ivec3(64);
+  o.mesh = false;
+  StationLoop replay(o);
+  for (const sim::SessionRecord& r : recorded->records)
+    if (r.kind == sim::SessionRecord::Kind::kCommand) replay.handle(r.command);
+  EXPECT_EQ(replay.settings().brush, BallBrush::kInflate);
+  EXPECT_EQ(replay.settings().mode, core::SculptMode::kSubtract);
+  EXPECT_TRUE(replay.settings().accumulate);
+
+  EXPECT_TRUE(c.perform(Action::kSmooth, t));  // a mode leaves the brush
+  EXPECT_FALSE(c.loop().settings().brush.has_value());
+}
+
 TEST(StationController, SwitchesToolsModesAndSizes) {
   test::ScratchDir dir;
   StationController c(small_block(dir));
