@@ -230,5 +230,30 @@ TEST(StationBrushes, AccumulateBuildsUpWhereAStrokeCrossesItself) {
   EXPECT_GT(there_and_back(true), there_and_back(false));
 }
 
+// A click without a drag (one sample: grab has nothing to drag) and strokes
+// far outside the block (a session may place the tool up to 2^20 voxels
+// out) run safely: the brushes clip to the block.
+TEST(StationBrushes, AClickAndAStrokeOutsideTheBlockAreSafe) {
+  const core::Volume block = clay_block(kDims, kMargin);
+  for (const BallBrush brush : kBrushes) {
+    SCOPED_TRACE(static_cast<int>(brush));
+    StationLoop loop(options());
+    loop.handle(sim::Command{sim::CommandKind::kMode, choice_of(brush)});
+    loop.handle(pose_command(sim::CommandKind::kToolPose, {32.0f, 32.0f, 56.0f}));
+    loop.handle(sim::Command{sim::CommandKind::kPress});
+    loop.handle(sim::Command{sim::CommandKind::kRelease});
+    if (brush == BallBrush::kGrab) EXPECT_EQ(voxels_differing(loop.volume(), block), 0);
+    loop.handle(pose_command(sim::CommandKind::kToolPose, {-1.0e6f, 32.0f, 56.0f}));
+    loop.handle(sim::Command{sim::CommandKind::kPress});
+    loop.handle(pose_command(sim::CommandKind::kPointer, {-1.0e6f + 10.0f, 40.0f, 56.0f}));
+    loop.handle(sim::Command{sim::CommandKind::kRelease});
+    loop.handle(pose_command(sim::CommandKind::kToolPose, {1.0e6f, 1.0e6f, 1.0e6f}));
+    loop.handle(sim::Command{sim::CommandKind::kPress});
+    loop.handle(pose_command(sim::CommandKind::kPointer, {1.0e6f, 1.0e6f, 1.0e6f - 30.0f}));
+    loop.handle(sim::Command{sim::CommandKind::kRelease});
+    EXPECT_EQ(loop.volume().dims(), kDims);
+  }
+}
+
 }  // namespace
 }  // namespace sculpt::station
