@@ -95,6 +95,10 @@ void print_check_report(const core::PrintCheck& c, double voxel_mm) {
               static_cast<long long>(c.self_intersections));
   std::printf("  parts       %lld\n", static_cast<long long>(c.components));
   std::printf("  volume      %.1f mm^3 (voxel %g mm)\n", c.volume_mm3, voxel_mm);
+  if (t.faces == 0) {
+    std::printf("  size        none (no surface)\n");
+    return;
+  }
   std::printf("  size        %.2f x %.2f x %.2f mm\n", static_cast<double>(size.x),
               static_cast<double>(size.y), static_cast<double>(size.z));
 }
