@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sculpt::station {
 namespace {
@@ -79,7 +80,7 @@ float tool_size_vox(sim::ToolShape shape, float a, float b) {
 
 int64_t ball_brush_stroke(core::Volume& volume, core::Sculptor& sculptor, BallBrush brush,
                           std::span<const core::StrokeSample> path, float radius_vox,
-                          float hardness, float strength) {
+                          float hardness, float strength, std::optional<core::MirrorPlane> mirror) {
   // Every option in range, so the core's asserts hold whatever a session says.
   const float r = std::clamp(radius_vox, kMinSize, core::kMaxBrushRadiusVox);
   const float h = std::clamp(hardness, 0.0f, 1.0f);
@@ -90,19 +91,44 @@ int64_t ball_brush_stroke(core::Volume& volume, core::Sculptor& sculptor, BallBr
     o.strength = w;
     return o;
   };
-  switch (brush) {
-    case BallBrush::kClay:
-      return core::clay_stroke(volume, sculptor, path, with(core::ClayBrushOptions{}));
-    case BallBrush::kFlatten:
-      return core::flatten_stroke(volume, sculptor, path, with(core::FlattenBrushOptions{}));
-    case BallBrush::kInflate:
-      return core::inflate_stroke(volume, sculptor, path, with(core::InflateBrushOptions{}));
-    case BallBrush::kPinch:
-      return core::pinch_stroke(volume, sculptor, path, with(core::PinchBrushOptions{}));
-    case BallBrush::kGrab:
-      return core::grab_stroke(volume, sculptor, path, with(core::GrabBrushOptions{}));
+  auto apply = [&](core::Sculptor& s, std::span<const core::StrokeSample> p) -> int64_t {
+    switch (brush) {
+      case BallBrush::kClay:
+        return core::clay_stroke(volume, s, p, with(core::ClayBrushOptions{}));
+      case BallBrush::kFlatten:
+        return core::flatten_stroke(volume, s, p, with(core::FlattenBrushOptions{}));
+      case BallBrush::kInflate:
+        return core::inflate_stroke(volume, s, p, with(core::InflateBrushOptions{}));
+      case BallBrush::kPinch:
+        return core::pinch_stroke(volume, s, p, with(core::PinchBrushOptions{}));
+      case BallBrush::kGrab:
+        return core::grab_stroke(volume, s, p, with(core::GrabBrushOptions{}));
+    }
+    return 0;
+  };
+  if (!mirror) return apply(sculptor, path);
+
+  // The core brushes know no mirror, and each is an undo step of its own.
+  // For one step, the sculptor records every brick either pass may write (a
+  // brush writes within its ball's reach, radius + 1, of its path) and the
+  // passes run on a scratch sculptor of the same volume, whose own history
+  // is dropped.
+  std::vector<core::StrokeSample> mirrored(path.begin(), path.end());
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+  for (size_t i = 0; i < path.size(); ++i) {
+    glm::vec3& m = mirrored[i].position_vox;
+    m[mirror->axis] = 2.0f * mirror->centre_vox - m[mirror->axis];
+    lo = glm::min(lo, glm::min(m, path[i].position_vox));
+    hi = glm::max(hi, glm::max(m, path[i].position_vox));
   }
-  return 0;
+  const float reach = r + 2.0f;
+  core::Box box{glm::ivec3(glm::floor(lo - reach)), glm::ivec3(glm::ceil(hi + reach)) + 1};
+  box = core::intersect(box, core::Box{glm::ivec3(0), volume.dims()});
+  if (box.empty()) return 0;
+  int64_t changed = 0;
+  core::Sculptor scratch(volume);
+  sculptor.external_edit(box, [&] { changed = apply(scratch, path) + apply(scratch, mirrored); });
+  return changed;
 }
 
 namespace {
@@ -436,7 +462,7 @@ void StationLoop::interrupt_stroke() {
 void StationLoop::finish_brush() {
   if (brush_path_.empty()) return;
   ball_brush_stroke(*volume_, *sculptor_, brush_, brush_path_, tool_size() * 0.5f,
-                    settings_.hardness, brush_strength_);
+                    settings_.hardness, brush_strength_, brush_mirror_);
   brush_path_.clear();
 }
 
@@ -452,6 +478,7 @@ void StationLoop::sculpt(const std::vector<hal::Dab>& dabs) {
       if (brush_path_.empty()) {
         brush_ = *settings_.brush;
         brush_strength_ = settings_.strength;
+        brush_mirror_ = settings_.mirror;
         if (resume_stroke_) brush_path_.push_back(stroke_last_);
         resume_stroke_ = false;
       }

@@ -83,11 +83,10 @@ std::vector<core::StrokeSample> sampled_path() {
   return samples;
 }
 
-// The core brush called directly on a fresh block, the same samples.
-core::Volume core_brush(BallBrush brush) {
-  core::Volume v = clay_block(kDims, kMargin);
+// The core brush called directly on the same samples: on a fresh block, or
+// on `v` as it is.
+void core_brush(core::Volume& v, BallBrush brush, const std::vector<core::StrokeSample>& s) {
   core::Sculptor sculptor(v);
-  const std::vector<core::StrokeSample> s = sampled_path();
   auto with = [](auto o) {
     o.radius_vox = kRadius;
     o.hardness = kHardness;
@@ -111,6 +110,10 @@ core::Volume core_brush(BallBrush brush) {
       core::grab_stroke(v, sculptor, s, with(core::GrabBrushOptions{}));
       break;
   }
+}
+core::Volume core_brush(BallBrush brush) {
+  core::Volume v = clay_block(kDims, kMargin);
+  core_brush(v, brush, sampled_path());
   return v;
 }
 
@@ -252,6 +255,32 @@ TEST(StationBrushes, AClickAndAStrokeOutsideTheBlockAreSafe) {
     loop.handle(pose_command(sim::CommandKind::kPointer, {1.0e6f, 1.0e6f, 1.0e6f - 30.0f}));
     loop.handle(sim::Command{sim::CommandKind::kRelease});
     EXPECT_EQ(loop.volume().dims(), kDims);
+  }
+}
+
+// With a mirror plane the brush runs along the path and then along its
+// mirror image, as the core brush called twice does, and one undo takes both
+// sides back byte for byte.
+TEST(StationBrushes, AMirroredBrushStrokeIsBothSidesInOneUndoStep) {
+  const core::Volume block = clay_block(kDims, kMargin);
+  constexpr float kPlane = 30.5f;  // across x, the path crossing it
+  for (const BallBrush brush : kBrushes) {
+    SCOPED_TRACE(static_cast<int>(brush));
+    StationLoop loop(options());
+    loop.handle(sim::Command{sim::CommandKind::kMirror, 0, {kPlane}});
+    for (const sim::Command& c : stroke_commands(brush))
+      loop.handle(c);
+    core::Volume expected = clay_block(kDims, kMargin);
+    std::vector<core::StrokeSample> samples = sampled_path();
+    core_brush(expected, brush, samples);
+    for (core::StrokeSample& m : samples)
+      m.position_vox.x = 2.0f * kPlane - m.position_vox.x;
+    core_brush(expected, brush, samples);
+    EXPECT_EQ(voxels_differing(loop.volume(), expected), 0);
+    EXPECT_NE(voxels_differing(expected, core_brush(brush)), 0) << "the mirror did nothing";
+    EXPECT_EQ(loop.sculptor().history().undo_depth(), 1u);
+    loop.handle(sim::Command{sim::CommandKind::kUndo});
+    EXPECT_EQ(voxels_differing(loop.volume(), block), 0);
   }
 }
 

@@ -8,8 +8,9 @@
 // button 1 switches between add and subtract (leaving a ball brush). With a
 // ball brush chosen (settings().brush) a press collects the sampler's dabs
 // as its path and applies the brush to the whole path when it ends: one undo
-// step, the tool's radius as the ball's (its diameter for other shapes),
-// the hardness and strength settings; grab uses the first and last sample. In touch mode
+// step, the tool's radius as the ball's (half its size for other shapes),
+// the hardness and strength settings, mirrored too when a mirror plane is
+// set; grab uses the first and last sample. In touch mode
 // (touch_mode.h) the tool rests on the material and button 0 sculpts only where the device pushes
 // past the press threshold. A device that vanishes while pressed ends the stroke cleanly, and so
 // does a tracker losing its target (its next pose re-anchors where the tool is: the tool never
@@ -51,11 +52,14 @@ float tool_size_vox(sim::ToolShape shape, float size_a_vox, float size_b_vox);
 /// one `sculptor` sculpts): the core brush (core/sculpt/*_brush.h) with a
 /// ball of `radius_vox` (clamped to (0, core::kMaxBrushRadiusVox]),
 /// `hardness` and `strength` (clamped to [0, 1]), its other options the
-/// core's defaults (clay's layer, inflate's distance). One undo step; not
-/// mirrored. Returns the voxels changed.
+/// core's defaults (clay's layer, inflate's distance). With `mirror` the
+/// brush then runs again along the path mirrored across that plane (where the
+/// two overlap the brush applies twice). One undo step either way. Returns
+/// the voxels changed (counted per pass).
 int64_t ball_brush_stroke(core::Volume& volume, core::Sculptor& sculptor, BallBrush brush,
                           std::span<const core::StrokeSample> path, float radius_vox,
-                          float hardness, float strength);
+                          float hardness, float strength,
+                          std::optional<core::MirrorPlane> mirror = std::nullopt);
 
 struct StationCounters {
   int64_t dabs = 0;
@@ -182,11 +186,12 @@ class StationLoop {
   core::StrokeOptions stroke_options_;
   core::StrokeSample stroke_last_;
   bool resume_stroke_ = false;
-  // A ball brush's press: the brush and strength it started with and the
-  // path so far, applied by finish_brush() when the press ends or either
-  // changes.
+  // A ball brush's press: the brush, strength and mirror it started with
+  // and the path so far, applied by finish_brush() when the press ends or
+  // any of them changes.
   BallBrush brush_ = BallBrush::kClay;
   float brush_strength_ = 1.0f;
+  std::optional<core::MirrorPlane> brush_mirror_;
   std::vector<core::StrokeSample> brush_path_;
   SheetEditor sheet_;
   TouchMode touch_;
