@@ -234,8 +234,11 @@ void SurfaceMesher::run() {
       }
     }
     int64_t meshed = 0;
+    int64_t reused = 0;
     auto mesh_and_publish = [&](const std::vector<int>& levels, bool full_detail, bool all) {
-      meshed += cache.update(*mirror, levels).bricks_meshed;
+      const core::MeshUpdate update = cache.update(*mirror, levels);
+      meshed += update.bricks_meshed;
+      reused += update.bricks_reused;
       SurfaceDelta delta;
       delta.reset = all;
       delta.change = work.change;
@@ -262,6 +265,7 @@ void SurfaceMesher::run() {
       busy_ = false;
       ++counters_.updates;
       counters_.bricks_meshed += meshed;
+      counters_.bricks_reused += reused;
       counters_.coarse_first += coarse_first ? 1 : 0;
       counters_.update_us.add(static_cast<double>(end - start) * 1e-3);
     }

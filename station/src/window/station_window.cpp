@@ -172,6 +172,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
         {"coarse_first", f.mesher.coarse_first},
         {"updates", f.mesher.updates},
         {"bricks_meshed", f.mesher.bricks_meshed},
+        {"bricks_reused", f.mesher.bricks_reused},
         {"update_ms_p50", f.mesher.update_us.quantile_us(0.5) * 1e-3},
         {"update_ms_p99", f.mesher.update_us.quantile_us(0.99) * 1e-3},
         {"update_ms_max", f.mesher.update_us.max_us() * 1e-3},

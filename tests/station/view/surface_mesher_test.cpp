@@ -221,6 +221,30 @@ TEST(SurfaceMesher, NothingChangedIsNoChange) {
   EXPECT_EQ(mesher.counters().submits, 2);
 }
 
+TEST(SurfaceMesher, ZoomingOutAndBackInMeshesNoBrickTwice) {
+  // The camera's levels move away and come back with the volume unchanged:
+  // the second move gives the bricks their earlier meshes back, and what the
+  // renderer holds is still the surface meshed from scratch.
+  Sculpting s(64, 5);
+  SurfaceMesher mesher(0, 0.0f);
+  SurfaceSnapshot snapshot;
+  const std::vector<int> near = levels_for(s.volume(), 0);
+  const std::vector<int> far = levels_for(s.volume(), 1);
+  for (const std::vector<int>* levels : {&near, &far}) {
+    mesher.submit(s.volume(), s.generation(), *levels);
+    mesher.wait_until_meshed();
+  }
+  const int64_t meshed = mesher.counters().bricks_meshed;
+  EXPECT_EQ(mesher.counters().bricks_reused, 0);
+  mesher.submit(s.volume(), s.generation(), near);
+  mesher.wait_until_meshed();
+  EXPECT_EQ(mesher.counters().bricks_meshed, meshed);
+  EXPECT_GT(mesher.counters().bricks_reused, 0);
+  while (std::optional<SurfaceDelta> delta = mesher.take())
+    snapshot.apply(std::move(*delta));
+  expect_same_surface(snapshot, s.volume(), near, 0.0f);
+}
+
 // Sculpting and drawing threads hammer the mesher as the window does; run
 // under ThreadSanitizer in CI. The end state must still be exact.
 TEST(SurfaceMesher, ConcurrentSubmitAndTakeEndOnTheExactSurface) {

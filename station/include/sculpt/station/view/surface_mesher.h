@@ -92,6 +92,7 @@ struct MesherCounters {
   int64_t bricks_coalesced = 0;    ///< replaced by a newer copy before meshing
   int64_t updates = 0;             ///< mesh updates run
   int64_t bricks_meshed = 0;       ///< brick meshes remade
+  int64_t bricks_reused = 0;       ///< given back from an earlier level of detail (zooming back)
   int64_t pending_bricks_max = 0;  ///< deepest the pending set got
   int64_t coarse_first = 0;        ///< changes shown coarse before full detail
   int64_t bricks_simplified = 0;   ///< published again simplified
