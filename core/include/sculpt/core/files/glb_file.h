@@ -33,9 +33,11 @@ struct GlbLimits {
   /// Largest file read, bytes (GLB's own length field is 32-bit).
   int64_t max_file_bytes = int64_t{1} << 32;
   /// Most triangles and most vertices in the joined mesh (a node tree can
-  /// instance one mesh many times).
-  int64_t max_triangles = int64_t{1} << 27;
-  int64_t max_vertices = int64_t{1} << 27;
+  /// instance one mesh many times, so a small file could ask for gigabytes):
+  /// 2^26, 67 million, some 280 times the 512^3 demo head, about 2.4 GB of
+  /// mesh at the most.
+  int64_t max_triangles = int64_t{1} << 26;
+  int64_t max_vertices = int64_t{1} << 26;
   /// Deepest node tree.
   int max_node_depth = 256;
 };
