@@ -7,6 +7,7 @@
 
 #include "sculpt/core/distance/iso_triangulation.h"
 #include "sculpt/core/distance/signed_distance.h"
+#include "sculpt/core/distance/surface_band.h"
 #include "sculpt/core/files/vdb_file.h"
 #include "sculpt/core/volume/volume_io.h"
 
@@ -54,12 +55,13 @@ Status write_vdb_density(const std::filesystem::path& path, const DenseGrid<uint
   grids.pivot = pivot;
   // The level set: the exact distance to the sub-voxel surface (the one the
   // meshes and `sculpt distance` use), so Blender's and Houdini's level-set
-  // tools see the surface our meshes have. A volume without a surface
-  // (empty, solid) has no level set.
+  // tools see the surface our meshes have. Only its narrow band is kept, so
+  // only the band is measured (the whole-grid transform took 30 s at
+  // 256^3). A volume without a surface (empty, solid) has no level set.
   DenseGrid<float> surface;
   const DenseGrid<float> phi = level_function(density);
   if (has_surface(phi)) {
-    surface = signed_distance(phi, DistanceMethod::kExact, DistanceInit::kShell);
+    surface = surface_band_distance(phi, kVdbHalfWidth);
     grids.surface = &surface;
   }
   return write_vdb(path, grids);
