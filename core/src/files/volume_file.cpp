@@ -49,7 +49,7 @@ bool has_surface(const DenseGrid<float>& distance) {
 }
 
 Status write_vdb_density(const std::filesystem::path& path, const DenseGrid<uint8_t>& density,
-                         std::optional<glm::vec3> pivot) {
+                         std::optional<glm::vec3> pivot, Progress* progress = nullptr) {
   VdbGridsOut grids;
   grids.density = &density;
   grids.pivot = pivot;
@@ -61,9 +61,10 @@ Status write_vdb_density(const std::filesystem::path& path, const DenseGrid<uint
   DenseGrid<float> surface;
   const DenseGrid<float> phi = level_function(density);
   if (has_surface(phi)) {
-    surface = surface_band_distance(phi, kVdbHalfWidth);
+    surface = surface_band_distance(phi, kVdbHalfWidth, 0, progress);
     grids.surface = &surface;
   }
+  if (cancelled(progress)) return progress->status().error().in(path.string() + ": not written");
   return write_vdb(path, grids);
 }
 
@@ -83,11 +84,12 @@ Result<Volume> read_volume_file(const std::filesystem::path& path, const VolumeO
   return volume;
 }
 
-Status write_volume_file(const std::filesystem::path& path, const Volume& volume, int level) {
+Status write_volume_file(const std::filesystem::path& path, const Volume& volume, int level,
+                         Progress* progress) {
   if (!is_vdb_path(path)) return write_volume_nrrd(path, volume, level);
   const DenseGrid<uint8_t> density =
       volume.read(Box{glm::ivec3(0), volume.level_dims(level)}, level);
-  return write_vdb_density(path, density, std::nullopt);
+  return write_vdb_density(path, density, std::nullopt, progress);
 }
 
 Result<DenseGrid<uint8_t>> read_density_file(const std::filesystem::path& path,

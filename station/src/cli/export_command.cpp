@@ -70,8 +70,7 @@ int run_export(const ExportOptions& e) {
   vo.threads = o.threads;
   auto volume = read_volume_input(o.input, o.density, vo);
   if (!volume) return report(volume.error());
-  if (Status st = write_volume_level(o.output, *volume, o.lod); !st) return report(st.error());
-  return 0;
+  return write_volume_level("export", o.output, *volume, o.lod);
 }
 
 }  // namespace

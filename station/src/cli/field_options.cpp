@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "cli/commands.h"
 #include "cli/number_checks.h"
+#include "cli/progress_bar.h"
 #include "sculpt/core/distance/distance_io.h"
 #include "sculpt/core/files/vdb_file.h"
 #include "sculpt/core/files/volume_file.h"
@@ -82,11 +84,24 @@ Result<core::Volume> read_volume_input(const std::string& path, const DensityOpt
   return core::read_volume_file(path, options, {}, window->has_value() ? &**window : nullptr);
 }
 
-Status write_volume_level(const std::string& path, const core::Volume& volume, int lod) {
-  if (Status st = core::write_volume_file(path, volume, lod); !st) return st;
+int write_volume_level(const std::string& command, const std::string& path,
+                       const core::Volume& volume, int lod) {
+  ProgressBar bar(command);
+  const Status st = core::write_volume_file(path, volume, lod, bar.progress());
+  if (bar.cancelled()) {
+    // Ctrl-C after the level set, during the file's own write: the command
+    // still ends cancelled, so the file it finished goes too.
+    if (st) {
+      std::error_code ignored;
+      std::filesystem::remove(path, ignored);
+    }
+    return bar.cancel_exit();
+  }
+  bar.finish();
+  if (!st) return report(st.error());
   const glm::ivec3 d = volume.level_dims(lod);
   std::printf("wrote level %d (%dx%dx%d) to %s\n", lod, d.x, d.y, d.z, path.c_str());
-  return {};
+  return 0;
 }
 
 }  // namespace sculpt::station::cli

@@ -41,8 +41,11 @@ bool is_volume_file_name(const std::string& path);
 Result<core::Volume> read_volume_input(const std::string& path, const DensityOptions& density,
                                        const core::VolumeOptions& options);
 /// Writes level `lod` of `volume` to `path` (.nrrd, or .vdb with its level
-/// set) and says so on stdout; an error names the path.
-Status write_volume_level(const std::string& path, const core::Volume& volume, int lod);
+/// set, with a progress bar and Ctrl-C as cancel, lines named `command`) and
+/// says so on stdout. Returns the command's exit code: 0; 1 after one error
+/// line naming the path; kCancelledExit, nothing written.
+int write_volume_level(const std::string& command, const std::string& path,
+                       const core::Volume& volume, int lod);
 
 /// --threads N: 0 (all cores) to 1024.
 CLI::Option* add_threads_option(CLI::App* command, int& threads);

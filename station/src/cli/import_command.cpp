@@ -50,8 +50,7 @@ int run_import(const ImportOptions& i) {
   vo.threads = o.threads;
   auto volume = read_volume_input(o.input, i.density, vo);
   if (!volume) return report(volume.error());
-  if (Status st = write_volume_level(o.output, *volume, 0); !st) return report(st.error());
-  return 0;
+  return write_volume_level("import", o.output, *volume, 0);
 }
 
 }  // namespace

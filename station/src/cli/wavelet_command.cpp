@@ -49,8 +49,7 @@ int run_wavelet(const WaveletOptions& o) {
 
   if (o.lod >= 0) {
     if (o.output.empty()) return report(Error("--lod needs an output file (-o OUT.nrrd)"));
-    if (Status st = write_volume_level(o.output, *volume, o.lod); !st) return report(st.error());
-    return 0;
+    return write_volume_level("wavelet", o.output, *volume, o.lod);
   }
 
   // Round trip: decode everything and compare with the file, slice by slice

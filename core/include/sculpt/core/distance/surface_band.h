@@ -4,6 +4,7 @@
 // to .vdb) holds, without the whole-grid transform of signed_distance().
 
 #include "sculpt/core/grid/dense_grid.h"
+#include "sculpt/core/util/progress.h"
 
 namespace sculpt::core {
 
@@ -13,8 +14,10 @@ namespace sculpt::core {
 /// for every voxel nearer to it than `half_width`; +-infinity, signed as phi,
 /// for the others. Each band voxel searches only the cells around it
 /// (SurfaceIndex::nearest), so the cost follows the surface's area, not the
-/// grid's volume. The result does not depend on `threads`.
+/// grid's volume. The result does not depend on `threads`. `progress`
+/// (optional, progress.h) counts slices; a cancelled call returns a grid to
+/// discard.
 DenseGrid<float> surface_band_distance(const DenseGrid<float>& phi, float half_width,
-                                       int threads = 0);
+                                       int threads = 0, Progress* progress = nullptr);
 
 }  // namespace sculpt::core

@@ -17,6 +17,7 @@
 #include "sculpt/core/grid/dense_grid.h"
 #include "sculpt/core/io/nrrd.h"
 #include "sculpt/core/tool/tool.h"
+#include "sculpt/core/util/progress.h"
 #include "sculpt/core/volume/volume.h"
 
 namespace sculpt::core {
@@ -27,7 +28,10 @@ Result<Volume> read_volume_file(const std::filesystem::path& path,
                                 const VolumeOptions& options = {}, const NrrdLimits& limits = {},
                                 const DensityWindow* window = nullptr);
 /// write_volume_nrrd() or, for .vdb, level `level` as density and surface.
-Status write_volume_file(const std::filesystem::path& path, const Volume& volume, int level = 0);
+/// `progress` (optional) follows the .vdb level set, the long part; once it
+/// is cancelled nothing is written and the error says "cancelled".
+Status write_volume_file(const std::filesystem::path& path, const Volume& volume, int level = 0,
+                         Progress* progress = nullptr);
 
 /// A whole volume as density (read_nrrd_density() or the .vdb density).
 Result<DenseGrid<uint8_t>> read_density_file(const std::filesystem::path& path,
