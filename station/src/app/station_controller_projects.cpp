@@ -2,12 +2,14 @@
 // the input settings file (the panel's File and Device sections).
 
 #include <chrono>
+#include <cstdio>
 #include <future>
 #include <memory>
 
 #include "sculpt/base/atomic_file.h"
 #include "sculpt/core/mesh/marching_cubes.h"
 #include "sculpt/core/mesh/mesh_io.h"
+#include "sculpt/core/mesh/mesh_simplify.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/station/app/station_controller.h"
 
@@ -58,10 +60,21 @@ Status StationController::export_mesh(const std::filesystem::path& path) {
     return format.error();
   }
   // Full resolution, whatever the view draws.
-  const core::Mesh mesh = options_.loop.mesh ? (loop_.update_mesh(), loop_.mesh().welded_mesh())
-                                             : core::marching_cubes(loop_.volume());
+  core::Mesh mesh = options_.loop.mesh ? (loop_.update_mesh(), loop_.mesh().welded_mesh())
+                                       : core::marching_cubes(loop_.volume());
+  std::string done = "exported " + path.string();
+  if (options_.mesh_export_max_error > 0.0f) {
+    const size_t before = mesh.triangles.size();
+    core::SimplifiedMesh s = core::simplify_mesh(
+        mesh, core::MeshSimplifyOptions{.max_error = options_.mesh_export_max_error});
+    mesh = std::move(s.mesh);
+    char figures[128];
+    std::snprintf(figures, sizeof figures, ": %zu -> %zu triangles, surface moved %.2f voxel",
+                  before, mesh.triangles.size(), s.hausdorff);
+    done += figures;
+  }
   Status st = core::write_mesh(path, mesh, *format);
-  report(st, "exported " + path.string());
+  report(st, done);
   return st;
 }
 

@@ -154,6 +154,9 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     ImGui::SameLine();
     if (ImGui::Button("Open")) (void)c_.open(project_);
     ImGui::InputText("mesh", mesh_, sizeof(mesh_));
+    ImGui::SliderFloat("max error", &c_.options().mesh_export_max_error, 0.0f, 2.0f, "%.2f voxel");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Export mesh may move the surface this far for fewer triangles (0: all)");
     if (ImGui::Button("Export mesh")) {
       c_.options().mesh_export = mesh_;
       (void)c_.export_mesh(mesh_);

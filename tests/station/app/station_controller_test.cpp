@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "scratch_dir.h"
+#include "sculpt/core/files/mesh_file.h"
+#include "sculpt/core/mesh/mesh_simplify.h"
 #include "sculpt/core/volume/material_bounds.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/sim/session/session_file.h"
@@ -257,6 +259,18 @@ TEST(StationController, SavesOpensAndAutosavesTheProject) {
 
   ASSERT_TRUE(c.perform(Action::kExportMesh, t));
   EXPECT_GT(std::filesystem::file_size(c.options().mesh_export), 1000u);
+  // With a max error: fewer triangles, still closed, the figures in the status.
+  auto full = core::read_mesh_file(c.options().mesh_export);
+  ASSERT_TRUE(full.ok()) << full.error().message();
+  c.options().mesh_export_max_error = 0.5f;
+  ASSERT_TRUE(c.perform(Action::kExportMesh, t));
+  auto simplified = core::read_mesh_file(c.options().mesh_export);
+  ASSERT_TRUE(simplified.ok()) << simplified.error().message();
+  EXPECT_LT(simplified->triangles.size(), full->triangles.size() * 3 / 4);
+  EXPECT_TRUE(core::check_topology(*simplified).closed());
+  EXPECT_LE(core::hausdorff_distance(*full, *simplified), 0.5 + 1e-3);
+  EXPECT_NE(c.status().find(" -> "), std::string::npos) << c.status();
+  c.options().mesh_export_max_error = 0.0f;
   EXPECT_FALSE(c.open(dir.path() / "missing.sculpt").ok());
   EXPECT_NE(c.status().find("missing.sculpt"), std::string::npos);
   EXPECT_EQ(c.loop().volume().content_hash(), sculpted);  // a failed open changes nothing

@@ -104,6 +104,10 @@ struct ControllerOptions {
   /// it as PROJECT.autosave.
   std::filesystem::path project = "sculpture.sculpt";
   std::filesystem::path mesh_export = "sculpture.ply";
+  /// How far Export mesh may move the surface to make fewer triangles,
+  /// voxels (as `sculpt mesh --max-error`; the surface stays closed); 0:
+  /// every triangle of the full-detail surface.
+  float mesh_export_max_error = 0.0f;
   std::filesystem::path recording = "recording.scs";
   /// Export sheet writes STEM.json (NURBS), STEM.obj (free-form NURBS) and
   /// STEM.ply (its mesh).
