@@ -26,6 +26,7 @@
 #include "sculpt/core/sculpt/stroke.h"
 #include "sculpt/core/tool/tool.h"
 #include "sculpt/core/tool/tool_rotation.h"
+#include "sculpt/core/tool/tool_scale.h"
 #include "sculpt/core/volume/volume_io.h"
 #include "sculpt/hal/stroke/stroke_sampler.h"
 #include "sculpt/sim/session/command_limits.h"
@@ -142,6 +143,14 @@ int run_stamp(const StampOptions& o) {
       }
       if (t->hardness < 1.0)
         tool = core::with_hardness(std::move(*tool), static_cast<float>(t->hardness));
+      if (t->scale != 1.0) {
+        tool = core::scale_tool(*tool, static_cast<float>(t->scale));
+        if (glm::any(glm::greaterThan(tool->density.dims(), glm::ivec3(kMaxToolEdge)))) {
+          return report(Error("the scaled tool is larger than " + std::to_string(kMaxToolEdge) +
+                              " voxels on an edge")
+                            .in(where));
+        }
+      }
       sculptor.set_tool(*tool);
     } else if (auto* s = std::get_if<SaveToolOp>(&op)) {
       if (!tool) return report(Error("save_tool before any tool").in(where));

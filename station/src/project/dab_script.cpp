@@ -11,6 +11,8 @@
 #include <glm/vector_relational.hpp>
 #include <nlohmann/json.hpp>
 
+#include "sculpt/core/tool/tool_scale.h"
+
 #include "sculpt/sim/session/session.h"
 
 namespace sculpt::station::dab_script {
@@ -66,6 +68,17 @@ Status read_hardness(const json& j, ToolOp& t) {
   if (!h) return h.error().in("tool " + t.shape);
   if (Status st = core::check_hardness(*h); !st) return st.error().in("tool " + t.shape);
   t.hardness = *h;
+  return {};
+}
+
+Status read_scale(const json& j, ToolOp& t) {
+  if (!j.contains("scale")) return {};
+  auto s = number(j, "scale");
+  if (!s) return s.error().in("tool " + t.shape);
+  if (*s < core::kMinToolScale || *s > core::kMaxToolScale) {
+    return Error("'scale' must be in [0.125, 8]").in("tool " + t.shape);
+  }
+  t.scale = *s;
   return {};
 }
 
@@ -229,6 +242,7 @@ Result<Op> parse_op(const json& j, glm::ivec3 dims) {
       return Error("tool: missing string 'shape'");
     ToolOp t{j["shape"], 0.0, 0.0, {}, {}, 1.0};
     if (Status st = read_hardness(j, t); !st) return st.error();
+    if (Status st = read_scale(j, t); !st) return st.error();
     const std::pair<const char*, const char*> params[] = {{"sphere", "radius"},
                                                           {"cube", "edge"},
                                                           {"cylinder", "radius"},

@@ -75,6 +75,35 @@ TEST_F(ToolCommandsTest, AToolSavedBeforeAFailingLineIsNotWritten) {
       << "staged files left behind";
 }
 
+TEST_F(ToolCommandsTest, ARegionToolScaledTwiceIsTwiceAsLargeWithEightTimesTheVolume) {
+  // A ball sculpted, its region taken as the tool at its size and at twice
+  // it, both saved: the second is twice as wide and holds 8x the material.
+  std::ofstream(dir_ / "scale.jsonl") << R"({"op":"tool","shape":"sphere","radius":6})"
+                                         "\n"
+                                      << R"({"op":"dab","at":[16,16,16],"mode":"add"})"
+                                         "\n"
+                                      << R"({"op":"tool","shape":"region","box":[6,6,6,26,26,26]})"
+                                         "\n"
+                                      << R"({"op":"save_tool","path":"one.nrrd"})"
+                                         "\n"
+                                      << R"({"op":"tool","shape":"region","box":[6,6,6,26,26,26],)"
+                                         R"("scale":2})"
+                                         "\n"
+                                      << R"({"op":"save_tool","path":"two.nrrd"})"
+                                         "\n";
+  const CommandResult r =
+      run_sculpt("stamp --new 32,32,32 --dabs " + path("scale.jsonl") + " -o " + path("o.nrrd"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto one = sculpt::core::read_nrrd_u8(path("one.nrrd"));
+  const auto two = sculpt::core::read_nrrd_u8(path("two.nrrd"));
+  ASSERT_TRUE(one.ok() && two.ok());
+  EXPECT_EQ(one->dims(), glm::ivec3(20));
+  EXPECT_EQ(two->dims(), glm::ivec3(40));
+  EXPECT_GT(mass(*one), 0);
+  EXPECT_NEAR(static_cast<double>(mass(*two)), 8.0 * static_cast<double>(mass(*one)),
+              0.01 * 8.0 * static_cast<double>(mass(*one)));
+}
+
 TEST_F(ToolCommandsTest, ANewVolumeBeyondTwoToThe32VoxelsIsRefused) {
   std::ofstream(dir_ / "one.jsonl") << R"({"op":"tool","shape":"sphere","radius":4})"
                                        "\n";

@@ -90,6 +90,7 @@ TEST(DabScript, ReadsAStrokeAndAToolsHardness) {
   ASSERT_TRUE(script.ok()) << script.error().message();
   ASSERT_EQ(script->size(), 3u);
   EXPECT_EQ(std::get<ToolOp>((*script)[0].op).hardness, 0.25);
+  EXPECT_EQ(std::get<ToolOp>((*script)[0].op).scale, 1.0);  // by default
   const auto& s = std::get<SweepOp>((*script)[1].op);
   ASSERT_EQ(s.path.size(), 2u);
   EXPECT_EQ(s.path[1].position_vox, glm::vec3(4, 5, 6));
@@ -119,6 +120,12 @@ TEST(DabScript, RefusesBadStrokesAndHardnessNamingTheField) {
        "tool sphere: hardness must be a number in [0, 1]"},
       {R"({"op":"tool","shape":"file","path":"t.nrrd","hardness":"soft"})",
        "tool file: 'hardness' must be a finite number"},
+      {R"({"op":"tool","shape":"file","path":"t.nrrd","scale":9})",
+       "s.jsonl:1: tool file: 'scale' must be in [0.125, 8]"},
+      {R"({"op":"tool","shape":"sphere","radius":4,"scale":0.1})",
+       "tool sphere: 'scale' must be in [0.125, 8]"},
+      {R"({"op":"tool","shape":"region","box":[0,0,0,4,4,4],"scale":"big"})",
+       "tool region: 'scale' must be a finite number"},
       {R"({"op":"stroke"})", "s.jsonl:1: stroke: 'path' must be a non-empty array"},
       {R"({"op":"stroke","path":[]})", "stroke: 'path' must be a non-empty array"},
       {R"({"op":"stroke","path":[[1,2,3],[1,2]]})", "stroke: 'path' must be a non-empty array"},

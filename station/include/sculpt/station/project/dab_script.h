@@ -74,6 +74,8 @@ struct ToolOp {
   std::string path;
   core::Box box;
   double hardness = 1.0;
+  /// "scale": the tool made this much larger or smaller (core::scale_tool).
+  double scale = 1.0;
 };
 struct SaveToolOp {
   std::string path;

@@ -1,0 +1,24 @@
+#pragma once
+// Any tool made larger or smaller: a sculpture turned into a tool, a tool
+// file, a region, at another size (the discrete-tools paper's tools are
+// volumes; a sculptor wants them at the size the work needs).
+
+#include "sculpt/core/tool/tool.h"
+
+namespace sculpt::core {
+
+/// Smallest and largest scale factor scale_tool() takes.
+inline constexpr float kMinToolScale = 0.125f;
+inline constexpr float kMaxToolScale = 8.0f;
+
+/// `tool` scaled by `factor` in [kMinToolScale, kMaxToolScale] about its
+/// grid's corner: the grid becomes round(dims * factor) voxels (at least 1),
+/// each voxel the trilinear sample of the original at the point it covers
+/// (the same sampler the antialiased rotation uses, zero outside the grid),
+/// and the pivot follows, so a scaled tool is held at the same point of its
+/// shape. Its volume (density sum) scales by factor^3 within 1% for shapes
+/// a few voxels across or more. Hardness is kept; a ball's exact radius is
+/// not (the stroke then sweeps it as a grid tool).
+Tool scale_tool(const Tool& tool, float factor);
+
+}  // namespace sculpt::core
