@@ -30,10 +30,14 @@ float trilinear(const DenseGrid<uint8_t>& grid, glm::vec3 p) {
 
 }  // namespace
 
+glm::ivec3 scaled_tool_dims(glm::ivec3 dims, float factor) {
+  return glm::max(glm::ivec3(glm::round(glm::vec3(dims) * factor)), glm::ivec3(1));
+}
+
 Tool scale_tool(const Tool& tool, float factor) {
   assert(factor >= kMinToolScale && factor <= kMaxToolScale);
   const glm::ivec3 in = tool.density.dims();
-  const glm::ivec3 out = glm::max(glm::ivec3(glm::round(glm::vec3(in) * factor)), glm::ivec3(1));
+  const glm::ivec3 out = scaled_tool_dims(in, factor);
   // Voxel q covers [q - 0.5, q + 0.5]; the grid's box [-0.5, dims - 0.5]
   // scales to [-0.5, out - 0.5], so q's centre came from (q + 0.5) / s - 0.5
   // with s the factor the grid really took per axis (rounding dims).

@@ -144,12 +144,14 @@ int run_stamp(const StampOptions& o) {
       if (t->hardness < 1.0)
         tool = core::with_hardness(std::move(*tool), static_cast<float>(t->hardness));
       if (t->scale != 1.0) {
-        tool = core::scale_tool(*tool, static_cast<float>(t->scale));
-        if (glm::any(glm::greaterThan(tool->density.dims(), glm::ivec3(kMaxToolEdge)))) {
-          return report(Error("the scaled tool is larger than " + std::to_string(kMaxToolEdge) +
-                              " voxels on an edge")
+        const auto factor = static_cast<float>(t->scale);
+        if (glm::any(glm::greaterThan(core::scaled_tool_dims(tool->density.dims(), factor),
+                                      glm::ivec3(kMaxToolEdge)))) {
+          return report(Error("the scaled tool would be larger than " +
+                              std::to_string(kMaxToolEdge) + " voxels on an edge")
                             .in(where));
         }
+        tool = core::scale_tool(*tool, factor);
       }
       sculptor.set_tool(*tool);
     } else if (auto* s = std::get_if<SaveToolOp>(&op)) {

@@ -104,6 +104,20 @@ TEST_F(ToolCommandsTest, ARegionToolScaledTwiceIsTwiceAsLargeWithEightTimesTheVo
               0.01 * 8.0 * static_cast<double>(mass(*one)));
 }
 
+TEST_F(ToolCommandsTest, AToolScaledPastTheSizeLimitIsRefusedBeforeItIsMade) {
+  // 200^3 x 8 would be 1600 voxels on an edge (4 GiB): one line, nothing written.
+  std::ofstream(dir_ / "big.jsonl") << R"({"op":"tool","shape":"region","box":[0,0,0,200,200,200],)"
+                                       R"("scale":8})"
+                                       "\n";
+  const CommandResult r =
+      run_sculpt("stamp --new 200,200,200 --dabs " + path("big.jsonl") + " -o " + path("o.nrrd"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(line_count(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("big.jsonl:1: the scaled tool would be larger than 1024"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "o.nrrd"));
+}
+
 TEST_F(ToolCommandsTest, ANewVolumeBeyondTwoToThe32VoxelsIsRefused) {
   std::ofstream(dir_ / "one.jsonl") << R"({"op":"tool","shape":"sphere","radius":4})"
                                        "\n";

@@ -11,6 +11,10 @@ namespace sculpt::core {
 inline constexpr float kMinToolScale = 0.125f;
 inline constexpr float kMaxToolScale = 8.0f;
 
+/// The grid scale_tool() makes of `dims` voxels: round(dims * factor), at
+/// least 1 (check it against a size limit before scaling).
+glm::ivec3 scaled_tool_dims(glm::ivec3 dims, float factor);
+
 /// `tool` scaled by `factor` in [kMinToolScale, kMaxToolScale] about its
 /// grid's corner: the grid becomes round(dims * factor) voxels (at least 1),
 /// each voxel the trilinear sample of the original at the point it covers
