@@ -6,17 +6,19 @@
 # left in the current folder as crash-*/leak-*/timeout-*).
 #
 #   bash scripts/fuzz-long.sh [BUILD_DIR] [RUNS] [TARGET...]
-# BUILD_DIR holds a fuzz build (default build-fuzz; see .ci/run for the
+# BUILD_DIR holds the fuzz targets (default build-asan: .ci/run's clang
+# address,undefined build with SCULPT_BUILD_FUZZ=ON; see it for the
 # configure line).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build=${1:-build-fuzz}
+build=${1:-build-asan}
 runs=${2:-1000000}
 shift $(( $# < 2 ? $# : 2 ))
 targets=("$@")
 if ((${#targets[@]} == 0)); then
   targets=(session_file session_text nrrd probe_file hid_report mesh_file text_formats dab_script
-           project_file)
+           project_file falcon_packet evdev_ff opentrack_datagram vrpn_message evdev_events
+           openxr_report vdb_file glb_file)
 fi
 for target in "${targets[@]}"; do
   case $target in
