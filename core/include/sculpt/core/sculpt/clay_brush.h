@@ -14,8 +14,9 @@
 // cuts the height variance under it from 0.42 to 0.0001 voxel^2, its top
 // 1.97 voxels above the old mean; a second stroke on it tops out 3.79 above.
 //
-// One undo step through Sculptor::external_edit(). As the smooth brush: not
-// the sculptor's mirror plane, not yet in the station's panel.
+// One undo step through Sculptor::external_edit(). As the smooth brush, it
+// ignores the sculptor's mirror plane: the station's panel offers it and runs
+// it again along the mirrored path (station_loop.cpp).
 
 #include <cstdint>
 #include <span>

@@ -12,8 +12,9 @@
 // variance under it from 0.42 to below 0.0001 voxel^2, its mean height
 // moving 0.01 voxel, the volume kept within 1%.
 //
-// One undo step through Sculptor::external_edit(). As the smooth brush: not
-// the sculptor's mirror plane, not yet in the station's panel.
+// One undo step through Sculptor::external_edit(). As the smooth brush, it
+// ignores the sculptor's mirror plane: the station's panel offers it and runs
+// it again along the mirrored path (station_loop.cpp).
 
 #include <cstdint>
 #include <span>

@@ -16,8 +16,9 @@
 // slab dragged by (7.5, 2.5, 0) voxels with a ball of radius 16 moves its
 // centroid by (7.500, 2.500, 0.000), its volume kept within 0.04%.
 //
-// One undo step through Sculptor::external_edit(). As the smooth brush: not
-// the sculptor's mirror plane, not yet in the station's panel.
+// One undo step through Sculptor::external_edit(). As the smooth brush, it
+// ignores the sculptor's mirror plane: the station's panel offers it and runs
+// it again along the mirrored path (station_loop.cpp).
 
 #include <cstdint>
 #include <span>

@@ -10,8 +10,9 @@
 // 19.98..20.00 to 21.95..22.00, and the volume grows monotonically with the
 // strength.
 //
-// One undo step through Sculptor::external_edit(). As the smooth brush: not
-// the sculptor's mirror plane, not yet in the station's panel.
+// One undo step through Sculptor::external_edit(). As the smooth brush, it
+// ignores the sculptor's mirror plane: the station's panel offers it and runs
+// it again along the mirrored path (station_loop.cpp).
 
 #include <cstdint>
 #include <span>

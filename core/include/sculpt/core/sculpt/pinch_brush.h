@@ -13,8 +13,9 @@
 // (other options the defaults), its depth going from 5.00 to 3.66: the floor
 // is pulled toward the line too.
 //
-// One undo step through Sculptor::external_edit(). As the smooth brush: not
-// the sculptor's mirror plane, not yet in the station's panel.
+// One undo step through Sculptor::external_edit(). As the smooth brush, it
+// ignores the sculptor's mirror plane: the station's panel offers it and runs
+// it again along the mirrored path (station_loop.cpp).
 
 #include <cstdint>
 #include <span>
