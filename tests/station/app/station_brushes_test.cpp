@@ -245,7 +245,9 @@ TEST(StationBrushes, AClickAndAStrokeOutsideTheBlockAreSafe) {
     loop.handle(pose_command(sim::CommandKind::kToolPose, {32.0f, 32.0f, 56.0f}));
     loop.handle(sim::Command{sim::CommandKind::kPress});
     loop.handle(sim::Command{sim::CommandKind::kRelease});
-    if (brush == BallBrush::kGrab) EXPECT_EQ(voxels_differing(loop.volume(), block), 0);
+    if (brush == BallBrush::kGrab) {
+      EXPECT_EQ(voxels_differing(loop.volume(), block), 0);
+    }
     loop.handle(pose_command(sim::CommandKind::kToolPose, {-1.0e6f, 32.0f, 56.0f}));
     loop.handle(sim::Command{sim::CommandKind::kPress});
     loop.handle(pose_command(sim::CommandKind::kPointer, {-1.0e6f + 10.0f, 40.0f, 56.0f}));
