@@ -18,7 +18,8 @@ glm::ivec3 scaled_tool_dims(glm::ivec3 dims, float factor);
 /// `tool` scaled by `factor` in [kMinToolScale, kMaxToolScale] about its
 /// grid's corner: the grid becomes round(dims * factor) voxels (at least 1),
 /// each voxel the trilinear sample of the original at the point it covers
-/// (the same sampler the antialiased rotation uses, zero outside the grid),
+/// (zero outside the grid, as the antialiased rotation samples; the float
+/// fields' sample_trilinear() clamps instead, which would smear a rim),
 /// and the pivot follows, so a scaled tool is held at the same point of its
 /// shape. Its volume (density sum) scales by factor^3 within 1% for shapes
 /// a few voxels across or more. Hardness is kept; a ball's exact radius is
