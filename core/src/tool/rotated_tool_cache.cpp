@@ -18,11 +18,22 @@ RotatedToolCacheStats& RotatedToolCacheStats::operator+=(const RotatedToolCacheS
   entries += o.entries;
   return *this;
 }
-namespace {
-
-constexpr double kQuatSteps = 1 << 20;
-
-}  // namespace
+glm::quat bin_orientation(const glm::quat& orientation, double step, int32_t key[4]) {
+  const glm::quat q = glm::normalize(orientation);
+  const float comps[4] = {q.w, q.x, q.y, q.z};
+  float sign = 1.0f;
+  for (float c : comps) {
+    if (c != 0.0f) {
+      sign = c < 0.0f ? -1.0f : 1.0f;
+      break;
+    }
+  }
+  for (int i = 0; i < 4; ++i)
+    key[i] = static_cast<int32_t>(std::lround(sign * comps[i] / step));
+  return glm::normalize(
+      glm::quat(static_cast<float>(key[0] * step), static_cast<float>(key[1] * step),
+                static_cast<float>(key[2] * step), static_cast<float>(key[3] * step)));
+}
 
 RotatedToolEntry::RotatedToolEntry(const PreparedTool& tool, const glm::mat3& rotation,
                                    glm::vec3 offset, Sampling sampling,
@@ -33,7 +44,8 @@ RotatedToolEntry::RotatedToolEntry(const PreparedTool& tool, const glm::mat3& ro
       frame_(tool, rotation, offset, sampling),
       stats_(stats),
       stride_(static_cast<size_t>(frame_.box().size().x) + kRowSlack),
-      values_(static_cast<size_t>(frame_.box().size().y) * frame_.box().size().z * stride_, 0) {
+      values_size_(static_cast<size_t>(frame_.box().size().y) * frame_.box().size().z * stride_),
+      values_(new uint8_t[values_size_]) {
   const glm::ivec3 s = frame_.box().size();
   const size_t rows = static_cast<size_t>(s.y) * s.z;
   done_lo_.assign(rows, 0);
@@ -53,6 +65,7 @@ const uint8_t* RotatedToolEntry::rotate_row(int y, int z, int x0, int x1,
   const int ly = y - b.lo.y, lz = z - b.lo.z;
   const size_t r = static_cast<size_t>(lz) * b.size().y + ly;
   uint8_t* values = &values_[r * stride_];
+  if (done_lo_[r] >= done_hi_[r]) std::memset(values, 0, stride_);
   const int a = x0 - b.lo.x, e = x1 - b.lo.x;
   stats.voxels_requested += e - a;
   int lo = done_lo_[r], hi = done_hi_[r];
@@ -81,7 +94,7 @@ const uint8_t* RotatedToolEntry::rotate_row(int y, int z, int x0, int x1,
 }
 
 size_t RotatedToolEntry::memory_bytes() const {
-  return sizeof(*this) + values_.size() +
+  return sizeof(*this) + values_size_ +
          (done_lo_.size() + done_hi_.size() + reach_lo_.size() + reach_hi_.size()) *
              sizeof(int16_t);
 }
@@ -91,7 +104,8 @@ RotatedToolCache::RotatedToolCache(std::shared_ptr<const PreparedTool> tool, Sam
     : tool_(std::move(tool)),
       sampling_(sampling),
       max_bytes_(max_bytes),
-      subvoxel_steps_(subvoxel_steps) {
+      subvoxel_steps_(subvoxel_steps),
+      bin_step_(orientation_bin_step(tool_->reach_vox(sampling))) {
   assert(subvoxel_steps >= 1 && subvoxel_steps <= 4096);
   // Row stretches are int16 offsets.
   assert(glm::length(glm::vec3(tool_->dims())) < 16000.0f);
@@ -110,19 +124,8 @@ size_t RotatedToolCache::KeyHash::operator()(const Key& k) const {
 RotatedToolCache::Placement RotatedToolCache::acquire(const glm::quat& orientation,
                                                       glm::vec3 position) {
   ++stats_.placements;
-  // q and -q are the same rotation: canonical sign first.
-  glm::quat q = glm::normalize(orientation);
-  const float comps[4] = {q.w, q.x, q.y, q.z};
-  float sign = 1.0f;
-  for (float c : comps) {
-    if (c != 0.0f) {
-      sign = c < 0.0f ? -1.0f : 1.0f;
-      break;
-    }
-  }
   Key key{};
-  for (int i = 0; i < 4; ++i)
-    key.q[i] = static_cast<int32_t>(std::lround(sign * comps[i] * kQuatSteps));
+  const glm::quat binned = bin_orientation(orientation, bin_step_, key.q);
   glm::ivec3 anchor(glm::floor(position));
   const glm::vec3 frac = position - glm::vec3(anchor);
   for (int i = 0; i < 3; ++i) {
@@ -139,14 +142,11 @@ RotatedToolCache::Placement RotatedToolCache::acquire(const glm::quat& orientati
     lru_.splice(lru_.begin(), lru_, it->second.lru);
     return {it->second.entry, anchor};
   }
-  const glm::quat qq = glm::normalize(glm::quat(
-      static_cast<float>(key.q[0] / kQuatSteps), static_cast<float>(key.q[1] / kQuatSteps),
-      static_cast<float>(key.q[2] / kQuatSteps), static_cast<float>(key.q[3] / kQuatSteps)));
   const glm::vec3 offset(key.f[0] / static_cast<float>(subvoxel_steps_),
                          key.f[1] / static_cast<float>(subvoxel_steps_),
                          key.f[2] / static_cast<float>(subvoxel_steps_));
-  auto entry =
-      std::make_shared<RotatedToolEntry>(*tool_, glm::mat3_cast(qq), offset, sampling_, &stats_);
+  auto entry = std::make_shared<RotatedToolEntry>(*tool_, glm::mat3_cast(binned), offset, sampling_,
+                                                  &stats_);
   const size_t bytes = entry->memory_bytes();
   if (bytes <= max_bytes_) {
     evict_to(max_bytes_ - bytes);

@@ -5,17 +5,22 @@
 // moves without turning, or turns back, is not rotated again; only voxels
 // newly entering the contact region are.
 //
-// A placement is keyed by its orientation quantised to 2^-20 per quaternion
-// component (about 2e-6 rad) and the sub-voxel part of the pivot position
-// quantised to 1/subvoxel_steps voxel (default 1/16: at most 1/32 voxel off,
-// far inside the material's 2-voxel density ramp, while a tool moving
-// without turning finds its offsets again); the placement actually applied
-// is the quantised one, so a hit returns exactly what a miss computes. Integer moves of the
+// A placement is keyed by its orientation binned finely enough that the
+// rotated tool cannot be told apart from the exact one (orientation_bin()),
+// and the sub-voxel part of the pivot position quantised to
+// 1/subvoxel_steps voxel (default 1/16: at most 1/32 voxel off, far inside
+// the material's 2-voxel density ramp, while a tool moving without turning
+// finds its offsets again). The placement actually applied is the binned one,
+// so a hit returns exactly what a miss computes. Integer moves of the
 // position reuse the entry (the rotated voxels are relative to the anchor).
+//
+// A new entry costs only the rows a dab reaches: rows are zeroed when first
+// filled, not the whole rotated box when the entry is made.
 //
 // Memory is bounded: entries are evicted least recently used once their
 // bytes exceed the cap. Not thread-safe: one cache per sculpting thread.
 
+#include <algorithm>
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
@@ -120,13 +125,36 @@ class RotatedToolEntry {
   // (combine_row()), and threads filling neighbouring rows at once
   // (Sculptor's big dabs) must not have it read the next row's.
   size_t stride_;
-  std::vector<uint8_t> values_;
+  size_t values_size_;
+  // Not zeroed as a whole: a row's bytes (and its slack) are zeroed when the
+  // row is first filled (rotate_row()).
+  std::unique_ptr<uint8_t[]> values_;
   // Per row (y, z) of the box, the computed stretch [lo, hi) of x offsets.
   std::vector<int16_t> done_lo_, done_hi_;
   // Per row, the stretch within reach (box-relative x offsets), computed
   // once per placement: a dab then needs no square root per row.
   std::vector<int16_t> reach_lo_, reach_hi_;
 };
+
+/// A point at this distance from where it should be changes a trilinear
+/// sample by at most one density step (1/255) wherever the tool is sampled,
+/// measured over random orientations of the cube, cylinder, ring and cone
+/// tools (tool_rotation_binning_test: at 0.012 the ring and a 37x37x13
+/// cylinder already show steps of 2).
+inline constexpr float kOrientationToleranceVox = 0.008f;
+
+/// The step of each quaternion component of an orientation's bin for a tool
+/// whose farthest sampled point is `reach_vox` from its pivot: turning to
+/// the bin's centre moves no point of the tool more than
+/// kOrientationToleranceVox (a quaternion moved by d turns by at most 2 d
+/// radians, and rounding four components moves it by at most step).
+inline double orientation_bin_step(float reach_vox) {
+  return static_cast<double>(kOrientationToleranceVox) / (2.0 * std::max(1.0f, reach_vox));
+}
+
+/// `orientation` (unit) moved to the centre of its bin (canonical sign:
+/// q and -q are one rotation), and the bin's integer coordinates in `key`.
+glm::quat bin_orientation(const glm::quat& orientation, double step, int32_t key[4]);
 
 class RotatedToolCache {
  public:
@@ -176,6 +204,7 @@ class RotatedToolCache {
   Sampling sampling_;
   size_t max_bytes_;
   int subvoxel_steps_;
+  double bin_step_;     // orientation_bin_step() of the tool's reach
   std::list<Key> lru_;  // most recent first
   std::unordered_map<Key, Slot, KeyHash> slots_;
   RotatedToolCacheStats stats_;
