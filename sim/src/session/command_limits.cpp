@@ -58,6 +58,11 @@ std::optional<std::string> command_problem(const Command& c) {
       if (!in(c.values[0], 0.0f, 1.0f))
         return "hardness " + number(c.values[0]) + " is outside [0, 1]";
       return choice_below(1, "choice");
+    case CommandKind::kToolScale:
+      if (!in(c.values[0], kMinToolScale, kMaxToolScale))
+        return "tool scale " + number(c.values[0]) + " is outside [" + number(kMinToolScale) +
+               ", " + number(kMaxToolScale) + "]";
+      return choice_below(1, "choice");
     case CommandKind::kSpacing:
       if (!(c.values[0] > 0.0f && c.values[0] <= kMaxSpacing))
         return "spacing " + number(c.values[0]) + " is outside (0, " + number(kMaxSpacing) + "]";

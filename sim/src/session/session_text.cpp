@@ -238,6 +238,7 @@ ordered record_json(const SessionRecord& r) {
     case CommandKind::kStrength:
     case CommandKind::kSpacing:
     case CommandKind::kHardness:
+    case CommandKind::kToolScale:
       j["value"] = c.values[0];
       break;
     case CommandKind::kMirror:
@@ -462,6 +463,7 @@ SessionRecord parse_command(const json& j, int64_t t) {
     case CommandKind::kStrength:
     case CommandKind::kSpacing:
     case CommandKind::kHardness:
+    case CommandKind::kToolScale:
       read_number(j, "value", c.values);
       break;
     case CommandKind::kMirror: {

@@ -15,9 +15,6 @@
 namespace sculpt::station {
 namespace {
 
-// The largest sculpture that becomes a tool: a tool is rotated voxel by voxel
-// at every new orientation, so it must stay small next to the block.
-constexpr int kMaxToolEdge = 96;
 // A 3D mouse at full deflection turns the camera this fast (rad/s) and moves
 // it this many view heights per second.
 constexpr float kCameraTurnRate = 2.0f;
@@ -146,21 +143,7 @@ bool StationController::use_sculpture_as_tool(int64_t now_ns) {
     status_ = "no material to make a tool of";
     return false;
   }
-  const core::Box tight = *bounds;
-  const glm::ivec3 size = tight.size();
-  if (std::max({size.x, size.y, size.z}) > kMaxToolEdge) {
-    status_ = "the sculpture (" + std::to_string(size.x) + "x" + std::to_string(size.y) + "x" +
-              std::to_string(size.z) + " voxels) is too big for a tool: at most " +
-              std::to_string(kMaxToolEdge) + " voxels a side";
-    return false;
-  }
-  command(make_command(sim::CommandKind::kToolFromRegion, 0,
-                       {static_cast<float>(tight.lo.x), static_cast<float>(tight.lo.y),
-                        static_cast<float>(tight.lo.z), static_cast<float>(tight.hi.x),
-                        static_cast<float>(tight.hi.y), static_cast<float>(tight.hi.z)}),
-          now_ns);
-  status_ = "the sculpture is the tool now";
-  return true;
+  return tool_from_box(*bounds, "the sculpture", now_ns);
 }
 
 void StationController::hypertexture(int64_t now_ns) {
@@ -226,11 +209,8 @@ bool StationController::perform(Action action, int64_t now_ns) {
       return tool(sim::ToolShape::kCone);
     case Action::kToolBigger:
     case Action::kToolSmaller: {
-      if (s.custom_tool) {
-        status_ = "a sculpture tool keeps its size";
-        return false;
-      }
       const float f = action == Action::kToolBigger ? 1.25f : 0.8f;
+      if (s.custom_tool) return set_tool_scale(s.tool_scale * f, now_ns);
       set_tool(s.shape, std::clamp(s.size_a_vox * f, 1.0f, 64.0f),
                std::clamp(s.size_b_vox * f, 0.0f, 64.0f), now_ns);
       return true;
@@ -267,6 +247,16 @@ bool StationController::perform(Action action, int64_t now_ns) {
       return export_mesh(options_.mesh_export).ok();
     case Action::kUseSculptureAsTool:
       return use_sculpture_as_tool(now_ns);
+    case Action::kToggleToolRegion:
+      if (tool_region_) {
+        clear_tool_region();
+        status_ = "tool region hidden";
+        return true;
+      }
+      if (!tool_region_from_material()) tool_region_around_tool();
+      return true;
+    case Action::kUseRegionAsTool:
+      return use_region_as_tool(now_ns);
     case Action::kHypertexture:
       hypertexture(now_ns);
       return true;

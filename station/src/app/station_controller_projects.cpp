@@ -27,8 +27,9 @@ ProjectView StationController::view() const {
 
 Status StationController::save(const std::filesystem::path& path) {
   const StationSettings& s = loop_.settings();
-  Status st = save_project(path, loop_.volume(), s, s.custom_tool ? &loop_.tool() : nullptr, view(),
-                           loop_.sheet().has_sheet() ? &loop_.sheet().surface() : nullptr);
+  Status st =
+      save_project(path, loop_.volume(), s, s.custom_tool ? &loop_.custom_tool_base() : nullptr,
+                   view(), loop_.sheet().has_sheet() ? &loop_.sheet().surface() : nullptr);
   if (st) saved_generation_ = generation_;
   report(st, "saved " + path.string());
   return st;
@@ -104,7 +105,8 @@ void StationController::autosave_if_due(int64_t now_ns) {
   // while it is compressed and synced.
   auto volume = std::make_shared<core::Volume>(loop_.volume());
   const StationSettings settings = loop_.settings();
-  auto tool = settings.custom_tool ? std::make_shared<core::Tool>(loop_.tool()) : nullptr;
+  auto tool =
+      settings.custom_tool ? std::make_shared<core::Tool>(loop_.custom_tool_base()) : nullptr;
   auto sheet = loop_.sheet().has_sheet()
                    ? std::make_shared<core::nurbs::NurbsSurface>(loop_.sheet().surface())
                    : nullptr;

@@ -26,8 +26,13 @@ std::vector<sim::Command> StationController::opening_commands(bool with_block) c
                     : make_command(sim::CommandKind::kVolume, sim::kVolumeFill,
                                    {d.x, d.y, d.z, static_cast<float>(o.volume_fill)}));
   }
-  c.push_back(
-      make_command(sim::CommandKind::kTool, choice_of(s.shape), {s.size_a_vox, s.size_b_vox}));
+  // A custom tool comes with the sculpture saved beside the session (it
+  // exists whenever one is the tool: making one is a command); a tool
+  // command here would put the built-in shape back.
+  if (!s.custom_tool) {
+    c.push_back(
+        make_command(sim::CommandKind::kTool, choice_of(s.shape), {s.size_a_vox, s.size_b_vox}));
+  }
   c.push_back(make_command(sim::CommandKind::kMode, choice_of(s.mode)));
   // The brush after the mode: a replay keeps both, as the station had them.
   if (s.brush) c.push_back(make_command(sim::CommandKind::kMode, choice_of(*s.brush)));
@@ -75,8 +80,8 @@ Status StationController::start_recording(const std::filesystem::path& path, int
   } else {
     const StationSettings& s = loop_.settings();
     Status saved =
-        save_project(start, loop_.volume(), s, s.custom_tool ? &loop_.tool() : nullptr, view(),
-                     loop_.sheet().has_sheet() ? &loop_.sheet().surface() : nullptr);
+        save_project(start, loop_.volume(), s, s.custom_tool ? &loop_.custom_tool_base() : nullptr,
+                     view(), loop_.sheet().has_sheet() ? &loop_.sheet().surface() : nullptr);
     if (!saved) {
       report(saved, "");
       return saved;

@@ -9,6 +9,7 @@
 #include "sculpt/core/sculpt/inflate_brush.h"
 #include "sculpt/core/sculpt/pinch_brush.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
+#include "sculpt/core/tool/tool_scale.h"
 #include "sculpt/sim/session/command_limits.h"
 #include "sculpt/station/settings/command_codec.h"
 
@@ -173,7 +174,12 @@ void StationLoop::restore(std::unique_ptr<core::Volume> volume, const StationSet
   sculptor_ = std::make_unique<core::Sculptor>(*volume_, sculptor_options());
   settings_ = settings;
   settings_.custom_tool = custom_tool.has_value();
-  if (custom_tool) tool_ = std::move(*custom_tool);
+  if (custom_tool) {
+    custom_base_ = std::move(*custom_tool);
+    scale_custom_tool();
+  } else {
+    settings_.tool_scale = 1.0f;
+  }
   sheet_.reset(std::move(sheet));
   apply_tool();
   sculptor_->set_mirror(settings_.mirror);
@@ -207,6 +213,30 @@ void StationLoop::apply_tool() {
   sculptor_->set_tool(tool_);
   ++tool_version_;
   reset_sampler();
+}
+
+void StationLoop::set_custom_tool(core::Tool tool, core::Box region) {
+  settings_.custom_tool = true;
+  settings_.custom_region = region;
+  settings_.tool_scale = 1.0f;
+  custom_base_ = std::move(tool);
+  tool_ = custom_base_;
+  apply_tool();
+}
+
+void StationLoop::scale_custom_tool() {
+  // A scale the grid cannot take (a restored project's, checked there too)
+  // leaves the tool as made.
+  const float f = settings_.tool_scale;
+  const glm::ivec3 d = core::scaled_tool_dims(custom_base_.density.dims(), f);
+  const bool fits = f >= sim::kMinToolScale && f <= sim::kMaxToolScale &&
+                    std::max({d.x, d.y, d.z}) <= kMaxScaledToolEdge;
+  if (f == 1.0f || !fits) {
+    settings_.tool_scale = 1.0f;
+    tool_ = custom_base_;
+  } else {
+    tool_ = core::scale_tool(custom_base_, f);
+  }
 }
 
 float StationLoop::tool_size() const {
@@ -396,9 +426,19 @@ void StationLoop::handle(const sim::Command& c) {
       }
       if (region.empty()) break;
       if (pressed_) release();
-      settings_.custom_tool = true;
-      settings_.custom_region = region;
-      tool_ = core::tool_from_volume(*volume_, region);
+      set_custom_tool(core::tool_from_volume(*volume_, region), region);
+      break;
+    }
+    case K::kToolScale: {
+      // command_limits.h keeps the factor in [0.125, 8]; a grid over the
+      // largest tool is refused here as the controller refuses it.
+      if (!settings_.custom_tool) break;
+      const float f = std::clamp(c.values[0], sim::kMinToolScale, sim::kMaxToolScale);
+      const glm::ivec3 d = core::scaled_tool_dims(custom_base_.density.dims(), f);
+      if (std::max({d.x, d.y, d.z}) > kMaxScaledToolEdge) break;
+      if (pressed_) release();
+      settings_.tool_scale = f;
+      scale_custom_tool();
       apply_tool();
       break;
     }

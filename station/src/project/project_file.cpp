@@ -48,6 +48,7 @@ json settings_json(const StationSettings& s) {
             {"spacing", s.spacing},
             {"accumulate", s.accumulate},
             {"custom_tool", s.custom_tool},
+            {"tool_scale", s.tool_scale},
             {"custom_region",
              {s.custom_region.lo.x, s.custom_region.lo.y, s.custom_region.lo.z,
               s.custom_region.hi.x, s.custom_region.hi.y, s.custom_region.hi.z}}};
@@ -313,6 +314,10 @@ StationSettings settings_of(const json& j) {
   // Projects saved before the option apply a stroke's strength once.
   if (j.contains("accumulate")) s.accumulate = flag(j["accumulate"], at + ".accumulate");
   s.custom_tool = flag(field(j, "custom_tool", at), at + ".custom_tool");
+  // Projects saved before custom tools scaled hold them as made.
+  if (j.contains("tool_scale"))
+    s.tool_scale =
+        float_in(j["tool_scale"], sim::kMinToolScale, sim::kMaxToolScale, at + ".tool_scale");
   const json& r = array_of(field(j, "custom_region", at), 6, at + ".custom_region");
   int corner[6];
   for (int i = 0; i < 6; ++i)

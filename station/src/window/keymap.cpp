@@ -23,6 +23,8 @@ std::optional<Action> shortcut(int key, int mods) {
         return shift ? Action::kSheetSubtractFromMaterial : Action::kSheetAddToMaterial;
       case GLFW_KEY_H:
         return Action::kHypertexture;
+      case GLFW_KEY_R:
+        return shift ? Action::kToggleToolRegion : Action::kUseRegionAsTool;
       default:
         return std::nullopt;
     }
@@ -141,6 +143,10 @@ const char* shortcut_label(Action action) {
       return "Ctrl+E";
     case Action::kUseSculptureAsTool:
       return "Ctrl+T";
+    case Action::kToggleToolRegion:
+      return "Ctrl+Shift+R";
+    case Action::kUseRegionAsTool:
+      return "Ctrl+R";
     case Action::kHypertexture:
       return "Ctrl+H";
     case Action::kFrameView:

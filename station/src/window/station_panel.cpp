@@ -71,22 +71,32 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     int shape = static_cast<int>(s.shape);
     if (s.custom_tool)
       ImGui::TextUnformatted(s.custom_region.empty() ? "tool: the sheet's shell"
-                                                     : "tool: the sculpture");
+                                                     : "tool: a region of the sculpture");
     if (ImGui::Combo("shape", &shape, kShapes, IM_ARRAYSIZE(kShapes)) &&
         (shape != static_cast<int>(s.shape) || s.custom_tool)) {
       const auto picked = tool_shape_of_choice(static_cast<uint8_t>(shape));
       if (picked) c_.set_tool(*picked, s.size_a_vox, s.size_b_vox, now);
     }
     float a = s.size_a_vox, b = s.size_b_vox;
-    ImGui::SliderFloat("size", &a, 1.0f, 64.0f, "%.1f vox");
-    if (ImGui::IsItemDeactivatedAfterEdit()) c_.set_tool(s.shape, a, s.size_b_vox, now);
-    if (s.shape != sim::ToolShape::kSphere && s.shape != sim::ToolShape::kCube) {
+    if (s.custom_tool) {
+      // A custom tool is resampled from the size it was made at.
+      float scale = s.tool_scale;
+      const glm::ivec3 d = c_.loop().tool().density.dims();
+      ImGui::SliderFloat("size", &scale, 0.125f, 8.0f, "%.3g x", ImGuiSliderFlags_Logarithmic);
+      if (ImGui::IsItemDeactivatedAfterEdit()) c_.set_tool_scale(scale, now);
+      ImGui::Text("%d x %d x %d voxels", d.x, d.y, d.z);
+    } else {
+      ImGui::SliderFloat("size", &a, 1.0f, 64.0f, "%.1f vox");
+      if (ImGui::IsItemDeactivatedAfterEdit()) c_.set_tool(s.shape, a, s.size_b_vox, now);
+    }
+    if (!s.custom_tool && s.shape != sim::ToolShape::kSphere && s.shape != sim::ToolShape::kCube) {
       ImGui::SliderFloat(s.shape == sim::ToolShape::kRing ? "tube" : "height", &b, 1.0f, 64.0f,
                          "%.1f vox");
       if (ImGui::IsItemDeactivatedAfterEdit()) c_.set_tool(s.shape, s.size_a_vox, b, now);
     }
     if (ImGui::Button("Use this sculpture as a tool")) c_.use_sculpture_as_tool(now);
     tip(Action::kUseSculptureAsTool);
+    draw_tool_region(now);
     if (ImGui::Button("Hypertexture around the tool")) c_.hypertexture(now);
     tip(Action::kHypertexture);
 
@@ -217,6 +227,35 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
   }
   if (!c_.status().empty()) ImGui::TextWrapped("%s", c_.status().c_str());
   ImGui::End();
+}
+
+void StationPanel::draw_tool_region(int64_t now) {
+  if (!ImGui::TreeNode("Tool from a region")) return;
+  const std::optional<core::Box>& region = c_.tool_region();
+  if (ImGui::Button("From the material")) c_.tool_region_from_material();
+  ImGui::SameLine();
+  if (ImGui::Button("Around the tool")) c_.tool_region_around_tool();
+  if (region) {
+    ImGui::SameLine();
+    if (ImGui::Button("Hide")) c_.clear_tool_region();
+    tip(Action::kToggleToolRegion);
+  }
+  if (const std::optional<core::Box> r = c_.tool_region()) {
+    // Each corner dragged (or typed, Ctrl+click) voxel by voxel, within the block.
+    const glm::ivec3 dims = c_.loop().volume().dims();
+    const int top = std::max({dims.x, dims.y, dims.z});
+    int lo[3] = {r->lo.x, r->lo.y, r->lo.z};
+    int hi[3] = {r->hi.x, r->hi.y, r->hi.z};
+    bool changed = ImGui::DragInt3("low corner", lo, 0.25f, 0, top);
+    changed |= ImGui::DragInt3("high corner", hi, 0.25f, 0, top);
+    if (changed) c_.set_tool_region({{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}});
+    const glm::ivec3 size = c_.tool_region()->size();
+    ImGui::Text("%d x %d x %d voxels (a tool: at most %d a side)", size.x, size.y, size.z,
+                StationController::kMaxToolEdge);
+    if (ImGui::Button("Use region as tool")) c_.use_region_as_tool(now);
+    tip(Action::kUseRegionAsTool);
+  }
+  ImGui::TreePop();
 }
 
 void StationPanel::draw_haptics(int64_t now) {

@@ -26,6 +26,7 @@ class StationPanel {
 
  private:
   void draw_sheet(int64_t now_ns);
+  void draw_tool_region(int64_t now_ns);
   void draw_haptics(int64_t now_ns);
 
   StationController& c_;

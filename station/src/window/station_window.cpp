@@ -378,6 +378,7 @@ int run_window(const WindowOptions& o) {
     gl::SceneView view{};
     glm::vec3 block{0.0f};
     std::optional<HapticOverlay> haptics;
+    std::optional<core::Box> tool_region;
   } drawn;
   RunFigures figures;
   FrameFigures frame_figures;
@@ -525,6 +526,7 @@ int run_window(const WindowOptions& o) {
       const OrbitCamera& camera = controller.camera();
       drawn.view = {camera.view(), camera.projection(aspect), camera.eye(), fb_w, fb_h};
       drawn.block = glm::vec3(controller.loop().volume().dims());
+      drawn.tool_region = controller.tool_region();
       drawn.known = true;
       if (haptics) {
         HapticOverlayInput overlay;
@@ -545,6 +547,11 @@ int run_window(const WindowOptions& o) {
     if (drawn.known) {
       (*renderer)->draw(drawn.view, drawn.tool, drawn.block);
       if (drawn.haptics) (*renderer)->draw_haptics(drawn.view, *drawn.haptics);
+      if (drawn.tool_region) {
+        // Voxel centres are at integers: the region's voxels span lo - 0.5 to hi - 0.5.
+        (*renderer)->draw_box(drawn.view, glm::vec3(drawn.tool_region->lo) - 0.5f,
+                              glm::vec3(drawn.tool_region->hi) - 0.5f, {0.45f, 0.95f, 0.55f, 1.0f});
+      }
     }
     if (picture_frame) {
       RgbImage shot{fb_w, fb_h, {}};

@@ -45,6 +45,8 @@ TEST(CommandLimits, CommandsTheStationWritesPass) {
   EXPECT_FALSE(command_problem(command(CommandKind::kMode, 9, {})));  // grab
   EXPECT_FALSE(command_problem(command(CommandKind::kAccumulate, 0, {})));
   EXPECT_FALSE(command_problem(command(CommandKind::kAccumulate, 1, {})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kToolScale, 0, {0.125f})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kToolScale, 0, {8.0f})));
 }
 
 TEST(CommandLimits, EachOutOfRangeFieldIsNamed) {
@@ -82,6 +84,10 @@ TEST(CommandLimits, EachOutOfRangeFieldIsNamed) {
       {command(CommandKind::kToolPose, 0, {1e30f, 0, 0, 1, 0, 0, 0}), "coordinate 1e+30 is beyond"},
       {command(CommandKind::kPointer, 0, {0, 0, 0, 0, 0, 0, 0}), "orientation is not a rotation"},
       {command(CommandKind::kToolFromRegion, 0, {0, 0, 0, 2000, 10, 10}), "region side 2000"},
+      {command(CommandKind::kToolScale, 0, {0.1f}), "tool scale 0.1 is outside [0.125, 8]"},
+      {command(CommandKind::kToolScale, 0, {9.0f}), "tool scale 9 is outside [0.125, 8]"},
+      {command(CommandKind::kToolScale, 0, {nan}), "value 0 is not a finite number"},
+      {command(CommandKind::kToolScale, 1, {2.0f}), "choice 1 unknown"},
   };
   for (const auto& [c, says] : cases) {
     const auto why = command_problem(c);
@@ -153,6 +159,38 @@ TEST(CommandLimits, BadBrushAndAccumulateValuesAreRefusedByBothReaders) {
   const auto binary = parse_session_bytes(serialize_session(*good), "good.scs");
   ASSERT_TRUE(binary.ok()) << binary.error().message();
   EXPECT_EQ(*binary, *good);
+}
+
+// A custom tool's scale (issue 23): read in both forms, bit for bit; out of
+// range, the binary reader stops at it with a warning and the text reader
+// refuses the line.
+TEST(CommandLimits, ToolScaleReadsInBothFormsAndIsRangeChecked) {
+  const std::string head = session_to_text(with(command(CommandKind::kPress, 0, {})));
+  const auto good = session_from_text(
+      head + "{\"t\": 3000, \"cmd\": \"tool_scale\", \"value\": 1.25}\n", "good.jsonl");
+  ASSERT_TRUE(good.ok()) << good.error().message();
+  ASSERT_EQ(good->records.size(), 3u);
+  EXPECT_EQ(good->records[2].command.kind, CommandKind::kToolScale);
+  EXPECT_EQ(good->records[2].command.values[0], 1.25f);
+  const auto binary = parse_session_bytes(serialize_session(*good), "good.scs");
+  ASSERT_TRUE(binary.ok()) << binary.error().message();
+  EXPECT_EQ(*binary, *good);
+  EXPECT_EQ(session_to_text(*binary), session_to_text(*good));
+
+  SessionReadInfo info;
+  const auto r = parse_session_bytes(
+      serialize_session(with(command(CommandKind::kToolScale, 0, {20.0f}))), "bad.scs", &info);
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r->records.size(), 1u);
+  EXPECT_NE(info.warning.find("bad.scs: record 2: tool_scale command: tool scale 20 is outside"),
+            std::string::npos)
+      << info.warning;
+  const auto bad = session_from_text(
+      head + "{\"t\": 3000, \"cmd\": \"tool_scale\", \"value\": 0}\n", "bad.jsonl");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message().find("bad.jsonl:4: tool_scale: tool scale 0 is outside"),
+            std::string::npos)
+      << bad.error().message();
 }
 
 TEST(CommandLimits, TheTextFormRefusesTheSameWithTheLine) {

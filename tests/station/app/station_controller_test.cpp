@@ -8,23 +8,14 @@
 #include "sculpt/core/volume/material_bounds.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/sim/session/session_file.h"
+#include "small_block.h"
 
 namespace sculpt::station {
 namespace {
 
 constexpr int64_t kMs = 1'000'000;
 
-ControllerOptions small_block(const test::ScratchDir& dir) {
-  ControllerOptions o;
-  o.loop.volume_dims = glm::ivec3(64);
-  o.loop.clay_margin = 12;
-  o.project = dir.path() / "p.sculpt";
-  o.mesh_export = dir.path() / "m.ply";
-  o.recording = dir.path() / "r.scs";
-  o.autosave_seconds = 1.0;
-  o.normalizer_config_path = (dir.path() / "cfg" / "input.conf").string();
-  return o;
-}
+using test_blocks::small_block;
 
 // A mouse stroke across the clay's top face.
 void stroke(StationController& c, int64_t& t, float z) {
@@ -217,7 +208,9 @@ TEST(StationController, SculptureBecomesAToolOnlyWhenThereIsOneOfToolSize) {
   const glm::ivec3 d = c.loop().tool().density.dims();
   EXPECT_GE(d.x, 40);
   EXPECT_LE(d.x, 44);
-  EXPECT_FALSE(c.perform(Action::kToolBigger, 0));
+  // The size keys scale it (station_tools_test.cpp).
+  EXPECT_TRUE(c.perform(Action::kToolBigger, 0)) << c.status();
+  EXPECT_EQ(c.loop().settings().tool_scale, 1.25f);
 
   ControllerOptions big = small_block(dir);
   big.loop.volume_dims = glm::ivec3(128);

@@ -191,6 +191,7 @@ TEST_F(ProjectFile, EveryDescriptionFieldIsTypedAndBounded) {
       {"/settings/strength", nullptr, "settings.strength: expected a number"},
       {"/settings/hardness", 2, "settings.hardness: not in [0, 1]"},
       {"/settings/accumulate", 1, "settings.accumulate: expected true or false"},
+      {"/settings/tool_scale", 9, "settings.tool_scale: not in [0.125, 8]"},
       {"/settings/mode", "smudge", "settings.mode: unknown mode"},
       {"/settings/custom_region/3", int64_t{4'000'000'000}, "settings.custom_region[3]: not in"},
       {"/settings/mirror/axis", 7, "settings.mirror.axis: not in [0, 2]"},
@@ -272,6 +273,24 @@ TEST_F(ProjectFile, KeepsTheBrushAndAccumulateAndOldProjectsLoadWithoutThem) {
   EXPECT_FALSE(old->settings.brush.has_value());
   EXPECT_EQ(old->settings.mode, core::SculptMode::kSmooth);
   EXPECT_FALSE(old->settings.accumulate);
+}
+
+// A custom tool's scale (issue 23) is kept; projects from before it open
+// with the tool as made.
+TEST_F(ProjectFile, KeepsTheToolScaleAndOldProjectsLoadAtScaleOne) {
+  StationSettings s = settings();
+  s.tool_scale = 1.5f;
+  const auto path = dir_.path() / "s.sculpt";
+  ASSERT_TRUE(save_project(path, volume_, s, nullptr, {}).ok());
+  const auto p = load_project(path);
+  ASSERT_TRUE(p.ok()) << p.error().message();
+  EXPECT_EQ(p->settings.tool_scale, 1.5f);
+  const auto old =
+      parse_project(with_description(bytes_of(path),
+                                     [](nlohmann::json& j) { j["settings"].erase("tool_scale"); }),
+                    "old");
+  ASSERT_TRUE(old.ok()) << old.error().message();
+  EXPECT_EQ(old->settings.tool_scale, 1.0f);
 }
 
 }  // namespace

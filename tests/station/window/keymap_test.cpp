@@ -53,5 +53,13 @@ TEST(StationShortcuts, ChooseTheBallBrushesAndAccumulate) {
   EXPECT_STREQ(shortcut_label(Action::kToggleAccumulate), "Shift+A");
 }
 
+// The tool region (issue 23): Ctrl+Shift+R shows or hides it, Ctrl+R makes it the tool.
+TEST(StationShortcuts, ReachTheToolRegion) {
+  EXPECT_EQ(shortcut(GLFW_KEY_R, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT), Action::kToggleToolRegion);
+  EXPECT_EQ(shortcut(GLFW_KEY_R, GLFW_MOD_CONTROL), Action::kUseRegionAsTool);
+  EXPECT_EQ(shortcut(GLFW_KEY_R, 0), Action::kToggleRecording);
+  EXPECT_STREQ(shortcut_label(Action::kUseRegionAsTool), "Ctrl+R");
+}
+
 }  // namespace
 }  // namespace sculpt::station

@@ -190,6 +190,22 @@ void SceneRenderer::draw_haptics(const SceneView& view, const HapticOverlay& ove
   glEnable(GL_DEPTH_TEST);
 }
 
+void SceneRenderer::draw_box(const SceneView& view, glm::vec3 lo, glm::vec3 hi, glm::vec4 colour) {
+  std::vector<glm::vec3> edges;
+  for (int a = 0; a < 3; ++a)
+    for (int j = 0; j < 4; ++j) {
+      glm::vec3 p = lo;
+      p[(a + 1) % 3] = (j & 1) ? hi[(a + 1) % 3] : lo[(a + 1) % 3];
+      p[(a + 2) % 3] = (j & 2) ? hi[(a + 2) % 3] : lo[(a + 2) % 3];
+      glm::vec3 q = p;
+      q[a] = hi[a];
+      edges.insert(edges.end(), {p, q});
+    }
+  glDisable(GL_DEPTH_TEST);
+  draw_lines(edges, colour, view.projection * view.view);
+  glEnable(GL_DEPTH_TEST);
+}
+
 void SceneRenderer::draw(const SceneView& view, const ToolDraw& tool, glm::vec3 block) {
   const glm::mat4 vp = view.projection * view.view;
   glViewport(0, 0, view.width, view.height);

@@ -78,6 +78,9 @@ class SceneRenderer {
   /// force arrow (view/haptic_overlay.h), drawn through the clay so the
   /// device is seen where it has sunk in.
   void draw_haptics(const SceneView& view, const HapticOverlay& overlay);
+  /// The edges of the box [lo, hi] (voxels), drawn through the clay: the
+  /// region the panel picks a tool from.
+  void draw_box(const SceneView& view, glm::vec3 lo, glm::vec3 hi, glm::vec4 colour);
 
  private:
   SceneRenderer() = default;

@@ -15,6 +15,9 @@ namespace sculpt::sim {
 /// Tool sizes (a radius, an edge, a height) in voxels: a 513^3 tool grid at
 /// most (135 MB).
 inline constexpr float kMaxToolSizeVox = 256.0f;
+/// A custom tool's scale (kToolScale): core::kMinToolScale..kMaxToolScale.
+inline constexpr float kMinToolScale = 0.125f;
+inline constexpr float kMaxToolScale = 8.0f;
 /// Positions, plane positions and volume sides, in voxels.
 inline constexpr float kMaxCoordinateVox = 1048576.0f;
 /// A new volume's voxels.

@@ -65,9 +65,14 @@ enum class CommandKind : uint8_t {
   /// off (core::StrokeOptions::accumulate; off, a stroke applies its
   /// strength once per voxel).
   kAccumulate,
+  /// A custom tool (a region, the sculpture, the sheet's shell, a file) at
+  /// another size: values[0] the factor in [0.125, 8] from the size it was
+  /// made at (1: as made), resampled trilinearly (core::scale_tool). Ignored
+  /// while the tool is a built-in shape (kTool sizes those).
+  kToolScale,
 };
-inline constexpr uint8_t kCommandKindCount = 20;
-static_assert(static_cast<uint8_t>(CommandKind::kAccumulate) == kCommandKindCount,
+inline constexpr uint8_t kCommandKindCount = 21;
+static_assert(static_cast<uint8_t>(CommandKind::kToolScale) == kCommandKindCount,
               "a new command kind: add its name and value count in session.cpp");
 inline constexpr uint8_t kVolumeFill = 0;
 inline constexpr uint8_t kVolumeClay = 1;

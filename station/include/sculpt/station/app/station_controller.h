@@ -74,6 +74,10 @@ enum class Action {
   kSave,
   kExportMesh,
   kUseSculptureAsTool,
+  /// Shows the tool region (tool_region()), from the material's bounds (or
+  /// around the tool when there is none), or hides it.
+  kToggleToolRegion,
+  kUseRegionAsTool,
   kHypertexture,
   kFrameView,
   kTurnToolLeft,  ///< about the view's vertical axis
@@ -166,6 +170,33 @@ class StationController {
   /// The material's bounding box becomes the tool (false, with the reason
   /// in status(), when there is no material or it is too big for a tool).
   bool use_sculpture_as_tool(int64_t now_ns);
+  /// The box the panel picks a tool from (voxels, half-open; drawn as a
+  /// wireframe while set). A UI state, not recorded: only the tool made of
+  /// it is (kToolFromRegion).
+  const std::optional<core::Box>& tool_region() const { return tool_region_; }
+  /// The region set to `box`, clamped to the block (kept even when empty, so
+  /// the panel can move a corner through it; Use region as tool says so).
+  void set_tool_region(const core::Box& box);
+  /// The region from the material's bounding box (false, with the reason in
+  /// status(), when there is no material).
+  bool tool_region_from_material();
+  /// The region a cube of the tool's size (at least 8 voxels) around it.
+  void tool_region_around_tool();
+  void clear_tool_region() { tool_region_.reset(); }
+  /// The material in the region becomes the tool (false, with the reason in
+  /// status(): no region, an empty one, one over kMaxToolEdge a side, or
+  /// one with no material in it).
+  bool use_region_as_tool(int64_t now_ns);
+  /// A custom tool (a region, the sculpture, the sheet's shell, a file) at
+  /// `factor` times the size it was made at, resampled (core::scale_tool;
+  /// factor clamped to [0.125, 8]). False, with the reason in status(), for
+  /// a built-in tool (its sizes scale it) or a result over
+  /// StationLoop::kMaxScaledToolEdge voxels a side.
+  bool set_tool_scale(float factor, int64_t now_ns);
+  /// The largest region or sculpture that becomes a tool, voxels a side: a
+  /// tool is rotated voxel by voxel at every new orientation, so it must
+  /// stay small next to the block.
+  static constexpr int kMaxToolEdge = 96;
   /// Points the camera at the material (its bounding box), as "frame
   /// selected" does; an empty block is framed whole. Not recorded.
   void frame_sculpture();
@@ -278,6 +309,8 @@ class StationController {
   // Starts an autosave on another thread when one is due (projects file).
   void autosave_if_due(int64_t now_ns);
   std::vector<sim::Command> opening_commands(bool with_block) const;
+  // The material in `box` (clamped) as the tool; `what` names it in messages.
+  bool tool_from_box(core::Box box, const std::string& what, int64_t now_ns);
 
   ControllerOptions options_;
   StationLoop loop_;
@@ -313,6 +346,7 @@ class StationController {
   float sheet_thickness_ = 3.0f;
   uint64_t sheet_version_ = 0;  // the sheet's version at the last update_mesh()
   std::future<Status> autosave_;
+  std::optional<core::Box> tool_region_;
 };
 
 }  // namespace sculpt::station

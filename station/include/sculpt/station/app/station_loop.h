@@ -79,6 +79,9 @@ class StationLoop {
   /// A device's buttons: 0 sculpts while held, 1 switches add and subtract,
   /// and this one is the clutch while held (a tracker's grip button).
   static constexpr int kClutchButton = 2;
+  /// A custom tool at its scale (kToolScale) is at most this many voxels a
+  /// side: a tool is rotated voxel by voxel at each new orientation.
+  static constexpr int kMaxScaledToolEdge = 192;
   struct Options {
     glm::ivec3 volume_dims{256};
     uint8_t volume_fill = 0;
@@ -98,7 +101,8 @@ class StationLoop {
   /// One normalised device event.
   void handle(const hal::InputEvent& event);
   /// Takes over an opened project's state; the undo history starts empty.
-  /// `custom_tool` is the tool when settings.custom_tool.
+  /// `custom_tool` is the tool when settings.custom_tool, as it was made
+  /// (custom_tool_base()): settings.tool_scale scales it again.
   void restore(std::unique_ptr<core::Volume> volume, const StationSettings& settings,
                std::optional<core::Tool> custom_tool,
                std::optional<core::nurbs::NurbsSurface> sheet = std::nullopt);
@@ -106,6 +110,9 @@ class StationLoop {
   void release_stroke() { release(); }
   /// The tool in use (its reference, unrotated form).
   const core::Tool& tool() const { return tool_; }
+  /// A custom tool as it was made, before settings().tool_scale resampled
+  /// it into tool() (what a project keeps, so the scale replays exactly).
+  const core::Tool& custom_tool_base() const { return custom_base_; }
   /// Moves on whenever the tool changes: a renderer remakes the tool's
   /// mesh when it moved, without comparing every voxel each frame.
   uint64_t tool_version() const { return tool_version_; }
@@ -138,6 +145,10 @@ class StationLoop {
  private:
   void new_volume(glm::ivec3 dims, uint8_t fill, int clay_margin);
   void apply_tool();
+  // `tool` is the custom tool now, as made, at scale 1.
+  void set_custom_tool(core::Tool tool, core::Box region);
+  // The custom tool at settings_.tool_scale into tool_.
+  void scale_custom_tool();
   core::SculptorOptions sculptor_options() const;
   // Drops the sculptor, keeping its rotation cache counts.
   void retire_sculptor();
@@ -166,7 +177,8 @@ class StationLoop {
   std::unique_ptr<core::Sculptor> sculptor_;
   // The rotation cache counts of the sculptors new volumes replaced.
   core::RotatedToolCacheStats retired_cache_stats_;
-  core::Tool tool_;  // what the sculptor holds, kept for drawing
+  core::Tool tool_;         // what the sculptor holds, kept for drawing
+  core::Tool custom_base_;  // a custom tool as made (tool_ is it at tool_scale)
   core::MeshCache mesh_;
   hal::PoseIntegrator integrator_;
   hal::StrokeSampler sampler_;

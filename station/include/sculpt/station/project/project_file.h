@@ -48,7 +48,8 @@ struct ProjectView {
 struct Project {
   std::unique_ptr<core::Volume> volume;
   StationSettings settings;
-  /// The tool when settings.custom_tool (a sculpture made a tool).
+  /// The tool when settings.custom_tool (a sculpture made a tool), as made:
+  /// settings.tool_scale scales it (StationLoop::restore).
   std::optional<core::Tool> custom_tool;
   ProjectView view;
   /// The NURBS sheet, if there was one.

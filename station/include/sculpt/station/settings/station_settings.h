@@ -43,6 +43,9 @@ struct StationSettings {
   /// or the NURBS sheet's shell; it stays the tool until another is chosen.
   bool custom_tool = false;
   core::Box custom_region;  ///< the material's region it came from, voxels (empty: the sheet)
+  /// The custom tool's scale from the size it was made at (core::scale_tool;
+  /// 1: as made), in [0.125, 8].
+  float tool_scale = 1.0f;
   float size_a_vox = 8.0f;  ///< sphere radius, cube edge, cylinder/cone radius, ring major radius
   float size_b_vox = 0.0f;  ///< cylinder/cone height, ring minor radius
   core::SculptMode mode = core::SculptMode::kAdd;

@@ -1,0 +1,108 @@
+// The controller's tool making: a region of the sculpture as the tool, any
+// custom tool at another size.
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include "make_command.h"
+#include "sculpt/core/tool/tool_scale.h"
+#include "sculpt/core/volume/material_bounds.h"
+#include "sculpt/sim/session/command_limits.h"
+#include "sculpt/station/app/station_controller.h"
+
+namespace sculpt::station {
+namespace {
+
+std::string size_text(glm::ivec3 s) {
+  return std::to_string(s.x) + "x" + std::to_string(s.y) + "x" + std::to_string(s.z);
+}
+
+}  // namespace
+
+void StationController::set_tool_region(const core::Box& box) {
+  core::Box clamped;
+  const glm::ivec3 dims = loop_.volume().dims();
+  clamped.lo = glm::clamp(box.lo, glm::ivec3(0), dims);
+  clamped.hi = glm::clamp(box.hi, glm::ivec3(0), dims);
+  tool_region_ = clamped;
+}
+
+bool StationController::tool_region_from_material() {
+  const std::optional<core::Box> bounds = core::material_bounds(loop_.volume());
+  if (!bounds) {
+    status_ = "no material: the region is not set";
+    return false;
+  }
+  set_tool_region(*bounds);
+  status_ = "tool region: the material's bounds, " + size_text(tool_region_->size()) + " voxels";
+  return true;
+}
+
+void StationController::tool_region_around_tool() {
+  const glm::vec3 p = loop_.pose().position;
+  const float half = 0.5f * std::max(loop_.tool_size(), 8.0f);
+  set_tool_region({glm::ivec3(glm::floor(p - half)), glm::ivec3(glm::ceil(p + half))});
+  status_ = "tool region: around the tool, " + size_text(tool_region_->size()) + " voxels";
+}
+
+bool StationController::use_region_as_tool(int64_t now_ns) {
+  if (!tool_region_) {
+    status_ = "no tool region: pick one first";
+    return false;
+  }
+  return tool_from_box(*tool_region_, "the region", now_ns);
+}
+
+bool StationController::tool_from_box(core::Box box, const std::string& what, int64_t now_ns) {
+  box = core::intersect(box, core::Box{glm::ivec3(0), loop_.volume().dims()});
+  if (box.empty()) {
+    status_ = what + " is empty: no voxel of the block is in it";
+    return false;
+  }
+  const glm::ivec3 size = box.size();
+  if (std::max({size.x, size.y, size.z}) > kMaxToolEdge) {
+    status_ = what + " (" + size_text(size) + " voxels) is too big for a tool: at most " +
+              std::to_string(kMaxToolEdge) + " voxels a side";
+    return false;
+  }
+  const core::DenseGrid<uint8_t> voxels = loop_.volume().read(box);
+  if (std::all_of(voxels.data(), voxels.data() + voxels.size(), [](uint8_t v) { return v == 0; })) {
+    status_ = what + " holds no material: no tool made of it";
+    return false;
+  }
+  command(make_command(sim::CommandKind::kToolFromRegion, 0,
+                       {static_cast<float>(box.lo.x), static_cast<float>(box.lo.y),
+                        static_cast<float>(box.lo.z), static_cast<float>(box.hi.x),
+                        static_cast<float>(box.hi.y), static_cast<float>(box.hi.z)}),
+          now_ns);
+  status_ = what + " is the tool now (" + size_text(size) + " voxels)";
+  return true;
+}
+
+bool StationController::set_tool_scale(float factor, int64_t now_ns) {
+  const StationSettings& s = loop_.settings();
+  if (!s.custom_tool) {
+    status_ = "a built-in tool changes size by its sizes, not a scale";
+    return false;
+  }
+  factor = std::clamp(factor, sim::kMinToolScale, sim::kMaxToolScale);
+  const glm::ivec3 made = loop_.custom_tool_base().density.dims();
+  const glm::ivec3 dims = core::scaled_tool_dims(made, factor);
+  if (std::max({dims.x, dims.y, dims.z}) > StationLoop::kMaxScaledToolEdge) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "the tool at %.3g times its size would be %s voxels: at most %d a side",
+                  double(factor), size_text(dims).c_str(), StationLoop::kMaxScaledToolEdge);
+    status_ = text;
+    return false;
+  }
+  command(make_command(sim::CommandKind::kToolScale, 0, {factor}), now_ns);
+  char text[120];
+  std::snprintf(text, sizeof text, "the tool at %.3g times its size: %s voxels", double(factor),
+                size_text(loop_.tool().density.dims()).c_str());
+  status_ = text;
+  return true;
+}
+
+}  // namespace sculpt::station

@@ -1,0 +1,244 @@
+// Tools in the window (issue 23): a region of the sculpture picked as the
+// tool, tools at another size, a new block, offset and closing of the
+// sculpture, each through the controller as the panel and keys call it.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "scratch_dir.h"
+#include "sculpt/core/volume/material_bounds.h"
+#include "sculpt/sim/session/session_file.h"
+#include "sculpt/station/app/session_replay.h"
+#include "sculpt/station/app/session_start.h"
+#include "sculpt/station/app/station_controller.h"
+#include "small_block.h"
+
+namespace sculpt::station {
+namespace {
+
+constexpr int64_t kMs = 1'000'000;
+
+// The 64^3 test block with its slab of clay, or empty (margin 0).
+ControllerOptions block(const test::ScratchDir& dir, int clay_margin = 12) {
+  ControllerOptions o = test_blocks::small_block(dir);
+  o.loop.clay_margin = clay_margin;
+  o.autosave_seconds = 0.0;
+  return o;
+}
+
+::testing::AssertionResult same_voxels(const core::DenseGrid<uint8_t>& a,
+                                       const core::DenseGrid<uint8_t>& b) {
+  if (a.dims() != b.dims()) return ::testing::AssertionFailure() << "the grids differ in size";
+  if (!std::equal(a.data(), a.data() + a.size(), b.data()))
+    return ::testing::AssertionFailure() << "the voxels differ";
+  return ::testing::AssertionSuccess();
+}
+
+// The recording at `path` replayed, from its saved start when it has one.
+void replay(const std::filesystem::path& path, StationLoop& loop) {
+  auto session = sim::read_session_file(path);
+  ASSERT_TRUE(session.ok()) << session.error().message();
+  const Result<bool> started = restore_session_start(path, loop);
+  ASSERT_TRUE(started.ok()) << started.error().message();
+  const auto r = replay_session(*session, path.string(), loop);
+  ASSERT_TRUE(r.ok()) << r.error().message();
+}
+
+// A mouse stroke across the clay's top face (z = 51), so the region holds
+// more than a plain slab.
+void stroke(StationController& c, int64_t& t, float y) {
+  c.pointer_move({20.0f, y, 52.0f}, t += kMs);
+  c.pointer_down(t += kMs);
+  for (int i = 0; i <= 20; ++i)
+    c.pointer_move({20.0f + static_cast<float>(i), y, 52.0f}, t += kMs);
+  c.pointer_up(t += kMs);
+}
+
+TEST(StationTools, ARegionToolEqualsTheRegionsVoxels) {
+  test::ScratchDir dir;
+  StationController c(block(dir));
+  int64_t t = 1000 * kMs;
+  c.set_tool(sim::ToolShape::kSphere, 3.0f, 0.0f, t += kMs);
+  stroke(c, t, 30.0f);
+  const core::Box region{{16, 24, 40}, {44, 38, 56}};
+  c.set_tool_region(region);
+  ASSERT_TRUE(c.use_region_as_tool(t += kMs)) << c.status();
+  EXPECT_EQ(c.status(), "the region is the tool now (28x14x16 voxels)");
+  EXPECT_TRUE(same_voxels(c.loop().tool().density, c.loop().volume().read(region)));
+  EXPECT_TRUE(c.loop().settings().custom_tool);
+  EXPECT_EQ(c.loop().settings().custom_region, region);
+}
+
+TEST(StationTools, TheRegionStartsFromTheMaterialOrAroundTheTool) {
+  test::ScratchDir dir;
+  StationController c(block(dir));
+  EXPECT_FALSE(c.tool_region().has_value());
+  EXPECT_TRUE(c.perform(Action::kToggleToolRegion, 0));
+  ASSERT_TRUE(c.tool_region().has_value());
+  EXPECT_EQ(*c.tool_region(), *core::material_bounds(c.loop().volume()));
+  EXPECT_TRUE(c.perform(Action::kToggleToolRegion, 0));
+  EXPECT_FALSE(c.tool_region().has_value());
+
+  c.pointer_move({30.0f, 30.0f, 30.0f}, kMs);
+  c.tool_region_around_tool();  // a radius-8 sphere: 16 voxels across
+  ASSERT_TRUE(c.tool_region().has_value());
+  EXPECT_EQ(c.tool_region()->lo, glm::ivec3(22));
+  EXPECT_EQ(c.tool_region()->hi, glm::ivec3(38));
+  // Corners beyond the block are clamped to it.
+  c.set_tool_region({{-5, 10, 10}, {20, 99, 20}});
+  EXPECT_EQ(c.tool_region()->lo, glm::ivec3(0, 10, 10));
+  EXPECT_EQ(c.tool_region()->hi, glm::ivec3(20, 64, 20));
+}
+
+TEST(StationTools, ABadRegionIsOneClearMessageAndNoTool) {
+  test::ScratchDir dir;
+  StationController c(block(dir));
+  EXPECT_FALSE(c.use_region_as_tool(0));
+  EXPECT_EQ(c.status(), "no tool region: pick one first");
+  EXPECT_FALSE(c.perform(Action::kUseRegionAsTool, 0));
+
+  c.set_tool_region({{30, 30, 30}, {30, 40, 40}});
+  EXPECT_FALSE(c.use_region_as_tool(0));
+  EXPECT_EQ(c.status(), "the region is empty: no voxel of the block is in it");
+
+  c.set_tool_region({{0, 0, 0}, {8, 8, 8}});  // the margin: no clay
+  EXPECT_FALSE(c.use_region_as_tool(0));
+  EXPECT_EQ(c.status(), "the region holds no material: no tool made of it");
+
+  ControllerOptions big = block(dir);
+  big.loop.volume_dims = glm::ivec3(128);
+  StationController b(big);
+  b.set_tool_region({{0, 0, 0}, {128, 20, 20}});
+  EXPECT_FALSE(b.use_region_as_tool(0));
+  EXPECT_EQ(b.status(),
+            "the region (128x20x20 voxels) is too big for a tool: at most 96 voxels a side");
+  EXPECT_FALSE(c.loop().settings().custom_tool);
+  EXPECT_FALSE(b.loop().settings().custom_tool);
+}
+
+TEST(StationTools, ARegionToolReplaysBitForBit) {
+  test::ScratchDir dir;
+  StationController c(block(dir));
+  int64_t t = 1000 * kMs;
+  ASSERT_TRUE(c.start_recording(dir.path() / "r.scs", t).ok());
+  c.set_tool(sim::ToolShape::kSphere, 3.0f, 0.0f, t += kMs);
+  stroke(c, t, 30.0f);
+  c.set_tool_region({{18, 26, 44}, {30, 36, 56}});
+  ASSERT_TRUE(c.perform(Action::kUseRegionAsTool, t += kMs)) << c.status();
+  c.set_mode(core::SculptMode::kSubtract, t += kMs);
+  stroke(c, t, 20.0f);
+  c.tick(t);
+  ASSERT_TRUE(c.stop_recording().ok());
+
+  StationLoop replayed(StationLoop::Options{});
+  replay(dir.path() / "r.scs", replayed);
+  EXPECT_EQ(replayed.volume().content_hash(), c.loop().volume().content_hash());
+  EXPECT_TRUE(same_voxels(replayed.tool().density, c.loop().tool().density));
+}
+
+double density_sum(const core::Tool& tool) {
+  double sum = 0;
+  for (size_t i = 0; i < tool.density.size(); ++i)
+    sum += tool.density.data()[i];
+  return sum;
+}
+
+// A ball of `radius` dabbed into an empty block, its region made the tool.
+void ball_region_tool(StationController& c, int64_t& t, int radius = 6) {
+  c.set_tool(sim::ToolShape::kSphere, static_cast<float>(radius), 0.0f, t += kMs);
+  c.pointer_move({32.0f, 32.0f, 32.0f}, t += kMs);
+  c.pointer_down(t += kMs);
+  c.pointer_up(t += kMs);
+  c.set_tool_region({glm::ivec3(30 - radius), glm::ivec3(35 + radius)});
+  ASSERT_TRUE(c.use_region_as_tool(t += kMs)) << c.status();
+}
+
+TEST(StationTools, AScaledCustomToolKeepsItsShape) {
+  test::ScratchDir dir;
+  StationController c(block(dir, 0));
+  int64_t t = 1000 * kMs;
+  ball_region_tool(c, t, 10);
+  const double made = density_sum(c.loop().tool());
+  ASSERT_GT(made, 0.0);
+  const glm::dvec3 made_dims(c.loop().tool().density.dims());
+  for (const float f : {2.0f, 0.5f, 1.5f, 3.0f}) {
+    ASSERT_TRUE(c.set_tool_scale(f, t += kMs)) << c.status();
+    EXPECT_EQ(c.loop().settings().tool_scale, f);
+    // The grid takes round(25 f) voxels a side, so the shape scales by
+    // that over 25 on each axis (f itself when 25 f is whole).
+    const glm::dvec3 s = glm::dvec3(c.loop().tool().density.dims()) / made_dims;
+    const double analytic = s.x * s.y * s.z;
+    EXPECT_NEAR(density_sum(c.loop().tool()) / made, analytic, 0.01 * analytic) << f;
+  }
+  // Back to 1: the tool as made, bit for bit (scales never compound).
+  ASSERT_TRUE(c.set_tool_scale(1.0f, t += kMs));
+  EXPECT_TRUE(same_voxels(c.loop().tool().density,
+                          c.loop().volume().read({glm::ivec3(20), glm::ivec3(45)})));
+}
+
+TEST(StationTools, TheSizeKeysScaleACustomToolAndItsLimitsAreOneMessage) {
+  test::ScratchDir dir;
+  StationController c(block(dir, 0));
+  int64_t t = 1000 * kMs;
+  EXPECT_FALSE(c.set_tool_scale(2.0f, t));
+  EXPECT_EQ(c.status(), "a built-in tool changes size by its sizes, not a scale");
+  ball_region_tool(c, t);
+  ASSERT_TRUE(c.perform(Action::kToolBigger, t += kMs)) << c.status();
+  EXPECT_EQ(c.loop().settings().tool_scale, 1.25f);
+  EXPECT_EQ(c.loop().tool().density.dims(), glm::ivec3(21));  // round(17 x 1.25)
+  EXPECT_EQ(c.status(), "the tool at 1.25 times its size: 21x21x21 voxels");
+  ASSERT_TRUE(c.perform(Action::kToolSmaller, t += kMs));
+  EXPECT_EQ(c.loop().settings().tool_scale, 1.0f);
+  EXPECT_TRUE(c.set_tool_scale(0.01f, t += kMs)) << c.status();  // clamped to 1/8
+  EXPECT_EQ(c.loop().settings().tool_scale, 0.125f);
+  // A 30^3 region at 8 times (clamped from 12): 240 voxels a side, over the largest tool.
+  c.set_tool_region({{10, 10, 10}, {40, 40, 40}});
+  ASSERT_TRUE(c.use_region_as_tool(t += kMs)) << c.status();
+  EXPECT_FALSE(c.set_tool_scale(12.0f, t += kMs));
+  EXPECT_EQ(c.status(),
+            "the tool at 8 times its size would be 240x240x240 voxels: at most 192 a side");
+  EXPECT_EQ(c.loop().tool().density.dims(), glm::ivec3(30));
+  EXPECT_EQ(c.loop().settings().tool_scale, 1.0f);
+  // A built-in tool again: the scale is the custom tool's only.
+  c.set_tool(sim::ToolShape::kCube, 6.0f, 0.0f, t += kMs);
+  EXPECT_FALSE(c.loop().settings().custom_tool);
+  ASSERT_TRUE(c.perform(Action::kToolBigger, t += kMs));
+  EXPECT_EQ(c.loop().settings().size_a_vox, 7.5f);
+  EXPECT_FALSE(c.loop().settings().custom_tool);
+}
+
+TEST(StationTools, AScaledToolReplaysAndReopensBitForBit) {
+  test::ScratchDir dir;
+  StationController c(block(dir));
+  int64_t t = 1000 * kMs;
+  c.set_tool_region({{18, 26, 44}, {30, 36, 56}});
+  ASSERT_TRUE(c.use_region_as_tool(t += kMs)) << c.status();
+  ASSERT_TRUE(c.set_tool_scale(1.5f, t += kMs));
+  // A recording started now opens with the custom tool at its scale (the
+  // sculpture saved beside it), not the built-in shape.
+  ASSERT_TRUE(c.start_recording(dir.path() / "r.scs", t += kMs).ok());
+  c.set_mode(core::SculptMode::kSubtract, t += kMs);
+  stroke(c, t, 20.0f);
+  ASSERT_TRUE(c.set_tool_scale(0.75f, t += kMs));
+  stroke(c, t, 40.0f);
+  c.tick(t);
+  ASSERT_TRUE(c.stop_recording().ok());
+  EXPECT_TRUE(c.loop().settings().custom_tool);
+
+  StationLoop replayed(StationLoop::Options{});
+  replay(dir.path() / "r.scs", replayed);
+  EXPECT_EQ(replayed.volume().content_hash(), c.loop().volume().content_hash());
+  EXPECT_EQ(replayed.settings().tool_scale, 0.75f);
+  EXPECT_TRUE(same_voxels(replayed.tool().density, c.loop().tool().density));
+
+  // A project keeps the tool as made and its scale.
+  ASSERT_TRUE(c.save(dir.path() / "p.sculpt").ok());
+  StationController reopened(block(dir));
+  ASSERT_TRUE(reopened.open(dir.path() / "p.sculpt").ok()) << reopened.status();
+  EXPECT_EQ(reopened.loop().settings().tool_scale, 0.75f);
+  EXPECT_TRUE(same_voxels(reopened.loop().tool().density, c.loop().tool().density));
+}
+
+}  // namespace
+}  // namespace sculpt::station
