@@ -482,6 +482,30 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
             const float dot_yz = apy * ab.y + apz * ab.z;
             if (in_lo < in_hi)
               std::memset(out + (in_lo - origin.x), 255, static_cast<size_t>(in_hi - in_lo));
+            if (hard) {
+              // Branch-free, so the compiler runs it a vector at a time: the
+              // voxels the stroke filled fully already are measured too (what
+              // they get cannot exceed their coverage, so the combine below
+              // ignores it), within radius - 1 the filling is 255, and from
+              // the reach on 0 (the same bytes as tool_density()).
+              auto measure = [&](int xa, int xb) {
+                for (int x = xa; x < xb; ++x) {
+                  const float apx = static_cast<float>(x) - sw.a.x;
+                  const float t = std::clamp((apx * ab.x + dot_yz) * inv_ab2, 0.0f, 1.0f);
+                  const float dx = apx - t * ab.x, dy = apy - t * ab.y, dz = apz - t * ab.z;
+                  const float d2 = dx * dx + dy * dy + dz * dz;
+                  const float d = std::sqrt(d2) - sw.radius;
+                  float f = std::clamp(127.5f - d * 127.5f, 0.0f, 255.0f);
+                  f = d2 > inner2 ? f : 255.0f;
+                  f = d2 < reach2 ? f : 0.0f;
+                  const int i = x - origin.x;
+                  out[i] = std::max(out[i], static_cast<uint8_t>(f));
+                }
+              };
+              measure(lo, in_lo < in_hi ? in_lo : hi);
+              if (in_lo < in_hi) measure(in_hi, hi);
+              continue;
+            }
             for (int x = lo; x < hi; ++x) {
               if (x == in_lo) x = in_hi;
               if (x >= hi) break;
@@ -492,15 +516,8 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
               const float dx = apx - t * ab.x, dy = apy - t * ab.y, dz = apz - t * ab.z;
               const float d2 = dx * dx + dy * dy + dz * dz;
               if (d2 >= reach2) continue;
-              uint8_t f = 255;
-              if (d2 > inner2) {
-                const float d = std::sqrt(d2) - sw.radius;
-                // tool_density() of a hard ball, density_from_distance()'s
-                // expression inline: the same float operations, the same bytes.
-                f = hard ? static_cast<uint8_t>(std::clamp(127.5f - d * 127.5f, 0.0f, 255.0f))
-                         : tool_density(d, sw.radius, sw.hardness);
-              }
-              out[i] = std::max(out[i], f);
+              const float d = std::sqrt(d2) - sw.radius;
+              out[i] = std::max(out[i], tool_density(d, sw.radius, sw.hardness));
             }
           }
       } else {
