@@ -257,6 +257,8 @@ bool StationController::perform(Action action, int64_t now_ns) {
       return true;
     case Action::kUseRegionAsTool:
       return use_region_as_tool(now_ns);
+    case Action::kNewBlock:
+      return new_block(new_block_, now_ns);
     case Action::kHypertexture:
       hypertexture(now_ns);
       return true;

@@ -1,5 +1,5 @@
 // The controller's tool making: a region of the sculpture as the tool, any
-// custom tool at another size.
+// custom tool at another size; and a new block.
 
 #include <algorithm>
 #include <cstdio>
@@ -102,6 +102,33 @@ bool StationController::set_tool_scale(float factor, int64_t now_ns) {
   std::snprintf(text, sizeof text, "the tool at %.3g times its size: %s voxels", double(factor),
                 size_text(loop_.tool().density.dims()).c_str());
   status_ = text;
+  return true;
+}
+
+bool StationController::new_block(const NewBlockOptions& block, int64_t now_ns) {
+  const glm::ivec3 d = block.dims;
+  if (glm::any(glm::lessThan(d, glm::ivec3(kMinBlockSide))) ||
+      glm::any(glm::greaterThan(d, glm::ivec3(kMaxBlockSide)))) {
+    status_ = "a block of " + size_text(d) + " voxels: each side must be " +
+              std::to_string(kMinBlockSide) + " to " + std::to_string(kMaxBlockSide) + " voxels";
+    return false;
+  }
+  const glm::vec3 f(d);
+  const int margin = std::min({d.x, d.y, d.z}) / 4;
+  command(block.fill == BlockFill::kClay
+              ? make_command(sim::CommandKind::kVolume, sim::kVolumeClay,
+                             {f.x, f.y, f.z, static_cast<float>(margin)})
+              : make_command(sim::CommandKind::kVolume, sim::kVolumeFill,
+                             {f.x, f.y, f.z, block.fill == BlockFill::kFull ? 255.0f : 0.0f}),
+          now_ns);
+  // The old region may lie outside the new block.
+  tool_region_.reset();
+  frame_sculpture();
+  status_ = "a new block of " + size_text(d) + " voxels, " +
+            (block.fill == BlockFill::kEmpty  ? "empty"
+             : block.fill == BlockFill::kFull ? "full"
+                                              : "a slab of clay") +
+            " (the undo history starts here)";
   return true;
 }
 

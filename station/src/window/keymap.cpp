@@ -25,6 +25,8 @@ std::optional<Action> shortcut(int key, int mods) {
         return Action::kHypertexture;
       case GLFW_KEY_R:
         return shift ? Action::kToggleToolRegion : Action::kUseRegionAsTool;
+      case GLFW_KEY_N:
+        return Action::kNewBlock;
       default:
         return std::nullopt;
     }
@@ -147,6 +149,8 @@ const char* shortcut_label(Action action) {
       return "Ctrl+Shift+R";
     case Action::kUseRegionAsTool:
       return "Ctrl+R";
+    case Action::kNewBlock:
+      return "Ctrl+N";
     case Action::kHypertexture:
       return "Ctrl+H";
     case Action::kFrameView:

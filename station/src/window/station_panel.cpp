@@ -155,6 +155,7 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     ImGui::SameLine();
     if (ImGui::Button("Redo")) c_.redo(now);
     tip(Action::kRedo);
+    draw_new_block(now);
     ImGui::InputText("project", project_, sizeof(project_));
     if (ImGui::Button("Save")) {
       c_.options().project = project_;
@@ -227,6 +228,50 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
   }
   if (!c_.status().empty()) ImGui::TextWrapped("%s", c_.status().c_str());
   ImGui::End();
+}
+
+void StationPanel::ask_new_block() {
+  ask_new_block_ = true;
+}
+
+void StationPanel::draw_new_block(int64_t now) {
+  NewBlockOptions& block = c_.new_block_options();
+  if (ImGui::TreeNode("New block")) {
+    int dims[3] = {block.dims.x, block.dims.y, block.dims.z};
+    if (ImGui::DragInt3("size", dims, 1.0f, StationController::kMinBlockSide,
+                        StationController::kMaxBlockSide, "%d vox", ImGuiSliderFlags_AlwaysClamp))
+      block.dims = {dims[0], dims[1], dims[2]};
+    int fill = static_cast<int>(block.fill);
+    ImGui::RadioButton("empty", &fill, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("full", &fill, 1);
+    ImGui::SameLine();
+    ImGui::RadioButton("clay slab", &fill, 2);
+    block.fill = static_cast<BlockFill>(fill);
+    if (ImGui::Button("New block...")) ask_new_block_ = true;
+    tip(Action::kNewBlock);
+    ImGui::TreePop();
+  }
+  // The sculpture goes for good (the undo history starts again): asked first.
+  if (ask_new_block_) {
+    ImGui::OpenPopup("Replace the sculpture?");
+    ask_new_block_ = false;
+  }
+  if (ImGui::BeginPopupModal("Replace the sculpture?", nullptr,
+                             ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("A new %d x %d x %d block replaces the sculpture.", block.dims.x, block.dims.y,
+                block.dims.z);
+    ImGui::TextUnformatted("This cannot be undone (save the project first to keep it).");
+    if (ImGui::Button("Replace")) {
+      c_.new_block(block, now);
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  }
 }
 
 void StationPanel::draw_tool_region(int64_t now) {

@@ -21,16 +21,20 @@ class StationPanel {
  public:
   explicit StationPanel(StationController& controller);
   void draw(const FrameFigures& figures, int64_t now_ns);
+  /// Opens the new block's confirmation (its key's way in).
+  void ask_new_block();
   /// A force device's section (null: none).
   void set_haptics(HapticStation* haptics) { haptics_ = haptics; }
 
  private:
   void draw_sheet(int64_t now_ns);
   void draw_tool_region(int64_t now_ns);
+  void draw_new_block(int64_t now_ns);
   void draw_haptics(int64_t now_ns);
 
   StationController& c_;
   HapticStation* haptics_ = nullptr;
+  bool ask_new_block_ = false;
   int64_t haptic_ticks_ = 0;  // at haptic_since_ns_, for the loop rate
   int64_t haptic_since_ns_ = 0;
   double haptic_rate_hz_ = 0.0;

@@ -577,7 +577,13 @@ int run_window(const WindowOptions& o) {
             haptics->enabled() ? haptics->drop() : haptics->enable();
             continue;
           }
-          if (auto action = shortcut(k, mods)) controller.perform(*action, now);
+          const std::optional<Action> action = shortcut(k, mods);
+          // A new block cannot be undone: the panel asks first.
+          if (action == Action::kNewBlock) {
+            panel.ask_new_block();
+          } else if (action) {
+            controller.perform(*action, now);
+          }
         }
       }
       if (!o.stats.empty() && o.stats_every_s > 0 &&

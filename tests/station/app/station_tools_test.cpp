@@ -240,5 +240,51 @@ TEST(StationTools, AScaledToolReplaysAndReopensBitForBit) {
   EXPECT_TRUE(same_voxels(reopened.loop().tool().density, c.loop().tool().density));
 }
 
+TEST(StationTools, ANewBlockReplacesTheSculptureAndReplays) {
+  test::ScratchDir dir;
+  StationController c(block(dir));
+  int64_t t = 1000 * kMs;
+  ASSERT_TRUE(c.start_recording(dir.path() / "r.scs", t).ok());
+  stroke(c, t, 30.0f);
+  c.perform(Action::kToggleToolRegion, t);
+  ASSERT_TRUE(c.new_block({{48, 40, 32}, BlockFill::kFull}, t += kMs)) << c.status();
+  EXPECT_EQ(c.status(), "a new block of 48x40x32 voxels, full (the undo history starts here)");
+  EXPECT_EQ(c.loop().volume().dims(), glm::ivec3(48, 40, 32));
+  EXPECT_EQ(c.loop().volume().voxel({0, 0, 0}), 255);
+  EXPECT_EQ(c.loop().volume().content_hash(), core::Volume({48, 40, 32}, 255).content_hash());
+  EXPECT_FALSE(c.tool_region().has_value());  // it may lie outside the new block
+  c.undo(t += kMs);
+  EXPECT_EQ(c.status(), "nothing to undo");
+  EXPECT_EQ(c.loop().volume().voxel({0, 0, 0}), 255);
+  // The panel's choice through the key's action; a clay slab.
+  c.new_block_options() = {{40, 40, 40}, BlockFill::kClay};
+  ASSERT_TRUE(c.perform(Action::kNewBlock, t += kMs)) << c.status();
+  EXPECT_EQ(c.loop().volume().voxel({20, 20, 20}), 255);
+  EXPECT_EQ(c.loop().volume().voxel({2, 2, 2}), 0);
+  c.set_mode(core::SculptMode::kSubtract, t += kMs);
+  stroke(c, t, 30.0f);
+  ASSERT_TRUE(c.new_block({{32, 32, 32}, BlockFill::kEmpty}, t += kMs));
+  EXPECT_FALSE(core::material_bounds(c.loop().volume()).has_value());
+  c.set_mode(core::SculptMode::kAdd, t += kMs);
+  stroke(c, t, 20.0f);
+  c.tick(t);
+  ASSERT_TRUE(c.stop_recording().ok());
+
+  StationLoop replayed(StationLoop::Options{});
+  replay(dir.path() / "r.scs", replayed);
+  EXPECT_EQ(replayed.volume().dims(), glm::ivec3(32));
+  EXPECT_EQ(replayed.volume().content_hash(), c.loop().volume().content_hash());
+}
+
+TEST(StationTools, ANewBlockOfABadSizeIsOneMessageAndChangesNothing) {
+  test::ScratchDir dir;
+  StationController c(block(dir));
+  const uint64_t before = c.loop().volume().content_hash();
+  EXPECT_FALSE(c.new_block({{4, 64, 64}, BlockFill::kFull}, 0));
+  EXPECT_EQ(c.status(), "a block of 4x64x64 voxels: each side must be 8 to 1024 voxels");
+  EXPECT_FALSE(c.new_block({{64, 2048, 64}, BlockFill::kEmpty}, 0));
+  EXPECT_EQ(c.loop().volume().content_hash(), before);
+}
+
 }  // namespace
 }  // namespace sculpt::station

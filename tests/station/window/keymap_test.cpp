@@ -53,12 +53,15 @@ TEST(StationShortcuts, ChooseTheBallBrushesAndAccumulate) {
   EXPECT_STREQ(shortcut_label(Action::kToggleAccumulate), "Shift+A");
 }
 
-// The tool region (issue 23): Ctrl+Shift+R shows or hides it, Ctrl+R makes it the tool.
+// The tool region (issue 23): Ctrl+Shift+R shows or hides it, Ctrl+R makes
+// it the tool; Ctrl+N asks for a new block.
 TEST(StationShortcuts, ReachTheToolRegion) {
   EXPECT_EQ(shortcut(GLFW_KEY_R, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT), Action::kToggleToolRegion);
   EXPECT_EQ(shortcut(GLFW_KEY_R, GLFW_MOD_CONTROL), Action::kUseRegionAsTool);
   EXPECT_EQ(shortcut(GLFW_KEY_R, 0), Action::kToggleRecording);
   EXPECT_STREQ(shortcut_label(Action::kUseRegionAsTool), "Ctrl+R");
+  EXPECT_EQ(shortcut(GLFW_KEY_N, GLFW_MOD_CONTROL), Action::kNewBlock);
+  EXPECT_EQ(shortcut(GLFW_KEY_N, 0), Action::kNewSheet);
 }
 
 }  // namespace

@@ -78,6 +78,9 @@ enum class Action {
   /// around the tool when there is none), or hides it.
   kToggleToolRegion,
   kUseRegionAsTool,
+  /// A new block (new_block_options()) in place of the sculpture. Not
+  /// undoable: the window asks first.
+  kNewBlock,
   kHypertexture,
   kFrameView,
   kTurnToolLeft,  ///< about the view's vertical axis
@@ -91,6 +94,15 @@ enum class Action {
   kSheetSubtractFromMaterial,
   kSheetAsTool,
   kExportSheet,
+};
+
+/// What fills a new block.
+enum class BlockFill : uint8_t { kEmpty, kFull, kClay };
+
+/// The panel's new block: its size and what fills it.
+struct NewBlockOptions {
+  glm::ivec3 dims{256};
+  BlockFill fill = BlockFill::kEmpty;
 };
 
 struct DeviceStatus {
@@ -193,6 +205,16 @@ class StationController {
   /// a built-in tool (its sizes scale it) or a result over
   /// StationLoop::kMaxScaledToolEdge voxels a side.
   bool set_tool_scale(float factor, int64_t now_ns);
+  /// The sculpture replaced by a new block of `block.dims` voxels (each side
+  /// in [kMinBlockSide, kMaxBlockSide]), empty, full (density 255) or a slab
+  /// of clay a quarter of the smallest side in from every side: the session
+  /// command kVolume. The undo history starts again (nothing to undo back
+  /// to the old sculpture: the panel confirms first). False, with the reason
+  /// in status(), for a size out of range.
+  bool new_block(const NewBlockOptions& block, int64_t now_ns);
+  NewBlockOptions& new_block_options() { return new_block_; }
+  static constexpr int kMinBlockSide = 8;
+  static constexpr int kMaxBlockSide = 1024;
   /// The largest region or sculpture that becomes a tool, voxels a side: a
   /// tool is rotated voxel by voxel at every new orientation, so it must
   /// stay small next to the block.
@@ -347,6 +369,7 @@ class StationController {
   uint64_t sheet_version_ = 0;  // the sheet's version at the last update_mesh()
   std::future<Status> autosave_;
   std::optional<core::Box> tool_region_;
+  NewBlockOptions new_block_;
 };
 
 }  // namespace sculpt::station
