@@ -27,10 +27,11 @@ for target in "${targets[@]}"; do
   esac
   work=$(mktemp -d)
   start=$(date +%s)
+  mkdir -p "$build/fuzz-artifacts"  # findings go here, not into the checkout
   if ! "$build/bin/${target}_fuzz" "$work" "$seeds" -runs="$runs" -rss_limit_mb=2048 \
-       -print_final_stats=1 > "$work.log" 2>&1; then
+       -print_final_stats=1 -artifact_prefix="$build/fuzz-artifacts/" > "$work.log" 2>&1; then
     tail -n 40 "$work.log"
-    echo "fuzz-long: $target found an input that fails (above)"
+    echo "fuzz-long: $target found an input that fails (above; saved in $build/fuzz-artifacts)"
     exit 1
   fi
   done_runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$work.log" | grep -o '[0-9]*$')
