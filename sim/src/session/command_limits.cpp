@@ -63,6 +63,15 @@ std::optional<std::string> command_problem(const Command& c) {
         return "tool scale " + number(c.values[0]) + " is outside [" + number(kMinToolScale) +
                ", " + number(kMaxToolScale) + "]";
       return choice_below(1, "choice");
+    case CommandKind::kMorphology:
+      if (auto why = choice_below(2, "morphology")) return why;
+      if (c.choice == kMorphologyOffset && !in(c.values[0], -kMaxMorphologyVox, kMaxMorphologyVox))
+        return "offset " + number(c.values[0]) + " is outside [-" + number(kMaxMorphologyVox) +
+               ", " + number(kMaxMorphologyVox) + "] voxels";
+      if (c.choice == kMorphologyClose && !(c.values[0] > 0.0f && c.values[0] <= kMaxMorphologyVox))
+        return "closing radius " + number(c.values[0]) + " is outside (0, " +
+               number(kMaxMorphologyVox) + "] voxels";
+      return std::nullopt;
     case CommandKind::kSpacing:
       if (!(c.values[0] > 0.0f && c.values[0] <= kMaxSpacing))
         return "spacing " + number(c.values[0]) + " is outside (0, " + number(kMaxSpacing) + "]";

@@ -11,11 +11,12 @@ namespace sculpt::sim {
 namespace {
 
 constexpr std::array<std::string_view, kCommandKindCount> kCommandNames = {
-    "press", "release", "tool",   "mode",      "strength", "spacing",          "mirror",
-    "undo",  "redo",    "volume", "tool_pose", "pointer",  "tool_from_region", "hypertexture",
-    "sheet", "touch",   "clutch", "tracker",   "hardness", "accumulate",       "tool_scale"};
+    "press",     "release", "tool",   "mode",      "strength", "spacing",          "mirror",
+    "undo",      "redo",    "volume", "tool_pose", "pointer",  "tool_from_region", "hypertexture",
+    "sheet",     "touch",   "clutch", "tracker",   "hardness", "accumulate",       "tool_scale",
+    "morphology"};
 constexpr std::array<int, kCommandKindCount> kValueCounts = {0, 0, 2, 0, 1, 1, 1, 0, 0, 4, 7,
-                                                             7, 6, 6, 6, 0, 0, 5, 1, 0, 1};
+                                                             7, 6, 6, 6, 0, 0, 5, 1, 0, 1, 1};
 constexpr std::array<std::string_view, kToolShapeCount> kShapeNames = {"sphere", "cube", "cylinder",
                                                                        "ring", "cone"};
 constexpr std::array<std::string_view, kSculptModeCount> kModeNames = {

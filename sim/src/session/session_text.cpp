@@ -279,6 +279,10 @@ ordered record_json(const SessionRecord& r) {
       j["scale_vox_per_mm"] = c.values[0];
       j["rotation"] = floats(c.values + 1, 4);
       break;
+    case CommandKind::kMorphology:
+      j["op"] = c.choice == kMorphologyClose ? "close" : "offset";
+      j["by"] = c.values[0];
+      break;
     default:
       break;
   }
@@ -508,6 +512,14 @@ SessionRecord parse_command(const json& j, int64_t t) {
     case CommandKind::kTracker:
       read_number(j, "scale_vox_per_mm", c.values);
       read_numbers(j, "rotation", c.values + 1, 4);
+      break;
+    case CommandKind::kMorphology:
+      choice("op", [](const std::string& s) -> std::optional<uint8_t> {
+        if (s == "offset") return kMorphologyOffset;
+        if (s == "close") return kMorphologyClose;
+        return std::nullopt;
+      });
+      read_number(j, "by", c.values);
       break;
     default:
       break;

@@ -259,6 +259,10 @@ bool StationController::perform(Action action, int64_t now_ns) {
       return use_region_as_tool(now_ns);
     case Action::kNewBlock:
       return new_block(new_block_, now_ns);
+    case Action::kOffsetSculpture:
+      return offset_sculpture(offset_vox_, now_ns);
+    case Action::kCloseSculpture:
+      return close_sculpture(closing_radius_vox_, now_ns);
     case Action::kHypertexture:
       hypertexture(now_ns);
       return true;

@@ -1,7 +1,8 @@
 // The controller's tool making: a region of the sculpture as the tool, any
-// custom tool at another size; and a new block.
+// custom tool at another size; a new block; offset and closing.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -129,6 +130,42 @@ bool StationController::new_block(const NewBlockOptions& block, int64_t now_ns) 
              : block.fill == BlockFill::kFull ? "full"
                                               : "a slab of clay") +
             " (the undo history starts here)";
+  return true;
+}
+
+bool StationController::offset_sculpture(float by_vox, int64_t now_ns) {
+  return morphology(false, by_vox, now_ns);
+}
+
+bool StationController::close_sculpture(float radius_vox, int64_t now_ns) {
+  return morphology(true, radius_vox, now_ns);
+}
+
+bool StationController::morphology(bool close, float by, int64_t now_ns) {
+  const char* what = close ? "closing" : "offset";
+  const bool in_range = close ? by > 0.0f && by <= sim::kMaxMorphologyVox
+                              : std::abs(by) <= sim::kMaxMorphologyVox && by != 0.0f;
+  if (!std::isfinite(by) || !in_range) {
+    char text[120];
+    std::snprintf(text, sizeof text, "no %s by %g voxels: it takes %s", what, double(by),
+                  close ? "a radius above 0, at most 64 voxels" : "-64 to 64 voxels, not 0");
+    status_ = text;
+    return false;
+  }
+  command(make_command(sim::CommandKind::kMorphology,
+                       close ? sim::kMorphologyClose : sim::kMorphologyOffset, {by}),
+          now_ns);
+  const MorphologyResult& r = loop_.last_morphology();
+  if (!r.applied) {
+    status_ = std::string("no surface to ") + (close ? "close" : "offset") +
+              ": the block is empty or solid";
+    return false;
+  }
+  char text[160];
+  std::snprintf(text, sizeof text, "%s by %+g voxels: %lld -> %lld voxels inside (one undo step)",
+                close ? "closed" : "offset", double(by), static_cast<long long>(r.inside_before),
+                static_cast<long long>(r.inside_after));
+  status_ = text;
   return true;
 }
 

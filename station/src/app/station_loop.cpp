@@ -380,6 +380,9 @@ void StationLoop::handle(const sim::Command& c) {
     case K::kSheet:
       sheet_command(c);
       break;
+    case K::kMorphology:
+      morphology(c);
+      break;
     case K::kVolume: {
       const glm::ivec3 dims(static_cast<int>(c.values[0]), static_cast<int>(c.values[1]),
                             static_cast<int>(c.values[2]));

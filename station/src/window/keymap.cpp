@@ -27,6 +27,10 @@ std::optional<Action> shortcut(int key, int mods) {
         return shift ? Action::kToggleToolRegion : Action::kUseRegionAsTool;
       case GLFW_KEY_N:
         return Action::kNewBlock;
+      case GLFW_KEY_O:
+        return Action::kOffsetSculpture;
+      case GLFW_KEY_L:
+        return Action::kCloseSculpture;
       default:
         return std::nullopt;
     }
@@ -151,6 +155,10 @@ const char* shortcut_label(Action action) {
       return "Ctrl+R";
     case Action::kNewBlock:
       return "Ctrl+N";
+    case Action::kOffsetSculpture:
+      return "Ctrl+O";
+    case Action::kCloseSculpture:
+      return "Ctrl+L";
     case Action::kHypertexture:
       return "Ctrl+H";
     case Action::kFrameView:

@@ -99,6 +99,7 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     draw_tool_region(now);
     if (ImGui::Button("Hypertexture around the tool")) c_.hypertexture(now);
     tip(Action::kHypertexture);
+    draw_morphology(now);
 
     // One choice: the three modes, then the ball brushes (a press applies the
     // brush to its whole path when it ends).
@@ -228,6 +229,22 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
   }
   if (!c_.status().empty()) ImGui::TextWrapped("%s", c_.status().c_str());
   ImGui::End();
+}
+
+void StationPanel::draw_morphology(int64_t now) {
+  if (!ImGui::TreeNode("Offset and closing")) return;
+  // The distance-field tools of `sculpt offset` and `sculpt close`, on the
+  // whole sculpture, one undo step each.
+  ImGui::SliderFloat("offset by", &c_.offset_vox(), -16.0f, 16.0f, "%+.1f vox");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("outward when positive, inward when negative");
+  if (ImGui::Button("Offset the sculpture")) c_.offset_sculpture(c_.offset_vox(), now);
+  tip(Action::kOffsetSculpture);
+  ImGui::SliderFloat("closing radius", &c_.closing_radius_vox(), 0.5f, 16.0f, "%.1f vox");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("fills gaps and dents narrower than twice the radius");
+  if (ImGui::Button("Close the sculpture")) c_.close_sculpture(c_.closing_radius_vox(), now);
+  tip(Action::kCloseSculpture);
+  ImGui::TreePop();
 }
 
 void StationPanel::ask_new_block() {

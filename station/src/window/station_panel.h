@@ -30,6 +30,7 @@ class StationPanel {
   void draw_sheet(int64_t now_ns);
   void draw_tool_region(int64_t now_ns);
   void draw_new_block(int64_t now_ns);
+  void draw_morphology(int64_t now_ns);
   void draw_haptics(int64_t now_ns);
 
   StationController& c_;

@@ -47,6 +47,8 @@ TEST(CommandLimits, CommandsTheStationWritesPass) {
   EXPECT_FALSE(command_problem(command(CommandKind::kAccumulate, 1, {})));
   EXPECT_FALSE(command_problem(command(CommandKind::kToolScale, 0, {0.125f})));
   EXPECT_FALSE(command_problem(command(CommandKind::kToolScale, 0, {8.0f})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kMorphology, kMorphologyOffset, {-64.0f})));
+  EXPECT_FALSE(command_problem(command(CommandKind::kMorphology, kMorphologyClose, {0.5f})));
 }
 
 TEST(CommandLimits, EachOutOfRangeFieldIsNamed) {
@@ -88,6 +90,11 @@ TEST(CommandLimits, EachOutOfRangeFieldIsNamed) {
       {command(CommandKind::kToolScale, 0, {9.0f}), "tool scale 9 is outside [0.125, 8]"},
       {command(CommandKind::kToolScale, 0, {nan}), "value 0 is not a finite number"},
       {command(CommandKind::kToolScale, 1, {2.0f}), "choice 1 unknown"},
+      {command(CommandKind::kMorphology, 2, {1.0f}), "morphology 2 unknown"},
+      {command(CommandKind::kMorphology, kMorphologyOffset, {65.0f}),
+       "offset 65 is outside [-64, 64] voxels"},
+      {command(CommandKind::kMorphology, kMorphologyClose, {0.0f}),
+       "closing radius 0 is outside (0, 64] voxels"},
   };
   for (const auto& [c, says] : cases) {
     const auto why = command_problem(c);
@@ -189,6 +196,28 @@ TEST(CommandLimits, ToolScaleReadsInBothFormsAndIsRangeChecked) {
       head + "{\"t\": 3000, \"cmd\": \"tool_scale\", \"value\": 0}\n", "bad.jsonl");
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error().message().find("bad.jsonl:4: tool_scale: tool scale 0 is outside"),
+            std::string::npos)
+      << bad.error().message();
+}
+
+TEST(CommandLimits, MorphologyReadsInBothFormsByItsOperationsName) {
+  const std::string head = session_to_text(with(command(CommandKind::kPress, 0, {})));
+  const auto good = session_from_text(
+      head + "{\"t\": 3000, \"cmd\": \"morphology\", \"op\": \"close\", \"by\": 2.5}\n" +
+          "{\"t\": 3001, \"cmd\": \"morphology\", \"op\": \"offset\", \"by\": -1}\n",
+      "good.jsonl");
+  ASSERT_TRUE(good.ok()) << good.error().message();
+  ASSERT_EQ(good->records.size(), 4u);
+  EXPECT_EQ(good->records[2].command.choice, kMorphologyClose);
+  EXPECT_EQ(good->records[2].command.values[0], 2.5f);
+  EXPECT_EQ(good->records[3].command.choice, kMorphologyOffset);
+  const auto binary = parse_session_bytes(serialize_session(*good), "good.scs");
+  ASSERT_TRUE(binary.ok()) << binary.error().message();
+  EXPECT_EQ(*binary, *good);
+  const auto bad = session_from_text(
+      head + "{\"t\": 3000, \"cmd\": \"morphology\", \"op\": \"open\", \"by\": 1}\n", "bad.jsonl");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message().find("bad.jsonl:4: op: unknown value \"open\""),
             std::string::npos)
       << bad.error().message();
 }

@@ -47,11 +47,11 @@ void replay(const std::filesystem::path& path, StationLoop& loop) {
 
 // A mouse stroke across the clay's top face (z = 51), so the region holds
 // more than a plain slab.
-void stroke(StationController& c, int64_t& t, float y) {
-  c.pointer_move({20.0f, y, 52.0f}, t += kMs);
+void stroke(StationController& c, int64_t& t, float y, float z = 52.0f) {
+  c.pointer_move({20.0f, y, z}, t += kMs);
   c.pointer_down(t += kMs);
   for (int i = 0; i <= 20; ++i)
-    c.pointer_move({20.0f + static_cast<float>(i), y, 52.0f}, t += kMs);
+    c.pointer_move({20.0f + static_cast<float>(i), y, z}, t += kMs);
   c.pointer_up(t += kMs);
 }
 
@@ -283,6 +283,85 @@ TEST(StationTools, ANewBlockOfABadSizeIsOneMessageAndChangesNothing) {
   EXPECT_FALSE(c.new_block({{4, 64, 64}, BlockFill::kFull}, 0));
   EXPECT_EQ(c.status(), "a block of 4x64x64 voxels: each side must be 8 to 1024 voxels");
   EXPECT_FALSE(c.new_block({{64, 2048, 64}, BlockFill::kEmpty}, 0));
+  EXPECT_EQ(c.loop().volume().content_hash(), before);
+}
+
+// Offset and closing (issue 23): each one undo step that gives the exact
+// sculpture back, recorded and replayed to the same hash.
+TEST(StationTools, OffsetAndClosingAreOneUndoStepEachAndReplay) {
+  test::ScratchDir dir;
+  StationController c(block(dir));
+  int64_t t = 1000 * kMs;
+  ASSERT_TRUE(c.start_recording(dir.path() / "r.scs", t).ok());
+  // A groove 3 voxels wide and 3 deep across the slab's top, for the
+  // closing to fill.
+  c.set_tool(sim::ToolShape::kSphere, 1.5f, 0.0f, t += kMs);
+  c.set_mode(core::SculptMode::kSubtract, t += kMs);
+  stroke(c, t, 30.0f, 50.0f);
+  const uint64_t grooved = c.loop().volume().content_hash();
+  ASSERT_LT(c.loop().volume().voxel({30, 30, 49}), 128);
+  ASSERT_EQ(c.loop().volume().voxel({30, 30, 50}), 0);
+
+  ASSERT_TRUE(c.offset_sculpture(2.0f, t += kMs)) << c.status();
+  const MorphologyResult grown = c.loop().last_morphology();
+  EXPECT_GT(grown.inside_after, grown.inside_before);
+  EXPECT_NE(c.status().find("offset by +2 voxels: "), std::string::npos) << c.status();
+  const uint64_t offset = c.loop().volume().content_hash();
+  EXPECT_NE(offset, grooved);
+  c.undo(t += kMs);
+  EXPECT_EQ(c.loop().volume().content_hash(), grooved);
+  c.redo(t += kMs);
+  EXPECT_EQ(c.loop().volume().content_hash(), offset);
+  c.undo(t += kMs);
+
+  c.closing_radius_vox() = 3.0f;
+  ASSERT_TRUE(c.perform(Action::kCloseSculpture, t += kMs)) << c.status();
+  const MorphologyResult closed = c.loop().last_morphology();
+  EXPECT_GT(closed.inside_after, closed.inside_before);  // the groove filled
+  // The groove's bottom is material again (its top within a voxel of the
+  // slab's face); above the face stays empty.
+  EXPECT_GT(c.loop().volume().voxel({30, 30, 49}), 127);
+  EXPECT_GT(c.loop().volume().voxel({30, 30, 50}), 100);
+  EXPECT_LT(c.loop().volume().voxel({30, 30, 54}), 128);
+  const uint64_t closed_hash = c.loop().volume().content_hash();
+  c.undo(t += kMs);
+  EXPECT_EQ(c.loop().volume().content_hash(), grooved);
+  c.redo(t += kMs);
+  c.offset_vox() = -1.5f;
+  ASSERT_TRUE(c.perform(Action::kOffsetSculpture, t += kMs)) << c.status();
+  EXPECT_LT(c.loop().last_morphology().inside_after, c.loop().last_morphology().inside_before);
+  c.undo(t += kMs);
+  EXPECT_EQ(c.loop().volume().content_hash(), closed_hash);
+  c.tick(t);
+  ASSERT_TRUE(c.stop_recording().ok());
+
+  StationLoop replayed(StationLoop::Options{});
+  replay(dir.path() / "r.scs", replayed);
+  EXPECT_EQ(replayed.volume().content_hash(), closed_hash);
+  // And the undone offset is still there to redo in the replay.
+  replayed.handle(sim::Command{sim::CommandKind::kRedo});
+  c.redo(t += kMs);
+  EXPECT_EQ(replayed.volume().content_hash(), c.loop().volume().content_hash());
+}
+
+TEST(StationTools, OffsetWithoutASurfaceOrOutOfRangeIsOneMessage) {
+  test::ScratchDir dir;
+  StationController empty(block(dir, 0));
+  EXPECT_FALSE(empty.offset_sculpture(2.0f, 0));
+  EXPECT_EQ(empty.status(), "no surface to offset: the block is empty or solid");
+  ASSERT_TRUE(empty.new_block({{16, 16, 16}, BlockFill::kFull}, 0));
+  EXPECT_FALSE(empty.close_sculpture(2.0f, 0));
+  EXPECT_EQ(empty.status(), "no surface to close: the block is empty or solid");
+  EXPECT_EQ(empty.loop().volume().content_hash(), core::Volume({16, 16, 16}, 255).content_hash());
+  empty.undo(0);
+  EXPECT_EQ(empty.status(), "nothing to undo");
+
+  StationController c(block(dir));
+  const uint64_t before = c.loop().volume().content_hash();
+  EXPECT_FALSE(c.offset_sculpture(100.0f, 0));
+  EXPECT_EQ(c.status(), "no offset by 100 voxels: it takes -64 to 64 voxels, not 0");
+  EXPECT_FALSE(c.close_sculpture(0.0f, 0));
+  EXPECT_EQ(c.status(), "no closing by 0 voxels: it takes a radius above 0, at most 64 voxels");
   EXPECT_EQ(c.loop().volume().content_hash(), before);
 }
 

@@ -23,6 +23,8 @@ TEST(StationShortcuts, MapKeysToActions) {
 
 TEST(StationShortcuts, ReachTheSheetAndTurnTheTool) {
   EXPECT_EQ(shortcut(GLFW_KEY_N, 0), Action::kNewSheet);
+  EXPECT_EQ(shortcut(GLFW_KEY_O, GLFW_MOD_CONTROL), Action::kOffsetSculpture);
+  EXPECT_EQ(shortcut(GLFW_KEY_L, GLFW_MOD_CONTROL), Action::kCloseSculpture);
   EXPECT_EQ(shortcut(GLFW_KEY_N, GLFW_MOD_SHIFT), Action::kRemoveSheet);
   EXPECT_EQ(shortcut(GLFW_KEY_G, 0), Action::kToggleSheetEditing);
   EXPECT_EQ(shortcut(GLFW_KEY_B, GLFW_MOD_CONTROL), Action::kSheetAddToMaterial);
@@ -54,7 +56,8 @@ TEST(StationShortcuts, ChooseTheBallBrushesAndAccumulate) {
 }
 
 // The tool region (issue 23): Ctrl+Shift+R shows or hides it, Ctrl+R makes
-// it the tool; Ctrl+N asks for a new block.
+// it the tool; Ctrl+N asks for a new block; Ctrl+O and Ctrl+L offset and
+// close the sculpture.
 TEST(StationShortcuts, ReachTheToolRegion) {
   EXPECT_EQ(shortcut(GLFW_KEY_R, GLFW_MOD_CONTROL | GLFW_MOD_SHIFT), Action::kToggleToolRegion);
   EXPECT_EQ(shortcut(GLFW_KEY_R, GLFW_MOD_CONTROL), Action::kUseRegionAsTool);
@@ -62,6 +65,8 @@ TEST(StationShortcuts, ReachTheToolRegion) {
   EXPECT_STREQ(shortcut_label(Action::kUseRegionAsTool), "Ctrl+R");
   EXPECT_EQ(shortcut(GLFW_KEY_N, GLFW_MOD_CONTROL), Action::kNewBlock);
   EXPECT_EQ(shortcut(GLFW_KEY_N, 0), Action::kNewSheet);
+  EXPECT_EQ(shortcut(GLFW_KEY_O, GLFW_MOD_CONTROL), Action::kOffsetSculpture);
+  EXPECT_EQ(shortcut(GLFW_KEY_L, GLFW_MOD_CONTROL), Action::kCloseSculpture);
 }
 
 }  // namespace

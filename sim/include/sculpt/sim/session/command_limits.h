@@ -18,6 +18,8 @@ inline constexpr float kMaxToolSizeVox = 256.0f;
 /// A custom tool's scale (kToolScale): core::kMinToolScale..kMaxToolScale.
 inline constexpr float kMinToolScale = 0.125f;
 inline constexpr float kMaxToolScale = 8.0f;
+/// Offset distance and closing radius of a kMorphology command, voxels.
+inline constexpr float kMaxMorphologyVox = 64.0f;
 /// Positions, plane positions and volume sides, in voxels.
 inline constexpr float kMaxCoordinateVox = 1048576.0f;
 /// A new volume's voxels.

@@ -70,10 +70,17 @@ enum class CommandKind : uint8_t {
   /// made at (1: as made), resampled trilinearly (core::scale_tool). Ignored
   /// while the tool is a built-in shape (kTool sizes those).
   kToolScale,
+  /// The sculpture's surface moved on its sub-voxel distance field (Jones &
+  /// Satherley §4.2): choice kMorphologyOffset, values[0] the distance in
+  /// voxels (> 0 outward, < 0 inward); choice kMorphologyClose, values[0]
+  /// the closing radius in voxels. One undo step.
+  kMorphology,
 };
-inline constexpr uint8_t kCommandKindCount = 21;
-static_assert(static_cast<uint8_t>(CommandKind::kToolScale) == kCommandKindCount,
+inline constexpr uint8_t kCommandKindCount = 22;
+static_assert(static_cast<uint8_t>(CommandKind::kMorphology) == kCommandKindCount,
               "a new command kind: add its name and value count in session.cpp");
+inline constexpr uint8_t kMorphologyOffset = 0;
+inline constexpr uint8_t kMorphologyClose = 1;
 inline constexpr uint8_t kVolumeFill = 0;
 inline constexpr uint8_t kVolumeClay = 1;
 

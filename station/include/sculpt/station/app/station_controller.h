@@ -81,6 +81,10 @@ enum class Action {
   /// A new block (new_block_options()) in place of the sculpture. Not
   /// undoable: the window asks first.
   kNewBlock,
+  /// The sculpture's surface moved by offset_vox() / closed by
+  /// closing_radius_vox() (Jones & Satherley §4.2), one undo step each.
+  kOffsetSculpture,
+  kCloseSculpture,
   kHypertexture,
   kFrameView,
   kTurnToolLeft,  ///< about the view's vertical axis
@@ -212,6 +216,18 @@ class StationController {
   /// to the old sculpture: the panel confirms first). False, with the reason
   /// in status(), for a size out of range.
   bool new_block(const NewBlockOptions& block, int64_t now_ns);
+  /// The sculpture's surface moved `by_vox` voxels along its normals
+  /// (outward when positive) on its sub-voxel distance field, as `sculpt
+  /// offset`; or closed (its gaps and dents narrower than twice the radius
+  /// filled), as `sculpt close`. One undo step; the session command
+  /// kMorphology. False, with the reason in status(), when there is no
+  /// surface (an empty or solid block) or the distance is out of range
+  /// ([-64, 64] voxels, a radius above 0).
+  bool offset_sculpture(float by_vox, int64_t now_ns);
+  bool close_sculpture(float radius_vox, int64_t now_ns);
+  /// The panel's distances for the two (and their keys').
+  float& offset_vox() { return offset_vox_; }
+  float& closing_radius_vox() { return closing_radius_vox_; }
   NewBlockOptions& new_block_options() { return new_block_; }
   static constexpr int kMinBlockSide = 8;
   static constexpr int kMaxBlockSide = 1024;
@@ -331,6 +347,7 @@ class StationController {
   // Starts an autosave on another thread when one is due (projects file).
   void autosave_if_due(int64_t now_ns);
   std::vector<sim::Command> opening_commands(bool with_block) const;
+  bool morphology(bool close, float by_vox, int64_t now_ns);
   // The material in `box` (clamped) as the tool; `what` names it in messages.
   bool tool_from_box(core::Box box, const std::string& what, int64_t now_ns);
 
@@ -370,6 +387,8 @@ class StationController {
   std::future<Status> autosave_;
   std::optional<core::Box> tool_region_;
   NewBlockOptions new_block_;
+  float offset_vox_ = 1.0f;
+  float closing_radius_vox_ = 2.0f;
 };
 
 }  // namespace sculpt::station

@@ -61,6 +61,14 @@ int64_t ball_brush_stroke(core::Volume& volume, core::Sculptor& sculptor, BallBr
                           float hardness, float strength,
                           std::optional<core::MirrorPlane> mirror = std::nullopt);
 
+/// What the last offset or closing (kMorphology) did: voxels inside the
+/// surface (density above 127.5) in the box it worked on, before and after.
+struct MorphologyResult {
+  bool applied = false;  ///< false: no surface in the block, nothing changed
+  int64_t inside_before = 0;
+  int64_t inside_after = 0;
+};
+
 struct StationCounters {
   int64_t dabs = 0;
   int64_t strokes = 0;
@@ -139,6 +147,7 @@ class StationLoop {
   /// sculptor; bytes and entries: those held now).
   core::RotatedToolCacheStats rotation_cache_stats() const;
   const SheetEditor& sheet() const { return sheet_; }
+  const MorphologyResult& last_morphology() const { return morphology_; }
   /// Why the last sheet command or grab did nothing (empty if it worked).
   const std::string& sheet_problem() const { return sheet_problem_; }
 
@@ -166,6 +175,7 @@ class StationLoop {
   // Touch mode's half of a motion sample: the tool onto the proxy.
   void touch_moved(const hal::InputEvent& e);
   void sheet_command(const sim::Command& command);
+  void morphology(const sim::Command& command);
   void sheet_into_material(float thickness_vox, bool add);
   void sheet_as_tool(float thickness_vox);
   void apply_clutch();
@@ -208,6 +218,7 @@ class StationLoop {
   SheetEditor sheet_;
   TouchMode touch_;
   std::string sheet_problem_;
+  MorphologyResult morphology_;
 };
 
 }  // namespace sculpt::station
