@@ -8,6 +8,7 @@
 #include "sculpt/core/sculpt/grab_brush.h"
 #include "sculpt/core/sculpt/inflate_brush.h"
 #include "sculpt/core/sculpt/pinch_brush.h"
+#include "sculpt/core/sculpt/smooth_brush.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 #include "sculpt/core/tool/tool_scale.h"
 #include "sculpt/sim/session/command_limits.h"
@@ -79,11 +80,60 @@ float tool_size_vox(sim::ToolShape shape, float a, float b) {
   return 2 * a;
 }
 
-int64_t ball_brush_stroke(core::Volume& volume, core::Sculptor& sculptor, BallBrush brush,
+PathBrush path_brush_of(BallBrush brush) {
+  switch (brush) {
+    case BallBrush::kClay:
+      return PathBrush::kClay;
+    case BallBrush::kFlatten:
+      return PathBrush::kFlatten;
+    case BallBrush::kInflate:
+      return PathBrush::kInflate;
+    case BallBrush::kPinch:
+      return PathBrush::kPinch;
+    case BallBrush::kGrab:
+      return PathBrush::kGrab;
+  }
+  return PathBrush::kClay;
+}
+
+namespace {
+
+// Every option in range, so the core's asserts hold whatever a session says.
+float brush_radius(float radius_vox) {
+  return std::clamp(radius_vox, kMinSize, core::kMaxBrushRadiusVox);
+}
+
+std::vector<core::StrokeSample> mirrored_path(std::span<const core::StrokeSample> path,
+                                              const core::MirrorPlane& mirror) {
+  std::vector<core::StrokeSample> out(path.begin(), path.end());
+  for (core::StrokeSample& s : out)
+    s.position_vox[mirror.axis] = 2.0f * mirror.centre_vox - s.position_vox[mirror.axis];
+  return out;
+}
+
+}  // namespace
+
+core::Box path_brush_reach(const core::Volume& volume, std::span<const core::StrokeSample> path,
+                           float radius_vox, std::optional<core::MirrorPlane> mirror) {
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+  auto cover = [&](std::span<const core::StrokeSample> p) {
+    for (const core::StrokeSample& s : p) {
+      lo = glm::min(lo, s.position_vox);
+      hi = glm::max(hi, s.position_vox);
+    }
+  };
+  cover(path);
+  if (mirror) cover(mirrored_path(path, *mirror));
+  // A brush writes within its ball's reach, radius + 1, of its path.
+  const float reach = brush_radius(radius_vox) + 2.0f;
+  const core::Box box{glm::ivec3(glm::floor(lo - reach)), glm::ivec3(glm::ceil(hi + reach)) + 1};
+  return core::intersect(box, core::Box{glm::ivec3(0), volume.dims()});
+}
+
+int64_t path_brush_stroke(core::Volume& volume, core::Sculptor& sculptor, PathBrush brush,
                           std::span<const core::StrokeSample> path, float radius_vox,
                           float hardness, float strength, std::optional<core::MirrorPlane> mirror) {
-  // Every option in range, so the core's asserts hold whatever a session says.
-  const float r = std::clamp(radius_vox, kMinSize, core::kMaxBrushRadiusVox);
+  const float r = brush_radius(radius_vox);
   const float h = std::clamp(hardness, 0.0f, 1.0f);
   const float w = std::clamp(strength, 0.0f, 1.0f);
   auto with = [&](auto o) {
@@ -94,15 +144,17 @@ int64_t ball_brush_stroke(core::Volume& volume, core::Sculptor& sculptor, BallBr
   };
   auto apply = [&](core::Sculptor& s, std::span<const core::StrokeSample> p) -> int64_t {
     switch (brush) {
-      case BallBrush::kClay:
+      case PathBrush::kSmooth:
+        return core::smooth_stroke(volume, s, p, with(core::SmoothBrushOptions{}));
+      case PathBrush::kClay:
         return core::clay_stroke(volume, s, p, with(core::ClayBrushOptions{}));
-      case BallBrush::kFlatten:
+      case PathBrush::kFlatten:
         return core::flatten_stroke(volume, s, p, with(core::FlattenBrushOptions{}));
-      case BallBrush::kInflate:
+      case PathBrush::kInflate:
         return core::inflate_stroke(volume, s, p, with(core::InflateBrushOptions{}));
-      case BallBrush::kPinch:
+      case PathBrush::kPinch:
         return core::pinch_stroke(volume, s, p, with(core::PinchBrushOptions{}));
-      case BallBrush::kGrab:
+      case PathBrush::kGrab:
         return core::grab_stroke(volume, s, p, with(core::GrabBrushOptions{}));
     }
     return 0;
@@ -110,22 +162,12 @@ int64_t ball_brush_stroke(core::Volume& volume, core::Sculptor& sculptor, BallBr
   if (!mirror) return apply(sculptor, path);
 
   // The core brushes know no mirror, and each is an undo step of its own.
-  // For one step, the sculptor records every brick either pass may write (a
-  // brush writes within its ball's reach, radius + 1, of its path) and the
-  // passes run on a scratch sculptor of the same volume, whose own history
-  // is dropped.
-  std::vector<core::StrokeSample> mirrored(path.begin(), path.end());
-  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-  for (size_t i = 0; i < path.size(); ++i) {
-    glm::vec3& m = mirrored[i].position_vox;
-    m[mirror->axis] = 2.0f * mirror->centre_vox - m[mirror->axis];
-    lo = glm::min(lo, glm::min(m, path[i].position_vox));
-    hi = glm::max(hi, glm::max(m, path[i].position_vox));
-  }
-  const float reach = r + 2.0f;
-  core::Box box{glm::ivec3(glm::floor(lo - reach)), glm::ivec3(glm::ceil(hi + reach)) + 1};
-  box = core::intersect(box, core::Box{glm::ivec3(0), volume.dims()});
+  // For one step, the sculptor records every brick either pass may write
+  // and the passes run on a scratch sculptor of the same volume, whose own
+  // history is dropped.
+  const core::Box box = path_brush_reach(volume, path, radius_vox, mirror);
   if (box.empty()) return 0;
+  const std::vector<core::StrokeSample> mirrored = mirrored_path(path, *mirror);
   int64_t changed = 0;
   core::Sculptor scratch(volume);
   sculptor.external_edit(box, [&] { changed = apply(scratch, path) + apply(scratch, mirrored); });
@@ -504,22 +546,45 @@ void StationLoop::interrupt_stroke() {
 
 void StationLoop::finish_brush() {
   if (brush_path_.empty()) return;
-  ball_brush_stroke(*volume_, *sculptor_, brush_, brush_path_, tool_size() * 0.5f,
+  preview_.revert(*volume_);
+  path_brush_stroke(*volume_, *sculptor_, brush_, brush_path_, tool_size() * 0.5f,
                     settings_.hardness, brush_strength_, brush_mirror_);
   brush_path_.clear();
+}
+
+void StationLoop::show_brush_preview() {
+  const float radius = tool_size() * 0.5f;
+  const core::Box region = path_brush_reach(*volume_, brush_path_, radius, brush_mirror_);
+  if (region.empty()) return;
+  // A scratch sculptor: a preview is no undo step (finish_brush() makes the
+  // press's one).
+  preview_.show(*volume_, region, [&] {
+    core::Sculptor scratch(*volume_);
+    return path_brush_stroke(*volume_, scratch, brush_, brush_path_, radius, settings_.hardness,
+                             brush_strength_, brush_mirror_);
+  });
+  preview_.set_shown_samples(brush_path_.size());
+  ++counters_.brush_previews;
+}
+
+std::optional<PathBrush> StationLoop::path_brush() const {
+  if (settings_.brush) return path_brush_of(*settings_.brush);
+  if (settings_.mode == core::SculptMode::kSmooth && tool_.sphere_radius_vox > 0.0f)
+    return PathBrush::kSmooth;
+  return std::nullopt;
 }
 
 void StationLoop::sculpt(const std::vector<hal::Dab>& dabs) {
   for (const hal::Dab& d : dabs) {
     ++counters_.dabs;
     const core::StrokeSample sample{d.position, d.orientation};
-    if (settings_.brush) {
-      if (stroke_ || (!brush_path_.empty() &&
-                      (brush_ != *settings_.brush || brush_strength_ != settings_.strength))) {
+    if (const std::optional<PathBrush> brush = path_brush()) {
+      if (stroke_ ||
+          (!brush_path_.empty() && (brush_ != *brush || brush_strength_ != settings_.strength))) {
         interrupt_stroke();
       }
       if (brush_path_.empty()) {
-        brush_ = *settings_.brush;
+        brush_ = *brush;
         brush_strength_ = settings_.strength;
         brush_mirror_ = settings_.mirror;
         if (resume_stroke_) brush_path_.push_back(stroke_last_);
@@ -527,6 +592,9 @@ void StationLoop::sculpt(const std::vector<hal::Dab>& dabs) {
       }
       brush_path_.push_back(sample);
       stroke_last_ = sample;
+      if (options_.preview_brushes &&
+          BrushPreview::due(brush_path_.size(), preview_.shown_samples()))
+        show_brush_preview();
       continue;
     }
     if (!brush_path_.empty()) interrupt_stroke();

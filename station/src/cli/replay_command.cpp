@@ -128,7 +128,11 @@ int replay_to_outputs(const ReplayCliOptions& o) {
       samples_text += sample_json(e).dump() + "\n";
     };
   }
-  StationLoop loop(StationLoop::Options{});  // the session's volume command sizes the block
+  // The session's volume command sizes the block; nobody watches a replay's
+  // brushes as they go, and the result is the same without.
+  StationLoop::Options loop_options;
+  loop_options.preview_brushes = false;
+  StationLoop loop(loop_options);
   // A force device's loops run again on the replayed material.
   HapticReplay haptics(loop, o.session);
   std::string forces_text;

@@ -8,6 +8,7 @@
 #include "sculpt/core/sculpt/grab_brush.h"
 #include "sculpt/core/sculpt/inflate_brush.h"
 #include "sculpt/core/sculpt/pinch_brush.h"
+#include "sculpt/core/sculpt/smooth_brush.h"
 #include "sculpt/hal/stroke/stroke_sampler.h"
 #include "sculpt/sim/session/session_file.h"
 #include "sculpt/sim/session/session_text.h"
@@ -146,6 +147,64 @@ TEST(StationBrushes, EachBrushStrokeIsTheCoreBrushAndOneUndoStep) {
     EXPECT_EQ(voxels_differing(loop.volume(), block), 0);
     EXPECT_EQ(loop.volume().content_hash(), block.content_hash());
   }
+}
+
+// While the press goes on the brush shows on the path so far (no undo step
+// yet); the release leaves exactly what the whole path's brush leaves.
+TEST(StationBrushes, ABrushShowsWhileThePressGoesOn) {
+  const core::Volume block = clay_block(kDims, kMargin);
+  for (const BallBrush brush : kBrushes) {
+    SCOPED_TRACE(static_cast<int>(brush));
+    StationLoop loop(options());
+    std::vector<sim::Command> commands = stroke_commands(brush);
+    const sim::Command release = commands.back();
+    commands.pop_back();
+    for (const sim::Command& c : commands)
+      loop.handle(c);
+    EXPECT_TRUE(loop.pressed());
+    EXPECT_GT(loop.counters().brush_previews, 1);
+    EXPECT_NE(loop.volume().content_hash(), block.content_hash()) << "nothing shown mid-press";
+    EXPECT_EQ(loop.sculptor().history().undo_depth(), 0u);
+    loop.handle(release);
+    EXPECT_EQ(loop.volume().content_hash(), core_brush(brush).content_hash());
+    EXPECT_EQ(loop.sculptor().history().undo_depth(), 1u);
+  }
+  // Without previews (`sculpt replay`) the same result.
+  StationLoop::Options quiet = options();
+  quiet.preview_brushes = false;
+  StationLoop loop(quiet);
+  for (const sim::Command& c : stroke_commands(BallBrush::kGrab))
+    loop.handle(c);
+  EXPECT_EQ(loop.counters().brush_previews, 0);
+  EXPECT_EQ(loop.volume().content_hash(), core_brush(BallBrush::kGrab).content_hash());
+}
+
+// Smooth mode with the ball tool is core's smooth brush along the path (one
+// undo step, shown while the press goes on).
+TEST(StationBrushes, SmoothModeWithTheBallIsTheSmoothBrush) {
+  const core::Volume block = clay_block(kDims, kMargin);
+  std::vector<sim::Command> commands = stroke_commands(BallBrush::kClay);
+  // The same stroke, in smooth mode instead of the clay brush.
+  for (sim::Command& c : commands)
+    if (c.kind == sim::CommandKind::kMode) c.choice = choice_of(core::SculptMode::kSmooth);
+  StationLoop loop(options());
+  for (const sim::Command& c : commands)
+    loop.handle(c);
+  EXPECT_FALSE(loop.settings().brush.has_value());
+  EXPECT_EQ(loop.settings().mode, core::SculptMode::kSmooth);
+  EXPECT_GT(loop.counters().brush_previews, 0);
+  core::Volume expected = clay_block(kDims, kMargin);
+  {
+    core::Sculptor sculptor(expected);
+    core::SmoothBrushOptions o;
+    o.radius_vox = kRadius;
+    o.hardness = kHardness;
+    o.strength = kStrength;
+    core::smooth_stroke(expected, sculptor, sampled_path(), o);
+  }
+  EXPECT_GT(voxels_differing(expected, block), 0) << "the smoothing changed nothing";
+  EXPECT_EQ(loop.volume().content_hash(), expected.content_hash());
+  EXPECT_EQ(loop.sculptor().history().undo_depth(), 1u);
 }
 
 // Choosing a mode leaves the brush; choosing a brush keeps the mode for

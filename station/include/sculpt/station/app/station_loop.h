@@ -6,11 +6,16 @@
 //
 // Device buttons: button 0 presses the tool into the material while held;
 // button 1 switches between add and subtract (leaving a ball brush). With a
-// ball brush chosen (settings().brush) a press collects the sampler's dabs
-// as its path and applies the brush to the whole path when it ends: one undo
-// step, the tool's radius as the ball's (half its size for other shapes),
-// the hardness and strength settings, mirrored too when a mirror plane is
-// set; grab uses the first and last sample. In touch mode
+// ball brush chosen (settings().brush), or smooth mode with the ball tool
+// (core's smooth brush), a press collects the sampler's dabs as its path and
+// applies the brush to the whole path when it ends: one undo step, the
+// tool's radius as the ball's (half its size for other shapes), the hardness
+// and strength settings, mirrored too when a mirror plane is set; grab uses
+// the first and last sample. While the press goes on the brush is shown on
+// the path so far (brush_preview.h), put back and shown again as the path
+// grows, so the sculptor sees it work; what the press leaves is exactly the
+// whole path's brush. Smooth mode with any other tool smooths dab by dab
+// with the tool (the discrete-tools paper's smoothing). In touch mode
 // (touch_mode.h) the tool rests on the material and button 0 sculpts only where the device pushes
 // past the press threshold. A device that vanishes while pressed ends the stroke cleanly, and so
 // does a tracker losing its target (its next pose re-anchors where the tool is: the tool never
@@ -33,6 +38,7 @@
 #include "sculpt/hal/stroke/stroke_sampler.h"
 #include "sculpt/hal/types/input_event.h"
 #include "sculpt/sim/session/session.h"
+#include "sculpt/station/app/brush_preview.h"
 #include "sculpt/station/app/sheet_editor.h"
 #include "sculpt/station/app/touch_mode.h"
 #include "sculpt/station/settings/station_settings.h"
@@ -48,7 +54,12 @@ core::Volume clay_block(glm::ivec3 dims, int margin);
 /// The diameter of that tool, voxels: what dab spacing is relative to.
 float tool_size_vox(sim::ToolShape shape, float size_a_vox, float size_b_vox);
 
-/// A ball brush's stroke along `path` (at least one sample) on `volume` (the
+/// The core brush a press's path goes to: the ball brushes, and smoothing
+/// (smooth mode with the ball tool).
+enum class PathBrush : uint8_t { kSmooth, kClay, kFlatten, kInflate, kPinch, kGrab };
+PathBrush path_brush_of(BallBrush brush);
+
+/// A brush's stroke along `path` (at least one sample) on `volume` (the
 /// one `sculptor` sculpts): the core brush (core/sculpt/*_brush.h) with a
 /// ball of `radius_vox` (clamped to (0, core::kMaxBrushRadiusVox]),
 /// `hardness` and `strength` (clamped to [0, 1]), its other options the
@@ -56,10 +67,21 @@ float tool_size_vox(sim::ToolShape shape, float size_a_vox, float size_b_vox);
 /// brush then runs again along the path mirrored across that plane (where the
 /// two overlap the brush applies twice). One undo step either way. Returns
 /// the voxels changed (counted per pass).
-int64_t ball_brush_stroke(core::Volume& volume, core::Sculptor& sculptor, BallBrush brush,
+int64_t path_brush_stroke(core::Volume& volume, core::Sculptor& sculptor, PathBrush brush,
                           std::span<const core::StrokeSample> path, float radius_vox,
                           float hardness, float strength,
                           std::optional<core::MirrorPlane> mirror = std::nullopt);
+inline int64_t ball_brush_stroke(core::Volume& volume, core::Sculptor& sculptor, BallBrush brush,
+                                 std::span<const core::StrokeSample> path, float radius_vox,
+                                 float hardness, float strength,
+                                 std::optional<core::MirrorPlane> mirror = std::nullopt) {
+  return path_brush_stroke(volume, sculptor, path_brush_of(brush), path, radius_vox, hardness,
+                           strength, mirror);
+}
+/// The voxels path_brush_stroke() may write (within the ball's reach of the
+/// path and of its mirror image), clipped to `volume`.
+core::Box path_brush_reach(const core::Volume& volume, std::span<const core::StrokeSample> path,
+                           float radius_vox, std::optional<core::MirrorPlane> mirror);
 
 /// What the last offset or closing (kMorphology) did: voxels inside the
 /// surface (density above 127.5) in the box it worked on, before and after.
@@ -80,6 +102,8 @@ struct StationCounters {
   int64_t sheet_misses = 0;  ///< presses in sheet editing that found no sheet near the tool
   /// A tracker lost its target (each loss ends the stroke).
   int64_t tracking_losses = 0;
+  /// Path brushes shown on the path so far while a press went on.
+  int64_t brush_previews = 0;
 };
 
 class StationLoop {
@@ -101,6 +125,9 @@ class StationLoop {
     hal::PoseIntegratorConfig pose{};
     /// The undo history's memory budget: the oldest strokes go beyond it.
     size_t undo_max_bytes = core::UndoHistory::kDefaultMaxBytes;
+    /// Show a brush press's path brush while it goes on (brush_preview.h);
+    /// off where nobody looks (`sculpt replay`): the result is the same.
+    bool preview_brushes = true;
   };
   explicit StationLoop(const Options& options);
 
@@ -169,8 +196,14 @@ class StationLoop {
   // Finishes the press's swept stroke or brush path; its next sample starts
   // a new one at the last sample (same undo step for a swept stroke).
   void interrupt_stroke();
-  // Applies the ball brush to the path collected (nothing if none).
+  // Applies the path brush to the path collected (nothing if none), after
+  // putting back what its preview showed.
   void finish_brush();
+  // Shows the path brush on the path so far (brush_preview.h).
+  void show_brush_preview();
+  // The path brush a dab now goes to, if any: the chosen ball brush, or
+  // smoothing when smooth mode has the ball tool.
+  std::optional<PathBrush> path_brush() const;
   void tool_moved();
   // Touch mode's half of a motion sample: the tool onto the proxy.
   void touch_moved(const hal::InputEvent& e);
@@ -208,13 +241,14 @@ class StationLoop {
   core::StrokeOptions stroke_options_;
   core::StrokeSample stroke_last_;
   bool resume_stroke_ = false;
-  // A ball brush's press: the brush, strength and mirror it started with
+  // A path brush's press: the brush, strength and mirror it started with
   // and the path so far, applied by finish_brush() when the press ends or
-  // any of them changes.
-  BallBrush brush_ = BallBrush::kClay;
+  // any of them changes, and shown meanwhile by preview_.
+  PathBrush brush_ = PathBrush::kClay;
   float brush_strength_ = 1.0f;
   std::optional<core::MirrorPlane> brush_mirror_;
   std::vector<core::StrokeSample> brush_path_;
+  BrushPreview preview_;
   SheetEditor sheet_;
   TouchMode touch_;
   std::string sheet_problem_;
