@@ -188,7 +188,7 @@ void SweptStroke::finish() {
     give_back(held->coverage);
   }
   bricks_.clear();
-  give_back(sweep_);
+  give_back(scratch_.sweep);
 }
 
 DabStats SweptStroke::add(const StrokeSample& sample) {
@@ -388,7 +388,12 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
   stats.decode_ns += now_ns() - t_decode;
 
   // One brick's part of the segment: its sweeps' filling, combined.
-  auto run = [&](Job& job, std::vector<uint8_t>& sweep, std::vector<uint8_t>& row_buf) {
+  // On a thread's Scratch, kept across the bricks (and, on this thread,
+  // the segments): four fresh row tables per brick cost about as much as
+  // measuring a short segment.
+  auto run = [&](Job& job, Scratch& scratch) {
+    std::vector<uint8_t>& sweep = scratch.sweep;
+    std::vector<uint8_t>& row_buf = scratch.row_buf;
     StrokeBrick& held = *job.held;
     const glm::ivec3 origin = job.b * edge;
     const Box& bb = job.bb;
@@ -402,7 +407,10 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
     // reaches the row (kUnset before): most rows of the box it misses.
     const glm::ivec3 n = bb.size();
     constexpr int kUnset = std::numeric_limits<int>::min();
-    std::vector<int> x0(static_cast<size_t>(n.y) * n.z, kUnset), x1(x0.size(), 0);
+    std::vector<int>& x0 = scratch.x0;
+    std::vector<int>& x1 = scratch.x1;
+    x0.assign(static_cast<size_t>(n.y) * n.z, kUnset);
+    x1.resize(x0.size());
     auto trim = [&](size_t k, int y, int z) {
       if (x0[k] != kUnset) return;
       const uint8_t* r = reference + at(origin.x, y, z);
@@ -417,7 +425,10 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
     // Per row, the stretch [h0, h1) the sweeps reached: only there is the
     // sweep buffer valid (zeroed when first reached), and only there can
     // the material change. Rows the sweeps miss cost nothing further.
-    std::vector<int> h0(x0.size(), 0), h1(x0.size(), 0);
+    std::vector<int>& h0 = scratch.h0;
+    std::vector<int>& h1 = scratch.h1;
+    h0.assign(x0.size(), 0);
+    h1.assign(x0.size(), 0);
     auto reach_row = [&](size_t k, int y, int z, int lo, int hi) {
       uint8_t* row = &sweep[at(origin.x, y, z)];
       auto zero = [&](int a, int b) {
@@ -641,17 +652,18 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
     all_balls = all_balls && sw.ball;
   if (all_balls && jobs.size() >= kParallelBricks) {
     parallel_for(static_cast<int64_t>(jobs.size()), [&](int64_t k) {
-      std::vector<uint8_t> sweep = take_buffer(brick_bytes + kCombineRowSlack);
-      std::vector<uint8_t> row_buf(static_cast<size_t>(edge) + kCombineRowSlack);
-      run(jobs[static_cast<size_t>(k)], sweep, row_buf);
-      give_back(sweep);
+      Scratch scratch;
+      scratch.sweep = take_buffer(brick_bytes + kCombineRowSlack);
+      scratch.row_buf.resize(static_cast<size_t>(edge) + kCombineRowSlack);
+      run(jobs[static_cast<size_t>(k)], scratch);
+      give_back(scratch.sweep);
     });
   } else {
-    if (sweep_.size() != brick_bytes + kCombineRowSlack)
-      sweep_ = take_buffer(brick_bytes + kCombineRowSlack);
-    std::vector<uint8_t> row_buf(static_cast<size_t>(edge) + kCombineRowSlack);
+    if (scratch_.sweep.size() != brick_bytes + kCombineRowSlack)
+      scratch_.sweep = take_buffer(brick_bytes + kCombineRowSlack);
+    scratch_.row_buf.resize(static_cast<size_t>(edge) + kCombineRowSlack);
     for (Job& job : jobs)
-      run(job, sweep_, row_buf);
+      run(job, scratch_);
   }
   stats.apply_ns += now_ns() - t_apply;
 

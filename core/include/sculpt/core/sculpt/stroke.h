@@ -84,6 +84,12 @@ class SweptStroke {
  private:
   struct Sweep;
   struct StrokeBrick;
+  // One thread's buffers for a brick of a segment: its filling, a row, and
+  // per-row tables.
+  struct Scratch {
+    std::vector<uint8_t> sweep, row_buf;
+    std::vector<int> x0, x1, h0, h1;
+  };
   DabStats apply(const StrokeSample& from, const StrokeSample& to);
 
   Sculptor& sculptor_;
@@ -93,7 +99,7 @@ class SweptStroke {
   std::optional<StrokeSample> last_;
   int64_t segment_ = 0;
   std::unordered_map<int64_t, std::unique_ptr<StrokeBrick>> bricks_;
-  std::vector<uint8_t> sweep_;  // one brick of the current segment's filling
+  Scratch scratch_;  // the segment's bricks one after another on this thread
 };
 
 /// The stroke through `path` (at least one sample) in one go.
