@@ -154,7 +154,8 @@ struct SweptStroke::Sweep {
   std::vector<glm::ivec4> spans;
   // Tool: its placements (entries kept alive while the segment is applied).
   std::vector<RotatedToolCache::Placement> placements;
-  Box box;  // material voxels it can reach
+  RotatedToolCache* cache = nullptr;  // theirs: counts the rows they rotate
+  Box box;                            // material voxels it can reach
 };
 
 // What the stroke holds of one brick it reached.
@@ -222,6 +223,7 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
       sw.reach = sw.radius + 1.0f;
       sw.box = box_around(glm::min(sw.a, sw.b), glm::max(sw.a, sw.b), sw.reach);
     } else {
+      sw.cache = &cache;
       // Steps that move no point of the tool more than kSweepStepVox: the
       // pivot's path plus the farthest point's arc.
       const float reach = cache.tool().reach_vox();
@@ -570,6 +572,8 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
               for (int i = 0; i < hi - lo; ++i)
                 out[i] = std::max(out[i], f[i]);
             }
+          // A tool's sweep runs on this thread (see below).
+          sw.cache->add_row_counts(counts);
         }
       }
     }

@@ -371,6 +371,22 @@ TEST(SweptStroke, UnionAndDifferenceStay) {
     ASSERT_EQ(half[i], std::max<uint8_t>(128, u[i]));
 }
 
+// A tool's sweep (placements along each segment) counts the rotated voxels
+// it asks its cache for, as dabs do: `--stats` reports them.
+TEST(SweptStroke, AToolsSweepCountsItsRotatedVoxelsInTheCache) {
+  const auto path = straight_path({20.0f, 24.0f, 24.0f}, {40.0f, 24.0f, 24.0f}, 4.0f);
+  Volume v(kSlab, 0);
+  Sculptor s(v);
+  s.set_tool(make_cube_tool(8.0f));
+  (void)sweep_stroke(s, path, {SculptMode::kAdd, 1.0f, false});
+  const RotatedToolCacheStats stats = s.rotation_cache_stats();
+  EXPECT_GT(stats.placements, 0);
+  EXPECT_GT(stats.voxels_requested, 0);
+  // Each requested voxel was reused or rotated (gaps between stretches are
+  // rotated too).
+  EXPECT_GE(stats.voxels_reused + stats.voxels_rotated, stats.voxels_requested);
+}
+
 TEST(SweptStroke, MirroredStrokeIsSymmetric) {
   Volume v = slab_volume(kSlab, kTop);
   Sculptor s(v);
