@@ -149,6 +149,10 @@ std::optional<std::string> command_problem(const Command& c) {
       if (!(std::abs(norm2 - 1.0f) < 1e-3f)) return "tracker rotation is not a unit quaternion";
       return choice_below(1, "choice");
     }
+    case CommandKind::kToolVoxels:
+      if (c.voxels == nullptr) return "no voxels";
+      if (auto why = tool_voxels_problem(*c.voxels)) return why;
+      return choice_below(1, "choice");
     case CommandKind::kPress:
     case CommandKind::kRelease:
     case CommandKind::kUndo:
@@ -156,6 +160,25 @@ std::optional<std::string> command_problem(const Command& c) {
       return choice_below(1, "choice");
   }
   return "unknown command";
+}
+
+std::optional<std::string> tool_voxels_problem(const ToolVoxels& t) {
+  size_t voxels = 1;
+  for (int a = 0; a < 3; ++a) {
+    if (t.dims[a] < 1 || t.dims[a] > kMaxToolVoxelsEdge)
+      return "tool side " + std::to_string(t.dims[a]) + " is outside [1, " +
+             std::to_string(kMaxToolVoxelsEdge) + "] voxels";
+    voxels *= t.dims[a];
+    const float edge = static_cast<float>(t.dims[a]);
+    if (!std::isfinite(t.pivot[a]) || t.pivot[a] < -edge || t.pivot[a] > 2.0f * edge)
+      return "tool pivot " + number(t.pivot[a]) + " is more than the grid's size outside it";
+  }
+  if (t.density.size() != voxels)
+    return "tool of " + std::to_string(t.density.size()) + " voxels where its sides make " +
+           std::to_string(voxels);
+  if (!(t.hardness >= 0.0f && t.hardness <= 1.0f))
+    return "tool hardness " + number(t.hardness) + " is outside [0, 1]";
+  return std::nullopt;
 }
 
 std::optional<std::string> haptic_problem(const HapticRecord& h) {

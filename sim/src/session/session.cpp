@@ -10,13 +10,33 @@
 namespace sculpt::sim {
 namespace {
 
-constexpr std::array<std::string_view, kCommandKindCount> kCommandNames = {
-    "press",     "release", "tool",   "mode",      "strength", "spacing",          "mirror",
-    "undo",      "redo",    "volume", "tool_pose", "pointer",  "tool_from_region", "hypertexture",
-    "sheet",     "touch",   "clutch", "tracker",   "hardness", "accumulate",       "tool_scale",
-    "morphology"};
-constexpr std::array<int, kCommandKindCount> kValueCounts = {0, 0, 2, 0, 1, 1, 1, 0, 0, 4, 7,
-                                                             7, 6, 6, 6, 0, 0, 5, 1, 0, 1, 1};
+constexpr std::array<std::string_view, kCommandKindCount> kCommandNames = {"press",
+                                                                           "release",
+                                                                           "tool",
+                                                                           "mode",
+                                                                           "strength",
+                                                                           "spacing",
+                                                                           "mirror",
+                                                                           "undo",
+                                                                           "redo",
+                                                                           "volume",
+                                                                           "tool_pose",
+                                                                           "pointer",
+                                                                           "tool_from_region",
+                                                                           "hypertexture",
+                                                                           "sheet",
+                                                                           "touch",
+                                                                           "clutch",
+                                                                           "tracker",
+                                                                           "hardness",
+                                                                           "accumulate",
+                                                                           "tool_scale",
+                                                                           "morphology",
+                                                                           "tool_voxels"};
+// Every kind has a name and a value count (std::array fills missing ones silently).
+static_assert(!kCommandNames.back().empty(), "a new command kind needs its name here");
+constexpr std::array<int, kCommandKindCount> kValueCounts = {0, 0, 2, 0, 1, 1, 1, 0, 0, 4, 7, 7,
+                                                             6, 6, 6, 0, 0, 5, 1, 0, 1, 1, 0};
 constexpr std::array<std::string_view, kToolShapeCount> kShapeNames = {"sphere", "cube", "cylinder",
                                                                        "ring", "cone"};
 constexpr std::array<std::string_view, kSculptModeCount> kModeNames = {
@@ -49,8 +69,19 @@ int Command::value_count(CommandKind kind) {
 bool operator==(const Command& a, const Command& b) {
   // Bitwise on the used values: a replayed command must be the recorded one.
   const int n = Command::value_count(a.kind);
+  if (a.kind == CommandKind::kToolVoxels &&
+      (a.voxels == nullptr || b.voxels == nullptr ? a.voxels != b.voxels
+                                                  : !(*a.voxels == *b.voxels)))
+    return false;
   return a.kind == b.kind && a.choice == b.choice &&
          std::memcmp(a.values, b.values, sizeof(float) * static_cast<size_t>(n)) == 0;
+}
+
+bool operator==(const ToolVoxels& a, const ToolVoxels& b) {
+  // Bitwise, as the commands' values.
+  return std::memcmp(a.dims, b.dims, sizeof a.dims) == 0 &&
+         std::memcmp(a.pivot, b.pivot, sizeof a.pivot) == 0 &&
+         std::memcmp(&a.hardness, &b.hardness, sizeof a.hardness) == 0 && a.density == b.density;
 }
 
 std::string_view command_name(CommandKind kind) {

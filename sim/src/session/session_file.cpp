@@ -4,10 +4,12 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <string>
 
 #include "sculpt/base/atomic_file.h"
 #include "sculpt/sim/session/command_limits.h"
@@ -27,7 +29,15 @@ enum RecordKindByte : uint8_t {
   kHapticPatchRecord = 7,
   kHapticTickRecord = 8,
   kCommandRecord = 16,
+  // A kToolVoxels command: its voxels split over records of at most
+  // kToolChunkBytes (a record's payload length is 16 bits), all at its time.
+  kToolChunkRecord = 17,
 };
+constexpr uint8_t kToolChunkFirst = 1;
+constexpr uint8_t kToolChunkLast = 2;
+constexpr size_t kToolChunkBytes = 60000;
+// The tool's head in the first chunk: dims (3 x u16), pivot (3 x f32), hardness (f32).
+constexpr size_t kToolHeadBytes = 22;
 
 uint32_t crc(std::span<const uint8_t> bytes) {
   return static_cast<uint32_t>(crc32(0, bytes.data(), static_cast<uInt>(bytes.size())));
@@ -119,7 +129,57 @@ std::vector<uint8_t> header_bytes(const SessionHeader& h) {
   return out;
 }
 
+// One record: kind, flags, payload length, time, payload, CRC of all before.
+void append_raw(uint8_t kind, uint8_t flags, int64_t t, std::span<const uint8_t> payload,
+                std::vector<uint8_t>& out) {
+  const size_t start = out.size();
+  Writer w(out);
+  w.num(kind);
+  w.num(flags);
+  w.num(static_cast<uint16_t>(payload.size()));
+  w.num(t);
+  w.bytes(payload);
+  w.num(crc({out.data() + start, out.size() - start}));
+}
+
+void append_tool_voxels(int64_t t, const ToolVoxels& tool, std::vector<uint8_t>& out) {
+  std::vector<uint8_t> blob;
+  Writer b(blob);
+  for (uint16_t d : tool.dims)
+    b.num(d);
+  for (float p : tool.pivot)
+    b.num(p);
+  b.num(tool.hardness);
+  b.bytes(tool.density);
+  for (size_t at = 0; at < blob.size(); at += kToolChunkBytes) {
+    const size_t n = std::min(kToolChunkBytes, blob.size() - at);
+    const uint8_t flags =
+        (at == 0 ? kToolChunkFirst : 0) | (at + n == blob.size() ? kToolChunkLast : 0);
+    append_raw(kToolChunkRecord, flags, t, {blob.data() + at, n}, out);
+  }
+}
+
+// The tool a kToolVoxels command's chunks held; an empty string, or why not.
+std::string decode_tool_voxels(std::span<const uint8_t> blob, ToolVoxels& tool) {
+  Reader b(blob);
+  for (uint16_t& d : tool.dims)
+    if (!b.num(d)) return "tool record too short";
+  for (float& p : tool.pivot)
+    if (!b.num(p)) return "tool record too short";
+  if (!b.num(tool.hardness)) return "tool record too short";
+  std::span<const uint8_t> density;
+  b.bytes(b.left(), density);
+  tool.density.assign(density.begin(), density.end());
+  if (auto why = tool_voxels_problem(tool)) return "tool_voxels command: " + *why;
+  return {};
+}
+
 void append_record(const SessionRecord& r, std::vector<uint8_t>& out) {
+  if (r.kind == SessionRecord::Kind::kCommand && r.command.kind == CommandKind::kToolVoxels &&
+      r.command.voxels != nullptr) {
+    append_tool_voxels(r.t_ns(), *r.command.voxels, out);
+    return;
+  }
   std::vector<uint8_t> payload;
   Writer p(payload);
   uint8_t kind = 0;
@@ -176,14 +236,7 @@ void append_record(const SessionRecord& r, std::vector<uint8_t>& out) {
         break;
     }
   }
-  const size_t start = out.size();
-  Writer w(out);
-  w.num(kind);
-  w.num(flags);
-  w.num(static_cast<uint16_t>(payload.size()));
-  w.num(r.t_ns());
-  w.bytes(payload);
-  w.num(crc({out.data() + start, out.size() - start}));
+  append_raw(kind, flags, r.t_ns(), payload, out);
 }
 
 // Decodes one record's payload; an empty string on success, else why not.
@@ -302,6 +355,12 @@ Result<Session> parse_session_bytes(std::span<const uint8_t> bytes, const std::s
   size_t at = records_start;
   std::string problem;
   int64_t last_t = INT64_MIN;
+  // A tool's chunks so far: where its first began (npos: none), its time.
+  size_t tool_start = std::string::npos;
+  int64_t tool_t = 0;
+  std::vector<uint8_t> tool_blob;
+  constexpr size_t kMaxToolBlobBytes =
+      kToolHeadBytes + size_t{kMaxToolVoxelsEdge} * kMaxToolVoxelsEdge * kMaxToolVoxelsEdge;
   while (at < bytes.size()) {
     Reader rec(bytes.subspan(at));
     uint8_t kind, rflags;
@@ -322,15 +381,59 @@ Result<Session> parse_session_bytes(std::span<const uint8_t> bytes, const std::s
       problem = "record " + std::to_string(s.records.size() + 1) + " goes back in time";
       break;
     }
+    const std::string where = "record " + std::to_string(s.records.size() + 1) + ": ";
+    if (kind == kToolChunkRecord) {
+      // A tool's chunks, one after another at one time, become one command.
+      const bool first = (rflags & kToolChunkFirst) != 0;
+      if (first != (tool_start == std::string::npos) || (!first && t != tool_t) ||
+          (rflags & ~(kToolChunkFirst | kToolChunkLast)) != 0) {
+        problem = where + "tool record out of sequence";
+        break;
+      }
+      if (first) {
+        tool_start = at;
+        tool_t = t;
+        tool_blob.clear();
+      }
+      if (tool_blob.size() + payload.size() > kMaxToolBlobBytes) {
+        problem = where + "tool record larger than the largest tool";
+        break;
+      }
+      tool_blob.insert(tool_blob.end(), payload.begin(), payload.end());
+      last_t = t;
+      at += rec.at();
+      if ((rflags & kToolChunkLast) == 0) continue;
+      auto tool = std::make_shared<ToolVoxels>();
+      if (std::string why = decode_tool_voxels(tool_blob, *tool); !why.empty()) {
+        problem = where + why;
+        at = tool_start;
+        break;
+      }
+      Command c{CommandKind::kToolVoxels};
+      c.voxels = std::move(tool);
+      s.records.push_back(SessionRecord::of(t, c));
+      tool_start = std::string::npos;
+      tool_blob = {};
+      continue;
+    }
+    if (tool_start != std::string::npos) {
+      problem = where + "a tool record is cut short by another record";
+      at = tool_start;
+      break;
+    }
     SessionRecord record;
     if (std::string why = decode_record(kind, rflags, t, payload, record); !why.empty()) {
-      problem = "record " + std::to_string(s.records.size() + 1) + ": " + why;
+      problem = where + why;
       break;
     }
     s.records.push_back(record);
     last_t = t;
     at += rec.at();
   }
+  if (problem.empty() && tool_start != std::string::npos)
+    problem = "cut off in the middle of the tool of record " + std::to_string(s.records.size() + 1);
+  // A tool's records before the problem are lost with it.
+  if (tool_start != std::string::npos) at = tool_start;
   if (info != nullptr) {
     info->records = static_cast<int64_t>(s.records.size());
     info->bytes_lost = static_cast<int64_t>(bytes.size() - at);

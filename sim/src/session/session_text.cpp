@@ -4,6 +4,7 @@
 #include <array>
 #include <charconv>
 #include <climits>
+#include <cmath>
 #include <cstdio>
 
 #include <nlohmann/json.hpp>
@@ -283,6 +284,15 @@ ordered record_json(const SessionRecord& r) {
       j["op"] = c.choice == kMorphologyClose ? "close" : "offset";
       j["by"] = c.values[0];
       break;
+    case CommandKind::kToolVoxels:
+      if (c.voxels != nullptr) {
+        const ToolVoxels& t = *c.voxels;
+        j["dims"] = {t.dims[0], t.dims[1], t.dims[2]};
+        j["pivot"] = floats(t.pivot, 3);
+        j["hardness"] = t.hardness;
+        j["density"] = to_hex(t.density);
+      }
+      break;
     default:
       break;
   }
@@ -513,6 +523,26 @@ SessionRecord parse_command(const json& j, int64_t t) {
       read_number(j, "scale_vox_per_mm", c.values);
       read_numbers(j, "rotation", c.values + 1, 4);
       break;
+    case CommandKind::kToolVoxels: {
+      auto tool = std::make_shared<ToolVoxels>();
+      float dims[3];
+      read_numbers(j, "dims", dims, 3);
+      for (int a = 0; a < 3; ++a) {
+        if (!(dims[a] >= 1.0f && dims[a] <= float(kMaxToolVoxelsEdge)) ||
+            dims[a] != std::floor(dims[a]))
+          throw std::string("dims: a side is a whole number from 1 to ") +
+              std::to_string(kMaxToolVoxelsEdge);
+        tool->dims[a] = static_cast<uint16_t>(dims[a]);
+      }
+      read_numbers(j, "pivot", tool->pivot, 3);
+      read_number(j, "hardness", &tool->hardness);
+      const json& d = need(j, "density");
+      const auto bytes = d.is_string() ? from_hex(d.get<std::string>()) : std::nullopt;
+      if (!bytes) throw std::string("density: expected a hex string");
+      tool->density = *bytes;
+      c.voxels = std::move(tool);
+      break;
+    }
     case CommandKind::kMorphology:
       choice("op", [](const std::string& s) -> std::optional<uint8_t> {
         if (s == "offset") return kMorphologyOffset;

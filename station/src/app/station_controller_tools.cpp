@@ -1,5 +1,6 @@
 // The controller's tool making: a region of the sculpture as the tool, any
-// custom tool at another size; a new block; offset and closing.
+// custom tool at another size; tool files and meshes as the tool, the tool
+// library; a new block; offset and closing.
 
 #include <algorithm>
 #include <cmath>
@@ -7,10 +8,16 @@
 #include <string>
 
 #include "make_command.h"
+#include "sculpt/core/distance/distance_io.h"
+#include "sculpt/core/distance/mesh_distance.h"
+#include "sculpt/core/files/mesh_file.h"
+#include "sculpt/core/files/volume_file.h"
 #include "sculpt/core/tool/tool_scale.h"
 #include "sculpt/core/volume/material_bounds.h"
 #include "sculpt/sim/session/command_limits.h"
 #include "sculpt/station/app/station_controller.h"
+#include "sculpt/station/settings/command_codec.h"
+#include "sculpt/station/view/tool_outline.h"
 
 namespace sculpt::station {
 namespace {
@@ -104,6 +111,102 @@ bool StationController::set_tool_scale(float factor, int64_t now_ns) {
                 size_text(loop_.tool().density.dims()).c_str());
   status_ = text;
   return true;
+}
+
+bool StationController::give_tool(const core::Tool& tool, const std::string& what, int64_t now_ns) {
+  const glm::ivec3 d = tool.density.dims();
+  if (std::max({d.x, d.y, d.z}) > StationLoop::kMaxScaledToolEdge) {
+    status_ = what + " (" + size_text(d) + " voxels) is too big for a tool: at most " +
+              std::to_string(StationLoop::kMaxScaledToolEdge) + " voxels a side";
+    return false;
+  }
+  sim::Command c{sim::CommandKind::kToolVoxels};
+  c.voxels = std::make_shared<const sim::ToolVoxels>(tool_voxels_of(tool));
+  command(c, now_ns);
+  status_ = what + " is the tool now (" + size_text(d) + " voxels)";
+  return true;
+}
+
+bool StationController::load_tool(const std::filesystem::path& path, int64_t now_ns) {
+  Result<core::Tool> tool = core::read_tool_file(path);
+  if (!tool) {
+    status_ = tool.error().message();
+    return false;
+  }
+  return give_tool(*tool, path.filename().string(), now_ns);
+}
+
+bool StationController::import_mesh_as_tool(const std::filesystem::path& path, int edge,
+                                            int64_t now_ns) {
+  // As `sculpt voxelize --size edge` (voxelize_command.cpp), with its margin.
+  constexpr float kMargin = 2.0f;
+  const std::string name = path.string();
+  if (edge < 8 || edge > StationLoop::kMaxScaledToolEdge) {
+    status_ = name + ": a mesh tool is 8 to " + std::to_string(StationLoop::kMaxScaledToolEdge) +
+              " voxels a side, not " + std::to_string(edge);
+    return false;
+  }
+  Result<core::Mesh> mesh = core::read_mesh_file(path);
+  if (!mesh) {
+    status_ = mesh.error().message();
+    return false;
+  }
+  const core::MeshTopology topo = core::check_topology(*mesh);
+  if (!topo.closed()) {
+    status_ = name + ": the mesh is not closed (" + std::to_string(topo.boundary_edges) +
+              " boundary, " + std::to_string(topo.nonmanifold_edges) + " non-manifold, " +
+              std::to_string(topo.misoriented_edges) +
+              " mis-oriented edges): inside and outside are undefined";
+    return false;
+  }
+  Result<core::VoxelizeMapping> map = core::fit_mesh_to_grid(*mesh, edge, kMargin);
+  if (!map) {
+    status_ = map.error().in(name).message();
+    return false;
+  }
+  const core::Mesh placed = core::transform_mesh(*mesh, *map);  // MeshDistance keeps a reference
+  const core::MeshDistance distance(placed);
+  const core::DenseGrid<float> field = core::mesh_signed_distance(distance, glm::ivec3(edge));
+  if (field.at(0, 0, 0) < 0.0f) {
+    status_ = name + ": the triangles face inward (wound clockwise seen from outside)";
+    return false;
+  }
+  return give_tool(core::tool_from_grid(core::density_from_distance_field(field)),
+                   path.filename().string(), now_ns);
+}
+
+Status StationController::save_tool(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
+  const Status st = core::write_tool_file(path, loop_.tool());
+  const glm::ivec3 d = loop_.tool().density.dims();
+  report(st, "tool saved to " + path.string() + " (" + size_text(d) + " voxels)");
+  return st;
+}
+
+StationController::ToolLibrary StationController::scan_tool_library(
+    const std::filesystem::path& folder, int thumbnail_px) {
+  ToolLibrary library;
+  std::error_code ec;
+  std::vector<std::filesystem::path> files;
+  for (std::filesystem::directory_iterator it(folder, ec), end; !ec && it != end;
+       it.increment(ec)) {
+    const std::string ext = it->path().extension().string();
+    if (ext == ".nrrd" || ext == ".vdb") files.push_back(it->path());
+  }
+  std::sort(files.begin(), files.end());
+  for (const std::filesystem::path& file : files) {
+    Result<core::Tool> tool = core::read_tool_file(file);
+    if (!tool) {
+      ++library.unreadable;
+      continue;
+    }
+    const core::Mesh outline = tool_outline(*tool);
+    SoftwareView view = view_of(outline, glm::vec3(0.0f), glm::vec3(tool->density.dims()));
+    view.width = view.height = thumbnail_px;
+    library.tools.push_back({file, tool->density.dims(), render_mesh(outline, view)});
+  }
+  return library;
 }
 
 bool StationController::new_block(const NewBlockOptions& block, int64_t now_ns) {

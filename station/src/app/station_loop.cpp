@@ -217,6 +217,8 @@ void StationLoop::restore(std::unique_ptr<core::Volume> volume, const StationSet
   settings_ = settings;
   settings_.custom_tool = custom_tool.has_value();
   if (custom_tool) {
+    settings_.custom_source =
+        settings.custom_region.empty() ? CustomToolSource::kFile : CustomToolSource::kRegion;
     custom_base_ = std::move(*custom_tool);
     scale_custom_tool();
   } else {
@@ -257,8 +259,9 @@ void StationLoop::apply_tool() {
   reset_sampler();
 }
 
-void StationLoop::set_custom_tool(core::Tool tool, core::Box region) {
+void StationLoop::set_custom_tool(core::Tool tool, CustomToolSource source, core::Box region) {
   settings_.custom_tool = true;
+  settings_.custom_source = source;
   settings_.custom_region = region;
   settings_.tool_scale = 1.0f;
   custom_base_ = std::move(tool);
@@ -471,9 +474,15 @@ void StationLoop::handle(const sim::Command& c) {
       }
       if (region.empty()) break;
       if (pressed_) release();
-      set_custom_tool(core::tool_from_volume(*volume_, region), region);
+      set_custom_tool(core::tool_from_volume(*volume_, region), CustomToolSource::kRegion, region);
       break;
     }
+    case K::kToolVoxels:
+      // The readers checked the voxels; a command made in memory may have none.
+      if (c.voxels == nullptr) break;
+      if (pressed_) release();
+      set_custom_tool(tool_of(*c.voxels), CustomToolSource::kFile);
+      break;
     case K::kToolScale: {
       // command_limits.h keeps the factor in [0.125, 8]; a grid over the
       // largest tool is refused here as the controller refuses it.

@@ -114,7 +114,8 @@ void StationLoop::sheet_as_tool(float thickness) {
     p -= glm::vec3(box.lo);
   core::Volume shell(dims, 0);
   core::nurbs::voxelize_shell(local, thickness, core::nurbs::ShellMode::kAdd, shell);
-  set_custom_tool(core::tool_from_volume(shell, core::Box{glm::ivec3(0), dims}), core::Box{});
+  set_custom_tool(core::tool_from_volume(shell, core::Box{glm::ivec3(0), dims}),
+                  CustomToolSource::kSheet);
   settings_.sheet_editing = false;  // the new tool is for sculpting
 }
 

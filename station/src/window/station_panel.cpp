@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "render/gl/gl_api.h"
 #include "sculpt/station/settings/command_codec.h"
 #include "sculpt/station/window/keymap.h"
 
@@ -30,6 +31,12 @@ StationPanel::StationPanel(StationController& c) : c_(c) {
   copy_path(project_, sizeof(project_), c_.options().project.string());
   copy_path(mesh_, sizeof(mesh_), c_.options().mesh_export.string());
   copy_path(recording_, sizeof(recording_), c_.options().recording.string());
+  copy_path(tool_file_, sizeof(tool_file_), (c_.options().tool_folder / "tool.nrrd").string());
+  copy_path(mesh_file_, sizeof(mesh_file_), "tool.obj");
+}
+
+StationPanel::~StationPanel() {
+  drop_thumbnails();
 }
 
 void StationPanel::draw(const FrameFigures& f, int64_t now) {
@@ -69,9 +76,12 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
 
   if (ImGui::CollapsingHeader("Tool", ImGuiTreeNodeFlags_DefaultOpen)) {
     int shape = static_cast<int>(s.shape);
-    if (s.custom_tool)
-      ImGui::TextUnformatted(s.custom_region.empty() ? "tool: the sheet's shell"
-                                                     : "tool: a region of the sculpture");
+    if (s.custom_tool) {
+      ImGui::TextUnformatted(
+          s.custom_source == CustomToolSource::kRegion  ? "tool: a region of the sculpture"
+          : s.custom_source == CustomToolSource::kSheet ? "tool: the sheet's shell"
+                                                        : "tool: from a file");
+    }
     if (ImGui::Combo("shape", &shape, kShapes, IM_ARRAYSIZE(kShapes)) &&
         (shape != static_cast<int>(s.shape) || s.custom_tool)) {
       const auto picked = tool_shape_of_choice(static_cast<uint8_t>(shape));
@@ -97,6 +107,7 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     if (ImGui::Button("Use this sculpture as a tool")) c_.use_sculpture_as_tool(now);
     tip(Action::kUseSculptureAsTool);
     draw_tool_region(now);
+    draw_tool_files(now);
     if (ImGui::Button("Hypertexture around the tool")) c_.hypertexture(now);
     tip(Action::kHypertexture);
     draw_morphology(now);
@@ -229,6 +240,71 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
   }
   if (!c_.status().empty()) ImGui::TextWrapped("%s", c_.status().c_str());
   ImGui::End();
+}
+
+void StationPanel::drop_thumbnails() {
+  for (LibraryEntry& e : library_)
+    if (e.texture != 0) glDeleteTextures(1, &e.texture);
+  library_.clear();
+}
+
+void StationPanel::refresh_library() {
+  drop_thumbnails();
+  const StationController::ToolLibrary found =
+      StationController::scan_tool_library(c_.options().tool_folder);
+  library_unreadable_ = found.unreadable;
+  library_scanned_ = true;
+  for (const StationController::ToolFileEntry& t : found.tools) {
+    LibraryEntry e;
+    e.path = t.path.string();
+    e.label = t.path.filename().string() + " (" + std::to_string(t.dims.x) + "x" +
+              std::to_string(t.dims.y) + "x" + std::to_string(t.dims.z) + ")";
+    glGenTextures(1, &e.texture);
+    glBindTexture(GL_TEXTURE_2D, e.texture);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, t.thumbnail.width, t.thumbnail.height, 0, GL_RGB,
+                 GL_UNSIGNED_BYTE, t.thumbnail.rgb.data());
+    library_.push_back(std::move(e));
+  }
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+void StationPanel::draw_tool_files(int64_t now) {
+  // The library is read once at the start (and on rescan or save), not per frame.
+  if (!library_scanned_) refresh_library();
+  if (!ImGui::TreeNode("Tool files and meshes")) return;
+  ImGui::InputText("tool file", tool_file_, sizeof(tool_file_));
+  if (ImGui::Button("Load tool")) c_.load_tool(tool_file_, now);
+  ImGui::SameLine();
+  if (ImGui::Button("Save tool") && c_.save_tool(tool_file_).ok()) refresh_library();
+  ImGui::InputText("mesh", mesh_file_, sizeof(mesh_file_));
+  ImGui::SliderInt("mesh tool size", &mesh_tool_edge_, 8, StationLoop::kMaxScaledToolEdge,
+                   "%d vox");
+  if (ImGui::Button("Import mesh as tool"))
+    c_.import_mesh_as_tool(mesh_file_, mesh_tool_edge_, now);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("a closed OBJ, PLY, STL or GLB, voxelized");
+  // The library: the tool folder's files, each a picture and a click to use it.
+  ImGui::Text("library: %s", c_.options().tool_folder.string().c_str());
+  ImGui::SameLine();
+  if (ImGui::SmallButton("rescan")) refresh_library();
+  if (library_.empty()) ImGui::TextDisabled("no tool files there yet (Save tool adds one)");
+  for (size_t i = 0; i < library_.size(); ++i) {
+    const LibraryEntry& e = library_[i];
+    ImGui::PushID(static_cast<int>(i));
+    const ImTextureID texture = reinterpret_cast<ImTextureID>(static_cast<intptr_t>(e.texture));
+    if (ImGui::ImageButton(texture, ImVec2(48, 48))) {
+      c_.load_tool(e.path, now);
+      copy_path(tool_file_, sizeof(tool_file_), e.path);
+    }
+    ImGui::SameLine();
+    ImGui::TextUnformatted(e.label.c_str());
+    ImGui::PopID();
+  }
+  if (library_unreadable_ > 0)
+    ImGui::TextDisabled("%d file(s) there are not tools", library_unreadable_);
+  ImGui::TreePop();
 }
 
 void StationPanel::draw_morphology(int64_t now) {

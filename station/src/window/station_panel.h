@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "sculpt/station/app/station_controller.h"
 #include "sculpt/station/haptics/haptic_station.h"
@@ -20,6 +21,9 @@ struct FrameFigures {
 class StationPanel {
  public:
   explicit StationPanel(StationController& controller);
+  ~StationPanel();
+  StationPanel(const StationPanel&) = delete;
+  StationPanel& operator=(const StationPanel&) = delete;
   void draw(const FrameFigures& figures, int64_t now_ns);
   /// Opens the new block's confirmation (its key's way in).
   void ask_new_block();
@@ -31,11 +35,26 @@ class StationPanel {
   void draw_tool_region(int64_t now_ns);
   void draw_new_block(int64_t now_ns);
   void draw_morphology(int64_t now_ns);
+  void draw_tool_files(int64_t now_ns);
+  // Scans the tool folder again and uploads each thumbnail as a texture.
+  void refresh_library();
+  void drop_thumbnails();
   void draw_haptics(int64_t now_ns);
 
   StationController& c_;
   HapticStation* haptics_ = nullptr;
   bool ask_new_block_ = false;
+  char tool_file_[512] = {};
+  char mesh_file_[512] = {};
+  int mesh_tool_edge_ = 48;
+  struct LibraryEntry {
+    std::string path;
+    std::string label;  // file name and size
+    unsigned int texture = 0;
+  };
+  std::vector<LibraryEntry> library_;
+  int library_unreadable_ = 0;
+  bool library_scanned_ = false;
   int64_t haptic_ticks_ = 0;  // at haptic_since_ns_, for the loop rate
   int64_t haptic_since_ns_ = 0;
   double haptic_rate_hz_ = 0.0;

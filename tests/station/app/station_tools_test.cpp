@@ -5,13 +5,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
 
 #include "scratch_dir.h"
+#include "sculpt/core/files/volume_file.h"
+#include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/core/volume/material_bounds.h"
 #include "sculpt/sim/session/session_file.h"
 #include "sculpt/station/app/session_replay.h"
 #include "sculpt/station/app/session_start.h"
 #include "sculpt/station/app/station_controller.h"
+#include "sculpt/station/view/tool_outline.h"
 #include "small_block.h"
 
 namespace sculpt::station {
@@ -43,6 +47,17 @@ void replay(const std::filesystem::path& path, StationLoop& loop) {
   ASSERT_TRUE(started.ok()) << started.error().message();
   const auto r = replay_session(*session, path.string(), loop);
   ASSERT_TRUE(r.ok()) << r.error().message();
+}
+
+// Ends the recording, replays it into `replayed` and checks the replay ends
+// as the station did: the same volume hash and the same tool, bit for bit.
+void stop_and_replay(StationController& c, int64_t t, const test::ScratchDir& dir,
+                     StationLoop& replayed) {
+  c.tick(t);
+  ASSERT_TRUE(c.stop_recording().ok());
+  replay(dir.path() / "r.scs", replayed);
+  EXPECT_EQ(replayed.volume().content_hash(), c.loop().volume().content_hash());
+  EXPECT_TRUE(same_voxels(replayed.tool().density, c.loop().tool().density));
 }
 
 // A mouse stroke across the clay's top face (z = 51), so the region holds
@@ -128,13 +143,8 @@ TEST(StationTools, ARegionToolReplaysBitForBit) {
   ASSERT_TRUE(c.perform(Action::kUseRegionAsTool, t += kMs)) << c.status();
   c.set_mode(core::SculptMode::kSubtract, t += kMs);
   stroke(c, t, 20.0f);
-  c.tick(t);
-  ASSERT_TRUE(c.stop_recording().ok());
-
   StationLoop replayed(StationLoop::Options{});
-  replay(dir.path() / "r.scs", replayed);
-  EXPECT_EQ(replayed.volume().content_hash(), c.loop().volume().content_hash());
-  EXPECT_TRUE(same_voxels(replayed.tool().density, c.loop().tool().density));
+  stop_and_replay(c, t, dir, replayed);
 }
 
 double density_sum(const core::Tool& tool) {
@@ -208,29 +218,29 @@ TEST(StationTools, TheSizeKeysScaleACustomToolAndItsLimitsAreOneMessage) {
   EXPECT_FALSE(c.loop().settings().custom_tool);
 }
 
+// A 12x10x12 region of the slab's top made the tool, at 1.5 times its size.
+void region_tool_at_one_and_a_half(StationController& c, int64_t& t) {
+  c.set_tool_region({{18, 26, 44}, {30, 36, 56}});
+  ASSERT_TRUE(c.use_region_as_tool(t += kMs)) << c.status();
+  ASSERT_TRUE(c.set_tool_scale(1.5f, t += kMs));
+}
+
 TEST(StationTools, AScaledToolReplaysAndReopensBitForBit) {
   test::ScratchDir dir;
   StationController c(block(dir));
   int64_t t = 1000 * kMs;
-  c.set_tool_region({{18, 26, 44}, {30, 36, 56}});
-  ASSERT_TRUE(c.use_region_as_tool(t += kMs)) << c.status();
-  ASSERT_TRUE(c.set_tool_scale(1.5f, t += kMs));
+  region_tool_at_one_and_a_half(c, t);
   // A recording started now opens with the custom tool at its scale (the
   // sculpture saved beside it), not the built-in shape.
-  ASSERT_TRUE(c.start_recording(dir.path() / "r.scs", t += kMs).ok());
+  ASSERT_TRUE(c.start_recording(dir.path() / "r.scs", t += kMs).ok()) << c.status();
   c.set_mode(core::SculptMode::kSubtract, t += kMs);
   stroke(c, t, 20.0f);
   ASSERT_TRUE(c.set_tool_scale(0.75f, t += kMs));
   stroke(c, t, 40.0f);
-  c.tick(t);
-  ASSERT_TRUE(c.stop_recording().ok());
   EXPECT_TRUE(c.loop().settings().custom_tool);
-
   StationLoop replayed(StationLoop::Options{});
-  replay(dir.path() / "r.scs", replayed);
-  EXPECT_EQ(replayed.volume().content_hash(), c.loop().volume().content_hash());
+  stop_and_replay(c, t, dir, replayed);
   EXPECT_EQ(replayed.settings().tool_scale, 0.75f);
-  EXPECT_TRUE(same_voxels(replayed.tool().density, c.loop().tool().density));
 
   // A project keeps the tool as made and its scale.
   ASSERT_TRUE(c.save(dir.path() / "p.sculpt").ok());
@@ -363,6 +373,115 @@ TEST(StationTools, OffsetWithoutASurfaceOrOutOfRangeIsOneMessage) {
   EXPECT_FALSE(c.close_sculpture(0.0f, 0));
   EXPECT_EQ(c.status(), "no closing by 0 voxels: it takes a radius above 0, at most 64 voxels");
   EXPECT_EQ(c.loop().volume().content_hash(), before);
+}
+
+// Tool files and meshes (issue 23): a saved tool loads back exactly, its
+// voxels ride in the recording, and a replay holds the same tool.
+TEST(StationTools, ASavedToolLoadsBackAndItsRecordingReplays) {
+  test::ScratchDir dir;
+  StationController c(block(dir));
+  int64_t t = 1000 * kMs;
+  region_tool_at_one_and_a_half(c, t);
+  const core::Tool saved = c.loop().tool();
+  ASSERT_TRUE(c.save_tool(dir.path() / "tools" / "region.nrrd").ok()) << c.status();
+  EXPECT_EQ(c.status(), "tool saved to " + (dir.path() / "tools" / "region.nrrd").string() +
+                            " (18x15x18 voxels)");
+
+  ASSERT_TRUE(c.start_recording(dir.path() / "r.scs", t += kMs).ok());
+  c.set_tool(sim::ToolShape::kCube, 5.0f, 0.0f, t += kMs);
+  ASSERT_TRUE(c.load_tool(dir.path() / "tools" / "region.nrrd", t += kMs)) << c.status();
+  EXPECT_EQ(c.status(), "region.nrrd is the tool now (18x15x18 voxels)");
+  EXPECT_TRUE(same_voxels(c.loop().tool().density, saved.density));
+  EXPECT_EQ(c.loop().tool().pivot, saved.pivot);
+  EXPECT_EQ(c.loop().settings().custom_source, CustomToolSource::kFile);
+  EXPECT_EQ(c.loop().settings().tool_scale, 1.0f);  // the file's size is its own
+  c.set_mode(core::SculptMode::kSubtract, t += kMs);
+  stroke(c, t, 20.0f);
+  ASSERT_TRUE(c.set_tool_scale(0.5f, t += kMs));
+  stroke(c, t, 40.0f);
+  StationLoop replayed(StationLoop::Options{});
+  stop_and_replay(c, t, dir, replayed);
+  EXPECT_TRUE(same_voxels(replayed.custom_tool_base().density, saved.density));
+}
+
+TEST(StationTools, AClosedMeshBecomesTheTool) {
+  test::ScratchDir dir;
+  StationController c(block(dir));
+  const core::Mesh ball = tool_outline(core::make_sphere_tool(12.0f));
+  ASSERT_TRUE(core::check_topology(ball).closed());
+  ASSERT_TRUE(core::write_mesh(dir.path() / "ball.ply", ball, core::MeshFormat::kPlyBinary).ok());
+  ASSERT_TRUE(c.import_mesh_as_tool(dir.path() / "ball.ply", 32, kMs)) << c.status();
+  EXPECT_EQ(c.status(), "ball.ply is the tool now (32x32x32 voxels)");
+  const core::Tool& tool = c.loop().tool();
+  ASSERT_EQ(tool.density.dims(), glm::ivec3(32));
+  // A ball 32 - 2 x 2 voxels across, centred: its volume within 5% of the
+  // analytic ball's (the mesh is the marched surface of a voxel ball).
+  const double r = 0.5 * (32 - 1 - 2 * 2);
+  EXPECT_NEAR(density_sum(tool) / 255.0, 4.18879 * r * r * r, 0.05 * 4.18879 * r * r * r);
+  EXPECT_EQ(tool.density.at(16, 16, 16), 255);
+  EXPECT_EQ(tool.density.at(0, 0, 0), 0);
+}
+
+TEST(StationTools, BadToolFilesAndMeshesAreOneMessageAndKeepTheTool) {
+  test::ScratchDir dir;
+  StationController c(block(dir));
+  const std::filesystem::path missing = dir.path() / "missing.nrrd";
+  EXPECT_FALSE(c.load_tool(missing, kMs));
+  EXPECT_NE(c.status().find(missing.string()), std::string::npos) << c.status();
+  EXPECT_EQ(c.status().find('\n'), std::string::npos);
+  {
+    std::ofstream broken(dir.path() / "broken.nrrd");
+    broken << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4\n\n";
+  }
+  EXPECT_FALSE(c.load_tool(dir.path() / "broken.nrrd", kMs));
+  EXPECT_NE(c.status().find("broken.nrrd"), std::string::npos) << c.status();
+  EXPECT_FALSE(c.import_mesh_as_tool(dir.path() / "missing.obj", 32, kMs));
+  EXPECT_NE(c.status().find("missing.obj"), std::string::npos) << c.status();
+  {
+    std::ofstream open_mesh(dir.path() / "open.obj");
+    open_mesh << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  }
+  EXPECT_FALSE(c.import_mesh_as_tool(dir.path() / "open.obj", 32, kMs));
+  EXPECT_NE(c.status().find("the mesh is not closed (3 boundary"), std::string::npos) << c.status();
+  EXPECT_FALSE(c.import_mesh_as_tool(dir.path() / "open.obj", 4, kMs));
+  EXPECT_NE(c.status().find("a mesh tool is 8 to 192 voxels a side, not 4"), std::string::npos)
+      << c.status();
+  // A tool file too big for a tool.
+  core::Tool big = core::tool_from_grid(core::DenseGrid<uint8_t>(glm::ivec3(200, 8, 8)));
+  ASSERT_TRUE(core::write_tool_file(dir.path() / "big.nrrd", big).ok());
+  EXPECT_FALSE(c.load_tool(dir.path() / "big.nrrd", kMs));
+  EXPECT_EQ(c.status(),
+            "big.nrrd (200x8x8 voxels) is too big for a tool: at most 192 voxels a side");
+  EXPECT_FALSE(c.loop().settings().custom_tool);
+}
+
+TEST(StationTools, TheToolLibraryListsToolFilesWithThumbnails) {
+  test::ScratchDir dir;
+  StationController c(block(dir));
+  const std::filesystem::path folder = dir.path() / "tools";
+  const glm::ivec3 sphere_dims = c.loop().tool().density.dims();
+  ASSERT_TRUE(c.save_tool(folder / "b_sphere.nrrd").ok());
+  c.set_tool(sim::ToolShape::kRing, 8.0f, 3.0f, 0);
+  ASSERT_TRUE(c.save_tool(folder / "a_ring.nrrd").ok());
+  { std::ofstream(folder / "c_broken.nrrd") << "not a volume"; }
+  { std::ofstream(folder / "notes.txt") << "not a tool"; }
+  const StationController::ToolLibrary library = StationController::scan_tool_library(folder, 32);
+  ASSERT_EQ(library.tools.size(), 2u);
+  EXPECT_EQ(library.unreadable, 1);
+  EXPECT_EQ(library.tools[0].path.filename(), "a_ring.nrrd");
+  EXPECT_EQ(library.tools[1].path.filename(), "b_sphere.nrrd");
+  EXPECT_EQ(library.tools[1].dims, sphere_dims);
+  for (const StationController::ToolFileEntry& e : library.tools) {
+    ASSERT_EQ(e.thumbnail.width, 32);
+    ASSERT_EQ(e.thumbnail.rgb.size(), 32u * 32u * 3u);
+    // The tool covers part of its picture, not none and not all of it.
+    SoftwareView view;
+    view.width = view.height = 32;
+    const double covered = coverage(e.thumbnail, view);
+    EXPECT_GT(covered, 0.05) << e.path;
+    EXPECT_LT(covered, 0.95) << e.path;
+  }
+  EXPECT_TRUE(StationController::scan_tool_library(dir.path() / "none").tools.empty());
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <stb_image.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -16,10 +17,13 @@
 
 #include "../cli/run_sculpt.h"
 #include "scratch_dir.h"
+#include "sculpt/core/files/volume_file.h"
+#include "sculpt/sim/session/session_file.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/session_replay.h"
 #include "sculpt/station/haptics/haptic_replay.h"
+#include "sculpt/station/settings/command_codec.h"
 #include "sculpt/station/view/orbit_camera.h"
 #include "sculpt/station/window/gl_snapshot.h"
 
@@ -217,6 +221,67 @@ TEST(StationWindow, PlayingTheDemoLiveSculptsWhatItsReplaySculpts) {
         << name << " " << mesh_threads;
     EXPECT_GT(stats["triangles"].get<int64_t>(), 1000) << name;
   }
+}
+
+// Tools in the window (issue 23): a session whose device gives a tool whole
+// (tool_voxels, then tool_scale) plays live; the window's own recording
+// carries the tool's voxels bit for bit and replays to what it sculpted;
+// the tool library's pictures are rendered and uploaded from the tools
+// folder without trouble.
+TEST(StationWindow, AToolGivenWholePlaysLiveAsItReplaysWithTheLibraryShown) {
+  sculpt::test::ScratchDir dir;
+  std::filesystem::create_directories(dir.path() / "tools");
+  ASSERT_TRUE(
+      core::write_tool_file(dir.path() / "tools" / "ball.nrrd", core::make_sphere_tool(6.0f)).ok());
+  ASSERT_TRUE(
+      core::write_tool_file(dir.path() / "tools" / "ring.nrrd", core::make_ring_tool(6.0f, 2.0f))
+          .ok());
+  auto session = load_session(sim::bundled_session_path("short"));
+  ASSERT_TRUE(session.ok());
+  // Before the device's first report: the whole stroke sculpts with the cone.
+  auto first = std::find_if(
+      session->records.begin(), session->records.end(),
+      [](const sim::SessionRecord& r) { return r.kind == sim::SessionRecord::Kind::kEvent; });
+  ASSERT_NE(first, session->records.end());
+  const int64_t t = first->t_ns();
+  sim::Command give{sim::CommandKind::kToolVoxels};
+  give.voxels =
+      std::make_shared<const sim::ToolVoxels>(tool_voxels_of(core::make_cone_tool(6.0f, 10.0f)));
+  const sim::Command scale{sim::CommandKind::kToolScale, 0, {1.5f}};
+  session->records.insert(first,
+                          {sim::SessionRecord::of(t, give), sim::SessionRecord::of(t, scale)});
+  ASSERT_TRUE(sim::write_session_file(dir.path() / "tool.scs", *session).ok());
+
+  auto r = run_with_display("run --device sim:" + dir.file("tool.scs") +
+                                " --speed 4 --until-replayed --hidden --no-vsync --stats " +
+                                dir.file("s.json") + " --record " + dir.file("again.scs"),
+                            dir.path());
+  if (!r) GTEST_SKIP() << "no display and no xvfb-run";
+  ASSERT_EQ(r->exit_code, 0) << r->err;
+  const auto stats = nlohmann::json::parse(read_text(dir.file("s.json")));
+  EXPECT_GT(stats["dabs"].get<int64_t>(), 10);
+  // The window recorded the tool's voxels as the device gave them, and its
+  // recording replays to what it sculpted. (A sim device played live is not
+  // held to its own replay here: the short session's is not, tool or none.)
+  auto again = load_session(dir.file("again.scs"));
+  ASSERT_TRUE(again.ok()) << again.error().message();
+  int given = 0, scaled = 0;
+  for (const sim::SessionRecord& rec : again->records) {
+    if (rec.kind != sim::SessionRecord::Kind::kCommand) continue;
+    if (rec.command.kind == sim::CommandKind::kToolVoxels) {
+      ++given;
+      EXPECT_EQ(rec.command, give);
+    }
+    if (rec.command.kind == sim::CommandKind::kToolScale) {
+      ++scaled;
+      EXPECT_EQ(rec.command, scale);
+    }
+  }
+  EXPECT_EQ(given, 1);
+  EXPECT_EQ(scaled, 1);
+  StationLoop from_window(StationLoop::Options{});
+  ASSERT_TRUE(replay_session(*again, "again.scs", from_window).ok());
+  EXPECT_EQ(from_window.volume().content_hash(), stats["volume_hash"].get<uint64_t>());
 }
 
 // How two pictures of the same size differ: the mean over pixels of the

@@ -34,6 +34,11 @@ inline constexpr float kMaxTrackerScale = 1000.0f;
 /// What is wrong with `c`, in a few words; nothing when it is in range.
 std::optional<std::string> command_problem(const Command& c);
 
+/// What is wrong with a tool's voxels (a side of 0 or over
+/// kMaxToolVoxelsEdge, a density of another size, a pivot not finite or more
+/// than the grid's size outside it, a hardness outside [0, 1]).
+std::optional<std::string> tool_voxels_problem(const ToolVoxels& t);
+
 /// What is wrong with a haptic record (an unknown type or flag, a value
 /// that is not finite, set-up text too long); nothing when it is sound.
 std::optional<std::string> haptic_problem(const HapticRecord& h);

@@ -5,6 +5,7 @@
 // form (session_text.h) both hold exactly this.
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -75,9 +76,13 @@ enum class CommandKind : uint8_t {
   /// voxels (> 0 outward, < 0 inward); choice kMorphologyClose, values[0]
   /// the closing radius in voxels. One undo step.
   kMorphology,
+  /// A tool given whole (a tool file loaded, a mesh imported): its voxels
+  /// ride in Command::voxels (no values), so a replay holds the same tool.
+  /// The binary file stores it as tool records of its own (session_file.h).
+  kToolVoxels,
 };
-inline constexpr uint8_t kCommandKindCount = 22;
-static_assert(static_cast<uint8_t>(CommandKind::kMorphology) == kCommandKindCount,
+inline constexpr uint8_t kCommandKindCount = 23;
+static_assert(static_cast<uint8_t>(CommandKind::kToolVoxels) == kCommandKindCount,
               "a new command kind: add its name and value count in session.cpp");
 inline constexpr uint8_t kMorphologyOffset = 0;
 inline constexpr uint8_t kMorphologyClose = 1;
@@ -127,10 +132,26 @@ enum class SheetAction : uint8_t {
 };
 inline constexpr uint8_t kSheetActionCount = 6;
 
+/// A tool's voxels as a session carries them (kToolVoxels): the station's
+/// core::Tool without core.
+struct ToolVoxels {
+  uint16_t dims[3] = {0, 0, 0};
+  float pivot[3] = {};  ///< voxel index units, voxel centres at integers
+  float hardness = 1.0f;
+  std::vector<uint8_t> density;  ///< dims[0] * dims[1] * dims[2], x fastest
+
+  friend bool operator==(const ToolVoxels& a, const ToolVoxels& b);
+};
+/// The largest tool a session carries, voxels a side (as many as the
+/// largest scaled tool, and room to spare).
+inline constexpr uint32_t kMaxToolVoxelsEdge = 256;
+
 struct Command {
   CommandKind kind = CommandKind::kPress;
   uint8_t choice = 0;
   float values[7] = {};
+  /// kToolVoxels: the tool (shared: records are copied freely). Null otherwise.
+  std::shared_ptr<const ToolVoxels> voxels = nullptr;
 
   /// Number of values[] the kind uses.
   static int value_count(CommandKind kind);

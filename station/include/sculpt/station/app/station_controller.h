@@ -31,6 +31,7 @@
 #include "sculpt/station/app/session_replay.h"
 #include "sculpt/station/app/station_loop.h"
 #include "sculpt/station/project/project_file.h"
+#include "sculpt/station/render/software_renderer.h"
 #include "sculpt/station/view/lod_selector.h"
 #include "sculpt/station/view/orbit_camera.h"
 #include "sculpt/station/view/surface_mesher.h"
@@ -132,6 +133,8 @@ struct ControllerOptions {
   /// Export sheet writes STEM.json (NURBS), STEM.obj (free-form NURBS) and
   /// STEM.ply (its mesh).
   std::filesystem::path sheet_export = "sheet";
+  /// The tool library: where Save tool writes and the panel lists tool files.
+  std::filesystem::path tool_folder = "tools";
   /// Autosave interval, seconds (0: never).
   double autosave_seconds = 5.0;
   /// The input.conf the sensitivity and deadzone settings are saved to.
@@ -231,6 +234,31 @@ class StationController {
   NewBlockOptions& new_block_options() { return new_block_; }
   static constexpr int kMinBlockSide = 8;
   static constexpr int kMaxBlockSide = 1024;
+  /// A tool file (.nrrd or .vdb with a pivot, core::read_tool_file) as the
+  /// tool; its voxels go into the session (kToolVoxels). False, with one
+  /// status line, for a missing or broken file or one over
+  /// StationLoop::kMaxScaledToolEdge voxels a side.
+  bool load_tool(const std::filesystem::path& path, int64_t now_ns);
+  /// A closed mesh (OBJ, PLY, STL, GLB: core::read_mesh_file) voxelized as
+  /// `sculpt voxelize --size edge_vox` does (its longest side edge_vox - 5
+  /// voxels, centred) and made the tool; as load_tool otherwise. edge_vox in
+  /// [8, kMaxScaledToolEdge].
+  bool import_mesh_as_tool(const std::filesystem::path& path, int edge_vox, int64_t now_ns);
+  /// The tool in use (built-in or custom, at its scale) as a tool file.
+  Status save_tool(const std::filesystem::path& path);
+  /// The tool files (.nrrd, .vdb) in `folder`, sorted by name, with a small
+  /// picture of each (the software renderer's, `thumbnail_px` square); files
+  /// that do not read as tools are left out and counted.
+  struct ToolFileEntry {
+    std::filesystem::path path;
+    glm::ivec3 dims{0};
+    RgbImage thumbnail;
+  };
+  struct ToolLibrary {
+    std::vector<ToolFileEntry> tools;
+    int unreadable = 0;
+  };
+  static ToolLibrary scan_tool_library(const std::filesystem::path& folder, int thumbnail_px = 48);
   /// The largest region or sculpture that becomes a tool, voxels a side: a
   /// tool is rotated voxel by voxel at every new orientation, so it must
   /// stay small next to the block.
@@ -348,6 +376,8 @@ class StationController {
   void autosave_if_due(int64_t now_ns);
   std::vector<sim::Command> opening_commands(bool with_block) const;
   bool morphology(bool close, float by_vox, int64_t now_ns);
+  // `tool` (from `what`: a file's name) as the tool, if it fits.
+  bool give_tool(const core::Tool& tool, const std::string& what, int64_t now_ns);
   // The material in `box` (clamped) as the tool; `what` names it in messages.
   bool tool_from_box(core::Box box, const std::string& what, int64_t now_ns);
 

@@ -182,7 +182,7 @@ class StationLoop {
   void new_volume(glm::ivec3 dims, uint8_t fill, int clay_margin);
   void apply_tool();
   // `tool` is the custom tool now, as made, at scale 1.
-  void set_custom_tool(core::Tool tool, core::Box region);
+  void set_custom_tool(core::Tool tool, CustomToolSource source, core::Box region = {});
   // The custom tool at settings_.tool_scale into tool_.
   void scale_custom_tool();
   core::SculptorOptions sculptor_options() const;

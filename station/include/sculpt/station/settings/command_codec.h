@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "sculpt/core/sculpt/sculptor.h"
+#include "sculpt/core/tool/tool.h"
 #include "sculpt/sim/session/session.h"
 #include "sculpt/station/settings/station_settings.h"
 
@@ -79,5 +80,12 @@ constexpr uint8_t choice_of(sim::ToolShape shape) {
 constexpr uint8_t mode_choice_of(const StationSettings& settings) {
   return settings.brush ? choice_of(*settings.brush) : choice_of(settings.mode);
 }
+
+/// A tool as a session carries it (kToolVoxels) and back; exact both ways
+/// (the session's readers check a ToolVoxels before it gets here, so the
+/// second asserts nothing). `tool`'s sides must be at most
+/// sim::kMaxToolVoxelsEdge (asserted).
+sim::ToolVoxels tool_voxels_of(const core::Tool& tool);
+core::Tool tool_of(const sim::ToolVoxels& voxels);
 
 }  // namespace sculpt::station

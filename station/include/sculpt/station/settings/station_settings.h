@@ -36,13 +36,18 @@ struct SheetDragOptions {
 enum class BallBrush : uint8_t { kClay, kFlatten, kInflate, kPinch, kGrab };
 inline constexpr uint8_t kBallBrushCount = 5;
 
+/// Where a custom tool came from (the panel names it; projects do not keep
+/// it: an opened project's is kFile).
+enum class CustomToolSource : uint8_t { kRegion, kSheet, kFile };
+
 /// What the user has chosen (the UI panel's state).
 struct StationSettings {
   sim::ToolShape shape = sim::ToolShape::kSphere;
   /// The tool is not `shape` but a region of the material (tool_from_region)
   /// or the NURBS sheet's shell; it stays the tool until another is chosen.
   bool custom_tool = false;
-  core::Box custom_region;  ///< the material's region it came from, voxels (empty: the sheet)
+  core::Box custom_region;  ///< the material's region it came from, voxels (empty: not a region)
+  CustomToolSource custom_source = CustomToolSource::kFile;
   /// The custom tool's scale from the size it was made at (core::scale_tool;
   /// 1: as made), in [0.125, 8].
   float tool_scale = 1.0f;
