@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "render/gl/gl_api.h"
+#include "sculpt/core/tool/rotated_tool_cache.h"
 #include "sculpt/station/settings/command_codec.h"
 #include "sculpt/station/window/keymap.h"
 
@@ -237,6 +238,12 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     ImGui::Text("dab latency p50 %.2f ms, p99 %.2f ms", l.p50_us * 1e-3, l.p99_us * 1e-3);
     ImGui::Text("dabs %lld, strokes %lld", static_cast<long long>(c_.loop().counters().dabs),
                 static_cast<long long>(c_.loop().counters().strokes));
+    // How often a non-ball tool's placement found its rotated voxels made
+    // (the ball is swept without rotating).
+    const core::RotatedToolCacheStats rc = c_.loop().rotation_cache_stats();
+    ImGui::Text("rotation cache: %.0f%% of %lld placements, %.0f%% of voxels",
+                100.0 * rc.placement_hit_rate(), static_cast<long long>(rc.placements),
+                100.0 * rc.voxel_hit_rate());
   }
   if (!c_.status().empty()) ImGui::TextWrapped("%s", c_.status().c_str());
   ImGui::End();
