@@ -14,55 +14,78 @@ struct SimBackend::Shared {
   std::vector<std::pair<int64_t, Command>> commands;
   bool opened = false;
   std::atomic<bool> played{false};  // every record handed out
+  // Where the session is: kept here, not in the device, so that after a
+  // recorded unplug the device opened again (the registry's next scan, as a
+  // real device plugged back in) plays on from the record after it, as
+  // `sculpt replay` does.
+  std::unique_ptr<SessionPlayer> player;
+  int64_t last_t_ns = 0;
+  int64_t offset_ns = 0;               // added to every time after the first round
+  std::atomic<bool> unplugged{false};  // since changed() last said so
 };
 
 namespace {
 
+using Shared = SimBackend::Shared;
+
 class SimDevice final : public hal::Device {
  public:
+  // One device at a time reads the shared player (SimBackend::open()).
   SimDevice(std::shared_ptr<SimBackend::Shared> shared, hal::DeviceInfo info)
-      : shared_(std::move(shared)),
-        info_(std::move(info)),
-        player_(std::make_unique<SessionPlayer>(shared_->session, shared_->speed)) {}
+      : shared_(std::move(shared)), info_(std::move(info)) {
+    if (!shared_->player)
+      shared_->player = std::make_unique<SessionPlayer>(shared_->session, shared_->speed);
+  }
   const hal::DeviceInfo& info() const override { return info_; }
 
   hal::ReadResult read(hal::RawEvent& out, int timeout_ms) override {
+    Shared& sh = *shared_;
     if (removed_) {
-      out = hal::RawEvent::removed(last_t_ns_);
+      out = hal::RawEvent::removed(removed_t_ns_);
       return hal::ReadResult::kRemoved;
     }
     // Never wait past the timeout: a pause in the recording must not keep the
     // reader thread from noticing that it should stop.
-    const int64_t deadline = player_->clock().now_ns() + int64_t{timeout_ms} * 1'000'000;
-    if (player_->at_end() && shared_->loop) next_round();
-    while (!player_->at_end()) {
-      if (player_->due_ns() > deadline) {
-        player_->clock().sleep_until_ns(deadline);
+    const int64_t deadline = sh.player->clock().now_ns() + int64_t{timeout_ms} * 1'000'000;
+    if (sh.player->at_end() && sh.loop) next_round();
+    SessionPlayer& player = *sh.player;
+    while (!player.at_end()) {
+      if (player.due_ns() > deadline) {
+        player.clock().sleep_until_ns(deadline);
         return hal::ReadResult::kTimeout;
       }
-      const SessionRecord* r = player_->next();
+      const SessionRecord* r = player.next();
       if (r == nullptr) break;
-      last_t_ns_ = r->t_ns() + offset_ns_;
+      sh.last_t_ns = r->t_ns() + sh.offset_ns;
       // A force device's loop is not this device's: a live play moves the
       // tool through the commands it recorded.
       if (r->kind == SessionRecord::Kind::kHaptic) continue;
       if (r->kind == SessionRecord::Kind::kCommand) {
-        std::lock_guard lock(shared_->mutex);
-        shared_->commands.emplace_back(last_t_ns_, r->command);
+        std::lock_guard lock(sh.mutex);
+        sh.commands.emplace_back(sh.last_t_ns, r->command);
         continue;
       }
       out = r->event;
-      out.t_ns = last_t_ns_;
+      out.t_ns = sh.last_t_ns;
       if (out.kind == hal::RawEventKind::kRemoved) {
+        // Unplugged: this handle is gone; the backend lists the device
+        // again and the next open plays on (or, the session over, nothing).
         removed_ = true;
+        removed_t_ns_ = sh.last_t_ns;
+        if (player.at_end() && !sh.loop) sh.played.store(true);
+        {
+          std::lock_guard lock(sh.mutex);
+          sh.opened = false;
+        }
+        sh.unplugged.store(true);
         return hal::ReadResult::kRemoved;
       }
       return hal::ReadResult::kEvent;
     }
     // The recording is over: the device stays connected and quiet.
     // (A looping device is never played out: the next read starts again.)
-    if (!shared_->loop) shared_->played.store(true);
-    player_->clock().sleep_until_ns(deadline);
+    if (!sh.loop) sh.played.store(true);
+    player.clock().sleep_until_ns(deadline);
     return hal::ReadResult::kTimeout;
   }
 
@@ -70,16 +93,14 @@ class SimDevice final : public hal::Device {
   // The session again from its start, a second after the last round ended.
   void next_round() {
     const Session& s = shared_->session;
-    offset_ns_ += s.end_t_ns() - s.start_t_ns() + 1'000'000'000;
-    player_ = std::make_unique<SessionPlayer>(s, shared_->speed);
+    shared_->offset_ns += s.end_t_ns() - s.start_t_ns() + 1'000'000'000;
+    shared_->player = std::make_unique<SessionPlayer>(s, shared_->speed);
   }
 
   std::shared_ptr<SimBackend::Shared> shared_;
   hal::DeviceInfo info_;
-  std::unique_ptr<SessionPlayer> player_;
   bool removed_ = false;
-  int64_t last_t_ns_ = 0;
-  int64_t offset_ns_ = 0;  // added to every time after the first round
+  int64_t removed_t_ns_ = 0;  // the shared state is the next handle's then
 };
 
 }  // namespace
@@ -107,7 +128,8 @@ Result<std::unique_ptr<hal::Device>> SimBackend::open(const hal::DeviceInfo& inf
 }
 
 bool SimBackend::changed() {
-  return std::exchange(changed_, false);
+  const bool unplugged = shared_->unplugged.exchange(false);
+  return std::exchange(changed_, false) || unplugged;
 }
 
 bool SimBackend::played() const {

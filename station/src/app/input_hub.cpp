@@ -106,9 +106,9 @@ void InputHub::poll(int64_t now) {
   const bool session_played = sim_ != nullptr && sim_->played();
   input_.clear();
   registry_->poll(input_, now);
-  bool done = session_played;
-  for (const hal::InputEvent& e : input_.events)
-    done |= sim_ != nullptr && e.kind == hal::InputKind::kDisconnected;
+  // A recorded unplug is not the end: the device comes back at the next
+  // scan and plays on, as `sculpt replay` does (sim_backend.h).
+  const bool done = session_played;
   // A sim device hands over a command before it reads the report after it,
   // so once the reports are polled, every command older than the newest of
   // them is here; younger ones wait for the reports before them (poll

@@ -50,6 +50,35 @@ TEST(SimBackend, PlaysTheSessionDeviceThroughTheHalInterfaces) {
   EXPECT_GT(got, events / 2);
   EXPECT_GT(backend.take_commands().size(), 3u);
   EXPECT_EQ((*device)->read(e, 0), hal::ReadResult::kRemoved);  // and keeps saying so
+  EXPECT_FALSE(backend.played());
+
+  // Plugged back in, as `sculpt replay` has it: the backend says its list
+  // changed, and the device opened again plays on from the record after the
+  // unplug to the session's end.
+  EXPECT_TRUE(backend.changed());
+  EXPECT_FALSE(backend.changed());
+  auto again = backend.open((*devices)[0]);
+  ASSERT_TRUE(again.ok()) << again.error().message();
+  int64_t last_t = 0;
+  for (int timeouts = 0; timeouts < 3 && !backend.played();) {
+    switch ((*again)->read(e, 50)) {
+      case hal::ReadResult::kEvent:
+        EXPECT_GT(e.t_ns, last_t);
+        last_t = e.t_ns;
+        ++got;
+        break;
+      case hal::ReadResult::kRemoved:
+        ADD_FAILURE() << "unplugged twice";
+        timeouts = 3;
+        break;
+      case hal::ReadResult::kTimeout:
+        ++timeouts;
+        break;
+    }
+  }
+  EXPECT_TRUE(backend.played());
+  EXPECT_EQ(got, events);  // every event, the unplug included, once
+  EXPECT_EQ((*device)->read(e, 0), hal::ReadResult::kRemoved);  // the old handle stays gone
 }
 
 TEST(SimBackend, ReadHonoursItsTimeoutDuringAPauseInTheRecording) {

@@ -107,6 +107,34 @@ TEST(InputHub, ALiveSessionSculptedOnItsThreadEndsOnTheReplaysVolume) {
   EXPECT_EQ(controller.session_latency().count, dabs);  // every dab's latency counted
 }
 
+// The short session unplugs its device mid-stroke and plugs it back in: the
+// live hub opens it again at its next scan and plays on to the end, as the
+// replay does, instead of ending the session at the unplug.
+TEST(InputHub, AnUnpluggedSimDeviceComesBackAndPlaysOn) {
+  test::ScratchDir dir;
+  ControllerOptions co;
+  co.loop.mesh = false;
+  co.project = dir.path() / "p.sculpt";
+  co.autosave_seconds = 0;
+  StationController controller(co);
+  SurfaceMesher mesher;
+  LiveSession live = play_live("short", 8.0);
+  InputHub hub(controller, std::move(live.registry), live.sim, live.normalizer, mesher);
+  hub.start();
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!hub.replay_done() && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_TRUE(hub.replay_done()) << "the session did not end in 60 s";
+  hub.stop();
+  std::lock_guard last(hub.mutex());
+  hub.poll_now();
+  int64_t dabs = 0;
+  EXPECT_EQ(controller.loop().volume().content_hash(), replayed_hash("short", &dabs));
+  EXPECT_EQ(controller.loop().counters().dabs, dabs);
+  EXPECT_EQ(controller.loop().counters().disconnects, 1);
+  EXPECT_EQ(controller.loop().counters().strokes, 5);  // the last after the plug
+}
+
 // A hub with no device, over a controller that meshes nothing.
 struct IdleHub {
   static ControllerOptions options() {

@@ -4,7 +4,11 @@
 // return the recorded raw events at their recorded spacing (scaled by the
 // speed), so `sculpt run --device sim:FILE` drives the same reader thread,
 // ring, parsers and normaliser as a real device. The session's station
-// commands are handed to the station through take_commands().
+// commands are handed to the station through take_commands(). A recorded
+// unplug is one: the handle reports it removed, the backend lists the device
+// again (changed()), and the handle opened next plays on from the record
+// after it, as a device plugged back in would (and as `sculpt replay` does:
+// a fresh parser and normaliser, the same session).
 //
 // Deterministic replay does not go through this backend's thread: `sculpt
 // replay` steps the records synchronously (SessionPlayer), which is what makes
