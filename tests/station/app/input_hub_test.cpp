@@ -55,13 +55,19 @@ uint64_t replayed_hash(const std::string& name, int64_t* dabs) {
   return loop.volume().content_hash();
 }
 
-TEST(InputHub, ALiveSessionSculptedOnItsThreadEndsOnTheReplaysVolume) {
-  test::ScratchDir dir;
+// A controller that meshes nothing itself and autosaves nothing, its project
+// in `dir`.
+ControllerOptions quiet_controller(const test::ScratchDir& dir) {
   ControllerOptions co;
   co.loop.mesh = false;
   co.project = dir.path() / "p.sculpt";
   co.autosave_seconds = 0;
-  StationController controller(co);
+  return co;
+}
+
+TEST(InputHub, ALiveSessionSculptedOnItsThreadEndsOnTheReplaysVolume) {
+  test::ScratchDir dir;
+  StationController controller(quiet_controller(dir));
   SurfaceMesher mesher;
   LiveSession live = play_live("sheet", 8.0);
   InputHub hub(controller, std::move(live.registry), live.sim, live.normalizer, mesher);
@@ -112,11 +118,7 @@ TEST(InputHub, ALiveSessionSculptedOnItsThreadEndsOnTheReplaysVolume) {
 // replay does, instead of ending the session at the unplug.
 TEST(InputHub, AnUnpluggedSimDeviceComesBackAndPlaysOn) {
   test::ScratchDir dir;
-  ControllerOptions co;
-  co.loop.mesh = false;
-  co.project = dir.path() / "p.sculpt";
-  co.autosave_seconds = 0;
-  StationController controller(co);
+  StationController controller(quiet_controller(dir));
   SurfaceMesher mesher;
   LiveSession live = play_live("short", 8.0);
   InputHub hub(controller, std::move(live.registry), live.sim, live.normalizer, mesher);
