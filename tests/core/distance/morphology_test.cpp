@@ -62,7 +62,9 @@ TEST(Morphology, ClosingAgreesWithBinaryClosingByABall) {
   // Closing is extensive: nothing clearly inside is lost, and far away
   // nothing is added.
   for (size_t i = 0; i < mask.size(); ++i) {
-    if (phi[i] < -127.0f) ASSERT_LT(closed[i], 0.0f);
+    if (phi[i] < -127.0f) {
+      ASSERT_LT(closed[i], 0.0f);
+    }
   }
   EXPECT_GT(closed.at(2, 2, 2), 5.0f);
 }

@@ -182,7 +182,7 @@ TEST(SignedDistance, VectorTransformsAreNearlyExactOnTheShell) {
           ASSERT_NEAR(d.at(x, y, z), truth, 0.5f) << distance_method_name(m);
           sum += std::abs(d.at(x, y, z) - truth);
         }
-    EXPECT_LT(sum / g.size(), 0.05) << distance_method_name(m);
+    EXPECT_LT(sum / static_cast<double>(g.size()), 0.05) << distance_method_name(m);
   }
 }
 
