@@ -44,7 +44,9 @@ void expect_fractions_sane(const std::vector<double>& f) {
   for (size_t i = 0; i < f.size(); ++i) {
     EXPECT_GE(f[i], 0.0);
     EXPECT_LE(f[i], 1.0);
-    if (i > 0) EXPECT_GE(f[i], f[i - 1]) << "report " << i;
+    if (i > 0) {
+      EXPECT_GE(f[i], f[i - 1]) << "report " << i;
+    }
   }
 }
 

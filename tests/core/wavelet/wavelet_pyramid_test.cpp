@@ -143,7 +143,7 @@ TEST(WaveletPyramid, RegionEncodeEqualsFullEncode) {
   for (int e : {2, 8, 32, 64}) {
     for (int levels = 0; levels <= log2_exact(e); ++levels) {
       for (int trial = 0; trial < 6; ++trial) {
-        std::vector<uint8_t> v = random_cube(e, rng());
+        std::vector<uint8_t> v = random_cube(e, static_cast<uint32_t>(rng()));
         WaveletPyramid part(e, levels);
         part.encode(v);
         std::array<int, 3> lo, hi;

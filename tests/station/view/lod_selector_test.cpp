@@ -22,11 +22,13 @@ TEST(LodSelector, AVoxelOfTheLevelSpansAtMostThePixelError) {
     const float nearest = 16.0f + static_cast<float>(i) * 32.0f;  // the brick's nearest face
     const int level = levels[static_cast<size_t>(i)];
     // A coarser level's voxel (2^k voxels) spans at most a pixel there...
-    if (level > 0)
+    if (level > 0) {
       EXPECT_LE(static_cast<float>(1 << level) * focal / nearest, 1.0f + 1e-5f) << "brick " << i;
+    }
     // ...and the next coarser level's would not (or it is the coarsest).
-    if (level < 4)
+    if (level < 4) {
       EXPECT_GT(static_cast<float>(2 << level) * focal / nearest, 1.0f) << "brick " << i;
+    }
   }
   EXPECT_EQ(levels[0], 0);
   EXPECT_TRUE(std::is_sorted(levels.begin(), levels.end()));
