@@ -45,7 +45,7 @@ RotatedToolEntry::RotatedToolEntry(const PreparedTool& tool, const glm::mat3& ro
       stats_(stats),
       stride_(static_cast<size_t>(frame_.box().size().x) + kRowSlack),
       values_size_(static_cast<size_t>(frame_.box().size().y) * frame_.box().size().z * stride_),
-      values_(new uint8_t[values_size_]) {
+      values_(std::make_unique_for_overwrite<uint8_t[]>(values_size_)) {
   const glm::ivec3 s = frame_.box().size();
   const size_t rows = static_cast<size_t>(s.y) * s.z;
   done_lo_.assign(rows, 0);

@@ -11,7 +11,7 @@ bool BrushPreview::due(size_t samples, size_t shown) {
   return samples >= shown + std::max<size_t>(2, shown / 8);
 }
 
-int64_t BrushPreview::show(core::Volume& volume, const core::Box& region,
+int64_t BrushPreview::show(core::Volume& volume, const core::Box& region, size_t samples,
                            const std::function<int64_t()>& apply) {
   revert(volume);
   const core::Box bricks = volume.bricks_overlapping(region);
@@ -22,6 +22,7 @@ int64_t BrushPreview::show(core::Volume& volume, const core::Box& region,
         kept_.push_back({b, volume.brick(b), volume.brick_version(b)});
       }
   active_ = true;
+  shown_samples_ = samples;
   return apply();
 }
 

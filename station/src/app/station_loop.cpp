@@ -567,12 +567,11 @@ void StationLoop::show_brush_preview() {
   if (region.empty()) return;
   // A scratch sculptor: a preview is no undo step (finish_brush() makes the
   // press's one).
-  preview_.show(*volume_, region, [&] {
+  preview_.show(*volume_, region, brush_path_.size(), [&] {
     core::Sculptor scratch(*volume_);
     return path_brush_stroke(*volume_, scratch, brush_, brush_path_, radius, settings_.hardness,
                              brush_strength_, brush_mirror_);
   });
-  preview_.set_shown_samples(brush_path_.size());
   ++counters_.brush_previews;
 }
 

@@ -77,7 +77,7 @@ TEST(BrushPreview, RevertPutsTheMaterialBackExactlyAndTouchesOnlyChangedBricks) 
   };
   const std::vector<uint64_t> kept = versions();
   BrushPreview preview;
-  const int64_t changed = preview.show(v, region, [&] {
+  const int64_t changed = preview.show(v, region, p.size(), [&] {
     core::Sculptor scratch(v);
     core::ClayBrushOptions o;
     o.radius_vox = 6.0f;
@@ -86,9 +86,11 @@ TEST(BrushPreview, RevertPutsTheMaterialBackExactlyAndTouchesOnlyChangedBricks) 
   EXPECT_GT(changed, 0);
   EXPECT_NE(v.content_hash(), before);
   EXPECT_TRUE(preview.active());
+  EXPECT_EQ(preview.shown_samples(), p.size());
   const std::vector<uint64_t> shown = versions();
   preview.revert(v);
   EXPECT_FALSE(preview.active());
+  EXPECT_EQ(preview.shown_samples(), 0u);
   EXPECT_EQ(v.content_hash(), before);
   // Bricks the preview did not store are not stored again.
   const std::vector<uint64_t> after = versions();
@@ -118,11 +120,10 @@ TEST(BrushPreview, PreviewsThenTheStrokeLeaveWhatTheStrokeAloneLeaves) {
   for (size_t n = 1; n <= full.size(); ++n) {
     if (!BrushPreview::due(n, preview.shown_samples())) continue;
     const std::vector<core::StrokeSample> prefix(full.begin(), full.begin() + n);
-    preview.show(live, reach(prefix, o.radius_vox), [&] {
+    preview.show(live, reach(prefix, o.radius_vox), n, [&] {
       core::Sculptor scratch(live);
       return core::grab_stroke(live, scratch, prefix, o);
     });
-    preview.set_shown_samples(n);
   }
   preview.revert(live);
   core::grab_stroke(live, sculptor, full, o);

@@ -6,7 +6,7 @@
 // newly entering the contact region are.
 //
 // A placement is keyed by its orientation binned finely enough that the
-// rotated tool cannot be told apart from the exact one (orientation_bin()),
+// rotated tool cannot be told apart from the exact one (bin_orientation()),
 // and the sub-voxel part of the pivot position quantised to
 // 1/subvoxel_steps voxel (default 1/16: at most 1/32 voxel off, far inside
 // the material's 2-voxel density ramp, while a tool moving without turning
@@ -138,9 +138,10 @@ class RotatedToolEntry {
 
 /// A point at this distance from where it should be changes a trilinear
 /// sample by at most one density step (1/255) wherever the tool is sampled,
-/// measured over random orientations of the cube, cylinder, ring and cone
-/// tools (tool_rotation_binning_test: at 0.012 the ring and a 37x37x13
-/// cylinder already show steps of 2).
+/// measured over 30 random orientations each of cubes, cylinders, a ring and
+/// a cone (at 0.012 the ring and an 18x11 cylinder already show steps of 2;
+/// docs/performance.md). RotatedToolCache's test
+/// BinnedOrientationDiffersFromTheExactOneByAtMostOneDensityStep holds it.
 inline constexpr float kOrientationToleranceVox = 0.008f;
 
 /// The step of each quaternion component of an orientation's bin for a tool

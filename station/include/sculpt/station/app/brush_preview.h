@@ -38,8 +38,9 @@ class BrushPreview {
 
   /// Puts back the bricks the last preview changed, then keeps the bricks
   /// overlapping `region` (voxels) as they are now and runs `apply`, which
-  /// may change only those. Returns what `apply` returns.
-  int64_t show(core::Volume& volume, const core::Box& region,
+  /// may change only those: the brush on the path's first `samples`
+  /// samples. Returns what `apply` returns.
+  int64_t show(core::Volume& volume, const core::Box& region, size_t samples,
                const std::function<int64_t()>& apply);
   /// Puts back the bricks the last preview changed (nothing if none).
   void revert(core::Volume& volume);
@@ -47,7 +48,6 @@ class BrushPreview {
   bool active() const { return active_; }
   /// Samples of the path the shown preview covers (0 when none).
   size_t shown_samples() const { return shown_samples_; }
-  void set_shown_samples(size_t n) { shown_samples_ = n; }
 
  private:
   struct Kept {
