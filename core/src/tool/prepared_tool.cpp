@@ -2,7 +2,8 @@
 // Everything the rotation kernels would otherwise test or recompute per
 // sample is settled here once per tool: the zero padding that removes bounds
 // tests, the reach and core radii that bound what must be sampled, and the
-// per-cell tables of the two trilinear kernels.
+// per-cell tables of the two trilinear kernels (on first use: a tool that is
+// never rotated, the ball brush's sphere, never pays for them).
 
 #include "sculpt/core/tool/tool_rotation.h"
 
@@ -95,7 +96,13 @@ PreparedTool::PreparedTool(Tool tool) : tool_(std::move(tool)) {
     core_radius_vox_[k] = centred ? static_cast<float>(std::sqrt(other2[k])) : 0.0f;
   }
   core_value_ = u;
+}
 
+void PreparedTool::build_cell_tables() const {
+  const glm::ivec3 pd = padded_dims_;
+  const size_t count = static_cast<size_t>(voxel_count(pd));
+  const size_t px = pd.x;
+  const size_t pxy = px * pd.y;
   // Cells whose 8 corners are equal: their trilinear sample is that value
   // whatever the weights. The last layer has no +1 neighbours and is never
   // sampled (samples floor to at most dims + 2).

@@ -21,6 +21,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -56,6 +57,12 @@ bool use_vector_kernel(bool enabled);
 /// corners are equal: a sculpting tool is uniform inside and out, so most
 /// trilinear samples cost one load. Build once per tool; immutable and
 /// thread-safe afterwards.
+///
+/// The cell tables (10 bytes a cell) are built on the first call to cells()
+/// or corners(), once, whichever thread asks: a ball brush sweeps its sphere
+/// without rotating it and never asks, and for a 66-voxel ball they are 27 MB
+/// of fresh pages, 50 to 150 ms of the sculpting thread at each change of
+/// size (docs/performance.md).
 class PreparedTool {
  public:
   /// Padding of the sampling grid on every side, in voxels.
@@ -84,20 +91,29 @@ class PreparedTool {
   glm::ivec3 padded_dims() const { return padded_dims_; }
   const uint8_t* padded() const { return padded_.data(); }
   /// Per cell: 0 when its corners differ, else 0x100 | their value.
-  const uint16_t* cells() const { return cells_.get(); }
+  const uint16_t* cells() const {
+    std::call_once(tables_built_, [this] { build_cell_tables(); });
+    return cells_.get();
+  }
   /// Per cell: its 8 corners, bytes (x, y, z), (x, y+1, z), (x+1, y, z),
   /// (x+1, y+1, z), then the same at z+1, from the lowest; the vector
   /// kernel's trilinear source (one load per sample).
-  const uint64_t* corners() const { return corners_.get(); }
+  const uint64_t* corners() const {
+    std::call_once(tables_built_, [this] { build_cell_tables(); });
+    return corners_.get();
+  }
 
  private:
+  void build_cell_tables() const;
+
   Tool tool_;
   glm::ivec3 padded_dims_;
   std::vector<uint8_t> padded_;
   // Not zeroed on allocation: every entry is written once, in parallel
-  // (a big tool's tables are a hundred megabytes).
-  std::unique_ptr<uint16_t[]> cells_;
-  std::unique_ptr<uint64_t[]> corners_;
+  // (a big tool's tables are a hundred megabytes), on first use.
+  mutable std::once_flag tables_built_;
+  mutable std::unique_ptr<uint16_t[]> cells_;
+  mutable std::unique_ptr<uint64_t[]> corners_;
   // [0] nearest, [1] trilinear.
   float reach_vox_[2] = {0.0f, 0.0f};
   float core_radius_vox_[2] = {0.0f, 0.0f};

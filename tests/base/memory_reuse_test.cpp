@@ -1,0 +1,32 @@
+#include "sculpt/base/memory_reuse.h"
+
+#include <malloc.h>
+
+#include <memory>
+
+#include <gtest/gtest.h>
+
+namespace sculpt {
+namespace {
+
+TEST(MemoryReuse, MallocTakesBothSettings) {
+  EXPECT_TRUE(keep_freed_memory(size_t{64} << 20));
+}
+
+// A freed block of a size glibc would otherwise give back to the kernel
+// (over its default 128 KiB mmap threshold) stays in the heap: mallinfo2
+// counts it as free heap, not as unmapped.
+TEST(MemoryReuse, AFreedBigBlockStaysInTheHeap) {
+  ASSERT_TRUE(keep_freed_memory(size_t{64} << 20));
+  constexpr size_t kBlock = size_t{4} << 20;
+  const size_t mapped_before = ::mallinfo2().hblkhd;
+  auto block = std::make_unique<unsigned char[]>(kBlock);
+  block[0] = 1;
+  block[kBlock - 1] = 1;
+  EXPECT_EQ(::mallinfo2().hblkhd, mapped_before) << "the block was mapped on its own";
+  block.reset();
+  EXPECT_GE(::mallinfo2().fordblks, kBlock) << "the freed block went back to the kernel";
+}
+
+}  // namespace
+}  // namespace sculpt
