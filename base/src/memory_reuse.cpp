@@ -3,6 +3,10 @@
 #include <malloc.h>
 
 #include <climits>
+#include <memory>
+#include <vector>
+
+#include <unistd.h>
 
 namespace sculpt {
 
@@ -15,6 +19,19 @@ bool keep_freed_memory(size_t keep_bytes) {
   const bool mmap_ok = ::mallopt(M_MMAP_THRESHOLD, kLargestHeapBlock) == 1;
   const bool trim_ok = ::mallopt(M_TRIM_THRESHOLD, keep) == 1;
   return mmap_ok && trim_ok;
+}
+
+void warm_this_threads_heap(size_t bytes) {
+  // Blocks of 1 MiB: under the mmap threshold, so they come from the
+  // thread's heap and coalesce into its top when freed.
+  constexpr size_t kBlock = size_t{1} << 20;
+  const size_t page = static_cast<size_t>(::sysconf(_SC_PAGESIZE));
+  std::vector<std::unique_ptr<volatile unsigned char[]>> blocks;
+  for (size_t n = 0; n < bytes; n += kBlock) {
+    auto& block = blocks.emplace_back(new volatile unsigned char[kBlock]);
+    for (size_t at = 0; at < kBlock; at += page)
+      block[at] = 0;
+  }
 }
 
 }  // namespace sculpt

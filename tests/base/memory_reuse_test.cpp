@@ -3,6 +3,7 @@
 #include <malloc.h>
 
 #include <memory>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -26,6 +27,15 @@ TEST(MemoryReuse, AFreedBigBlockStaysInTheHeap) {
   EXPECT_EQ(::mallinfo2().hblkhd, mapped_before) << "the block was mapped on its own";
   block.reset();
   EXPECT_GE(::mallinfo2().fordblks, kBlock) << "the freed block went back to the kernel";
+}
+
+// Warmed, a thread's heap holds the reserve as free memory, mapped.
+TEST(MemoryReuse, AWarmedHeapKeepsItsReserve) {
+  ASSERT_TRUE(keep_freed_memory(size_t{256} << 20));
+  std::thread([] {
+    warm_this_threads_heap(size_t{8} << 20);
+    EXPECT_GE(::mallinfo2().fordblks, size_t{8} << 20);
+  }).join();
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <limits>
 #include <thread>
 
+#include "sculpt/base/memory_reuse.h"
 #include "sculpt/base/thread_times.h"
 #include "sculpt/hal/types/clock.h"
 
@@ -26,11 +27,12 @@ InputHub::~InputHub() {
   stop();
 }
 
-void InputHub::start() {
+void InputHub::start(size_t warm_heap_bytes) {
   if (thread_.joinable()) return;
   stop_.store(false, std::memory_order_relaxed);
-  thread_ = std::thread([this] {
+  thread_ = std::thread([this, warm_heap_bytes] {
     name_this_thread("sculpting");
+    if (warm_heap_bytes > 0) warm_this_threads_heap(warm_heap_bytes);
     run();
   });
 }

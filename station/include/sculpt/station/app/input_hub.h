@@ -65,7 +65,10 @@ class InputHub {
   InputHub(const InputHub&) = delete;
   InputHub& operator=(const InputHub&) = delete;
 
-  void start();
+  /// Starts the sculpting thread, which first touches `warm_heap_bytes` of
+  /// its heap (warm_this_threads_heap(): worth it only once freed memory
+  /// is kept, keep_freed_memory()).
+  void start(size_t warm_heap_bytes = 0);
   /// Stops the thread; what it read is sculpted. Safe to call twice.
   void stop();
 
