@@ -27,18 +27,41 @@ InputHub::~InputHub() {
   stop();
 }
 
-void InputHub::start(size_t warm_heap_bytes) {
+void InputHub::prepare(size_t warm_heap_bytes) {
   if (thread_.joinable()) return;
-  stop_.store(false, std::memory_order_relaxed);
+  {
+    std::lock_guard gate(gate_);
+    stop_.store(false, std::memory_order_relaxed);
+    warmed_ = false;
+    go_ = false;
+  }
   thread_ = std::thread([this, warm_heap_bytes] {
     name_this_thread("sculpting");
     if (warm_heap_bytes > 0) warm_this_threads_heap(warm_heap_bytes);
+    std::unique_lock gate(gate_);
+    warmed_ = true;
+    gate_changed_.notify_all();
+    gate_changed_.wait(gate, [this] { return go_ || stop_.load(std::memory_order_relaxed); });
+    gate.unlock();
     run();
   });
+  std::unique_lock gate(gate_);
+  gate_changed_.wait(gate, [this] { return warmed_; });
+}
+
+void InputHub::start() {
+  prepare(0);
+  std::lock_guard gate(gate_);
+  go_ = true;
+  gate_changed_.notify_all();
 }
 
 void InputHub::stop() {
-  stop_.store(true, std::memory_order_relaxed);
+  {
+    std::lock_guard gate(gate_);
+    stop_.store(true, std::memory_order_relaxed);
+    gate_changed_.notify_all();
+  }
   if (thread_.joinable()) thread_.join();
 }
 

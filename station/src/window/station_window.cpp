@@ -355,6 +355,12 @@ int run_window(const WindowOptions& o) {
     if (Status st = controller.start_recording(o.record, hal::monotonic_ns()); !st)
       return fail(st.error());
   }
+  // The sculpting thread touches a heap reserve first (memory_reuse.h), once
+  // a recording has begun (it keeps the reports that arrive meanwhile) and
+  // before a force device's loop starts: a session's first big stroke (the
+  // demo's 66-voxel ball over 92 bricks) would otherwise fault in about
+  // 17 MB, 35 ms, while the sculptor waits.
+  hub.prepare(size_t{32} << 20);
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -404,10 +410,7 @@ int run_window(const WindowOptions& o) {
     if (const HapticFigures hf = haptics->figures(); !hf.realtime)
       std::printf("%s\n", hf.realtime_note.c_str());
   }
-  // The sculpting thread touches a heap reserve first: a session's first
-  // big stroke (the demo's 66-voxel ball over 92 bricks) would otherwise
-  // fault in about 17 MB, 35 ms, while the sculptor waits.
-  hub.start(size_t{32} << 20);
+  hub.start();
   bool played_out = false;  // the last frame of --until-replayed is drawn
   for (int frame = 0;
        !glfwWindowShouldClose(w) && (o.frames <= 0 || frame < o.frames) && !played_out; ++frame) {

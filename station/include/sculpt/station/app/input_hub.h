@@ -18,6 +18,7 @@
 // GL-free: tested without a window (tests/station/app/input_hub_test.cpp).
 
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -65,10 +66,15 @@ class InputHub {
   InputHub(const InputHub&) = delete;
   InputHub& operator=(const InputHub&) = delete;
 
-  /// Starts the sculpting thread, which first touches `warm_heap_bytes` of
-  /// its heap (warm_this_threads_heap(): worth it only once freed memory
-  /// is kept, keep_freed_memory()).
-  void start(size_t warm_heap_bytes = 0);
+  /// Starts the sculpting thread without letting it poll: it touches
+  /// `warm_heap_bytes` of its heap (warm_this_threads_heap(): worth it only
+  /// once freed memory is kept, keep_freed_memory()) and waits for start().
+  /// Returns once the heap is warm: tens of milliseconds that must pass
+  /// before the devices and a force device's loop start, not after.
+  void prepare(size_t warm_heap_bytes);
+  /// Lets the sculpting thread poll (starting it first, unwarmed, when
+  /// prepare() was not called).
+  void start();
   /// Stops the thread; what it read is sculpted. Safe to call twice.
   void stop();
 
@@ -117,6 +123,11 @@ class InputHub {
 
   std::atomic<bool> replay_done_{false};
   std::atomic<bool> stop_{false};
+  // prepare() -> start(): the thread waits on `go_` (under gate_).
+  std::mutex gate_;
+  std::condition_variable gate_changed_;
+  bool warmed_ = false;
+  bool go_ = false;
   std::thread thread_;
 };
 
