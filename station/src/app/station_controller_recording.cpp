@@ -87,6 +87,11 @@ Status StationController::start_recording(const std::filesystem::path& path, int
       return saved;
     }
   }
+  // Reports the readers tapped but the station has not applied yet wait for
+  // it: before the first poll a device's commands (a session playing as a
+  // device) are not applied either, and a command applied later at an
+  // earlier time must still come before them in the file.
+  recorder_.release_until(processed_t_ns_);
   Status st = recorder_.start(path, header, opening_commands(/*with_block=*/fresh), stamp(now_ns));
   report(st, "recording to " + path.string() +
                  (fresh ? "" : " (starting from this sculpture, saved as " + start.string() + ")"));

@@ -167,6 +167,49 @@ TEST(StationController, ARecordingReplaysToTheSameVolume) {
   EXPECT_TRUE(replayed.settings().custom_tool);
 }
 
+// A recording asked for before the first poll (the window's --record): the
+// readers tap reports before the station applies anything, and the device's
+// commands come with that poll. A command older than the reports is written
+// before them, as the station applied it, not after the reports written at
+// once (a session playing as a device replayed to another volume when the
+// first poll came late).
+TEST(StationController, ReportsTappedBeforeTheFirstPollWaitForTheCommandsBeforeThem) {
+  test::ScratchDir dir;
+  StationController c(small_block(dir));
+  hal::DeviceInfo device;
+  device.name = "SpaceMouse Compact";
+  c.set_device(device, "");
+  c.arm_recording();
+  const uint8_t bytes[] = {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  c.raw_report(hal::RawEvent::report(20 * kMs, bytes));
+  c.raw_report(hal::RawEvent::report(30 * kMs, bytes));
+  ASSERT_TRUE(c.start_recording(dir.path() / "r.scs", 1000 * kMs).ok());
+  c.tick(1000 * kMs);  // a flush before the first poll
+  hal::InputFrame frame;
+  for (int64_t t : {20 * kMs, 30 * kMs}) {
+    hal::InputEvent e;
+    e.t_ns = t;
+    frame.events.push_back(e);
+  }
+  const sim::Command mode{sim::CommandKind::kMode, 1, {}};
+  const std::pair<int64_t, sim::Command> commands[] = {{10 * kMs, mode}};
+  c.device_frame(frame, 1001 * kMs, commands);
+  ASSERT_TRUE(c.stop_recording().ok());
+  auto session = sim::read_session_file(dir.path() / "r.scs");
+  ASSERT_TRUE(session.ok()) << session.error().message();
+  int command_at = -1, first_report_at = -1;
+  for (size_t i = 0; i < session->records.size(); ++i) {
+    const sim::SessionRecord& r = session->records[i];
+    if (r.kind == sim::SessionRecord::Kind::kEvent && first_report_at < 0)
+      first_report_at = static_cast<int>(i);
+    if (r.kind == sim::SessionRecord::Kind::kCommand && r.command == mode)
+      command_at = static_cast<int>(i);
+  }
+  ASSERT_GE(command_at, 0);
+  ASSERT_GE(first_report_at, 0);
+  EXPECT_LT(command_at, first_report_at);
+}
+
 // The clutch key is a recorded command, once per change; a recording started
 // with it held opens with it held, so the replay re-anchors where the live
 // station did when it is let go.
