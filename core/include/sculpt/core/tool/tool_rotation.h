@@ -61,8 +61,8 @@ bool use_vector_kernel(bool enabled);
 /// The cell tables (10 bytes a cell) are built on the first call to cells()
 /// or corners(), once, whichever thread asks: a ball brush sweeps its sphere
 /// without rotating it and never asks, and for a 66-voxel ball they are 27 MB
-/// of fresh pages, 50 to 150 ms of the sculpting thread at each change of
-/// size (docs/performance.md).
+/// of fresh pages: 71 ms of the sculpting thread replaying, 130 to 150 ms
+/// live, at each change of size (docs/performance.md).
 class PreparedTool {
  public:
   /// Padding of the sampling grid on every side, in voxels.
