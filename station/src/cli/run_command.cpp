@@ -8,7 +8,9 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <string>
 
 #include "cli/commands.h"
 #include "cli/number_checks.h"
@@ -160,6 +162,12 @@ void add_run_command(CLI::App& app, Action& action) {
                   "core")
       ->capture_default_str()
       ->check(CLI::Range(0, 500));
+  cmd->add_option("--haptic-standby", w.haptic_standby,
+                  "window: a second haptic thread on another core wakes at the same deadlines "
+                  "and runs a tick the first wakes late for (on, or off: one thread)")
+      ->capture_default_str()
+      ->transform(
+          CLI::CheckedTransformer(std::map<std::string, bool>{{"on", true}, {"off", false}}));
   cmd->add_option("--workspace-scale", w.workspace_scale,
                   "window: material millimetres per force-device millimetre")
       ->capture_default_str()

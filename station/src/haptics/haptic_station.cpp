@@ -218,6 +218,8 @@ HapticFigures HapticStation::figures() const {
   f.device_faults += live.device_faults.load();
   f.records_dropped += live.records_dropped.load() + law_->records_dropped();
   f.skipped_deadlines += thread_->skipped_deadlines();
+  f.standby_rescues += thread_->standby_rescues();
+  f.threads = std::max(f.threads, thread_->threads());
   f.worst_period_us = std::max(f.worst_period_us, double(live.worst_period_us.load()));
   f.max_force_n = std::max(f.max_force_n, live.max_force_n.load());
   f.ramp = live.ramp.load();

@@ -131,6 +131,8 @@ nlohmann::ordered_json haptic_figures(const HapticStation& h) {
           {"late_share",
            f.ticks > 0 ? static_cast<double>(f.late_ticks) / static_cast<double>(f.ticks) : 0.0},
           {"skipped_deadlines", f.skipped_deadlines},
+          {"threads", f.threads},
+          {"standby_rescues", f.standby_rescues},
           {"period_us_p50", f.period_p50_us},
           {"period_us_p99", f.period_p99_us},
           {"period_us_max", f.worst_period_us},
@@ -343,6 +345,7 @@ int run_window(const WindowOptions& o) {
     ho.contact.workspace_scale = o.workspace_scale;
     ho.contact.voxel_mm = o.voxel_mm;
     ho.thread.spin_ns = int64_t{o.haptic_spin_us} * 1000;
+    ho.thread.standby = o.haptic_standby;
     ho.drives_tool = sim_backend == nullptr;  // a playing session owns the tool
     haptics = std::make_unique<HapticStation>(std::move(device).value(), ho);
   }

@@ -1,5 +1,7 @@
 #include "sculpt/hal/haptics/haptic_thread.h"
 
+#include <sched.h>
+
 #include <atomic>
 #include <thread>
 
@@ -75,6 +77,64 @@ TEST(HapticThread, PollingToTheDeadlineNeverTicksEarly) {
   EXPECT_GE(ticks, 30);
   EXPECT_LE(ticks, elapsed_ns / options.period_ns + 1);
   EXPECT_GE(device.zeroes.load(), 1);
+}
+
+// The device's own state, not atomic: the standby twin and the first thread
+// must never tick at once (ThreadSanitizer checks this in CI), and a deadline
+// is ticked once whichever thread wakes for it.
+class PlainCountingDevice final : public ForceDevice {
+ public:
+  int64_t reads = 0;
+  std::thread::id last_reader;
+
+  const DeviceInfo& info() const override { return info_; }
+  const ForceLimits& limits() const override { return sim_arm_limits(); }
+  ForceIo read(ForceDeviceState& out) override {
+    out = {};
+    ++reads;
+    last_reader = std::this_thread::get_id();
+    return ForceIo::kOk;
+  }
+  ForceIo write(glm::vec3) override { return ForceIo::kOk; }
+  void zero() noexcept override {}
+
+ private:
+  DeviceInfo info_;
+};
+
+TEST(HapticThread, TheStandbyTwinNeverTicksAtOnceWithTheFirstNorTwiceForADeadline) {
+  PlainCountingDevice device;
+  NoForce law;
+  HapticLoop loop(device, law);
+  HapticThread thread(loop, device);
+  const int64_t start_ns = monotonic_ns();
+  thread.start();
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  ASSERT_EQ(sched_getaffinity(0, sizeof allowed, &allowed), 0);
+  EXPECT_EQ(thread.threads(), CPU_COUNT(&allowed) >= 2 ? 2 : 1);
+  while (loop.live().ticks.load() < 200)
+    std::this_thread::yield();
+  thread.stop();
+  const int64_t elapsed_ns = monotonic_ns() - start_ns;
+  EXPECT_EQ(device.reads, loop.live().ticks.load());
+  EXPECT_LE(device.reads, elapsed_ns / HapticThreadOptions{}.period_ns + 1);
+  EXPECT_LE(thread.standby_rescues(), device.reads);
+}
+
+TEST(HapticThread, WithoutTheStandbyOneThreadTicks) {
+  PlainCountingDevice device;
+  NoForce law;
+  HapticLoop loop(device, law);
+  HapticThreadOptions options;
+  options.standby = false;
+  HapticThread thread(loop, device, options);
+  thread.start();
+  EXPECT_EQ(thread.threads(), 1);
+  while (loop.live().ticks.load() < 20)
+    std::this_thread::yield();
+  thread.stop();
+  EXPECT_EQ(thread.standby_rescues(), 0);
 }
 
 TEST(HapticThread, EndsByItselfWhenTheDeviceGoesAway) {

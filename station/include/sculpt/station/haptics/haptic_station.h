@@ -70,6 +70,8 @@ struct HapticFigures {
   int64_t ticks = 0;
   int64_t late_ticks = 0;  ///< period over 1.5 ms
   int64_t skipped_deadlines = 0;
+  int threads = 0;              ///< ticking threads: 2 with the standby twin
+  int64_t standby_rescues = 0;  ///< ticks run on time while the other thread woke late
   int64_t device_faults = 0;
   int64_t watchdog_trips = 0;
   int64_t records_dropped = 0;

@@ -48,6 +48,9 @@ struct WindowOptions {
   /// The haptic thread wakes this early and polls to each tick's deadline
   /// (hal::HapticThreadOptions::spin_ns), microseconds.
   int haptic_spin_us = 0;
+  /// A standby twin of the haptic thread on another core
+  /// (hal::HapticThreadOptions::standby).
+  bool haptic_standby = true;
   float voxel_mm = 0.5f;  ///< the material's voxel size
   /// A tracker's scale and axes; recorded sessions carry it (a tracker
   /// command), so replays map the same way.
