@@ -444,6 +444,9 @@ void StationPanel::draw_haptics(int64_t now) {
   ImGui::Text("loop %.0f Hz%s, late ticks %lld of %lld", haptic_rate_hz_,
               f.realtime ? " (real-time)" : "", static_cast<long long>(f.late_ticks),
               static_cast<long long>(f.ticks));
+  if (f.threads == 2)
+    ImGui::Text("standby thread on another core: %lld late wake-ups covered",
+                static_cast<long long>(f.standby_rescues));
   ImGui::Text("worst period %.2f ms, max force %.2f N, ramp %.0f%%", f.worst_period_us * 1e-3,
               f.max_force_n, f.ramp * 100.0f);
   const ContactRecord& contact = h.contact();
