@@ -129,6 +129,50 @@ bool capsule_row(glm::vec3 a, glm::vec3 ab, float ab2, float y, float z, float r
   return lo <= hi;
 }
 
+// A ball's capsule across one row: the row's constants. For a hard ball,
+// raise_hard_capsule_row() raises out[i] to the filling of voxels
+// [x0, x0 + n): 255 within radius - 1, 0 from the reach on, in between
+// tool_density()'s bytes for hardness 1, without a branch per voxel.
+struct CapsuleRow {
+  float a_x = 0.0f;              // the segment's start, x
+  glm::vec3 ab{0.0f};            // the segment
+  float inv_ab2 = 0.0f;          // 1 / |ab|^2, 0 for a point
+  float apy = 0.0f, apz = 0.0f;  // the row's y and z from the segment's start
+  float dot_yz = 0.0f;           // (apy, apz) . (ab.y, ab.z)
+  float radius = 0.0f;
+  float inner2 = -1.0f;  // radius - 1, squared (-1: no inside)
+  float reach2 = 0.0f;   // radius + 1, squared
+};
+
+// std::min and std::max rather than std::clamp (the same values: nothing
+// here is NaN), whose references GCC leaves as branches; with the file's
+// -fno-trapping-math (core/CMakeLists.txt) the loop then runs a vector at a
+// time.
+inline void raise_hard_capsule_row(const CapsuleRow& row, int x0, int n, uint8_t* __restrict out) {
+  const CapsuleRow c = row;  // a copy: stores to `out` cannot alias it
+  for (int i = 0; i < n; ++i) {
+    const float apx = static_cast<float>(x0 + i) - c.a_x;
+    const float t = std::min(std::max((apx * c.ab.x + c.dot_yz) * c.inv_ab2, 0.0f), 1.0f);
+    const float dx = apx - t * c.ab.x, dy = c.apy - t * c.ab.y, dz = c.apz - t * c.ab.z;
+    const float d2 = dx * dx + dy * dy + dz * dz;
+    const float d = std::sqrt(d2) - c.radius;
+    float f = std::min(std::max(127.5f - d * 127.5f, 0.0f), 255.0f);
+    f = d2 > c.inner2 ? f : 255.0f;
+    f = d2 < c.reach2 ? f : 0.0f;
+    out[i] = std::max(out[i], static_cast<uint8_t>(f));
+  }
+}
+
+// A ball of any hardness at one voxel of the row (x from the segment's start
+// apx): tool_density() of its distance to the segment, 0 from the reach on.
+inline uint8_t capsule_filling(const CapsuleRow& c, float apx, float hardness) {
+  const float t = std::clamp((apx * c.ab.x + c.dot_yz) * c.inv_ab2, 0.0f, 1.0f);
+  const float dx = apx - t * c.ab.x, dy = c.apy - t * c.ab.y, dz = c.apz - t * c.ab.z;
+  const float d2 = dx * dx + dy * dy + dz * dz;
+  if (d2 >= c.reach2) return 0;
+  return tool_density(std::sqrt(d2) - c.radius, c.radius, hardness);
+}
+
 Box box_around(glm::vec3 lo, glm::vec3 hi, float margin) {
   return Box{glm::ivec3(glm::floor(lo - margin)), glm::ivec3(glm::ceil(hi + margin)) + 1};
 }
@@ -496,24 +540,12 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
             if (in_lo < in_hi)
               std::memset(out + (in_lo - origin.x), 255, static_cast<size_t>(in_hi - in_lo));
             if (hard) {
-              // Branch-free, so the compiler runs it a vector at a time: the
-              // voxels the stroke filled fully already are measured too (what
-              // they get cannot exceed their coverage, so the combine below
-              // ignores it), within radius - 1 the filling is 255, and from
-              // the reach on 0 (the same bytes as tool_density()).
+              // The voxels the stroke filled fully already are measured too
+              // (what they get cannot exceed their coverage, so the combine
+              // below ignores it).
+              const CapsuleRow hr{sw.a.x, ab, inv_ab2, apy, apz, dot_yz, sw.radius, inner2, reach2};
               auto measure = [&](int xa, int xb) {
-                for (int x = xa; x < xb; ++x) {
-                  const float apx = static_cast<float>(x) - sw.a.x;
-                  const float t = std::clamp((apx * ab.x + dot_yz) * inv_ab2, 0.0f, 1.0f);
-                  const float dx = apx - t * ab.x, dy = apy - t * ab.y, dz = apz - t * ab.z;
-                  const float d2 = dx * dx + dy * dy + dz * dz;
-                  const float d = std::sqrt(d2) - sw.radius;
-                  float f = std::clamp(127.5f - d * 127.5f, 0.0f, 255.0f);
-                  f = d2 > inner2 ? f : 255.0f;
-                  f = d2 < reach2 ? f : 0.0f;
-                  const int i = x - origin.x;
-                  out[i] = std::max(out[i], static_cast<uint8_t>(f));
-                }
+                if (xa < xb) raise_hard_capsule_row(hr, xa, xb - xa, out + (xa - origin.x));
               };
               measure(lo, in_lo < in_hi ? in_lo : hi);
               if (in_lo < in_hi) measure(in_hi, hi);
@@ -524,13 +556,9 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
               if (x >= hi) break;
               const int i = x - origin.x;
               if (full != nullptr && full[i] == 255) continue;
-              const float apx = static_cast<float>(x) - sw.a.x;
-              const float t = std::clamp((apx * ab.x + dot_yz) * inv_ab2, 0.0f, 1.0f);
-              const float dx = apx - t * ab.x, dy = apy - t * ab.y, dz = apz - t * ab.z;
-              const float d2 = dx * dx + dy * dy + dz * dz;
-              if (d2 >= reach2) continue;
-              const float d = std::sqrt(d2) - sw.radius;
-              out[i] = std::max(out[i], tool_density(d, sw.radius, sw.hardness));
+              const CapsuleRow cr{sw.a.x, ab, inv_ab2, apy, apz, dot_yz, sw.radius, -1.0f, reach2};
+              out[i] = std::max(out[i],
+                                capsule_filling(cr, static_cast<float>(x) - sw.a.x, sw.hardness));
             }
           }
       } else {
@@ -648,26 +676,125 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
     }
   };
 
+  // The ball's stroke, not accumulating (the station's default brush), in
+  // one pass per row: each sweep's filling of the row goes to a row buffer,
+  // the coverage takes the larger, and the stretch where it grew is combined
+  // from the material before the stroke. The same bytes as run() (tested),
+  // without its brick-sized sweep buffer, row tables and second pass: a
+  // segment mostly adds a leading rim to rows the stroke reached before.
+  auto run_balls = [&](Job& job, Scratch& scratch) {
+    StrokeBrick& held = *job.held;
+    const glm::ivec3 origin = job.b * edge;
+    const Box& bb = job.bb;
+    uint8_t* fill = scratch.row_fill.data();
+    uint8_t* row_buf = scratch.row_buf.data();
+    const glm::ivec3 rn = region.size();
+    const int bx0 = bb.lo.x - origin.x, bx1 = bb.hi.x - origin.x;
+    for (int z = bb.lo.z; z < bb.hi.z; ++z)
+      for (int y = bb.lo.y; y < bb.hi.y; ++y) {
+        const size_t span = static_cast<size_t>(z - region.lo.z) * rn.y + (y - region.lo.y);
+        const size_t row =
+            (static_cast<size_t>(z - origin.z) * edge + static_cast<size_t>(y - origin.y)) * edge;
+        const uint8_t* before = &held.before[row];
+        uint8_t* cov = &held.coverage[row];
+        int grew0 = edge, grew1 = 0;  // where the coverage grew, brick x
+        int t0 = 0, t1 = -1;          // the stretch not saturated before (t1 < 0: not yet found)
+        for (const Sweep& sw : sweeps) {
+          const glm::ivec4 sp = sw.spans[span];
+          int lo = std::max(sp.x - origin.x, bx0), hi = std::min(sp.y - origin.x, bx1);
+          if (lo >= hi) continue;
+          if (t1 < 0) {
+            t0 = bx0;
+            t1 = bx1;
+            trim_saturated(before, saturated, t0, t1);
+          }
+          lo = std::max(lo, t0);
+          hi = std::min(hi, t1);
+          if (lo < hi) trim_full(cov, lo, hi);  // the ends the stroke filled fully
+          if (lo >= hi) continue;
+          const int in_lo = std::clamp(sp.z - origin.x, lo, hi);
+          const int in_hi = std::clamp(sp.w - origin.x, in_lo, hi);
+          std::memset(fill + lo, 0, static_cast<size_t>(hi - lo));
+          if (in_lo < in_hi) std::memset(fill + in_lo, 255, static_cast<size_t>(in_hi - in_lo));
+          const glm::vec3 ab = sw.b - sw.a;
+          const float ab2 = glm::dot(ab, ab);
+          const float apy = static_cast<float>(y) - sw.a.y;
+          const float apz = static_cast<float>(z) - sw.a.z;
+          const float dot_yz = apy * ab.y + apz * ab.z;
+          const float inv_ab2 = ab2 > 0.0f ? 1.0f / ab2 : 0.0f;
+          const float reach2 = sw.reach * sw.reach;
+          if (sw.hardness >= 1.0f) {
+            const float inner = std::max(0.0f, sw.radius - 1.0f);
+            const CapsuleRow hr{sw.a.x, ab,        inv_ab2,       apy,   apz,
+                                dot_yz, sw.radius, inner * inner, reach2};
+            auto measure = [&](int xa, int xb) {
+              if (xa < xb) raise_hard_capsule_row(hr, xa + origin.x, xb - xa, fill + xa);
+            };
+            measure(lo, in_lo < in_hi ? in_lo : hi);
+            if (in_lo < in_hi) measure(in_hi, hi);
+          } else {
+            const CapsuleRow cr{sw.a.x, ab, inv_ab2, apy, apz, dot_yz, sw.radius, -1.0f, reach2};
+            for (int x = lo; x < hi; ++x) {
+              if (cov[x] == 255) continue;  // nothing can add to it
+              fill[x] = std::max(
+                  fill[x],
+                  capsule_filling(cr, static_cast<float>(x + origin.x) - sw.a.x, sw.hardness));
+            }
+          }
+          for (int x = lo; x < hi; ++x) {
+            if (fill[x] <= cov[x]) continue;
+            cov[x] = fill[x];
+            grew0 = std::min(grew0, x);
+            grew1 = x + 1;
+          }
+        }
+        if (grew0 >= grew1) continue;
+        const int n = grew1 - grew0;
+        std::memcpy(row_buf, before + grew0, static_cast<size_t>(n));
+        combine_row(mode, row_buf, cov + grew0, n, q);
+        uint8_t* cur = &held.current[row];
+        int64_t changed = 0;
+        for (int i = 0; i < n; ++i)
+          changed += row_buf[i] != cur[grew0 + i];
+        if (changed == 0) continue;
+        std::memcpy(cur + grew0, row_buf, static_cast<size_t>(n));
+        job.changed += changed;
+        job.touched.lo = glm::min(job.touched.lo, glm::ivec3(origin.x + grew0, y, z));
+        job.touched.hi = glm::max(job.touched.hi, glm::ivec3(origin.x + grew1, y + 1, z + 1));
+      }
+  };
+
   const int64_t t_apply = now_ns();
   // The ball's sweep reads nothing shared; the rotated tool's rows are filled
   // lazily in shared entries, so a tool sweep stays on this thread.
   bool all_balls = true;
   for (const Sweep& sw : sweeps)
     all_balls = all_balls && sw.ball;
+  const bool lean = all_balls && !accumulate;
+  auto run_job = [&](Job& job, Scratch& scratch) {
+    if (lean) {
+      run_balls(job, scratch);
+    } else {
+      run(job, scratch);
+    }
+  };
+  const size_t row_bytes = static_cast<size_t>(edge) + kCombineRowSlack;
   if (all_balls && jobs.size() >= kParallelBricks) {
     parallel_for(static_cast<int64_t>(jobs.size()), [&](int64_t k) {
       Scratch scratch;
-      scratch.sweep = take_buffer(brick_bytes + kCombineRowSlack);
-      scratch.row_buf.resize(static_cast<size_t>(edge) + kCombineRowSlack);
-      run(jobs[static_cast<size_t>(k)], scratch);
+      if (!lean) scratch.sweep = take_buffer(brick_bytes + kCombineRowSlack);
+      scratch.row_buf.resize(row_bytes);
+      scratch.row_fill.resize(row_bytes);
+      run_job(jobs[static_cast<size_t>(k)], scratch);
       give_back(scratch.sweep);
     });
   } else {
-    if (scratch_.sweep.size() != brick_bytes + kCombineRowSlack)
+    if (!lean && scratch_.sweep.size() != brick_bytes + kCombineRowSlack)
       scratch_.sweep = take_buffer(brick_bytes + kCombineRowSlack);
-    scratch_.row_buf.resize(static_cast<size_t>(edge) + kCombineRowSlack);
+    scratch_.row_buf.resize(row_bytes);
+    scratch_.row_fill.resize(row_bytes);
     for (Job& job : jobs)
-      run(job, scratch_);
+      run_job(job, scratch_);
   }
   stats.apply_ns += now_ns() - t_apply;
 

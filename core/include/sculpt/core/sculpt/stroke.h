@@ -85,9 +85,9 @@ class SweptStroke {
   struct Sweep;
   struct StrokeBrick;
   // One thread's buffers for a brick of a segment: its filling, a row, and
-  // per-row tables.
+  // per-row tables (the ball's lean path uses only the two rows).
   struct Scratch {
-    std::vector<uint8_t> sweep, row_buf;
+    std::vector<uint8_t> sweep, row_buf, row_fill;
     std::vector<int> x0, x1, h0, h1;
   };
   DabStats apply(const StrokeSample& from, const StrokeSample& to);
