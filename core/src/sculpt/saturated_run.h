@@ -31,23 +31,6 @@ inline void trim_saturated(const uint8_t* row, uint8_t saturated, int& c0, int& 
     --c1;
 }
 
-/// Narrows [c0, c1) past the voxels at both ends where `a` or `b` is 255,
-/// eight at a time through stretches where `a` is: a swept stroke skips
-/// what the stroke (a) or the segment so far (b) has filled fully. Reads
-/// only a and b [c0, c1).
-inline void trim_full(const uint8_t* a, const uint8_t* b, int& c0, int& c1) {
-  constexpr uint64_t kFull = ~uint64_t{0};
-  auto full = [&](int i) { return a[i] == 255 || b[i] == 255; };
-  while (c0 + 8 <= c1 && load_u64(a + c0) == kFull)
-    c0 += 8;
-  while (c0 < c1 && full(c0))
-    ++c0;
-  while (c1 - 8 >= c0 && load_u64(a + c1 - 8) == kFull)
-    c1 -= 8;
-  while (c1 > c0 && full(c1 - 1))
-    --c1;
-}
-
 /// Narrows [c0, c1) past the voxels at both ends where `a` is 255, eight at
 /// a time through long full stretches. Reads only a[c0, c1).
 inline void trim_full(const uint8_t* a, int& c0, int& c1) {

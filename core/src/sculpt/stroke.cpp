@@ -498,6 +498,8 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
 
     for (const Sweep& sw : sweeps) {
       if (sw.ball) {
+        // Balls come here only accumulating (run_balls() takes the rest).
+        assert(accumulate);
         const glm::vec3 ab = sw.b - sw.a;
         const float ab2 = glm::dot(ab, ab);
         const float reach2 = sw.reach * sw.reach;
@@ -519,30 +521,15 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
             if (lo >= hi) continue;
             reach_row(k, y, z, lo, hi);
             const size_t row = at(origin.x, y, z);
-            if (!accumulate) {
-              // The ends the stroke has filled fully already cannot change:
-              // a big ball moving a little measures only its leading part.
-              int c0 = lo - origin.x, c1 = hi - origin.x;
-              trim_full(&held.coverage[row], &sweep[row], c0, c1);
-              lo = c0 + origin.x;
-              hi = c1 + origin.x;
-              if (lo >= hi) continue;
-            }
             const int in_lo = std::clamp(sp.z, lo, hi);
             const int in_hi = std::clamp(sp.w, in_lo, hi);
             uint8_t* out = &sweep[row];
-            // Not accumulating, a voxel the stroke has filled fully already
-            // cannot change: consecutive segments overlap mostly there.
-            const uint8_t* full = accumulate ? nullptr : &held.coverage[row];
             const float apy = static_cast<float>(y) - sw.a.y;
             const float apz = static_cast<float>(z) - sw.a.z;
             const float dot_yz = apy * ab.y + apz * ab.z;
             if (in_lo < in_hi)
               std::memset(out + (in_lo - origin.x), 255, static_cast<size_t>(in_hi - in_lo));
             if (hard) {
-              // The voxels the stroke filled fully already are measured too
-              // (what they get cannot exceed their coverage, so the combine
-              // below ignores it).
               const CapsuleRow hr{sw.a.x, ab, inv_ab2, apy, apz, dot_yz, sw.radius, inner2, reach2};
               auto measure = [&](int xa, int xb) {
                 if (xa < xb) raise_hard_capsule_row(hr, xa, xb - xa, out + (xa - origin.x));
@@ -555,7 +542,6 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
               if (x == in_lo) x = in_hi;
               if (x >= hi) break;
               const int i = x - origin.x;
-              if (full != nullptr && full[i] == 255) continue;
               const CapsuleRow cr{sw.a.x, ab, inv_ab2, apy, apz, dot_yz, sw.radius, -1.0f, reach2};
               out[i] = std::max(out[i],
                                 capsule_filling(cr, static_cast<float>(x) - sw.a.x, sw.hardness));
