@@ -538,11 +538,11 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
               if (in_lo < in_hi) measure(in_hi, hi);
               continue;
             }
+            const CapsuleRow cr{sw.a.x, ab, inv_ab2, apy, apz, dot_yz, sw.radius, -1.0f, reach2};
             for (int x = lo; x < hi; ++x) {
               if (x == in_lo) x = in_hi;
               if (x >= hi) break;
               const int i = x - origin.x;
-              const CapsuleRow cr{sw.a.x, ab, inv_ab2, apy, apz, dot_yz, sw.radius, -1.0f, reach2};
               out[i] = std::max(out[i],
                                 capsule_filling(cr, static_cast<float>(x) - sw.a.x, sw.hardness));
             }
@@ -665,8 +665,9 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
   // The ball's stroke, not accumulating (the station's default brush), in
   // one pass per row: each sweep's filling of the row goes to a row buffer,
   // the coverage takes the larger, and the stretch where it grew is combined
-  // from the material before the stroke. The same bytes as run() (tested),
-  // without its brick-sized sweep buffer, row tables and second pass: a
+  // from the material before the stroke. The same bytes as run() gave here
+  // (every bundled session replays to the volume it did), without its
+  // brick-sized sweep buffer, row tables and second pass: a
   // segment mostly adds a leading rim to rows the stroke reached before.
   auto run_balls = [&](Job& job, Scratch& scratch) {
     StrokeBrick& held = *job.held;
