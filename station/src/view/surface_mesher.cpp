@@ -6,6 +6,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include "sculpt/base/memory_reuse.h"
 #include "sculpt/base/thread_times.h"
 #include "sculpt/core/mesh/brick_simplify.h"
 #include "sculpt/core/mesh/mixed_level_mesh.h"
@@ -13,6 +14,12 @@
 
 namespace sculpt::station {
 namespace {
+
+int64_t minor_faults_of_this_thread() {
+  rusage usage{};
+  getrusage(RUSAGE_THREAD, &usage);
+  return usage.ru_minflt;
+}
 
 // The level a new volume is first shown at.
 constexpr int kCoarseLevel = 2;
@@ -23,17 +30,22 @@ constexpr int kSimplifierNice = 10;
 
 }  // namespace
 
-SurfaceMesher::SurfaceMesher(int threads, float simplify_error)
+SurfaceMesher::SurfaceMesher(int threads, float simplify_error, size_t warm_heap_bytes)
     : threads_(threads),
       simplify_error_(simplify_error),
-      thread_([this] {
+      thread_([this, warm_heap_bytes] {
         name_this_thread("mesher");
+        if (warm_heap_bytes > 0) warm_this_threads_heap(warm_heap_bytes);
         run();
       }),
       simplifier_([this] {
         name_this_thread("simplifier");
         setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kSimplifierNice);
         simplify();
+      }),
+      refiner_([this] {
+        name_this_thread("refiner");
+        refine();
       }) {}
 
 SurfaceMesher::~SurfaceMesher() {
@@ -43,8 +55,10 @@ SurfaceMesher::~SurfaceMesher() {
   }
   wake_.notify_all();
   simplify_wake_.notify_all();
+  refine_wake_.notify_all();
   thread_.join();
   simplifier_.join();
+  refiner_.join();
 }
 
 uint64_t SurfaceMesher::submit(const core::Volume& volume, uint64_t generation,
@@ -70,8 +84,8 @@ uint64_t SurfaceMesher::submit(const core::Volume& volume, uint64_t generation,
   if (!reset && changed.empty() && levels == sent_levels_) return change_;
   sent_levels_ = levels;
   // Copies made before taking the lock: the mesher is never held up by them.
-  std::optional<core::Volume> whole;
-  if (reset) whole.emplace(volume);
+  std::unique_ptr<core::Volume> whole;
+  if (reset) whole = std::make_unique<core::Volume>(volume);
   std::vector<std::pair<int64_t, core::Brick>> copies;
   copies.reserve(changed.size());
   for (const auto& [i, brick] : changed)
@@ -127,8 +141,17 @@ std::optional<SurfaceDelta> SurfaceMesher::take() {
 
 void SurfaceMesher::wait_until_meshed() {
   std::unique_lock lock(mutex_);
-  meshed_.wait(lock,
-               [&] { return !has_pending_ && !busy_ && simplify_order_.empty() && !simplifying_; });
+  meshed_.wait(lock, [&] {
+    return !has_pending_ && !busy_ && !refinement_ && simplify_order_.empty() && !simplifying_;
+  });
+}
+
+void SurfaceMesher::hold_refinement(bool hold) {
+  {
+    std::lock_guard lock(mutex_);
+    hold_refinement_ = hold;
+  }
+  refine_wake_.notify_all();
 }
 
 MesherCounters SurfaceMesher::counters() const {
@@ -191,85 +214,191 @@ void SurfaceMesher::merge_ready(SurfaceDelta delta) {
 }
 
 void SurfaceMesher::run() {
-  std::optional<core::Volume> mirror;
+  std::unique_ptr<core::Volume> mirror;
   const core::MarchingCubesOptions options{.threads = threads_};
-  core::MixedLevelMeshCache cache(options);
+  auto cache = std::make_unique<core::MixedLevelMeshCache>(options);
   std::vector<uint64_t> published;  // the cache's mesh version per brick as last published
   uint64_t full_detail_change = 0;
+  // The mirror's volume is being refined: its changes are meshed coarse.
+  bool refining = false;
+  // Hands take() the cache's meshes remade since last published (all of
+  // them, as the whole surface, when `all`).
+  auto publish_cache = [&](uint64_t change, bool full_detail, bool all) {
+    const glm::ivec3 grid = mirror->brick_grid();
+    SurfaceDelta delta;
+    delta.reset = all;
+    delta.change = change;
+    if (full_detail) full_detail_change = change;
+    delta.full_detail_change = full_detail_change;
+    for (int64_t i = 0; i < mirror->brick_count(); ++i) {
+      const glm::ivec3 b = core::grid_position(i, grid);
+      const uint64_t version = cache->brick_mesh_version(b);
+      if (!all && published[static_cast<size_t>(i)] == version) continue;
+      published[static_cast<size_t>(i)] = version;
+      const core::BrickMesh& mesh = cache->brick_mesh(b);
+      if (all && mesh.empty()) continue;
+      delta.bricks.push_back(
+          {i, cache->brick_level(b), 0, std::make_shared<const core::BrickMesh>(mesh)});
+    }
+    delta.readiness.push_back({delta.change, delta.full_detail_change, hal::monotonic_ns()});
+    publish(std::move(delta));
+  };
   for (;;) {
     Pending work;
+    std::optional<Refinement> refined;
     {
       std::unique_lock lock(mutex_);
-      wake_.wait(lock, [&] { return stop_ || has_pending_; });
+      wake_.wait(lock,
+                 [&] { return stop_ || has_pending_ || (refinement_ && refinement_->ready()); });
       if (stop_) return;
-      work = std::move(pending_);
-      pending_ = Pending{};
-      has_pending_ = false;
+      if (refinement_ && refinement_->ready()) {
+        refined = std::move(refinement_);
+        refinement_.reset();
+      } else {
+        work = std::move(pending_);
+        pending_ = Pending{};
+        has_pending_ = false;
+      }
       busy_ = true;
     }
+    if (refined) {
+      // The refiner has every change meshed coarse since the new volume:
+      // its volume and meshes take over, and replace every coarse mesh.
+      mirror = std::move(refined->volume);
+      cache = std::move(refined->cache);
+      published.assign(static_cast<size_t>(mirror->brick_count()), 0);
+      publish_cache(refined->change, true, true);
+      refining = false;
+      {
+        std::lock_guard lock(mutex_);
+        busy_ = false;
+        ++counters_.refinements;
+      }
+      meshed_.notify_all();
+      continue;
+    }
     const int64_t start = hal::monotonic_ns();
-    const bool reset = work.reset.has_value();
+    const bool reset = work.reset != nullptr;
     if (reset) {
       mirror = std::move(work.reset);
-      cache = core::MixedLevelMeshCache(options);
+      cache = std::make_unique<core::MixedLevelMeshCache>(options);
       published.assign(static_cast<size_t>(mirror->brick_count()), 0);
     }
     const glm::ivec3 grid = mirror->brick_grid();
+    // A refinement under way is handed the change too: copies, as the
+    // mirror takes the bricks.
+    std::unordered_map<int64_t, core::Brick> handed;
+    if (refining && !reset) handed = work.bricks;
     for (auto& [i, brick] : work.bricks)
       mirror->replace_brick(core::grid_position(i, grid), std::move(brick));
-    // A new volume is meshed whole: shown first at a coarse level (a
-    // sixteenth of the work at level 2: 7 ms against 92 for the demo's
-    // head), so the first dabs on it wait for that, not for the full detail
-    // that follows at once. (A big dab's bricks are not: their unchanged
-    // neighbours must re-stitch against the coarse level at their own, and
-    // that pass measured as long as the full one: 116 against 129 ms for
-    // the demo's 102-brick change.)
+    // A new volume is shown first at a coarse level (a sixteenth of the
+    // work at level 2: 7 ms against 92 for the demo's head) and refined on
+    // the refiner's copy, so the first dabs on it wait for a coarse re-mesh
+    // of their bricks, not for the full detail. (A big dab's bricks are not
+    // shown coarse first: their unchanged neighbours must re-stitch against
+    // the coarse level at their own, and that pass measured as long as the
+    // full one: 116 against 129 ms for the demo's 102-brick change.)
     const int coarse = std::min(kCoarseLevel, mirror->levels());
-    std::vector<int> coarse_levels = work.levels;
-    bool coarse_first = false;
     if (reset) {
-      for (int& l : coarse_levels) {
-        coarse_first |= l < coarse;
-        l = std::max(l, coarse);
+      refining =
+          std::any_of(work.levels.begin(), work.levels.end(), [&](int l) { return l < coarse; });
+      std::optional<Refinement> abandoned;
+      {
+        std::lock_guard lock(mutex_);
+        abandoned = std::move(refinement_);
+        refinement_.reset();
+        if (refining) {
+          refinement_.emplace();
+          refinement_->epoch = ++refine_epochs_;
+          refinement_->levels = work.levels;
+          refinement_->change = work.change;
+        }
       }
+    } else if (refining) {
+      {
+        std::lock_guard lock(mutex_);
+        for (auto& [i, brick] : handed)
+          refinement_->bricks.insert_or_assign(i, std::move(brick));
+        refinement_->levels = work.levels;
+        refinement_->change = work.change;
+      }
+      refine_wake_.notify_one();
     }
-    int64_t meshed = 0;
-    int64_t reused = 0;
-    auto mesh_and_publish = [&](const std::vector<int>& levels, bool full_detail, bool all) {
-      const core::MeshUpdate update = cache.update(*mirror, levels);
-      meshed += update.bricks_meshed;
-      reused += update.bricks_reused;
-      SurfaceDelta delta;
-      delta.reset = all;
-      delta.change = work.change;
-      delta.full_detail_change = full_detail ? work.change : full_detail_change;
-      if (full_detail) full_detail_change = work.change;
-      for (int64_t i = 0; i < mirror->brick_count(); ++i) {
-        const glm::ivec3 b = core::grid_position(i, grid);
-        const uint64_t version = cache.brick_mesh_version(b);
-        if (!all && published[static_cast<size_t>(i)] == version) continue;
-        published[static_cast<size_t>(i)] = version;
-        const core::BrickMesh& mesh = cache.brick_mesh(b);
-        if (all && mesh.empty()) continue;
-        delta.bricks.push_back(
-            {i, cache.brick_level(b), 0, std::make_shared<const core::BrickMesh>(mesh)});
+    std::vector<int> levels = work.levels;
+    if (refining)
+      for (int& l : levels)
+        l = std::max(l, coarse);
+    const int64_t faults_before = minor_faults_of_this_thread();
+    const core::MeshUpdate update = cache->update(*mirror, levels);
+    publish_cache(work.change, !refining, reset);
+    if (reset && refining) {
+      // Copied once the coarse meshes are out (they come first) and outside
+      // the lock; the refiner starts when the copy is there.
+      auto copy = std::make_unique<core::Volume>(*mirror);
+      auto refined_cache = std::make_unique<core::MixedLevelMeshCache>(options);
+      {
+        std::lock_guard lock(mutex_);
+        refinement_->volume = std::move(copy);
+        refinement_->cache = std::move(refined_cache);
       }
-      delta.readiness.push_back({delta.change, delta.full_detail_change, hal::monotonic_ns()});
-      publish(std::move(delta));
-    };
-    if (coarse_first) mesh_and_publish(coarse_levels, false, reset);
-    mesh_and_publish(work.levels, true, reset && !coarse_first);
+      refine_wake_.notify_one();
+    }
+    const int64_t faults = minor_faults_of_this_thread() - faults_before;
     const int64_t end = hal::monotonic_ns();
     {
       std::lock_guard lock(mutex_);
       busy_ = false;
       ++counters_.updates;
-      counters_.bricks_meshed += meshed;
-      counters_.bricks_reused += reused;
-      counters_.coarse_first += coarse_first ? 1 : 0;
+      counters_.bricks_meshed += update.bricks_meshed;
+      counters_.bricks_reused += update.bricks_reused;
+      counters_.coarse_first += reset && refining ? 1 : 0;
+      counters_.coarse_updates += !reset && refining ? 1 : 0;
+      counters_.update_page_faults += faults;
       counters_.update_us.add(static_cast<double>(end - start) * 1e-3);
     }
     meshed_.notify_all();
+  }
+}
+
+void SurfaceMesher::refine() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    refine_wake_.wait(lock, [&] {
+      return stop_ || (!hold_refinement_ && refinement_ && refinement_->volume &&
+                       refinement_->refined_change != refinement_->change);
+    });
+    if (stop_) return;
+    // The volume and its cache are the refiner's alone during a pass.
+    Refinement& r = *refinement_;
+    const uint64_t epoch = r.epoch;
+    const uint64_t change = r.change;
+    std::unique_ptr<core::Volume> volume = std::move(r.volume);
+    std::unique_ptr<core::MixedLevelMeshCache> cache = std::move(r.cache);
+    std::unordered_map<int64_t, core::Brick> bricks = std::move(r.bricks);
+    r.bricks.clear();
+    const std::vector<int> levels = r.levels;
+    lock.unlock();
+    const int64_t start = hal::monotonic_ns();
+    const glm::ivec3 grid = volume->brick_grid();
+    for (auto& [i, brick] : bricks)
+      volume->replace_brick(core::grid_position(i, grid), std::move(brick));
+    (void)cache->update(*volume, levels);
+    const int64_t end = hal::monotonic_ns();
+    lock.lock();
+    ++counters_.refine_passes;
+    counters_.refine_us.add(static_cast<double>(end - start) * 1e-3);
+    if (!refinement_ || refinement_->epoch != epoch) {
+      // A newer volume came: this one is dropped (outside the lock).
+      lock.unlock();
+      volume.reset();
+      cache.reset();
+      lock.lock();
+      continue;
+    }
+    refinement_->volume = std::move(volume);
+    refinement_->cache = std::move(cache);
+    refinement_->refined_change = change;
+    if (refinement_->ready()) wake_.notify_one();
   }
 }
 

@@ -49,6 +49,9 @@ namespace {
 constexpr float kOrbitRadPerPixel = 0.008f;
 constexpr float kKeyMoveVoxPerSecond = 60.0f;
 constexpr int kMaxDrawnLevel = 2;  // coarser than 1/4 resolution looks like a blob
+// The mesher's heap, touched when it starts (SurfaceMesher): more than the
+// 14 MB the first big dab's meshes took.
+constexpr size_t kMesherWarmHeapBytes = size_t{32} << 20;
 
 int fail(const Error& e) {
   std::fprintf(stderr, "sculpt run: %s\n", e.message().c_str());
@@ -173,6 +176,11 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
         {"bricks_coalesced", f.mesher.bricks_coalesced},
         {"pending_bricks_max", f.mesher.pending_bricks_max},
         {"coarse_first", f.mesher.coarse_first},
+        {"update_page_faults", f.mesher.update_page_faults},
+        {"coarse_updates", f.mesher.coarse_updates},
+        {"refinements", f.mesher.refinements},
+        {"refine_passes", f.mesher.refine_passes},
+        {"refine_ms_max", f.mesher.refine_us.max_us() * 1e-3},
         {"updates", f.mesher.updates},
         {"bricks_meshed", f.mesher.bricks_meshed},
         {"bricks_reused", f.mesher.bricks_reused},
@@ -324,7 +332,7 @@ int run_window(const WindowOptions& o) {
   // crack-free where levels meet, meshed on the mesher's thread from a
   // mirror of the volume; the frame hands over what changed and draws
   // what is ready, never waiting for it.
-  SurfaceMesher mesher(o.mesh_threads, o.simplify_error);
+  SurfaceMesher mesher(o.mesh_threads, o.simplify_error, kMesherWarmHeapBytes);
   // A force device: its loop ticks on its own thread (started with the hub);
   // the hub, made after it and so gone before it, runs its sculpting side
   // each poll.
@@ -362,8 +370,12 @@ int run_window(const WindowOptions& o) {
   // a recording has begun (it keeps the reports that arrive meanwhile) and
   // before a force device's loop starts: a session's first big stroke (the
   // demo's 66-voxel ball over 92 bricks) would otherwise fault in about
-  // 17 MB, 35 ms, while the sculptor waits.
-  hub.prepare(size_t{32} << 20);
+  // 17 MB, 35 ms, while the sculptor waits. 32 MiB was not enough: the
+  // head's three balls' undo copies and the bricks handed to the mesher
+  // used it up, and handing over the second ball's 64 bricks faulted 928
+  // pages (7 ms). Touching 96 MiB takes 26-28 ms when the window opens
+  // (32 MiB: 12 ms; where a fault costs 8 us, about 0.2 s).
+  hub.prepare(size_t{96} << 20);
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();

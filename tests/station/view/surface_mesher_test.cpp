@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <memory>
 #include <random>
 #include <thread>
@@ -163,6 +164,88 @@ TEST(SurfaceMesher, ANewVolumeIsShownCoarseFirstThenAtFullDetail) {
   mesher.submit(s.volume(), s.generation(), full);
   mesher.wait_until_meshed();
   EXPECT_EQ(mesher.counters().coarse_first, 1);
+}
+
+// Waits for the mesher to publish `change` (the test's own polling: no
+// timing is asserted) and folds what it published into the snapshot.
+SurfaceDelta take_change(SurfaceMesher& mesher, SurfaceSnapshot& snapshot, uint64_t change) {
+  SurfaceDelta last;
+  while (last.change < change) {
+    if (std::optional<SurfaceDelta> delta = mesher.take()) {
+      last.change = delta->change;
+      last.full_detail_change = delta->full_detail_change;
+      for (const BrickSurface& b : delta->bricks)
+        last.bricks.push_back(b);
+      snapshot.apply(std::move(*delta));
+    } else {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  }
+  return last;
+}
+
+// While a new volume is refined, the dabs on it are shown at once at the
+// coarse level; the refined meshes then replace every coarse one, dabs
+// included, and the surface is the one meshed from scratch at full detail.
+TEST(SurfaceMesher, DabsOnANewVolumeAreShownCoarseWhileItIsRefined) {
+  Sculpting s(64, 9);
+  SurfaceMesher mesher;
+  SurfaceSnapshot snapshot;
+  const std::vector<int> full(static_cast<size_t>(s.volume().brick_count()), 0);
+  mesher.hold_refinement(true);
+  const uint64_t first = mesher.submit(s.volume(), s.generation(), full);
+  const SurfaceDelta coarse = take_change(mesher, snapshot, first);
+  EXPECT_LT(coarse.full_detail_change, first);
+  ASSERT_FALSE(coarse.bricks.empty());
+  for (const BrickSurface& b : coarse.bricks)
+    EXPECT_EQ(b.level, 2);
+  uint64_t previous = first;
+  for (int d = 0; d < 6; ++d) {
+    s.dab();
+    const uint64_t change = mesher.submit(s.volume(), s.generation(), full);
+    if (change == previous) continue;  // the dab changed nothing
+    previous = change;
+    const SurfaceDelta dab = take_change(mesher, snapshot, change);
+    EXPECT_LT(dab.full_detail_change, first);
+    for (const BrickSurface& b : dab.bricks)
+      EXPECT_EQ(b.level, 2) << "dab " << d << ", brick " << b.index;
+  }
+  EXPECT_GT(previous, first);
+  EXPECT_EQ(mesher.counters().coarse_updates, static_cast<int64_t>(previous - first));
+  EXPECT_EQ(mesher.counters().refinements, 0);
+  mesher.hold_refinement(false);
+  mesher.wait_until_meshed();
+  const auto last = mesher.take();
+  ASSERT_TRUE(last.has_value());
+  EXPECT_TRUE(last->reset);
+  EXPECT_EQ(last->full_detail_change, last->change);
+  snapshot.apply(*last);
+  expect_same_surface(snapshot, s.volume(), full);
+  const MesherCounters c = mesher.counters();
+  EXPECT_EQ(c.refinements, 1);
+  EXPECT_GE(c.refine_passes, 1);
+  EXPECT_EQ(c.refine_us.count(), c.refine_passes);
+}
+
+// A newer volume abandons the refinement of the one before: only the newer
+// one's refined meshes are taken over.
+TEST(SurfaceMesher, ANewerVolumeAbandonsTheRefinementUnderWay) {
+  Sculpting s(64, 4);
+  SurfaceMesher mesher;
+  SurfaceSnapshot snapshot;
+  mesher.hold_refinement(true);
+  const std::vector<int> full64(static_cast<size_t>(s.volume().brick_count()), 0);
+  take_change(mesher, snapshot, mesher.submit(s.volume(), s.generation(), full64));
+  s.replace(48);
+  const std::vector<int> full48(static_cast<size_t>(s.volume().brick_count()), 0);
+  take_change(mesher, snapshot, mesher.submit(s.volume(), s.generation(), full48));
+  mesher.hold_refinement(false);
+  mesher.wait_until_meshed();
+  while (std::optional<SurfaceDelta> delta = mesher.take())
+    snapshot.apply(std::move(*delta));
+  expect_same_surface(snapshot, s.volume(), full48);
+  EXPECT_EQ(mesher.counters().refinements, 1);
+  EXPECT_EQ(mesher.counters().coarse_first, 2);
 }
 
 // The window's own sequence: the demo played through the station loop (a
