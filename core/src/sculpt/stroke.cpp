@@ -728,12 +728,19 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
                   capsule_filling(cr, static_cast<float>(x + origin.x) - sw.a.x, sw.hardness));
             }
           }
-          for (int x = lo; x < hi; ++x) {
-            if (fill[x] <= cov[x]) continue;
-            cov[x] = fill[x];
-            grew0 = std::min(grew0, x);
-            grew1 = x + 1;
-          }
+          // Where this sweep fills more than the stroke had, [g0, g1): the
+          // row's grown stretch spans every sweep's (a mirror image's may lie
+          // before or after the tool's along the row, or overlap it).
+          int g0 = lo, g1 = hi;
+          while (g0 < g1 && fill[g0] <= cov[g0])
+            ++g0;
+          while (g1 > g0 && fill[g1 - 1] <= cov[g1 - 1])
+            --g1;
+          if (g0 == g1) continue;
+          for (int x = g0; x < g1; ++x)
+            cov[x] = std::max(cov[x], fill[x]);
+          grew0 = std::min(grew0, g0);
+          grew1 = std::max(grew1, g1);
         }
         if (grew0 >= grew1) continue;
         const int n = grew1 - grew0;

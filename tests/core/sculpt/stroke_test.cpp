@@ -405,6 +405,28 @@ TEST(SweptStroke, MirroredStrokeIsSymmetric) {
   EXPECT_GT(cut, 1000);
 }
 
+// Mirrored across x, a segment's two sweeps cross the same rows of voxels,
+// and near the plane the same brick: each row must take what both add. (The
+// path runs just above the plane: its mirror image is the second sweep and
+// lies lower along the rows. A row's grown stretch ended at the second
+// sweep's, and the material the first added beyond it was lost: 245 against
+// 255 at the mirrored voxel.)
+TEST(SweptStroke, StrokeMirroredAcrossItsRowsIsSymmetric) {
+  Volume v = slab_volume(kSlab, kTop);
+  Sculptor s(v);
+  s.set_tool(make_sphere_tool(6.0f));
+  s.set_mirror(MirrorPlane{0, 0.5f * (kSlab.x - 1)});
+  const auto path = straight_path({60.3f, 6.0f, 32.0f}, {61.0f, 42.0f, 33.0f}, 6.0f);
+  for (const SculptMode mode : {SculptMode::kSubtract, SculptMode::kAdd}) {
+    (void)sweep_stroke(s, path, {mode, 1.0f, false});
+    const DenseGrid<uint8_t> g = v.to_dense();
+    for (int z = 0; z < kSlab.z; ++z)
+      for (int y = 0; y < kSlab.y; ++y)
+        for (int x = 0; x < kSlab.x; ++x)
+          ASSERT_EQ(g.at(x, y, z), g.at(kSlab.x - 1 - x, y, z)) << x << " " << y << " " << z;
+  }
+}
+
 // A ball held as a plain grid has no analytic sweep: it is placed along the
 // segment. Its groove is still flat and where the ball went.
 TEST(SweptStroke, AnyToolIsSweptWithoutScallops) {
