@@ -10,6 +10,7 @@
 #include "sculpt/base/thread_times.h"
 #include "sculpt/core/mesh/brick_simplify.h"
 #include "sculpt/core/mesh/mixed_level_mesh.h"
+#include "sculpt/core/util/parallel_for.h"
 #include "sculpt/hal/types/clock.h"
 
 namespace sculpt::station {
@@ -171,7 +172,7 @@ void SurfaceMesher::publish(SurfaceDelta delta) {
     // renderer's stamp never matches a mesh of another volume.
     b.version = ++versions_;
     newest_version_[b.index] = b.version;
-    if (simplify_error_ > 0 && !b.mesh->empty()) {
+    if (simplify_error_ > 0 && !b.mesh->empty() && !b.simplified) {
       if (!simplify_jobs_.contains(b.index)) simplify_order_.push_back(b.index);
       simplify_jobs_[b.index] = b;  // a newer mesh replaces one not yet simplified
     } else {
@@ -223,7 +224,8 @@ void SurfaceMesher::run() {
   bool refining = false;
   // Hands take() the cache's meshes remade since last published (all of
   // them, as the whole surface, when `all`).
-  auto publish_cache = [&](uint64_t change, bool full_detail, bool all) {
+  auto publish_cache = [&](uint64_t change, bool full_detail, bool all,
+                           const Refinement* refined = nullptr) {
     const glm::ivec3 grid = mirror->brick_grid();
     SurfaceDelta delta;
     delta.reset = all;
@@ -237,6 +239,11 @@ void SurfaceMesher::run() {
       published[static_cast<size_t>(i)] = version;
       const core::BrickMesh& mesh = cache->brick_mesh(b);
       if (all && mesh.empty()) continue;
+      if (refined != nullptr && refined->simplified[static_cast<size_t>(i)]) {
+        delta.bricks.push_back(
+            {i, cache->brick_level(b), 0, refined->simplified[static_cast<size_t>(i)], true});
+        continue;
+      }
       delta.bricks.push_back(
           {i, cache->brick_level(b), 0, std::make_shared<const core::BrickMesh>(mesh)});
     }
@@ -267,7 +274,7 @@ void SurfaceMesher::run() {
       mirror = std::move(refined->volume);
       cache = std::move(refined->cache);
       published.assign(static_cast<size_t>(mirror->brick_count()), 0);
-      publish_cache(refined->change, true, true);
+      publish_cache(refined->change, true, true, &*refined);
       refining = false;
       {
         std::lock_guard lock(mutex_);
@@ -340,6 +347,8 @@ void SurfaceMesher::run() {
         std::lock_guard lock(mutex_);
         refinement_->volume = std::move(copy);
         refinement_->cache = std::move(refined_cache);
+        refinement_->simplified.assign(static_cast<size_t>(mirror->brick_count()), nullptr);
+        refinement_->simplified_versions.assign(static_cast<size_t>(mirror->brick_count()), 0);
       }
       refine_wake_.notify_one();
     }
@@ -376,6 +385,8 @@ void SurfaceMesher::refine() {
     std::unique_ptr<core::MixedLevelMeshCache> cache = std::move(r.cache);
     std::unordered_map<int64_t, core::Brick> bricks = std::move(r.bricks);
     r.bricks.clear();
+    std::vector<std::shared_ptr<const core::BrickMesh>> simplified = std::move(r.simplified);
+    std::vector<uint64_t> simplified_versions = std::move(r.simplified_versions);
     const std::vector<int> levels = r.levels;
     lock.unlock();
     const int64_t start = hal::monotonic_ns();
@@ -383,6 +394,7 @@ void SurfaceMesher::refine() {
     for (auto& [i, brick] : bricks)
       volume->replace_brick(core::grid_position(i, grid), std::move(brick));
     (void)cache->update(*volume, levels);
+    if (simplify_error_ > 0) simplify_refined(*cache, simplified, simplified_versions);
     const int64_t end = hal::monotonic_ns();
     lock.lock();
     ++counters_.refine_passes;
@@ -397,8 +409,50 @@ void SurfaceMesher::refine() {
     }
     refinement_->volume = std::move(volume);
     refinement_->cache = std::move(cache);
+    refinement_->simplified = std::move(simplified);
+    refinement_->simplified_versions = std::move(simplified_versions);
     refinement_->refined_change = change;
     if (refinement_->ready()) wake_.notify_one();
+  }
+}
+
+void SurfaceMesher::simplify_refined(
+    const core::MixedLevelMeshCache& cache,
+    std::vector<std::shared_ptr<const core::BrickMesh>>& simplified,
+    std::vector<uint64_t>& versions) {
+  const glm::ivec3 grid = cache.brick_grid();
+  std::vector<int64_t> remade;
+  for (int64_t i = 0; i < static_cast<int64_t>(versions.size()); ++i) {
+    const glm::ivec3 b = core::grid_position(i, grid);
+    if (versions[static_cast<size_t>(i)] == cache.brick_mesh_version(b)) continue;
+    versions[static_cast<size_t>(i)] = cache.brick_mesh_version(b);
+    simplified[static_cast<size_t>(i)] = nullptr;
+    if (!cache.brick_mesh(b).empty()) remade.push_back(i);
+  }
+  std::vector<float> errors(remade.size(), 0.0f);
+  std::vector<int64_t> marched(remade.size(), 0);
+  core::parallel_for(
+      static_cast<int64_t>(remade.size()),
+      [&](int64_t k) {
+        const int64_t i = remade[static_cast<size_t>(k)];
+        const glm::ivec3 b = core::grid_position(i, grid);
+        const core::BrickMesh& mesh = cache.brick_mesh(b);
+        const float error = simplify_error_ * static_cast<float>(1 << cache.brick_level(b));
+        core::SimplifiedBrick s = core::simplify_brick_mesh(mesh, error);
+        errors[static_cast<size_t>(k)] = s.error;
+        marched[static_cast<size_t>(k)] = static_cast<int64_t>(mesh.mesh.triangles.size());
+        simplified[static_cast<size_t>(i)] =
+            std::make_shared<const core::BrickMesh>(std::move(s.brick));
+      },
+      threads_);
+  std::lock_guard lock(mutex_);
+  for (size_t k = 0; k < remade.size(); ++k) {
+    ++counters_.bricks_simplified;
+    counters_.triangles_marched += marched[k];
+    counters_.triangles_kept +=
+        static_cast<int64_t>(simplified[static_cast<size_t>(remade[k])]->mesh.triangles.size());
+    counters_.simplify_error_max =
+        std::max(counters_.simplify_error_max, static_cast<double>(errors[k]));
   }
 }
 

@@ -219,6 +219,8 @@ TEST(SurfaceMesher, DabsOnANewVolumeAreShownCoarseWhileItIsRefined) {
   ASSERT_TRUE(last.has_value());
   EXPECT_TRUE(last->reset);
   EXPECT_EQ(last->full_detail_change, last->change);
+  for (const BrickSurface& b : last->bricks)
+    EXPECT_TRUE(b.simplified) << "brick " << b.index;  // by the refiner, before handing over
   snapshot.apply(*last);
   expect_same_surface(snapshot, s.volume(), full);
   const MesherCounters c = mesher.counters();
