@@ -85,6 +85,8 @@ TEST(HapticReplay, ALiveForceSessionReplaysEveryTickBitForBit) {
   }
   ASSERT_FALSE(station.running());
   station.sculpting_side(controller, hal::monotonic_ns());  // the last ticks
+  // The loop dropped no record of a tick: the recording holds every one.
+  EXPECT_EQ(station.figures().records_dropped, 0);
   ASSERT_TRUE(controller.stop_recording().ok());
   const uint64_t live_hash = controller.loop().volume().content_hash();
   ASSERT_GT(controller.loop().counters().dabs, 0);
@@ -97,8 +99,11 @@ TEST(HapticReplay, ALiveForceSessionReplaysEveryTickBitForBit) {
     if (glm::length(t.tick.force_n) > 0.5f) ++forceful;
   });
   EXPECT_EQ(f.loops, 1);
-  // Every tick of the loop's second of life, recorded and run again.
-  EXPECT_GE(f.ticks, 990);
+  // Every tick of the loop's second of life, recorded and run again: about
+  // a thousand, fewer when the machine is loaded (the arm's script runs on
+  // the clock; 981 was seen beside a CI run), so the bound is loose and the
+  // test's point is that none was dropped (above) and each one replays.
+  EXPECT_GE(f.ticks, 500);
   EXPECT_EQ(f.ticks, ticks_seen);
   EXPECT_EQ(f.unverified_ticks, 0);
   EXPECT_EQ(f.force_mismatches, 0);
