@@ -31,7 +31,7 @@
 // shown 16-17 ms after its hand-over when it waited for the full detail,
 // 5-7 ms meshed coarse beside the refiner.)
 //
-// A brick's first mesh is the march's, published at once. A third thread,
+// A brick's first mesh is the march's, published at once. Another thread,
 // the simplifier, at a lower priority, then simplifies each published mesh
 // (core/mesh/brick_simplify.h) and publishes it again with about a seventh
 // of the triangles, which are what a software renderer spends its frame
@@ -164,6 +164,7 @@ class SurfaceMesher {
 
   /// Tests: while held, a refinement makes no pass, so the coarse meshes of
   /// a new volume and of the changes after it can be seen to come first.
+  /// wait_until_meshed() waits for the refinement too: release it first.
   void hold_refinement(bool hold);
 
  private:
