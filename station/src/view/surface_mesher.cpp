@@ -252,7 +252,7 @@ void SurfaceMesher::run() {
   };
   for (;;) {
     Pending work;
-    std::optional<Refinement> refined;
+    std::unique_ptr<Refinement> refined;
     {
       std::unique_lock lock(mutex_);
       wake_.wait(lock,
@@ -274,7 +274,7 @@ void SurfaceMesher::run() {
       mirror = std::move(refined->volume);
       cache = std::move(refined->cache);
       published.assign(static_cast<size_t>(mirror->brick_count()), 0);
-      publish_cache(refined->change, true, true, &*refined);
+      publish_cache(refined->change, true, true, refined.get());
       refining = false;
       {
         std::lock_guard lock(mutex_);
@@ -309,13 +309,13 @@ void SurfaceMesher::run() {
     if (reset) {
       refining =
           std::any_of(work.levels.begin(), work.levels.end(), [&](int l) { return l < coarse; });
-      std::optional<Refinement> abandoned;
+      std::unique_ptr<Refinement> abandoned;
       {
         std::lock_guard lock(mutex_);
         abandoned = std::move(refinement_);
         refinement_.reset();
         if (refining) {
-          refinement_.emplace();
+          refinement_ = std::make_unique<Refinement>();
           refinement_->epoch = ++refine_epochs_;
           refinement_->levels = work.levels;
           refinement_->change = work.change;

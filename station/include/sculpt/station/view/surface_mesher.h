@@ -218,7 +218,7 @@ class SurfaceMesher {
   Pending pending_;
   bool has_pending_ = false;
   bool busy_ = false;
-  std::optional<Refinement> refinement_;  // the newest volume's, until taken over
+  std::unique_ptr<Refinement> refinement_;  // the newest volume's, until taken over
   uint64_t refine_epochs_ = 0;
   bool hold_refinement_ = false;
   // Published meshes waiting to be simplified, oldest first, one per brick.
