@@ -429,31 +429,39 @@ void SurfaceMesher::simplify_refined(
     simplified[static_cast<size_t>(i)] = nullptr;
     if (!cache.brick_mesh(b).empty()) remade.push_back(i);
   }
-  std::vector<float> errors(remade.size(), 0.0f);
-  std::vector<int64_t> marched(remade.size(), 0);
+  std::vector<Simplified> done(remade.size());
   core::parallel_for(
       static_cast<int64_t>(remade.size()),
       [&](int64_t k) {
         const int64_t i = remade[static_cast<size_t>(k)];
         const glm::ivec3 b = core::grid_position(i, grid);
-        const core::BrickMesh& mesh = cache.brick_mesh(b);
-        const float error = simplify_error_ * static_cast<float>(1 << cache.brick_level(b));
-        core::SimplifiedBrick s = core::simplify_brick_mesh(mesh, error);
-        errors[static_cast<size_t>(k)] = s.error;
-        marched[static_cast<size_t>(k)] = static_cast<int64_t>(mesh.mesh.triangles.size());
-        simplified[static_cast<size_t>(i)] =
-            std::make_shared<const core::BrickMesh>(std::move(s.brick));
+        done[static_cast<size_t>(k)] = simplify_brick(cache.brick_mesh(b), cache.brick_level(b));
+        simplified[static_cast<size_t>(i)] = done[static_cast<size_t>(k)].mesh;
       },
       threads_);
   std::lock_guard lock(mutex_);
-  for (size_t k = 0; k < remade.size(); ++k) {
-    ++counters_.bricks_simplified;
-    counters_.triangles_marched += marched[k];
-    counters_.triangles_kept +=
-        static_cast<int64_t>(simplified[static_cast<size_t>(remade[k])]->mesh.triangles.size());
-    counters_.simplify_error_max =
-        std::max(counters_.simplify_error_max, static_cast<double>(errors[k]));
-  }
+  for (const Simplified& d : done)
+    count_simplified(d);
+}
+
+SurfaceMesher::Simplified SurfaceMesher::simplify_brick(const core::BrickMesh& mesh,
+                                                        int level) const {
+  core::SimplifiedBrick s =
+      core::simplify_brick_mesh(mesh, simplify_error_ * static_cast<float>(1 << level));
+  Simplified out;
+  out.marched = static_cast<int64_t>(mesh.mesh.triangles.size());
+  out.kept = static_cast<int64_t>(s.brick.mesh.triangles.size());
+  out.error = s.error;
+  out.mesh = std::make_shared<const core::BrickMesh>(std::move(s.brick));
+  return out;
+}
+
+void SurfaceMesher::count_simplified(const Simplified& s) {
+  ++counters_.bricks_simplified;
+  counters_.triangles_marched += s.marched;
+  counters_.triangles_kept += s.kept;
+  counters_.simplify_error_max =
+      std::max(counters_.simplify_error_max, static_cast<double>(s.error));
 }
 
 void SurfaceMesher::simplify() {
@@ -471,19 +479,12 @@ void SurfaceMesher::simplify() {
     simplifying_ = true;
     lock.unlock();
     const int64_t start = hal::monotonic_ns();
-    core::SimplifiedBrick simplified =
-        core::simplify_brick_mesh(*job.mesh, simplify_error_ * static_cast<float>(1 << job.level));
-    const int64_t marched = static_cast<int64_t>(job.mesh->mesh.triangles.size());
-    const int64_t kept = static_cast<int64_t>(simplified.brick.mesh.triangles.size());
-    job.mesh = std::make_shared<const core::BrickMesh>(std::move(simplified.brick));
+    const Simplified simplified = simplify_brick(*job.mesh, job.level);
+    job.mesh = simplified.mesh;
     const int64_t end = hal::monotonic_ns();
     lock.lock();
     simplifying_ = false;
-    ++counters_.bricks_simplified;
-    counters_.triangles_marched += marched;
-    counters_.triangles_kept += kept;
-    counters_.simplify_error_max =
-        std::max(counters_.simplify_error_max, static_cast<double>(simplified.error));
+    count_simplified(simplified);
     counters_.simplify_us.add(static_cast<double>(end - start) * 1e-3);
     // The mesher may have remade the brick meanwhile: its newer mesh stays.
     if (newest_version_[index] != job.version) continue;

@@ -195,6 +195,15 @@ class SurfaceMesher {
                         std::vector<std::shared_ptr<const core::BrickMesh>>& simplified,
                         std::vector<uint64_t>& versions);
   void simplify();
+  // One brick's mesh simplified within simplify_error_ voxels of its level,
+  // and what it counts for (count_simplified(), mutex_ held).
+  struct Simplified {
+    std::shared_ptr<const core::BrickMesh> mesh;
+    int64_t marched = 0, kept = 0;  // triangles before and after
+    float error = 0.0f;
+  };
+  Simplified simplify_brick(const core::BrickMesh& mesh, int level) const;
+  void count_simplified(const Simplified& s);
   /// Stamps the bricks' versions, queues them to simplify and hands them
   /// to take().
   void publish(SurfaceDelta delta);
