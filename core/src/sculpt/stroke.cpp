@@ -61,6 +61,9 @@ void give_back(std::vector<uint8_t>& buffer) {
   buffer = {};
 }
 
+// Segments one apply() combines at most (SweptStroke::add() of many samples).
+constexpr size_t kBatchSegments = 64;
+
 // Bricks a segment changes at or beyond which they are combined on every core
 // (as Sculptor's big dabs).
 constexpr size_t kParallelBricks = 16;
@@ -188,18 +191,25 @@ Box hull(const Box& a, const Box& b) {
 // One swept volume of a segment: the ball's capsule, or the tool's placements
 // along it.
 struct SweptStroke::Sweep {
+  int64_t index = 0;  // the stroke's segment it sweeps
   bool ball = false;
   // Ball: the capsule a -> b of radius `radius`, reaching `reach`.
   glm::vec3 a{0.0f}, b{0.0f};
   float radius = 0.0f, reach = 0.0f, hardness = 1.0f;
-  // Ball: per row (y, z) of the segment's region, y fastest, the stretch
-  // [x, y) of voxels to measure and within it [z, w) to fill with 255
-  // (empty when x >= y): solved once per segment, shared by its bricks.
+  // Ball: per row (y, z) of `box`, y fastest, the stretch [x, y) of voxels
+  // to measure and within it [z, w) to fill with 255 (empty when x >= y):
+  // solved once per segment, shared by its bricks.
   std::vector<glm::ivec4> spans;
   // Tool: its placements (entries kept alive while the segment is applied).
   std::vector<RotatedToolCache::Placement> placements;
   RotatedToolCache* cache = nullptr;  // theirs: counts the rows they rotate
-  Box box;                            // material voxels it can reach
+  Box box;                            // material voxels it can reach, in the volume
+
+  // Ball: row (y, z)'s entry of `spans`, empty outside the box.
+  glm::ivec4 span(int y, int z) const {
+    if (y < box.lo.y || y >= box.hi.y || z < box.lo.z || z >= box.hi.z) return glm::ivec4(0);
+    return spans[static_cast<size_t>(z - box.lo.z) * (box.hi.y - box.lo.y) + (y - box.lo.y)];
+  }
 };
 
 // What the stroke holds of one brick it reached.
@@ -237,15 +247,32 @@ void SweptStroke::finish() {
 }
 
 DabStats SweptStroke::add(const StrokeSample& sample) {
+  return add(std::span<const StrokeSample>(&sample, 1));
+}
+
+DabStats SweptStroke::add(std::span<const StrokeSample> samples) {
   assert(open_);
-  const StrokeSample from = last_.value_or(sample);
-  last_ = sample;
-  DabStats stats = apply(from, sample);
-  ++segment_;
+  DabStats stats;
+  std::vector<Segment> batch;
+  auto flush = [&] {
+    if (batch.empty()) return;
+    stats += apply(batch);
+    batch.clear();
+  };
+  for (const StrokeSample& sample : samples) {
+    batch.push_back({last_.value_or(sample), sample, segment_});
+    last_ = sample;
+    ++segment_;
+    // Accumulating, a segment builds on the material the previous one left;
+    // else a batch's span tables stay bounded (a few MiB for big balls).
+    if (options_.accumulate || batch.size() == kBatchSegments) flush();
+  }
+  flush();
   return stats;
 }
 
-DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
+DabStats SweptStroke::apply(std::span<const Segment> segments) {
+  assert(!segments.empty() && (segments.size() == 1 || !options_.accumulate));
   DabStats stats;
   Volume& volume = sculptor_.volume_;
   const Tool& tool = *sculptor_.tool_;
@@ -253,10 +280,11 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
   const uint8_t saturated = saturated_value(mode);
   const bool accumulate = options_.accumulate;
 
-  // The sweeps of this segment: the tool's, and its mirror image's.
+  // The sweeps of these segments: the tool's, and its mirror image's.
   std::vector<Sweep> sweeps;
-  auto add_sweep = [&](RotatedToolCache& cache, StrokeSample s0, StrokeSample s1) {
+  auto add_sweep = [&](RotatedToolCache& cache, StrokeSample s0, StrokeSample s1, int64_t index) {
     Sweep sw;
+    sw.index = index;
     if (tool.sphere_radius_vox > 0.0f) {
       sw.ball = true;
       sw.a = s0.position_vox;
@@ -290,27 +318,31 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
     }
     sweeps.push_back(std::move(sw));
   };
-  add_sweep(*sculptor_.cache_, from, to);
-  if (const auto& mirror = sculptor_.mirror_) {
-    const int a = mirror->axis;
-    auto reflect = [&](StrokeSample s) {
-      s.position_vox[a] = 2.0f * mirror->centre_vox - s.position_vox[a];
-      // As Sculptor::dab(): the vector part off the mirror axis changes sign.
-      for (int i = 0; i < 3; ++i)
-        if (i != a) s.orientation[i] = -s.orientation[i];
-      return s;
-    };
-    add_sweep(sculptor_.mirror_cache(a), reflect(from), reflect(to));
+  for (const Segment& seg : segments) {
+    add_sweep(*sculptor_.cache_, seg.from, seg.to, seg.index);
+    if (const auto& mirror = sculptor_.mirror_) {
+      const int a = mirror->axis;
+      auto reflect = [&](StrokeSample s) {
+        s.position_vox[a] = 2.0f * mirror->centre_vox - s.position_vox[a];
+        // As Sculptor::dab(): the vector part off the mirror axis changes sign.
+        for (int i = 0; i < 3; ++i)
+          if (i != a) s.orientation[i] = -s.orientation[i];
+        return s;
+      };
+      add_sweep(sculptor_.mirror_cache(a), reflect(seg.from), reflect(seg.to), seg.index);
+    }
   }
-  Box region;
-  for (const Sweep& sw : sweeps)
-    region = hull(region, sw.box);
-  region = intersect(region, Box{glm::ivec3(0), volume.dims()});
-  if (region.empty()) return stats;
-
-  // Each ball's row stretches over the region (see Sweep::spans).
+  const Box volume_box{glm::ivec3(0), volume.dims()};
+  bool reaches_volume = false;
   for (Sweep& sw : sweeps) {
-    if (!sw.ball) continue;
+    sw.box = intersect(sw.box, volume_box);
+    reaches_volume = reaches_volume || !sw.box.empty();
+  }
+  if (!reaches_volume) return stats;
+
+  // Each ball's row stretches over its box (see Sweep::spans).
+  for (Sweep& sw : sweeps) {
+    if (!sw.ball || sw.box.empty()) continue;
     const glm::vec3 ab = sw.b - sw.a;
     const float ab2 = glm::dot(ab, ab);
     const float reach2 = sw.reach * sw.reach;
@@ -320,20 +352,21 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
     // Behind the segment's start (projection t <= 0) its filling is the
     // start ball's, which the previous segment, ending there, gave already:
     // not accumulating, only t > 0 can add anything.
-    const bool skip_behind = !accumulate && segment_ > 0 && ab2 > 0.0f;
+    const bool skip_behind = !accumulate && sw.index > 0 && ab2 > 0.0f;
     const bool along_x = std::abs(ab.x) > 1e-3f * std::sqrt(ab2);
-    const glm::ivec3 rn = region.size();
+    const Box& rows = sw.box;
+    const glm::ivec3 rn = rows.size();
     sw.spans.assign(static_cast<size_t>(rn.y) * rn.z, glm::ivec4(0, 0, 0, 0));
     const float z_lo = std::min(sw.a.z, sw.b.z), z_hi = std::max(sw.a.z, sw.b.z);
     const float y_lo = std::min(sw.a.y, sw.b.y), y_hi = std::max(sw.a.y, sw.b.y);
-    for (int z = region.lo.z; z < region.hi.z; ++z) {
+    for (int z = rows.lo.z; z < rows.hi.z; ++z) {
       // The plane's rows within reach of the segment's y extent.
       const float fz = static_cast<float>(z);
       const float gap = fz < z_lo ? z_lo - fz : fz > z_hi ? fz - z_hi : 0.0f;
       if (gap >= sw.reach) continue;
       const float hy = std::sqrt(reach2 - gap * gap);
-      const int ya = std::max(region.lo.y, static_cast<int>(std::floor(y_lo - hy)));
-      const int yb = std::min(region.hi.y, static_cast<int>(std::ceil(y_hi + hy)) + 1);
+      const int ya = std::max(rows.lo.y, static_cast<int>(std::floor(y_lo - hy)));
+      const int yb = std::min(rows.hi.y, static_cast<int>(std::ceil(y_hi + hy)) + 1);
       for (int y = ya; y < yb; ++y) {
         const float fy = static_cast<float>(y);
         const float kyz = (fy - sw.a.y) * ab.y + (fz - sw.a.z) * ab.z;
@@ -361,76 +394,88 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
           in_lo = static_cast<int>(std::ceil(ilo)) + 1;
           in_hi = static_cast<int>(std::floor(ihi));
         }
-        sw.spans[static_cast<size_t>(z - region.lo.z) * rn.y + (y - region.lo.y)] =
+        sw.spans[static_cast<size_t>(z - rows.lo.z) * rn.y + (y - rows.lo.y)] =
             glm::ivec4(lo, hi, in_lo, in_hi);
       }
     }
   }
 
+  // Accumulating there is one segment; the coverage records which.
+  const int64_t first_index = segments.front().index;
   const int edge = volume.brick_edge();
   const size_t brick_bytes = static_cast<size_t>(edge) * edge * edge;
   const uint32_t q =
       static_cast<uint32_t>(std::lround(std::clamp(options_.strength, 0.0f, 1.0f) * 256.0f));
 
-  // The bricks the segment can change, with what the stroke holds of them.
+  // The bricks the segments can change, with what the stroke holds of them
+  // and the sweeps that reach them.
   struct Job {
     glm::ivec3 b;
-    Box bb;
+    Box bb;  // the part of the brick its sweeps can reach
     StrokeBrick* held;
+    std::vector<uint32_t> sweeps;
     int64_t changed = 0;
     Box touched{glm::ivec3(std::numeric_limits<int>::max()),
                 glm::ivec3(std::numeric_limits<int>::min())};
   };
   std::vector<Job> jobs;
-  const Box bricks = volume.bricks_overlapping(region);
+  std::unordered_map<int64_t, size_t> job_of;  // brick index -> jobs
   const int64_t t_decode = now_ns();
-  for (int bz = bricks.lo.z; bz < bricks.hi.z; ++bz)
-    for (int by = bricks.lo.y; by < bricks.hi.y; ++by)
-      for (int bx = bricks.lo.x; bx < bricks.hi.x; ++bx) {
-        const glm::ivec3 b(bx, by, bz);
-        ++stats.bricks_overlapped;
-        const Box bb = intersect(volume.brick_box(b), region);
-        // Beyond every sweep's reach nothing changes.
-        const glm::vec3 centre = (glm::vec3(bb.lo) + glm::vec3(bb.hi - 1)) * 0.5f;
-        const float half_diagonal = 0.5f * glm::length(glm::vec3(bb.size()));
-        bool near = false;
-        for (const Sweep& sw : sweeps) {
+  for (uint32_t si = 0; si < sweeps.size(); ++si) {
+    const Sweep& sw = sweeps[si];
+    if (sw.box.empty()) continue;
+    const Box bricks = volume.bricks_overlapping(sw.box);
+    for (int bz = bricks.lo.z; bz < bricks.hi.z; ++bz)
+      for (int by = bricks.lo.y; by < bricks.hi.y; ++by)
+        for (int bx = bricks.lo.x; bx < bricks.hi.x; ++bx) {
+          const glm::ivec3 b(bx, by, bz);
+          const Box bb = intersect(volume.brick_box(b), sw.box);
+          // Beyond the sweep's reach nothing changes.
           if (sw.ball) {
+            const glm::vec3 centre = (glm::vec3(bb.lo) + glm::vec3(bb.hi - 1)) * 0.5f;
+            const float half_diagonal = 0.5f * glm::length(glm::vec3(bb.size()));
             const glm::vec3 ab = sw.b - sw.a;
-            near = near ||
-                   segment_distance(centre, sw.a, ab, glm::dot(ab, ab)) <= sw.reach + half_diagonal;
+            if (segment_distance(centre, sw.a, ab, glm::dot(ab, ab)) > sw.reach + half_diagonal)
+              continue;
+          }
+          const auto index = static_cast<int64_t>(grid_index(b, volume.brick_grid()));
+          if (auto j = job_of.find(index); j != job_of.end()) {
+            Job& job = jobs[j->second];
+            job.bb = hull(job.bb, bb);
+            job.sweeps.push_back(si);
+            continue;
+          }
+          ++stats.bricks_overlapped;
+          auto it = bricks_.find(index);
+          if (it == bricks_.end()) {
+            const Brick& brick = volume.brick(b);
+            if (brick.is_uniform() && brick.uniform_value() == saturated) continue;
+            it = bricks_.emplace(index, std::make_unique<StrokeBrick>()).first;
+          }
+          StrokeBrick& held = *it->second;
+          // First reached, or stored since by something else (asserted not
+          // to happen in a stroke, but a stale copy must never be written
+          // back).
+          if (held.current.empty() || held.version != volume.brick_version(b)) {
+            if (held.current.empty()) {
+              held.current = take_buffer(brick_bytes + kCombineRowSlack);
+              held.coverage = take_buffer(brick_bytes + kCombineRowSlack);
+              if (!accumulate) held.before = take_buffer(brick_bytes + kCombineRowSlack);
+            }
+            volume.decode_brick(b, std::span<uint8_t>(held.current).first(brick_bytes));
+            held.version = volume.brick_version(b);
+            if (!accumulate)
+              std::copy(held.current.begin(), held.current.end(), held.before.begin());
+            std::fill(held.coverage.begin(), held.coverage.end(), uint8_t{0});
+            held.segment = -1;
+            ++stats.bricks_decoded;
           } else {
-            near = near || !intersect(sw.box, bb).empty();
+            ++stats.bricks_reused;
           }
+          job_of.emplace(index, jobs.size());
+          jobs.push_back({b, bb, &held, {si}});
         }
-        if (!near) continue;
-        const auto index = static_cast<int64_t>(grid_index(b, volume.brick_grid()));
-        auto it = bricks_.find(index);
-        if (it == bricks_.end()) {
-          const Brick& brick = volume.brick(b);
-          if (brick.is_uniform() && brick.uniform_value() == saturated) continue;
-          it = bricks_.emplace(index, std::make_unique<StrokeBrick>()).first;
-        }
-        StrokeBrick& held = *it->second;
-        // First reached, or stored since by something else (asserted not to
-        // happen in a stroke, but a stale copy must never be written back).
-        if (held.current.empty() || held.version != volume.brick_version(b)) {
-          if (held.current.empty()) {
-            held.current = take_buffer(brick_bytes + kCombineRowSlack);
-            held.coverage = take_buffer(brick_bytes + kCombineRowSlack);
-            if (!accumulate) held.before = take_buffer(brick_bytes + kCombineRowSlack);
-          }
-          volume.decode_brick(b, std::span<uint8_t>(held.current).first(brick_bytes));
-          held.version = volume.brick_version(b);
-          if (!accumulate) std::copy(held.current.begin(), held.current.end(), held.before.begin());
-          std::fill(held.coverage.begin(), held.coverage.end(), uint8_t{0});
-          held.segment = -1;
-          ++stats.bricks_decoded;
-        } else {
-          ++stats.bricks_reused;
-        }
-        jobs.push_back({b, bb, &held});
-      }
+  }
   stats.decode_ns += now_ns() - t_decode;
 
   // One brick's part of the segment: its sweeps' filling, combined.
@@ -496,7 +541,8 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
       }
     };
 
-    for (const Sweep& sw : sweeps) {
+    for (const uint32_t si : job.sweeps) {
+      const Sweep& sw = sweeps[si];
       if (sw.ball) {
         // Balls come here only accumulating (run_balls() takes the rest).
         assert(accumulate);
@@ -508,11 +554,9 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
         const bool hard = sw.hardness >= 1.0f;
         const float inner = hard ? std::max(0.0f, sw.radius - 1.0f) : -1.0f;
         const float inner2 = inner >= 0.0f ? inner * inner : -1.0f;
-        const glm::ivec3 rn = region.size();
         for (int z = bb.lo.z; z < bb.hi.z; ++z)
           for (int y = bb.lo.y; y < bb.hi.y; ++y) {
-            const glm::ivec4 sp =
-                sw.spans[static_cast<size_t>(z - region.lo.z) * rn.y + (y - region.lo.y)];
+            const glm::ivec4 sp = sw.span(y, z);
             if (sp.x >= sp.y || sp.y <= bb.lo.x || sp.x >= bb.hi.x) continue;
             const size_t k = row_index(y, z);
             trim(k, y, z);
@@ -594,7 +638,7 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
 
     // Combine: once per stroke from the material before it, or building on
     // the current material by what exceeds the previous segment's filling.
-    const bool prev_valid = accumulate && held.segment == segment_ - 1;
+    const bool prev_valid = accumulate && held.segment == first_index - 1;
     for (int z = bb.lo.z; z < bb.hi.z; ++z)
       for (int y = bb.lo.y; y < bb.hi.y; ++y) {
         const size_t k = row_index(y, z);
@@ -658,60 +702,76 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
             std::memcpy(&held.coverage[at(h0[k], y, z)], &sweep[at(h0[k], y, z)],
                         static_cast<size_t>(h1[k] - h0[k]));
         }
-      held.segment = segment_;
+      held.segment = first_index;
     }
   };
 
-  // The ball's stroke, not accumulating (the station's default brush), in
-  // one pass per row: each sweep's filling of the row goes to a row buffer,
-  // the coverage takes the larger, and the stretch where it grew is combined
-  // from the material before the stroke. The same bytes as run() gave here
-  // (every bundled session replays to the volume it did), without its
-  // brick-sized sweep buffer, row tables and second pass: a
-  // segment mostly adds a leading rim to rows the stroke reached before.
+  // The ball's stroke, not accumulating (the station's default brush): each
+  // sweep's filling of a row goes to a row buffer and the coverage takes the
+  // larger, row by row of the sweep's own rows; then each row where the
+  // coverage grew is combined once from the material before the stroke. The
+  // same bytes as run() gave here (every bundled session replays to the
+  // volume it did), without its brick-sized sweep buffer: a segment mostly
+  // adds a leading rim to rows the stroke reached before.
   auto run_balls = [&](Job& job, Scratch& scratch) {
     StrokeBrick& held = *job.held;
     const glm::ivec3 origin = job.b * edge;
     const Box& bb = job.bb;
     uint8_t* fill = scratch.row_fill.data();
     uint8_t* row_buf = scratch.row_buf.data();
-    const glm::ivec3 rn = region.size();
     const int bx0 = bb.lo.x - origin.x, bx1 = bb.hi.x - origin.x;
-    for (int z = bb.lo.z; z < bb.hi.z; ++z)
-      for (int y = bb.lo.y; y < bb.hi.y; ++y) {
-        const size_t span = static_cast<size_t>(z - region.lo.z) * rn.y + (y - region.lo.y);
-        const size_t row =
-            (static_cast<size_t>(z - origin.z) * edge + static_cast<size_t>(y - origin.y)) * edge;
-        const uint8_t* before = &held.before[row];
-        uint8_t* cov = &held.coverage[row];
-        int grew0 = edge, grew1 = 0;  // where the coverage grew, brick x
-        int t0 = 0, t1 = -1;          // the stretch not saturated before (t1 < 0: not yet found)
-        for (const Sweep& sw : sweeps) {
-          const glm::ivec4 sp = sw.spans[span];
+    // Per row of bb: the stretch not saturated before the stroke [t0, t1)
+    // (kUnset until a sweep first reaches the row), and where the coverage
+    // grew [g0, g1) (brick x).
+    const glm::ivec3 n = bb.size();
+    constexpr int kUnset = std::numeric_limits<int>::min();
+    std::vector<int>& t0 = scratch.x0;
+    std::vector<int>& t1 = scratch.x1;
+    std::vector<int>& grew0 = scratch.h0;
+    std::vector<int>& grew1 = scratch.h1;
+    t0.assign(static_cast<size_t>(n.y) * n.z, kUnset);
+    t1.resize(t0.size());
+    grew0.assign(t0.size(), edge);
+    grew1.assign(t0.size(), 0);
+    auto row_at = [&](int y, int z) {
+      return (static_cast<size_t>(z - origin.z) * edge + static_cast<size_t>(y - origin.y)) * edge;
+    };
+    for (const uint32_t si : job.sweeps) {
+      const Sweep& sw = sweeps[si];
+      const Box part = intersect(sw.box, bb);
+      const int span_ny = sw.box.size().y;
+      const glm::vec3 ab = sw.b - sw.a;
+      const float ab2 = glm::dot(ab, ab);
+      const float inv_ab2 = ab2 > 0.0f ? 1.0f / ab2 : 0.0f;
+      const float reach2 = sw.reach * sw.reach;
+      const bool hard = sw.hardness >= 1.0f;
+      const float inner = std::max(0.0f, sw.radius - 1.0f);
+      for (int z = part.lo.z; z < part.hi.z; ++z)
+        for (int y = part.lo.y; y < part.hi.y; ++y) {
+          const glm::ivec4 sp =
+              sw.spans[static_cast<size_t>(z - sw.box.lo.z) * span_ny + (y - sw.box.lo.y)];
           int lo = std::max(sp.x - origin.x, bx0), hi = std::min(sp.y - origin.x, bx1);
           if (lo >= hi) continue;
-          if (t1 < 0) {
-            t0 = bx0;
-            t1 = bx1;
-            trim_saturated(before, saturated, t0, t1);
+          const size_t k = static_cast<size_t>(z - bb.lo.z) * n.y + (y - bb.lo.y);
+          const size_t row = row_at(y, z);
+          uint8_t* cov = &held.coverage[row];
+          if (t0[k] == kUnset) {
+            t0[k] = bx0;
+            t1[k] = bx1;
+            trim_saturated(&held.before[row], saturated, t0[k], t1[k]);
           }
-          lo = std::max(lo, t0);
-          hi = std::min(hi, t1);
+          lo = std::max(lo, t0[k]);
+          hi = std::min(hi, t1[k]);
           if (lo < hi) trim_full(cov, lo, hi);  // the ends the stroke filled fully
           if (lo >= hi) continue;
           const int in_lo = std::clamp(sp.z - origin.x, lo, hi);
           const int in_hi = std::clamp(sp.w - origin.x, in_lo, hi);
           std::memset(fill + lo, 0, static_cast<size_t>(hi - lo));
           if (in_lo < in_hi) std::memset(fill + in_lo, 255, static_cast<size_t>(in_hi - in_lo));
-          const glm::vec3 ab = sw.b - sw.a;
-          const float ab2 = glm::dot(ab, ab);
           const float apy = static_cast<float>(y) - sw.a.y;
           const float apz = static_cast<float>(z) - sw.a.z;
           const float dot_yz = apy * ab.y + apz * ab.z;
-          const float inv_ab2 = ab2 > 0.0f ? 1.0f / ab2 : 0.0f;
-          const float reach2 = sw.reach * sw.reach;
-          if (sw.hardness >= 1.0f) {
-            const float inner = std::max(0.0f, sw.radius - 1.0f);
+          if (hard) {
             const CapsuleRow hr{sw.a.x, ab,        inv_ab2,       apy,   apz,
                                 dot_yz, sw.radius, inner * inner, reach2};
             auto measure = [&](int xa, int xb) {
@@ -739,22 +799,28 @@ DabStats SweptStroke::apply(const StrokeSample& from, const StrokeSample& to) {
           if (g0 == g1) continue;
           for (int x = g0; x < g1; ++x)
             cov[x] = std::max(cov[x], fill[x]);
-          grew0 = std::min(grew0, g0);
-          grew1 = std::max(grew1, g1);
+          grew0[k] = std::min(grew0[k], g0);
+          grew1[k] = std::max(grew1[k], g1);
         }
-        if (grew0 >= grew1) continue;
-        const int n = grew1 - grew0;
-        std::memcpy(row_buf, before + grew0, static_cast<size_t>(n));
-        combine_row(mode, row_buf, cov + grew0, n, q);
+    }
+    for (int z = bb.lo.z; z < bb.hi.z; ++z)
+      for (int y = bb.lo.y; y < bb.hi.y; ++y) {
+        const size_t k = static_cast<size_t>(z - bb.lo.z) * n.y + (y - bb.lo.y);
+        const int g0 = grew0[k], g1 = grew1[k];
+        if (g0 >= g1) continue;
+        const size_t row = row_at(y, z);
+        const int len = g1 - g0;
+        std::memcpy(row_buf, &held.before[row + g0], static_cast<size_t>(len));
+        combine_row(mode, row_buf, &held.coverage[row + g0], len, q);
         uint8_t* cur = &held.current[row];
         int64_t changed = 0;
-        for (int i = 0; i < n; ++i)
-          changed += row_buf[i] != cur[grew0 + i];
+        for (int i = 0; i < len; ++i)
+          changed += row_buf[i] != cur[g0 + i];
         if (changed == 0) continue;
-        std::memcpy(cur + grew0, row_buf, static_cast<size_t>(n));
+        std::memcpy(cur + g0, row_buf, static_cast<size_t>(len));
         job.changed += changed;
-        job.touched.lo = glm::min(job.touched.lo, glm::ivec3(origin.x + grew0, y, z));
-        job.touched.hi = glm::max(job.touched.hi, glm::ivec3(origin.x + grew1, y + 1, z + 1));
+        job.touched.lo = glm::min(job.touched.lo, glm::ivec3(origin.x + g0, y, z));
+        job.touched.hi = glm::max(job.touched.hi, glm::ivec3(origin.x + g1, y + 1, z + 1));
       }
   };
 
@@ -811,8 +877,7 @@ DabStats sweep_stroke(Sculptor& sculptor, std::span<const StrokeSample> path,
   assert(!path.empty());
   DabStats stats;
   SweptStroke stroke(sculptor, options);
-  for (const StrokeSample& s : path)
-    stats += stroke.add(s);
+  stats += stroke.add(path);
   stroke.finish();
   return stats;
 }

@@ -74,6 +74,13 @@ class SweptStroke {
   /// The next sample: the first applies the tool there, each later one the
   /// sweep from the previous sample to it.
   DabStats add(const StrokeSample& sample);
+  /// The next samples at once, with the same material as adding them one by
+  /// one: not accumulating, each voxel ends as the mode of its material
+  /// before the stroke and the largest filling of all the stroke's sweeps,
+  /// whatever their order. Each brick the samples reach is combined and
+  /// stored once (an undo copy, a wavelet encode) instead of once per
+  /// segment. Accumulating, the segments are applied one after another.
+  DabStats add(std::span<const StrokeSample> samples);
   /// Ends the stroke: its undo step is closed (unless it joined one opened
   /// by Sculptor::begin_stroke()) and its per-voxel records are dropped.
   void finish();
@@ -84,13 +91,19 @@ class SweptStroke {
  private:
   struct Sweep;
   struct StrokeBrick;
+  // The sweep from one sample to the next, the stroke's index-th.
+  struct Segment {
+    StrokeSample from, to;
+    int64_t index = 0;
+  };
   // One thread's buffers for a brick of a segment: its filling, a row, and
   // per-row tables (the ball's lean path uses only the two rows).
   struct Scratch {
     std::vector<uint8_t> sweep, row_buf, row_fill;
     std::vector<int> x0, x1, h0, h1;
   };
-  DabStats apply(const StrokeSample& from, const StrokeSample& to);
+  // The segments' sweeps (at most one when accumulating), combined together.
+  DabStats apply(std::span<const Segment> segments);
 
   Sculptor& sculptor_;
   StrokeOptions options_;
