@@ -101,6 +101,7 @@ class SweptStroke {
   struct Scratch {
     std::vector<uint8_t> sweep, row_buf, row_fill;
     std::vector<int> x0, x1, h0, h1;
+    std::vector<float> row_lo, row_hi;  // a plane's row stretches (spans)
   };
   // The segments' sweeps (at most one when accumulating), combined together.
   DabStats apply(std::span<const Segment> segments);
