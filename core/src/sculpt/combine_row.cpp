@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cassert>
 
+#include "cpu_has_avx2.h"
 #include "sculpt/core/sculpt/sculptor.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -79,10 +80,6 @@ __attribute__((target("avx2,popcnt"))) int64_t combine_avx2(uint8_t* m, const ui
   return changed;
 }
 
-bool cpu_has_avx2() {
-  static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
-  return has;
-}
 #endif
 
 }  // namespace

@@ -22,6 +22,7 @@
 
 #include "saturated_run.h"
 #include "sculpt/core/grid/grid_index.h"
+#include "sculpt/core/sculpt/capsule_row.h"
 #include "sculpt/core/sculpt/combine_row.h"
 #include "sculpt/core/util/parallel_for.h"
 
@@ -175,50 +176,6 @@ void capsule_rows(glm::vec3 a, glm::vec3 ab, float ab2, int y0, int n, float z, 
     solvable ? cylinder_rows<false, true>(a, ab, ab2, y0, n, z, rho2, lo, hi)
              : cylinder_rows<false, false>(a, ab, ab2, y0, n, z, rho2, lo, hi);
   }
-}
-
-// A ball's capsule across one row: the row's constants. For a hard ball,
-// raise_hard_capsule_row() raises out[i] to the filling of voxels
-// [x0, x0 + n): 255 within radius - 1, 0 from the reach on, in between
-// tool_density()'s bytes for hardness 1, without a branch per voxel.
-struct CapsuleRow {
-  float a_x = 0.0f;              // the segment's start, x
-  glm::vec3 ab{0.0f};            // the segment
-  float inv_ab2 = 0.0f;          // 1 / |ab|^2, 0 for a point
-  float apy = 0.0f, apz = 0.0f;  // the row's y and z from the segment's start
-  float dot_yz = 0.0f;           // (apy, apz) . (ab.y, ab.z)
-  float radius = 0.0f;
-  float inner2 = -1.0f;  // radius - 1, squared (-1: no inside)
-  float reach2 = 0.0f;   // radius + 1, squared
-};
-
-// std::min and std::max rather than std::clamp (the same values: nothing
-// here is NaN), whose references GCC leaves as branches; with the file's
-// -fno-trapping-math (core/CMakeLists.txt) the loop then runs a vector at a
-// time.
-inline void raise_hard_capsule_row(const CapsuleRow& row, int x0, int n, uint8_t* __restrict out) {
-  const CapsuleRow c = row;  // a copy: stores to `out` cannot alias it
-  for (int i = 0; i < n; ++i) {
-    const float apx = static_cast<float>(x0 + i) - c.a_x;
-    const float t = std::min(std::max((apx * c.ab.x + c.dot_yz) * c.inv_ab2, 0.0f), 1.0f);
-    const float dx = apx - t * c.ab.x, dy = c.apy - t * c.ab.y, dz = c.apz - t * c.ab.z;
-    const float d2 = dx * dx + dy * dy + dz * dz;
-    const float d = std::sqrt(d2) - c.radius;
-    float f = std::min(std::max(127.5f - d * 127.5f, 0.0f), 255.0f);
-    f = d2 > c.inner2 ? f : 255.0f;
-    f = d2 < c.reach2 ? f : 0.0f;
-    out[i] = std::max(out[i], static_cast<uint8_t>(f));
-  }
-}
-
-// A ball of any hardness at one voxel of the row (x from the segment's start
-// apx): tool_density() of its distance to the segment, 0 from the reach on.
-inline uint8_t capsule_filling(const CapsuleRow& c, float apx, float hardness) {
-  const float t = std::clamp((apx * c.ab.x + c.dot_yz) * c.inv_ab2, 0.0f, 1.0f);
-  const float dx = apx - t * c.ab.x, dy = c.apy - t * c.ab.y, dz = c.apz - t * c.ab.z;
-  const float d2 = dx * dx + dy * dy + dz * dz;
-  if (d2 >= c.reach2) return 0;
-  return tool_density(std::sqrt(d2) - c.radius, c.radius, hardness);
 }
 
 Box box_around(glm::vec3 lo, glm::vec3 hi, float margin) {
@@ -821,22 +778,22 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
           hi = std::min(hi, t1[k]);
           if (lo < hi) trim_full(cov, lo, hi);  // the ends the stroke filled fully
           if (lo >= hi) continue;
-          const int in_lo = std::clamp(sp.z - origin.x, lo, hi);
-          const int in_hi = std::clamp(sp.w - origin.x, in_lo, hi);
-          std::memset(fill + lo, 0, static_cast<size_t>(hi - lo));
-          if (in_lo < in_hi) std::memset(fill + in_lo, 255, static_cast<size_t>(in_hi - in_lo));
           const float apy = static_cast<float>(y) - sw.a.y;
           const float apz = static_cast<float>(z) - sw.a.z;
           const float dot_yz = apy * ab.y + apz * ab.z;
+          // Where this sweep fills more than the stroke had: the row's grown
+          // stretch spans every sweep's (a mirror image's may lie before or
+          // after the tool's along the row, or overlap it).
+          GrownStretch grown;
           if (hard) {
             const CapsuleRow hr{sw.a.x, ab,        inv_ab2,       apy,   apz,
                                 dot_yz, sw.radius, inner * inner, reach2};
-            auto measure = [&](int xa, int xb) {
-              if (xa < xb) raise_hard_capsule_row(hr, xa + origin.x, xb - xa, fill + xa);
-            };
-            measure(lo, in_lo < in_hi ? in_lo : hi);
-            if (in_lo < in_hi) measure(in_hi, hi);
+            grown = grow_hard_capsule_row(hr, origin.x, lo, hi, cov, fill);
           } else {
+            const int in_lo = std::clamp(sp.z - origin.x, lo, hi);
+            const int in_hi = std::clamp(sp.w - origin.x, in_lo, hi);
+            std::memset(fill + lo, 0, static_cast<size_t>(hi - lo));
+            if (in_lo < in_hi) std::memset(fill + in_lo, 255, static_cast<size_t>(in_hi - in_lo));
             const CapsuleRow cr{sw.a.x, ab, inv_ab2, apy, apz, dot_yz, sw.radius, -1.0f, reach2};
             for (int x = lo; x < hi; ++x) {
               if (cov[x] == 255) continue;  // nothing can add to it
@@ -844,20 +801,11 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
                   fill[x],
                   capsule_filling(cr, static_cast<float>(x + origin.x) - sw.a.x, sw.hardness));
             }
+            grown = raise_coverage(fill, cov, lo, hi);
           }
-          // Where this sweep fills more than the stroke had, [g0, g1): the
-          // row's grown stretch spans every sweep's (a mirror image's may lie
-          // before or after the tool's along the row, or overlap it).
-          int g0 = lo, g1 = hi;
-          while (g0 < g1 && fill[g0] <= cov[g0])
-            ++g0;
-          while (g1 > g0 && fill[g1 - 1] <= cov[g1 - 1])
-            --g1;
-          if (g0 == g1) continue;
-          for (int x = g0; x < g1; ++x)
-            cov[x] = std::max(cov[x], fill[x]);
-          grew0[k] = std::min(grew0[k], g0);
-          grew1[k] = std::max(grew1[k], g1);
+          if (grown.begin >= grown.end) continue;
+          grew0[k] = std::min(grew0[k], grown.begin);
+          grew1[k] = std::max(grew1[k], grown.end);
         }
     }
     for (int z = bb.lo.z; z < bb.hi.z; ++z)
