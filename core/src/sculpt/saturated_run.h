@@ -31,10 +31,4 @@ inline void trim_saturated(const uint8_t* row, uint8_t saturated, int& c0, int& 
     --c1;
 }
 
-/// Narrows [c0, c1) past the voxels at both ends where `a` is 255, eight at
-/// a time through long full stretches. Reads only a[c0, c1).
-inline void trim_full(const uint8_t* a, int& c0, int& c1) {
-  trim_saturated(a, 255, c0, c1);
-}
-
 }  // namespace sculpt::core

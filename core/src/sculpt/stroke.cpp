@@ -342,14 +342,24 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
   }
   if (!reaches_volume) return stats;
 
+  // The ball's stroke, not accumulating (the station's default brush), runs
+  // run_balls() below; anything else run().
+  bool all_balls = true;
+  for (const Sweep& sw : sweeps)
+    all_balls = all_balls && sw.ball;
+  const bool lean = all_balls && !accumulate;
+
   // Each ball's row stretches over its box (see Sweep::spans).
   for (Sweep& sw : sweeps) {
     if (!sw.ball || sw.box.empty()) continue;
     const glm::vec3 ab = sw.b - sw.a;
     const float ab2 = glm::dot(ab, ab);
     const float reach2 = sw.reach * sw.reach;
-    // Within radius - 1 a hard ball's density is 255 (no square root).
-    const float inner = sw.hardness >= 1.0f ? std::max(0.0f, sw.radius - 1.0f) : -1.0f;
+    // Within radius - 1 a hard ball's density is 255 (no square root), which
+    // run() fills without measuring; run_balls() measures a hard ball's
+    // whole stretch a vector at a time (capsule_row.h).
+    const bool fill_inside = sw.hardness >= 1.0f && !lean;
+    const float inner = fill_inside ? std::max(0.0f, sw.radius - 1.0f) : -1.0f;
     const float inner2 = inner >= 0.0f ? inner * inner : -1.0f;
     // Behind the segment's start (projection t <= 0) its filling is the
     // start ball's, which the previous segment, ending there, gave already:
@@ -776,7 +786,8 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
           }
           lo = std::max(lo, t0[k]);
           hi = std::min(hi, t1[k]);
-          if (lo < hi) trim_full(cov, lo, hi);  // the ends the stroke filled fully
+          // (Voxels the stroke filled fully cannot grow: the kernel leaves
+          // them, and trimming them off the ends first measured slower.)
           if (lo >= hi) continue;
           const float apy = static_cast<float>(y) - sw.a.y;
           const float apz = static_cast<float>(z) - sw.a.z;
@@ -832,10 +843,6 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
   const int64_t t_apply = now_ns();
   // The ball's sweep reads nothing shared; the rotated tool's rows are filled
   // lazily in shared entries, so a tool sweep stays on this thread.
-  bool all_balls = true;
-  for (const Sweep& sw : sweeps)
-    all_balls = all_balls && sw.ball;
-  const bool lean = all_balls && !accumulate;
   auto run_job = [&](Job& job, Scratch& scratch) {
     if (lean) {
       run_balls(job, scratch);

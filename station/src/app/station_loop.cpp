@@ -583,9 +583,26 @@ std::optional<PathBrush> StationLoop::path_brush() const {
 }
 
 void StationLoop::sculpt(const std::vector<hal::Dab>& dabs) {
+  // A fast move's dabs that continue the open swept stroke go to it together:
+  // each brick they reach is combined, undo-copied and encoded once, not once
+  // a dab, and the material is byte for byte the same (SweptStroke::add()).
+  std::vector<core::StrokeSample> pending;
+  auto flush = [&] {
+    if (pending.empty()) return;
+    stroke_->add(pending);
+    pending.clear();
+  };
   for (const hal::Dab& d : dabs) {
     ++counters_.dabs;
     const core::StrokeSample sample{d.position, d.orientation};
+    if (stroke_ && !path_brush() && settings_.mode != core::SculptMode::kSmooth &&
+        stroke_options_.mode == settings_.mode && stroke_options_.strength == settings_.strength &&
+        stroke_options_.accumulate == settings_.accumulate) {
+      pending.push_back(sample);
+      stroke_last_ = sample;
+      continue;
+    }
+    flush();
     if (const std::optional<PathBrush> brush = path_brush()) {
       if (stroke_ ||
           (!brush_path_.empty() && (brush_ != *brush || brush_strength_ != settings_.strength))) {
@@ -632,6 +649,7 @@ void StationLoop::sculpt(const std::vector<hal::Dab>& dabs) {
     stroke_->add(sample);
     stroke_last_ = sample;
   }
+  flush();
 }
 
 void StationLoop::handle(const hal::InputEvent& e) {
