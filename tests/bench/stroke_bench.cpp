@@ -4,7 +4,10 @@
 // 0.35 * 256), against 100 dabs at the same samples in one undo stroke.
 // Iterations alternate subtract and add so the material stays a surface.
 //
-// range(0): 0 = 100 dabs, 1 = one swept stroke through the 100 samples.
+// range(0): 0 = 100 dabs, 1 = one swept stroke through the 100 samples
+// given at once (sweep_stroke(): a stamp's path, or a fast move's dabs in
+// the station), 2 = the same stroke given a sample at a time (a slow move in
+// the station: each segment's bricks combined and stored on their own).
 // range(1): 0 = the ball made by make_sphere_tool() (swept exactly, as a
 // capsule), 1 = the same ball as a plain grid (tool_from_grid(), swept by
 // placements along each segment: what a tool file or a sculpture costs).
@@ -36,7 +39,7 @@ double thread_cpu_s() {
 }
 
 void BM_StrokeVsDabs(benchmark::State& state) {
-  const bool sweep = state.range(0) != 0;
+  const int64_t sweep = state.range(0);
   const bool grid_tool = state.range(1) != 0;
   const float spacing = static_cast<float>(state.range(2));
   // As the window does (memory_reuse.h): an undo step's brick copies reuse
@@ -65,7 +68,14 @@ void BM_StrokeVsDabs(benchmark::State& state) {
                       glm::quat(1.0f, 0.0f, 0.0f, 0.0f)});
     }
     const SculptMode mode = i % 2 ? SculptMode::kAdd : SculptMode::kSubtract;
-    if (sweep) return sweep_stroke(sculptor, path, {mode, 1.0f, false});
+    if (sweep == 1) return sweep_stroke(sculptor, path, {mode, 1.0f, false});
+    if (sweep == 2) {
+      DabStats stats;
+      SweptStroke stroke(sculptor, {mode, 1.0f, false});
+      for (const StrokeSample& s : path)
+        stats += stroke.add(s);
+      return stats;
+    }
     DabStats stats;
     sculptor.begin_stroke();
     for (const StrokeSample& s : path)
@@ -99,7 +109,7 @@ void BM_StrokeVsDabs(benchmark::State& state) {
       static_cast<double>(total.voxels_changed) / static_cast<double>(i);
 }
 BENCHMARK(BM_StrokeVsDabs)
-    ->ArgsProduct({{0, 1}, {0, 1}, {3, 8}})
+    ->ArgsProduct({{0, 1, 2}, {0, 1}, {3, 8}})
     ->ArgNames({"sweep", "grid_tool", "spacing"})
     ->Iterations(20)
     ->UseManualTime()

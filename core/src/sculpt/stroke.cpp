@@ -62,6 +62,10 @@ void give_back(std::vector<uint8_t>& buffer) {
   buffer = {};
 }
 
+// StrokeBrick::open's mark of a row not yet looked at (a brick is at most
+// 128 voxels wide, asserted).
+constexpr uint8_t kOpenUnset = 255;
+
 // Segments one apply() combines at most (SweptStroke::add() of many samples).
 constexpr size_t kBatchSegments = 64;
 
@@ -220,6 +224,9 @@ struct SweptStroke::StrokeBrick {
   std::vector<uint8_t> before;    // the material before the stroke (not accumulating)
   std::vector<uint8_t> current;   // the brick as stored now
   std::vector<uint8_t> coverage;  // largest filling so far, or the last segment's
+  // Not accumulating, balls: per row, [open[2 r], open[2 r + 1]) holds the
+  // voxels of `before` not saturated (kOpenUnset: not yet found).
+  std::vector<uint8_t> open;
   int64_t segment = -1;           // accumulating: the segment `coverage` is of
 };
 
@@ -427,6 +434,7 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
   // Accumulating there is one segment; the coverage records which.
   const int64_t first_index = segments.front().index;
   const int edge = volume.brick_edge();
+  assert(edge < kOpenUnset);
   const size_t brick_bytes = static_cast<size_t>(edge) * edge * edge;
   const uint32_t q =
       static_cast<uint32_t>(std::lround(std::clamp(options_.strength, 0.0f, 1.0f) * 256.0f));
@@ -491,6 +499,7 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
             if (!accumulate)
               std::copy(held.current.begin(), held.current.end(), held.before.begin());
             std::fill(held.coverage.begin(), held.coverage.end(), uint8_t{0});
+            held.open.clear();
             held.segment = -1;
             ++stats.bricks_decoded;
           } else {
@@ -744,19 +753,16 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
     uint8_t* fill = scratch.row_fill.data();
     uint8_t* row_buf = scratch.row_buf.data();
     const int bx0 = bb.lo.x - origin.x, bx1 = bb.hi.x - origin.x;
-    // Per row of bb: the stretch not saturated before the stroke [t0, t1)
-    // (kUnset until a sweep first reaches the row), and where the coverage
-    // grew [g0, g1) (brick x).
+    // Per row of bb, where the coverage grew [g0, g1) (brick x).
     const glm::ivec3 n = bb.size();
-    constexpr int kUnset = std::numeric_limits<int>::min();
-    std::vector<int>& t0 = scratch.x0;
-    std::vector<int>& t1 = scratch.x1;
     std::vector<int>& grew0 = scratch.h0;
     std::vector<int>& grew1 = scratch.h1;
-    t0.assign(static_cast<size_t>(n.y) * n.z, kUnset);
-    t1.resize(t0.size());
-    grew0.assign(t0.size(), edge);
-    grew1.assign(t0.size(), 0);
+    grew0.assign(static_cast<size_t>(n.y) * n.z, edge);
+    grew1.assign(grew0.size(), 0);
+    // Per brick row, the stretch not saturated before the stroke (found
+    // when a sweep first reaches the row, kept for the stroke's later
+    // segments: the material before it does not change).
+    if (held.open.empty()) held.open.assign(2 * static_cast<size_t>(edge) * edge, kOpenUnset);
     auto row_at = [&](int y, int z) {
       return (static_cast<size_t>(z - origin.z) * edge + static_cast<size_t>(y - origin.y)) * edge;
     };
@@ -779,13 +785,16 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
           const size_t k = static_cast<size_t>(z - bb.lo.z) * n.y + (y - bb.lo.y);
           const size_t row = row_at(y, z);
           uint8_t* cov = &held.coverage[row];
-          if (t0[k] == kUnset) {
-            t0[k] = bx0;
-            t1[k] = bx1;
-            trim_saturated(&held.before[row], saturated, t0[k], t1[k]);
+          uint8_t* open =
+              &held.open[2 * (static_cast<size_t>(z - origin.z) * edge + (y - origin.y))];
+          if (open[0] == kOpenUnset) {
+            int c0 = 0, c1 = edge;
+            trim_saturated(&held.before[row], saturated, c0, c1);
+            open[0] = static_cast<uint8_t>(c0);
+            open[1] = static_cast<uint8_t>(c1);
           }
-          lo = std::max(lo, t0[k]);
-          hi = std::min(hi, t1[k]);
+          lo = std::max(lo, static_cast<int>(open[0]));
+          hi = std::min(hi, static_cast<int>(open[1]));
           // (Voxels the stroke filled fully cannot grow: the kernel leaves
           // them, and trimming them off the ends first measured slower.)
           if (lo >= hi) continue;
