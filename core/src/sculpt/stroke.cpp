@@ -227,7 +227,7 @@ struct SweptStroke::StrokeBrick {
   // Not accumulating, balls: per row, [open[2 r], open[2 r + 1]) holds the
   // voxels of `before` not saturated (kOpenUnset: not yet found).
   std::vector<uint8_t> open;
-  int64_t segment = -1;           // accumulating: the segment `coverage` is of
+  int64_t segment = -1;  // accumulating: the segment `coverage` is of
 };
 
 SweptStroke::SweptStroke(Sculptor& sculptor, const StrokeOptions& options)
@@ -753,12 +753,15 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
     uint8_t* fill = scratch.row_fill.data();
     uint8_t* row_buf = scratch.row_buf.data();
     const int bx0 = bb.lo.x - origin.x, bx1 = bb.hi.x - origin.x;
-    // Per row of bb, where the coverage grew [g0, g1) (brick x).
+    // Per row of bb, where the coverage grew [g0, g1) (brick x), and the
+    // rows where it did (a segment reaches a few of a brick's rows).
     const glm::ivec3 n = bb.size();
     std::vector<int>& grew0 = scratch.h0;
     std::vector<int>& grew1 = scratch.h1;
+    std::vector<int>& grown_rows = scratch.x0;
     grew0.assign(static_cast<size_t>(n.y) * n.z, edge);
     grew1.assign(grew0.size(), 0);
+    grown_rows.clear();
     // Per brick row, the stretch not saturated before the stroke (found
     // when a sweep first reaches the row, kept for the stroke's later
     // segments: the material before it does not change).
@@ -824,29 +827,28 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
             grown = raise_coverage(fill, cov, lo, hi);
           }
           if (grown.begin >= grown.end) continue;
+          if (grew0[k] >= grew1[k]) grown_rows.push_back(static_cast<int>(k));
           grew0[k] = std::min(grew0[k], grown.begin);
           grew1[k] = std::max(grew1[k], grown.end);
         }
     }
-    for (int z = bb.lo.z; z < bb.hi.z; ++z)
-      for (int y = bb.lo.y; y < bb.hi.y; ++y) {
-        const size_t k = static_cast<size_t>(z - bb.lo.z) * n.y + (y - bb.lo.y);
-        const int g0 = grew0[k], g1 = grew1[k];
-        if (g0 >= g1) continue;
-        const size_t row = row_at(y, z);
-        const int len = g1 - g0;
-        std::memcpy(row_buf, &held.before[row + g0], static_cast<size_t>(len));
-        combine_row(mode, row_buf, &held.coverage[row + g0], len, q);
-        uint8_t* cur = &held.current[row];
-        int64_t changed = 0;
-        for (int i = 0; i < len; ++i)
-          changed += row_buf[i] != cur[g0 + i];
-        if (changed == 0) continue;
-        std::memcpy(cur + g0, row_buf, static_cast<size_t>(len));
-        job.changed += changed;
-        job.touched.lo = glm::min(job.touched.lo, glm::ivec3(origin.x + g0, y, z));
-        job.touched.hi = glm::max(job.touched.hi, glm::ivec3(origin.x + g1, y + 1, z + 1));
-      }
+    for (const int k : grown_rows) {
+      const int y = bb.lo.y + k % n.y, z = bb.lo.z + k / n.y;
+      const int g0 = grew0[k], g1 = grew1[k];
+      const size_t row = row_at(y, z);
+      const int len = g1 - g0;
+      std::memcpy(row_buf, &held.before[row + g0], static_cast<size_t>(len));
+      combine_row(mode, row_buf, &held.coverage[row + g0], len, q);
+      uint8_t* cur = &held.current[row];
+      int64_t changed = 0;
+      for (int i = 0; i < len; ++i)
+        changed += row_buf[i] != cur[g0 + i];
+      if (changed == 0) continue;
+      std::memcpy(cur + g0, row_buf, static_cast<size_t>(len));
+      job.changed += changed;
+      job.touched.lo = glm::min(job.touched.lo, glm::ivec3(origin.x + g0, y, z));
+      job.touched.hi = glm::max(job.touched.hi, glm::ivec3(origin.x + g1, y + 1, z + 1));
+    }
   };
 
   const int64_t t_apply = now_ns();
