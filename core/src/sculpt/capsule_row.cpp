@@ -35,12 +35,18 @@ __attribute__((target("avx2"))) GrownStretch grow_avx2(const CapsuleRow& c, int 
   const __m256 radius = _mm256_set1_ps(c.radius);
   const __m256 inner2 = _mm256_set1_ps(c.inner2), reach2 = _mm256_set1_ps(c.reach2);
   const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
-  const __m256 half_step = _mm256_set1_ps(127.5f), full = _mm256_set1_ps(255.0f);
+  const __m256 half_step = _mm256_set1_ps(127.5f), f255 = _mm256_set1_ps(255.0f);
   const __m256i lane8 = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   // The four 8-voxel groups' fillings as 32-bit integers (0 where unmet).
   __m256i group[4] = {_mm256_setzero_si256(), _mm256_setzero_si256(), _mm256_setzero_si256(),
                       _mm256_setzero_si256()};
+  // Groups whose 8 voxels the stroke filled fully already cannot grow: no
+  // filling is computed for them (their 0 leaves the coverage as it is).
+  const __m256i before = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(cov));
+  const auto full = static_cast<uint32_t>(
+      _mm256_movemask_epi8(_mm256_cmpeq_epi8(before, _mm256_set1_epi8(static_cast<char>(-1)))));
   for (int g = lo >> 3; g <= (hi - 1) >> 3; ++g) {
+    if (((full >> (8 * g)) & 0xFFu) == 0xFFu) continue;
     const __m256i x = _mm256_add_epi32(_mm256_set1_epi32(x0 + 8 * g), lane8);
     const __m256 apx = _mm256_sub_ps(_mm256_cvtepi32_ps(x), a_x);
     __m256 t = _mm256_mul_ps(_mm256_add_ps(_mm256_mul_ps(apx, abx), dot_yz), inv_ab2);
@@ -52,8 +58,8 @@ __attribute__((target("avx2"))) GrownStretch grow_avx2(const CapsuleRow& c, int 
                                     _mm256_mul_ps(dz, dz));
     const __m256 d = _mm256_sub_ps(_mm256_sqrt_ps(d2), radius);
     __m256 f = _mm256_sub_ps(half_step, _mm256_mul_ps(d, half_step));
-    f = _mm256_min_ps(_mm256_max_ps(f, zero), full);
-    f = _mm256_blendv_ps(full, f, _mm256_cmp_ps(d2, inner2, _CMP_GT_OQ));
+    f = _mm256_min_ps(_mm256_max_ps(f, zero), f255);
+    f = _mm256_blendv_ps(f255, f, _mm256_cmp_ps(d2, inner2, _CMP_GT_OQ));
     f = _mm256_blendv_ps(zero, f, _mm256_cmp_ps(d2, reach2, _CMP_LT_OQ));
     group[g] = _mm256_cvttps_epi32(f);
   }
@@ -69,7 +75,6 @@ __attribute__((target("avx2"))) GrownStretch grow_avx2(const CapsuleRow& c, int 
       _mm256_and_si256(_mm256_cmpgt_epi8(lane, _mm256_set1_epi8(static_cast<char>(lo - 1))),
                        _mm256_cmpgt_epi8(_mm256_set1_epi8(static_cast<char>(hi)), lane));
   const __m256i fill = _mm256_and_si256(bytes, inside);
-  const __m256i before = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(cov));
   const __m256i after = _mm256_max_epu8(before, fill);
   const auto grew = ~static_cast<uint32_t>(_mm256_movemask_epi8(_mm256_cmpeq_epi8(after, before)));
   if (grew == 0) return {};

@@ -498,7 +498,8 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
             held.version = volume.brick_version(b);
             if (!accumulate)
               std::copy(held.current.begin(), held.current.end(), held.before.begin());
-            std::fill(held.coverage.begin(), held.coverage.end(), uint8_t{0});
+            // run_balls() clears a row's coverage when it first reaches it.
+            if (!lean) std::fill(held.coverage.begin(), held.coverage.end(), uint8_t{0});
             held.open.clear();
             held.segment = -1;
             ++stats.bricks_decoded;
@@ -791,6 +792,7 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
           uint8_t* open =
               &held.open[2 * (static_cast<size_t>(z - origin.z) * edge + (y - origin.y))];
           if (open[0] == kOpenUnset) {
+            std::memset(cov, 0, static_cast<size_t>(edge));
             int c0 = 0, c1 = edge;
             trim_saturated(&held.before[row], saturated, c0, c1);
             open[0] = static_cast<uint8_t>(c0);
