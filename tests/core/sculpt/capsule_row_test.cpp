@@ -10,11 +10,12 @@
 namespace sculpt::core {
 namespace {
 
-// The AVX2 kernel computes a brick row's fillings 8 at a time and raises the
-// coverage in one 32-byte step: for segments in every direction, rows
-// through, beside and past the capsule, every stretch [lo, hi) of the row
-// and coverage of runs of 0, 255 and noise, it must give the scalar loop's
-// coverage (the row and the bytes after it) and grown stretch.
+// The AVX2 kernel computes a brick row's fillings 8 at a time (skipping the
+// groups already full) and raises the coverage in one 32-byte step: for
+// segments in every direction, rows through, beside and past the capsule,
+// every stretch [lo, hi) of the row and coverage of full and empty groups,
+// runs of 0 and 255 and noise, it must give the scalar loop's coverage (the
+// row and the bytes after it) and grown stretch.
 TEST(CapsuleRow, GrowingMatchesTheScalarLoopForEveryStretch) {
   uint32_t s = 11;
   auto next = [&] {
@@ -49,10 +50,18 @@ TEST(CapsuleRow, GrowingMatchesTheScalarLoopForEveryStretch) {
                          (radius + 1.0f) * (radius + 1.0f)};
     for (int lo = 0; lo < 32; lo += 1 + static_cast<int>(next() % 4)) {
       for (int hi = lo; hi <= 32; hi += 1 + static_cast<int>(next() % 5)) {
+        // Per 8 voxels: filled fully (the kernel skips them), empty, runs of
+        // 0 and 255, or noise.
         std::vector<uint8_t> cov(64);
-        for (uint8_t& c : cov) {
-          const uint32_t r = next();
-          c = static_cast<uint8_t>(r % 3 == 0 ? 0 : r % 3 == 1 ? 255 : r >> 5);
+        for (size_t g = 0; g < cov.size(); g += 8) {
+          const uint32_t kind = next() % 4;
+          for (size_t i = g; i < g + 8; ++i) {
+            const uint32_t r = next();
+            cov[i] = static_cast<uint8_t>(kind == 0   ? 255
+                                          : kind == 1 ? 0
+                                          : kind == 2 ? (r % 2 ? 255 : 0)
+                                                      : r >> 5);
+          }
         }
         std::vector<uint8_t> want = cov, fill(64), scratch(64);
         const GrownStretch w =
