@@ -66,8 +66,12 @@ void give_back(std::vector<uint8_t>& buffer) {
 // 128 voxels wide, asserted).
 constexpr uint8_t kOpenUnset = 255;
 
-// Segments one apply() combines at most (SweptStroke::add() of many samples).
-constexpr size_t kBatchSegments = 64;
+// What one apply() of many samples (SweptStroke::add()) combines at most:
+// segments, and rows of their sweeps' span tables (16 bytes each: 16 MiB).
+// A 32-voxel ball's segment has about a thousand rows, the biggest tool's
+// about twenty thousand.
+constexpr size_t kBatchSegments = 256;
+constexpr size_t kBatchSpanRows = size_t{1} << 20;
 
 // Bricks a segment changes at or beyond which they are combined on every core
 // (as Sculptor's big dabs).
@@ -268,13 +272,27 @@ DabStats SweptStroke::add(std::span<const StrokeSample> samples) {
     stats += apply(batch);
     batch.clear();
   };
+  // The rows of a segment's box, y by z, for the tool and its mirror image.
+  const Tool& tool = *sculptor_.tool_;
+  const float reach = tool.sphere_radius_vox > 0.0f ? tool.sphere_radius_vox + 1.0f
+                                                    : sculptor_.cache_->tool().reach_vox();
+  const size_t sweeps_per_segment = sculptor_.mirror_ ? 2 : 1;
+  size_t batch_rows = 0;
   for (const StrokeSample& sample : samples) {
-    batch.push_back({last_.value_or(sample), sample, segment_});
+    const StrokeSample from = last_.value_or(sample);
+    batch.push_back({from, sample, segment_});
     last_ = sample;
     ++segment_;
+    const glm::vec3 extent =
+        glm::abs(sample.position_vox - from.position_vox) + 2.0f * reach + 3.0f;
+    batch_rows +=
+        sweeps_per_segment * static_cast<size_t>(extent.y) * static_cast<size_t>(extent.z);
     // Accumulating, a segment builds on the material the previous one left;
-    // else a batch's span tables stay bounded (a few MiB for big balls).
-    if (options_.accumulate || batch.size() == kBatchSegments) flush();
+    // else a batch's span tables stay bounded.
+    if (options_.accumulate || batch.size() == kBatchSegments || batch_rows >= kBatchSpanRows) {
+      flush();
+      batch_rows = 0;
+    }
   }
   flush();
   return stats;

@@ -475,7 +475,8 @@ TEST(SweptStroke, OrientationIsInterpolatedAlongTheSweep) {
 // strength, over more samples than one batch holds.
 TEST(SweptStroke, SamplesAtOnceEqualSamplesOneByOne) {
   std::vector<StrokeSample> path;
-  for (int k = 0; k < 150; ++k) {
+  // More samples than one batch holds (256 segments).
+  for (int k = 0; k < 300; ++k) {
     const float a = 0.07f * static_cast<float>(k);
     path.push_back({glm::vec3(56.0f + 30.0f * std::cos(a), 24.0f + 14.0f * std::sin(a),
                               31.0f + 2.0f * std::sin(3.0f * a)),
