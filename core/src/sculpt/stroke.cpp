@@ -62,8 +62,8 @@ void give_back(std::vector<uint8_t>& buffer) {
   buffer = {};
 }
 
-// StrokeBrick::open's mark of a row not yet looked at (a brick is at most
-// 128 voxels wide, asserted).
+// StrokeBrick::open's mark of a row not yet looked at (bricks are narrower,
+// asserted).
 constexpr uint8_t kOpenUnset = 255;
 
 // What one apply() of many samples (SweptStroke::add()) combines at most:

@@ -575,6 +575,11 @@ void StationLoop::show_brush_preview() {
   ++counters_.brush_previews;
 }
 
+bool StationLoop::stroke_sculpts_as_set() const {
+  return stroke_options_.mode == settings_.mode && stroke_options_.strength == settings_.strength &&
+         stroke_options_.accumulate == settings_.accumulate;
+}
+
 std::optional<PathBrush> StationLoop::path_brush() const {
   if (settings_.brush) return path_brush_of(*settings_.brush);
   if (settings_.mode == core::SculptMode::kSmooth && tool_.sphere_radius_vox > 0.0f)
@@ -596,8 +601,7 @@ void StationLoop::sculpt(const std::vector<hal::Dab>& dabs) {
     ++counters_.dabs;
     const core::StrokeSample sample{d.position, d.orientation};
     if (stroke_ && !path_brush() && settings_.mode != core::SculptMode::kSmooth &&
-        stroke_options_.mode == settings_.mode && stroke_options_.strength == settings_.strength &&
-        stroke_options_.accumulate == settings_.accumulate) {
+        stroke_sculpts_as_set()) {
       pending.push_back(sample);
       stroke_last_ = sample;
       continue;
@@ -633,11 +637,7 @@ void StationLoop::sculpt(const std::vector<hal::Dab>& dabs) {
       sculptor_->dab(dab);
       continue;
     }
-    if (stroke_ &&
-        (stroke_options_.mode != settings_.mode || stroke_options_.strength != settings_.strength ||
-         stroke_options_.accumulate != settings_.accumulate)) {
-      interrupt_stroke();
-    }
+    if (stroke_ && !stroke_sculpts_as_set()) interrupt_stroke();
     if (!stroke_) {
       stroke_options_ = {settings_.mode, settings_.strength, settings_.accumulate};
       stroke_ = std::make_unique<core::SweptStroke>(*sculptor_, stroke_options_);

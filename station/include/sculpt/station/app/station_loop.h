@@ -204,6 +204,9 @@ class StationLoop {
   // The path brush a dab now goes to, if any: the chosen ball brush, or
   // smoothing when smooth mode has the ball tool.
   std::optional<PathBrush> path_brush() const;
+  // Whether the open swept stroke's mode, strength and accumulation are the
+  // settings' (else a new sweep starts where the tool is).
+  bool stroke_sculpts_as_set() const;
   void tool_moved();
   // Touch mode's half of a motion sample: the tool onto the proxy.
   void touch_moved(const hal::InputEvent& e);
