@@ -211,6 +211,11 @@ TEST(SurfaceMesher, DabsOnANewVolumeAreShownCoarseWhileItIsRefined) {
       EXPECT_EQ(b.level, 2) << "dab " << d << ", brick " << b.index;
   }
   EXPECT_GT(previous, first);
+  // The mesher counts an update just after publishing it: the new volume's
+  // and each dab's, one each (each change was taken before the next).
+  const auto updates = static_cast<int64_t>(1 + previous - first);
+  while (mesher.counters().updates < updates)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   EXPECT_EQ(mesher.counters().coarse_updates, static_cast<int64_t>(previous - first));
   EXPECT_EQ(mesher.counters().refinements, 0);
   mesher.hold_refinement(false);
