@@ -438,10 +438,9 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
         // A hard ball's stretch within radius - 1, narrowed by a voxel, is
         // filled without measuring.
         int in_lo = hi, in_hi = hi;
-        const float ilo = inner_lo[y - ya], ihi = inner_hi[y - ya];
-        if (inner2 > 0.0f && ilo <= ihi) {
-          in_lo = ceil_int(ilo) + 1;
-          in_hi = floor_int(ihi);
+        if (inner2 > 0.0f && inner_lo[y - ya] <= inner_hi[y - ya]) {
+          in_lo = ceil_int(inner_lo[y - ya]) + 1;
+          in_hi = floor_int(inner_hi[y - ya]);
         }
         sw.spans[static_cast<size_t>(z - rows.lo.z) * rn.y + (y - rows.lo.y)] =
             glm::ivec4(lo, hi, in_lo, in_hi);
@@ -777,7 +776,7 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
     const glm::ivec3 n = bb.size();
     std::vector<int>& grew0 = scratch.h0;
     std::vector<int>& grew1 = scratch.h1;
-    std::vector<int>& grown_rows = scratch.x0;
+    std::vector<int>& grown_rows = scratch.grown_rows;
     grew0.assign(static_cast<size_t>(n.y) * n.z, edge);
     grew1.assign(grew0.size(), 0);
     grown_rows.clear();

@@ -97,10 +97,11 @@ class SweptStroke {
     int64_t index = 0;
   };
   // One thread's buffers for a brick of a segment: its filling, a row, and
-  // per-row tables (the ball's lean path uses only the two rows).
+  // per-row tables (the ball's lean path: the two rows, h0/h1 and grown_rows).
   struct Scratch {
     std::vector<uint8_t> sweep, row_buf, row_fill;
     std::vector<int> x0, x1, h0, h1;
+    std::vector<int> grown_rows;        // the ball's lean path: rows whose coverage grew
     std::vector<float> row_lo, row_hi;  // a plane's row stretches (spans)
   };
   // The segments' sweeps (at most one when accumulating), combined together.
