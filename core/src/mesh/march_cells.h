@@ -16,7 +16,8 @@ namespace sculpt::core::detail {
 /// MarchBlock ((cells + 3)^3, one sample below and two above the corners,
 /// x fastest); cell (0,0,0) has its lower corner at level point `origin`.
 /// seam_key(p, axis) gives the welding key of the cell edge from local grid
-/// point p along `axis`, or BrickMesh::kNotSeam. `out` is cleared first.
+/// point p along `axis`, or BrickMesh::kNotSeam; it is asked only for edges
+/// on the block's boundary (no others are shared). `out` is cleared first.
 void march_float_cells(const float* samples, glm::ivec3 cells, glm::ivec3 origin, int level,
                        float iso, const std::function<uint64_t(glm::ivec3, int)>& seam_key,
                        BrickMesh& out);

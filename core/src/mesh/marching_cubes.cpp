@@ -271,6 +271,12 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
       }
       s.positions[index] = pos * scale;
       s.normals[index] = normal;
+      // Only an edge on the block's boundary can be shared: the key is not
+      // asked for inside (most vertices; the caller's key is a call away).
+      const bool on_boundary = (axis != 0 && (p.x == 0 || p.x == n.x)) ||
+                               (axis != 1 && (p.y == 0 || p.y == n.y)) ||
+                               (axis != 2 && (p.z == 0 || p.z == n.z));
+      if (!on_boundary) continue;
       if (const uint64_t key = seam_key(p, axis); key != BrickMesh::kNotSeam)
         out.seams.push_back({static_cast<uint32_t>(index), key});
     }

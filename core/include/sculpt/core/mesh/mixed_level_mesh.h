@@ -143,16 +143,16 @@ class MixedLevelMeshCache {
   int level_of(glm::ivec3 b) const { return levels_[index(b)]; }
   // The neighbourhood radius a brick at `level` reads (halo two voxels up).
   int reach(int level) const { return (edge_ >> level) >= 2 ? 1 : 2; }
+  // Agreed samples already computed during one brick's meshing, by level
+  // and point (mixed_level_mesh.cpp).
+  class SharedMemo;
   // Level-k voxel p (level coordinates), 0 outside the volume.
-  float raw(int k, glm::ivec3 p);
+  float raw(int k, glm::ivec3 p, SharedMemo& memo);
   const Decoded& decoded(glm::ivec3 b, int k);
   // decoded(b, k)'s voxels, kept valid across further calls: an unforeseen
   // decode while frozen goes to `spare`, not to the thread's one scratch.
   const uint8_t* decoded_voxels(glm::ivec3 b, int k, std::vector<uint8_t>& spare);
   // The sample all bricks sharing level-k point p agree on.
-  // Agreed samples already computed during one brick's meshing, by level
-  // and point (mixed_level_mesh.cpp).
-  class SharedMemo;
   float shared(int k, glm::ivec3 p, SharedMemo& memo);
   float shared_value(int k, glm::ivec3 p, SharedMemo& memo);
   // Finest and coarsest level among the bricks whose closed box holds
