@@ -21,10 +21,14 @@ InputHub::InputHub(StationController& controller, std::unique_ptr<hal::DeviceReg
       newest_report_t_ns_(std::numeric_limits<int64_t>::min()) {
   last_scan_ns_ = hal::monotonic_ns();
   note_devices();
+  // The render thread's commands (under mutex()) come after the input held
+  // for an offset or closing.
+  controller_.set_input_barrier([this] { release_held(hal::monotonic_ns()); });
 }
 
 InputHub::~InputHub() {
   stop();
+  controller_.set_input_barrier(nullptr);
 }
 
 void InputHub::prepare(size_t warm_heap_bytes) {
@@ -78,8 +82,17 @@ std::unique_lock<std::mutex> InputHub::frame_turn(bool must) {
   return turn;
 }
 
-void InputHub::poll_now() {
-  poll(hal::monotonic_ns());
+void InputHub::release_held(int64_t now) {
+  controller_.land_morphology(/*wait=*/true);
+  if (held_events_.empty() && held_commands_.empty()) return;
+  hal::InputFrame held;
+  held.events.swap(held_events_);
+  controller_.device_frame(held, now, held_commands_);
+  held_commands_.clear();
+}
+
+void InputHub::poll_now(bool land) {
+  poll(hal::monotonic_ns(), land);
 }
 
 void InputHub::note_devices() {
@@ -121,7 +134,7 @@ void InputHub::run() {
   }
 }
 
-void InputHub::poll(int64_t now) {
+void InputHub::poll(int64_t now, bool land) {
   ++figures_.polls;
   if (now - last_scan_ns_ > kScanIntervalNs) {
     if (!registry_->scan().opened.empty()) note_devices();
@@ -153,7 +166,18 @@ void InputHub::poll(int64_t now) {
     commands.assign(pending_commands_.begin(), ready);
     pending_commands_.erase(pending_commands_.begin(), ready);
   }
-  controller_.device_frame(input_, now, commands);
+  // An offset or closing computing on its worker (seconds on a big
+  // sculpture): later reports and commands are held until it lands, so they
+  // sculpt what it leaves, as its replay does, while the frame keeps its turn
+  // to steer and draw. The session's end and the last poll wait for it.
+  if (!controller_.land_morphology(done || land)) {
+    held_events_.insert(held_events_.end(), input_.events.begin(), input_.events.end());
+    figures_.held_events += static_cast<int64_t>(input_.events.size());
+    held_commands_.insert(held_commands_.end(), commands.begin(), commands.end());
+  } else {
+    release_held(now);
+    controller_.device_frame(input_, now, commands);
+  }
   if (const hal::DeviceReader* reader = registry_->reader(device_id_); reader != nullptr)
     controller_.reader_samples(reader->counters().motion_samples, now);
   if (listener_ != nullptr) listener_->on_poll(controller_, now);

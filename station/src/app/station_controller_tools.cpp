@@ -258,6 +258,19 @@ bool StationController::morphology(bool close, float by, int64_t now_ns) {
   command(make_command(sim::CommandKind::kMorphology,
                        close ? sim::kMorphologyClose : sim::kMorphologyOffset, {by}),
           now_ns);
+  if (loop_.morphology_pending()) {
+    // Computing in the background: the status says so until it lands.
+    char text[120];
+    std::snprintf(text, sizeof text, "%s by %+g voxels...", close ? "closing" : "offsetting",
+                  double(by));
+    status_ = text;
+    landing_ = Landing{close, by};
+    return true;
+  }
+  return morphology_status(close, by);
+}
+
+bool StationController::morphology_status(bool close, float by) {
   const MorphologyResult& r = loop_.last_morphology();
   if (!r.applied) {
     status_ = std::string("no surface to ") + (close ? "close" : "offset") +
@@ -269,6 +282,18 @@ bool StationController::morphology(bool close, float by, int64_t now_ns) {
                 close ? "closed" : "offset", double(by), static_cast<long long>(r.inside_before),
                 static_cast<long long>(r.inside_after));
   status_ = text;
+  return true;
+}
+
+bool StationController::land_morphology(bool wait) {
+  if (loop_.morphology_pending() && (wait || loop_.morphology_ready())) loop_.settle();
+  if (loop_.morphology_pending()) return false;
+  // Landed now, or by an input that settled it: the status tells how.
+  if (landing_) {
+    morphology_status(landing_->close, landing_->by);
+    landing_.reset();
+    ++generation_;  // something to autosave
+  }
   return true;
 }
 

@@ -1,5 +1,7 @@
 #include "sculpt/station/app/station_loop.h"
 
+#include "app/morphology_job.h"
+
 #include <glm/geometric.hpp>
 
 #include "sculpt/core/distance/hypertexture.h"
@@ -209,6 +211,7 @@ void StationLoop::new_volume(glm::ivec3 dims, uint8_t fill, int clay_margin) {
 void StationLoop::restore(std::unique_ptr<core::Volume> volume, const StationSettings& settings,
                           std::optional<core::Tool> custom_tool,
                           std::optional<core::nurbs::NurbsSurface> sheet) {
+  settle();
   if (pressed_) release();
   retire_sculptor();
   volume_ = std::move(volume);
@@ -347,6 +350,7 @@ void StationLoop::touch_moved(const hal::InputEvent& e) {
 }
 
 void StationLoop::handle(const sim::Command& c) {
+  settle();
   using K = sim::CommandKind;
   switch (c.kind) {
     case K::kPress:
@@ -653,6 +657,7 @@ void StationLoop::sculpt(const std::vector<hal::Dab>& dabs) {
 }
 
 void StationLoop::handle(const hal::InputEvent& e) {
+  settle();
   switch (e.kind) {
     case hal::InputKind::kMotion: {
       ++counters_.motion_samples;

@@ -317,7 +317,10 @@ void StationPanel::draw_tool_files(int64_t now) {
 void StationPanel::draw_morphology(int64_t now) {
   if (!ImGui::TreeNode("Offset and closing")) return;
   // The distance-field tools of `sculpt offset` and `sculpt close`, on the
-  // whole sculpture, one undo step each.
+  // whole sculpture, one undo step each. They compute in the background
+  // (seconds on a big sculpture): one at a time, the status says when done.
+  const bool computing = c_.loop().morphology_pending();
+  ImGui::BeginDisabled(computing);
   ImGui::SliderFloat("offset by", &c_.offset_vox(), -16.0f, 16.0f, "%+.1f vox");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("outward when positive, inward when negative");
   if (ImGui::Button("Offset the sculpture")) c_.offset_sculpture(c_.offset_vox(), now);
@@ -327,6 +330,8 @@ void StationPanel::draw_morphology(int64_t now) {
     ImGui::SetTooltip("fills gaps and dents narrower than twice the radius");
   if (ImGui::Button("Close the sculpture")) c_.close_sculpture(c_.closing_radius_vox(), now);
   tip(Action::kCloseSculpture);
+  ImGui::EndDisabled();
+  if (computing) ImGui::TextUnformatted(c_.status().c_str());
   ImGui::TreePop();
 }
 

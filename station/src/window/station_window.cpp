@@ -196,7 +196,8 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
       {"sculpting",
        {{"polls", f.hub.polls},
         {"sculpt_ms", f.hub.sculpt_ms},
-        {"waiting_for_the_frame_ms", f.hub.lock_wait_ms}}},
+        {"waiting_for_the_frame_ms", f.hub.lock_wait_ms},
+        {"events_held_for_offset_or_closing", f.hub.held_events}}},
       {"mean_ms",
        {{"pointer_and_keys", f.input_ms / n},
         {"mesh", f.mesh_ms / n},
@@ -262,6 +263,9 @@ int run_window(const WindowOptions& o) {
   co.loop.mesh = false;      // the window meshes what it draws (below), at its levels
   co.loop.clay_margin = 64;  // a slab of clay to carve, 128 voxels a side
   co.loop.undo_max_bytes = static_cast<size_t>(o.undo_mib) << 20;
+  // Offset and closing take seconds on a big sculpture: computed on a
+  // worker, the window draws and steers meanwhile (input_hub.cpp).
+  co.loop.background_morphology = true;
   co.loop.pose.tracker = o.tracker;
   co.normalizer_config_path = hal::default_normalizer_config_path();
   StationController controller(co);
@@ -646,7 +650,7 @@ int run_window(const WindowOptions& o) {
   // frames count in the latency figures too.
   hub.stop();
   std::lock_guard last_turn(hub.mutex());  // no other thread now: kept for the rule
-  hub.poll_now();
+  hub.poll_now(/*land=*/true);
   if (haptics) haptics->stop();  // zero force; its figures are final
   mesher.wait_until_meshed();
   if (auto delta = mesher.take()) controller.surface_ready(*delta);

@@ -15,10 +15,12 @@
 #include "scratch_dir.h"
 #include "sculpt/core/mesh/mixed_level_mesh.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
+#include "sculpt/hal/types/clock.h"
 #include "sculpt/sim/replay/sim_backend.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/session_replay.h"
+#include "sculpt/station/app/session_start.h"
 
 namespace sculpt::station {
 namespace {
@@ -29,16 +31,21 @@ struct LiveSession {
   std::string normalizer;
 };
 
-// The session as a device, as the window plays it (`sculpt run --device sim:`).
-LiveSession play_live(const std::string& name, double speed) {
+// The session as a device, as the window plays it (`sculpt run --device sim:`),
+// its raw reports tapped into `recorder`'s recording when given.
+LiveSession play_live(const std::string& name, double speed,
+                      StationController* recorder = nullptr) {
   auto session = load_session(sim::bundled_session_path(name));
   EXPECT_TRUE(session.ok());
   auto config = hal::parse_normalizer_config(session->header.normalizer_config, name);
   EXPECT_TRUE(config.ok());
   LiveSession live;
   live.normalizer = hal::to_text(*config);
+  hal::ReaderOptions reader_options;
+  if (recorder != nullptr)
+    reader_options.on_raw = [recorder](const hal::RawEvent& e) { recorder->raw_report(e); };
   live.registry = std::make_unique<hal::DeviceRegistry>(
-      std::vector<std::unique_ptr<hal::Backend>>{}, *config, hal::ReaderOptions{});
+      std::vector<std::unique_ptr<hal::Backend>>{}, *config, reader_options);
   auto backend = std::make_unique<sim::SimBackend>(std::move(session).value(),
                                                    sim::bundled_session_path(name), speed);
   live.sim = backend.get();
@@ -135,6 +142,70 @@ TEST(InputHub, AnUnpluggedSimDeviceComesBackAndPlaysOn) {
   EXPECT_EQ(controller.loop().counters().dabs, dabs);
   EXPECT_EQ(controller.loop().counters().disconnects, 1);
   EXPECT_EQ(controller.loop().counters().strokes, 5);  // the last after the plug
+}
+
+// An offset asked for from the panel, computed in the background as the
+// window does: the session's reports wait for it, and a panel command while
+// it computes comes after the reports held meanwhile, as they came. The live
+// volume is the recording's replay, and starts with the offset.
+TEST(InputHub, ReportsDuringABackgroundOffsetWaitForItAndKeepTheirOrder) {
+  test::ScratchDir dir;
+  ControllerOptions co = quiet_controller(dir);
+  co.loop.clay_margin = 100;  // a block of clay in the middle, to offset
+  co.loop.background_morphology = true;
+  StationController controller(co);
+  SurfaceMesher mesher;
+  LiveSession live = play_live("sheet", 8.0, &controller);
+  InputHub hub(controller, std::move(live.registry), live.sim, live.normalizer, mesher);
+  {
+    std::lock_guard turn(hub.mutex());
+    ASSERT_TRUE(controller.start_recording(dir.path() / "r.scs", hal::monotonic_ns()).ok());
+    ASSERT_TRUE(controller.offset_sculpture(3.0f, hal::monotonic_ns())) << controller.status();
+    EXPECT_TRUE(controller.loop().morphology_pending());
+  }
+  const uint64_t clay = [&] {
+    StationLoop::Options o;
+    o.clay_margin = 100;
+    return StationLoop(o).volume().content_hash();
+  }();
+  hub.start();
+  bool commanded_while_pending = false;
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!hub.replay_done() && std::chrono::steady_clock::now() < give_up) {
+    {
+      std::lock_guard turn(hub.mutex());
+      if (controller.loop().morphology_pending() && hub.figures().held_events > 0) {
+        EXPECT_EQ(controller.loop().volume().content_hash(), clay);  // nothing sculpted yet
+        // The panel's strength: the reports held before it go first, at
+        // the old strength, as they came.
+        commanded_while_pending = true;
+        const int64_t samples = controller.loop().counters().motion_samples;
+        controller.set_strength(0.5f, hal::monotonic_ns());
+        EXPECT_FALSE(controller.loop().morphology_pending());
+        EXPECT_GT(controller.loop().counters().motion_samples, samples);
+      }
+      controller.camera().orbit(0.001f, 0.0f);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ASSERT_TRUE(hub.replay_done()) << "the session did not end in 60 s";
+  hub.stop();
+  std::lock_guard last(hub.mutex());
+  hub.poll_now(/*land=*/true);
+  EXPECT_TRUE(commanded_while_pending);
+  EXPECT_GT(hub.figures().held_events, 0);
+  EXPECT_EQ(controller.status().rfind("offset by +3 voxels: ", 0), 0u) << controller.status();
+  controller.tick(hal::monotonic_ns());
+  ASSERT_TRUE(controller.stop_recording().ok());
+
+  auto recorded = load_session((dir.path() / "r.scs").string());
+  ASSERT_TRUE(recorded.ok()) << recorded.error().message();
+  StationLoop replayed(StationLoop::Options{});
+  ASSERT_TRUE(restore_session_start((dir.path() / "r.scs").string(), replayed).ok());
+  ASSERT_TRUE(replay_session(*recorded, "r.scs", replayed).ok());
+  EXPECT_EQ(controller.loop().volume().content_hash(), replayed.volume().content_hash());
+  EXPECT_EQ(controller.loop().counters().dabs, replayed.counters().dabs);
+  EXPECT_GT(replayed.counters().dabs, 10);
 }
 
 // A hub with no device, over a controller that meshes nothing.

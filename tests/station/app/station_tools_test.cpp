@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <thread>
 
 #include "scratch_dir.h"
 #include "sculpt/core/files/volume_file.h"
@@ -352,6 +353,59 @@ TEST(StationTools, OffsetAndClosingAreOneUndoStepEachAndReplay) {
   replayed.handle(sim::Command{sim::CommandKind::kRedo});
   c.redo(t += kMs);
   EXPECT_EQ(replayed.volume().content_hash(), c.loop().volume().content_hash());
+}
+
+// The window computes offset and closing on a worker: the call returns at
+// once, the status says it computes, and whatever comes next (a stroke, an
+// undo, another closing) lands it first, so every step ends as computed at
+// once; recorded, it replays to the same hash.
+TEST(StationTools, OffsetAndClosingInTheBackgroundLandBeforeWhatComesNext) {
+  test::ScratchDir at_once_dir, background_dir;
+  StationController at_once(block(at_once_dir));
+  ControllerOptions o = block(background_dir);
+  o.loop.background_morphology = true;
+  StationController background(o);
+  int64_t t = 1000 * kMs;
+  ASSERT_TRUE(background.start_recording(background_dir.path() / "r.scs", t).ok());
+  for (StationController* c : {&at_once, &background}) {
+    int64_t tc = t;
+    c->set_tool(sim::ToolShape::kSphere, 1.5f, 0.0f, tc += kMs);
+    c->set_mode(core::SculptMode::kSubtract, tc += kMs);
+    stroke(*c, tc, 30.0f, 50.0f);
+  }
+  t += 100 * kMs;
+  for (StationController* c : {&at_once, &background})
+    ASSERT_TRUE(c->offset_sculpture(2.0f, t)) << c->status();
+  EXPECT_TRUE(background.loop().morphology_pending());
+  EXPECT_EQ(background.status(), "offsetting by +2 voxels...");
+  EXPECT_FALSE(background.loop().last_morphology().applied);
+  // Landed when asked to wait: the status tells the result.
+  EXPECT_TRUE(background.land_morphology(/*wait=*/true));
+  EXPECT_FALSE(background.loop().morphology_pending());
+  EXPECT_EQ(background.status(), at_once.status());
+  EXPECT_EQ(background.loop().volume().content_hash(), at_once.loop().volume().content_hash());
+
+  // A closing, then at once a stroke and an undo: each settles it first.
+  for (StationController* c : {&at_once, &background}) {
+    int64_t tc = t;
+    c->closing_radius_vox() = 3.0f;
+    ASSERT_TRUE(c->perform(Action::kCloseSculpture, tc += kMs)) << c->status();
+    stroke(*c, tc, 40.0f, 55.0f);
+    c->undo(tc += kMs);
+    c->offset_vox() = -1.5f;
+    ASSERT_TRUE(c->perform(Action::kOffsetSculpture, tc += kMs)) << c->status();
+  }
+  t += 100 * kMs;
+  EXPECT_TRUE(background.land_morphology(/*wait=*/true));
+  EXPECT_EQ(background.loop().counters().undos, at_once.loop().counters().undos);
+  EXPECT_EQ(background.loop().volume().content_hash(), at_once.loop().volume().content_hash());
+  // Without waiting it lands once ready; nothing is pending afterwards.
+  ASSERT_TRUE(background.offset_sculpture(1.0f, t += kMs));
+  while (!background.land_morphology())
+    std::this_thread::yield();
+  EXPECT_TRUE(background.loop().last_morphology().applied);
+  StationLoop replayed(StationLoop::Options{});
+  stop_and_replay(background, t, background_dir, replayed);
 }
 
 TEST(StationTools, OffsetWithoutASurfaceOrOutOfRangeIsOneMessage) {

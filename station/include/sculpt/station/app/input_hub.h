@@ -48,6 +48,9 @@ struct InputHubFigures {
   int64_t polls = 0;        ///< times the devices were read
   double sculpt_ms = 0;     ///< time spent sculpting what they said, summed
   double lock_wait_ms = 0;  ///< time waiting for the render thread's turn, summed
+  /// Device events held while an offset or closing computed in the
+  /// background (sculpted once it landed, in their order).
+  int64_t held_events = 0;
 };
 
 class InputHub {
@@ -90,7 +93,9 @@ class InputHub {
   /// Under mutex(): reads the devices and hands the volume's changes to
   /// the mesher now, not at the next poll (a picture of a given frame,
   /// tests, and before start()).
-  void poll_now();
+  /// `land`: an offset or closing still computing is waited for and landed
+  /// first (the last poll, at the window's end: nothing is left unapplied).
+  void poll_now(bool land = false);
   /// Joins every poll, after the devices; set before start(). Null: none.
   void set_listener(PollListener* listener) { listener_ = listener; }
   /// The sim device's session has played (or its device went).
@@ -100,7 +105,12 @@ class InputHub {
 
  private:
   void run();
-  void poll(int64_t now_ns);  // mutex_ held
+  void poll(int64_t now_ns, bool land = false);  // mutex_ held
+  // Lands an offset or closing computing (waiting for it) and sculpts the
+  // input held meanwhile (mutex_ held): before the next poll's, or before a
+  // command from the render thread (the controller's input barrier), so
+  // every input is taken in the order it came, as the recording replays it.
+  void release_held(int64_t now_ns);
   void note_devices();
 
   StationController& controller_;
@@ -115,6 +125,9 @@ class InputHub {
   std::vector<int> levels_;
   hal::InputFrame input_;
   std::vector<std::pair<int64_t, sim::Command>> pending_commands_;
+  // Reports and commands held while an offset or closing computes.
+  std::vector<hal::InputEvent> held_events_;
+  std::vector<std::pair<int64_t, sim::Command>> held_commands_;
   int64_t newest_report_t_ns_;
   int64_t last_scan_ns_ = 0;
   int64_t last_tick_ns_ = 0;

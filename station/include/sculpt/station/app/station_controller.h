@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <future>
 #include <limits>
 #include <optional>
@@ -226,8 +227,19 @@ class StationController {
   /// kMorphology. False, with the reason in status(), when there is no
   /// surface (an empty or solid block) or the distance is out of range
   /// ([-64, 64] voxels, a radius above 0).
+  /// With the loop's background_morphology (the window) they return at
+  /// once, the status saying they compute, and land_morphology() lands them.
   bool offset_sculpture(float by_vox, int64_t now_ns);
   bool close_sculpture(float radius_vox, int64_t now_ns);
+  /// Lands an offset or closing computed in the background once it is
+  /// ready (waiting for it when `wait`) and says so in status(); returns
+  /// whether none is computing any more (the sculpting thread holds later
+  /// input until then).
+  bool land_morphology(bool wait = false);
+  /// Called before a command from the UI (command(), open()) while an offset
+  /// or closing computes: whoever holds input back meanwhile (InputHub)
+  /// sculpts it first, so the command comes after it, as its time says.
+  void set_input_barrier(std::function<void()> barrier) { input_barrier_ = std::move(barrier); }
   /// The panel's distances for the two (and their keys').
   float& offset_vox() { return offset_vox_; }
   float& closing_radius_vox() { return closing_radius_vox_; }
@@ -376,6 +388,8 @@ class StationController {
   void autosave_if_due(int64_t now_ns);
   std::vector<sim::Command> opening_commands(bool with_block) const;
   bool morphology(bool close, float by_vox, int64_t now_ns);
+  // The status of the offset or closing that landed last.
+  bool morphology_status(bool close, float by_vox);
   // `tool` (from `what`: a file's name) as the tool, if it fits.
   bool give_tool(const core::Tool& tool, const std::string& what, int64_t now_ns);
   // The material in `box` (clamped) as the tool; `what` names it in messages.
@@ -392,6 +406,13 @@ class StationController {
   hal::DeviceInfo device_info_;
   std::string normalizer_text_;
   std::string status_;
+  // An offset or closing computing in the background, for its status.
+  struct Landing {
+    bool close = false;
+    float by = 0.0f;
+  };
+  std::optional<Landing> landing_;
+  std::function<void()> input_barrier_;
   std::string recording_error_;
 
   // A command's time in a recording: just after the newest report processed

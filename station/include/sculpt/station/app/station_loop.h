@@ -128,8 +128,17 @@ class StationLoop {
     /// Show a brush press's path brush while it goes on (brush_preview.h);
     /// off where nobody looks (`sculpt replay`): the result is the same.
     bool preview_brushes = true;
+    /// Offset and closing (kMorphology) compute their distance transforms
+    /// on a worker thread, seconds for a big sculpture, and land when
+    /// settled (settle()); every later input settles first, so the result
+    /// is the same as at once. On in the window, whose drawing and steering
+    /// go on meanwhile; off for replays.
+    bool background_morphology = false;
   };
   explicit StationLoop(const Options& options);
+  ~StationLoop();
+  StationLoop(StationLoop&&) noexcept;
+  StationLoop& operator=(StationLoop&&) noexcept;
 
   /// A station command (recorded in sessions, issued by the UI).
   void handle(const sim::Command& command);
@@ -174,7 +183,17 @@ class StationLoop {
   /// sculptor; bytes and entries: those held now).
   core::RotatedToolCacheStats rotation_cache_stats() const;
   const SheetEditor& sheet() const { return sheet_; }
+  /// The last offset or closing as it landed (applied false while one is
+  /// still computing: morphology_pending()).
   const MorphologyResult& last_morphology() const { return morphology_; }
+  /// An offset or closing is computing on its worker (background_morphology).
+  bool morphology_pending() const { return morphology_job_ != nullptr; }
+  /// It has finished computing: settle() lands it without waiting.
+  bool morphology_ready() const;
+  /// Waits for an offset or closing computing in the background and lands
+  /// it on the volume (one undo step); nothing when none is pending. Every
+  /// handle() and restore() settles first.
+  void settle();
   /// Why the last sheet command or grab did nothing (empty if it worked).
   const std::string& sheet_problem() const { return sheet_problem_; }
 
@@ -212,6 +231,9 @@ class StationLoop {
   void touch_moved(const hal::InputEvent& e);
   void sheet_command(const sim::Command& command);
   void morphology(const sim::Command& command);
+  // An offset or closing: its inputs, result and (in the background) worker.
+  struct MorphologyJob;
+  void land(MorphologyJob& job);
   void sheet_into_material(float thickness_vox, bool add);
   void sheet_as_tool(float thickness_vox);
   void apply_clutch();
@@ -256,6 +278,7 @@ class StationLoop {
   TouchMode touch_;
   std::string sheet_problem_;
   MorphologyResult morphology_;
+  std::unique_ptr<MorphologyJob> morphology_job_;  // computing in the background
 };
 
 }  // namespace sculpt::station
