@@ -170,7 +170,10 @@ void InputHub::poll(int64_t now, bool land) {
   // sculpture): later reports and commands are held until it lands, so they
   // sculpt what it leaves, as its replay does, while the frame keeps its turn
   // to steer and draw. The session's end and the last poll wait for it.
-  if (!controller_.land_morphology(done || land)) {
+  // Held input is bounded: past kMaxHeldEvents (a minute of a 1 kHz
+  // tracker) the hub waits for the result instead of holding more.
+  const bool must_land = done || land || held_events_.size() >= kMaxHeldEvents;
+  if (!controller_.land_morphology(must_land)) {
     held_events_.insert(held_events_.end(), input_.events.begin(), input_.events.end());
     figures_.held_events += static_cast<int64_t>(input_.events.size());
     held_commands_.insert(held_commands_.end(), commands.begin(), commands.end());

@@ -19,6 +19,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -59,6 +60,9 @@ class InputHub {
   static constexpr int64_t kScanIntervalNs = 1'000'000'000;  ///< hot-plug, each second
   /// Recording flushes and autosave checks (StationController::tick).
   static constexpr int64_t kTickIntervalNs = 16'000'000;
+  /// Device events held while an offset or closing computes, at most (a
+  /// minute of a 1 kHz device, about 4 MB); then the hub waits for it.
+  static constexpr size_t kMaxHeldEvents = 60'000;
 
   /// `sim` is the registry's sim backend when a session plays as a device
   /// (else null); `normalizer_text` the settings its devices read with
