@@ -23,7 +23,10 @@ InputHub::InputHub(StationController& controller, std::unique_ptr<hal::DeviceReg
   note_devices();
   // The render thread's commands (under mutex()) come after the input held
   // for an offset or closing.
-  controller_.set_input_barrier([this] { release_held(hal::monotonic_ns()); });
+  controller_.set_input_barrier([this] {
+    controller_.land_morphology(/*wait=*/true);
+    release_held(hal::monotonic_ns());
+  });
 }
 
 InputHub::~InputHub() {
@@ -83,7 +86,6 @@ std::unique_lock<std::mutex> InputHub::frame_turn(bool must) {
 }
 
 void InputHub::release_held(int64_t now) {
-  controller_.land_morphology(/*wait=*/true);
   if (held_events_.empty() && held_commands_.empty()) return;
   hal::InputFrame held;
   held.events.swap(held_events_);

@@ -55,7 +55,7 @@ void StationController::raw_report(const hal::RawEvent& e) {
 
 void StationController::command(const sim::Command& c, int64_t now_ns) {
   // The reports held for an offset or closing came before this command.
-  if (loop_.morphology_pending() && input_barrier_) input_barrier_();
+  let_held_input_go();
   command_at(c, stamp(now_ns));
 }
 

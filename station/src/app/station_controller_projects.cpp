@@ -42,7 +42,7 @@ Status StationController::open(const std::filesystem::path& path) {
     return project.error();
   }
   finish_autosave();
-  if (loop_.morphology_pending() && input_barrier_) input_barrier_();
+  let_held_input_go();
   loop_.restore(std::move(project->volume), project->settings, std::move(project->custom_tool),
                 std::move(project->sheet));
   const ProjectView& v = project->view;

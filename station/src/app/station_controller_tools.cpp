@@ -285,6 +285,10 @@ bool StationController::morphology_status(bool close, float by) {
   return true;
 }
 
+void StationController::let_held_input_go() {
+  if (loop_.morphology_pending() && input_barrier_) input_barrier_();
+}
+
 bool StationController::land_morphology(bool wait) {
   if (loop_.morphology_pending() && (wait || loop_.morphology_ready())) loop_.settle();
   if (loop_.morphology_pending()) return false;

@@ -110,10 +110,11 @@ class InputHub {
  private:
   void run();
   void poll(int64_t now_ns, bool land = false);  // mutex_ held
-  // Lands an offset or closing computing (waiting for it) and sculpts the
-  // input held meanwhile (mutex_ held): before the next poll's, or before a
-  // command from the render thread (the controller's input barrier), so
-  // every input is taken in the order it came, as the recording replays it.
+  // Sculpts the input held while an offset or closing computed, once it has
+  // landed (mutex_ held): before the next poll's, or before a command from
+  // the render thread (the controller's input barrier, which lands it
+  // first), so every input is taken in the order it came, as the recording
+  // replays it.
   void release_held(int64_t now_ns);
   void note_devices();
 

@@ -390,6 +390,9 @@ class StationController {
   bool morphology(bool close, float by_vox, int64_t now_ns);
   // The status of the offset or closing that landed last.
   bool morphology_status(bool close, float by_vox);
+  // Before a UI command while an offset or closing computes: the input
+  // barrier (the held reports go first).
+  void let_held_input_go();
   // `tool` (from `what`: a file's name) as the tool, if it fits.
   bool give_tool(const core::Tool& tool, const std::string& what, int64_t now_ns);
   // The material in `box` (clamped) as the tool; `what` names it in messages.
