@@ -10,14 +10,20 @@ constexpr int64_t kSecondNs = 1'000'000'000;
 
 }  // namespace
 
-void InputStatistics::note_dabs(int64_t count, int64_t report_t_ns) {
-  made_t_ns_.insert(made_t_ns_.end(), static_cast<size_t>(count), report_t_ns);
+void InputStatistics::note_dabs(int64_t count, int64_t report_t_ns, int64_t stood_in,
+                                int64_t stand_in_ns) {
+  stood_in = std::clamp<int64_t>(stood_in, 0, count);
+  for (int64_t i = 0; i < stood_in; ++i)
+    first_picture_us_.add(static_cast<double>(std::max<int64_t>(0, stand_in_ns - report_t_ns)) *
+                          1e-3);
+  made_.insert(made_.end(), static_cast<size_t>(stood_in), Made{report_t_ns, true});
+  made_.insert(made_.end(), static_cast<size_t>(count - stood_in), Made{report_t_ns, false});
 }
 
 void InputStatistics::submitted(uint64_t change, int64_t now_ns) {
-  for (int64_t t : made_t_ns_)
-    meshing_.push_back({change, t});
-  made_t_ns_.clear();
+  for (const Made& m : made_)
+    meshing_.push_back({change, m.report_t_ns, m.pictured});
+  made_.clear();
   // A dab in the air (or one that left the voxels as they were) has nothing
   // to wait for; without this it would count until the next change meshed.
   if (change <= ready_change_) ready(ready_change_, full_detail_change_, now_ns);
@@ -34,6 +40,7 @@ void InputStatistics::ready(uint64_t change, uint64_t full_detail_change, int64_
     recent_us_.push_back(first);
     if (recent_us_.size() > kRecentDabs) recent_us_.pop_front();
     all_us_.add(first);
+    if (!detailing_.back().pictured) first_picture_us_.add(first);
   }
   while (!detailing_.empty() && detailing_.front().change <= full_detail_change) {
     full_detail_us_.add(us(detailing_.front()));

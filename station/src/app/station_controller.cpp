@@ -29,6 +29,7 @@ constexpr uint16_t kSpaceMouseProduct = 0xc635;
 
 StationController::StationController(ControllerOptions options)
     : options_(std::move(options)), loop_(options_.loop) {
+  if (options_.stand_ins) loop_.show_stand_ins(&stand_ins_);
   frame_sculpture();
   device_info_ = sim::scripted_device(kSpaceMouseVendor, kSpaceMouseProduct);
   normalizer_text_ = hal::to_text(hal::NormalizerConfig{});
@@ -330,8 +331,10 @@ int64_t StationController::report_time(int64_t t_ns, int64_t now_ns) {
   return t_ns <= now_ns && t_ns > now_ns - kSecondNs ? t_ns : now_ns;
 }
 
-void StationController::note_dabs(int64_t dabs_before, int64_t t_ns) {
-  stats_.note_dabs(loop_.counters().dabs - dabs_before, t_ns);
+void StationController::note_dabs(const StationCounters& before, int64_t t_ns) {
+  const StationCounters& now = loop_.counters();
+  stats_.note_dabs(now.dabs - before.dabs, t_ns, now.dabs_stood_in - before.dabs_stood_in,
+                   loop_.stand_ins_published_ns());
 }
 
 void StationController::device_frame(
@@ -380,9 +383,9 @@ void StationController::device_frame(
       case hal::InputKind::kTrackingLost:
         break;
     }
-    const int64_t dabs = loop_.counters().dabs;
+    const StationCounters before = loop_.counters();
     loop_.handle(e);
-    note_dabs(dabs, report_time(e.t_ns, now_ns));
+    note_dabs(before, report_time(e.t_ns, now_ns));
   }
   commands_until(std::numeric_limits<int64_t>::max());
   // Every report up to here has been applied: the recording may have them.
@@ -396,19 +399,19 @@ void StationController::reader_samples(int64_t motion_samples, int64_t now_ns) {
 
 void StationController::pointer_move(glm::vec3 position, int64_t now_ns) {
   const glm::quat q = loop_.pose().orientation;
-  const int64_t dabs = loop_.counters().dabs;
+  const StationCounters before = loop_.counters();
   command(make_command(sim::CommandKind::kPointer, 0,
                        {position.x, position.y, position.z, q.w, q.x, q.y, q.z}),
           now_ns);
-  note_dabs(dabs, now_ns);
+  note_dabs(before, now_ns);
 }
 
 void StationController::pointer_down(int64_t now_ns) {
   if (pointer_down_) return;
   pointer_down_ = true;
-  const int64_t dabs = loop_.counters().dabs;
+  const StationCounters before = loop_.counters();
   command(make_command(sim::CommandKind::kPress), now_ns);
-  note_dabs(dabs, now_ns);
+  note_dabs(before, now_ns);
 }
 
 void StationController::pointer_up(int64_t now_ns) {
@@ -429,6 +432,7 @@ void StationController::surface_submitted(uint64_t change, int64_t now_ns) {
   if (stats_.dabs_waiting() || loop_.sheet().version() != sheet_version_) ++generation_;
   sheet_version_ = loop_.sheet().version();
   stats_.submitted(change, now_ns);
+  stand_ins_.handed_over(change);
 }
 
 void StationController::surface_ready(uint64_t change, uint64_t full_detail_change,

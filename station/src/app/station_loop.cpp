@@ -506,6 +506,7 @@ void StationLoop::handle(const sim::Command& c) {
 void StationLoop::press() {
   if (pressed_) return;
   pressed_ = true;
+  stand_in_last_.reset();
   sheet_press_ = settings_.sheet_editing;
   if (sheet_press_) {
     const Status grabbed =
@@ -533,6 +534,7 @@ void StationLoop::press() {
 void StationLoop::release() {
   if (!pressed_) return;
   pressed_ = false;
+  stand_in_last_.reset();
   if (sheet_press_) {  // the press went to the sheet, not to a stroke
     if (sheet_held_) sheet_.release();
     sheet_held_ = false;
@@ -591,7 +593,59 @@ std::optional<PathBrush> StationLoop::path_brush() const {
   return std::nullopt;
 }
 
+std::optional<bool> StationLoop::stand_in_carves() const {
+  // The modes scale the tool by the strength first: below 1 a dab leaves
+  // less than the whole tool, and a path brush or smoothing something else.
+  if (settings_.strength < 1.0f || path_brush()) return std::nullopt;
+  switch (settings_.mode) {
+    case core::SculptMode::kAdd:
+    case core::SculptMode::kUnion:
+      return false;
+    case core::SculptMode::kSubtract:
+    case core::SculptMode::kDifference:
+      return true;
+    case core::SculptMode::kSmooth:
+      break;
+  }
+  return std::nullopt;
+}
+
+std::vector<hal::Dab> StationLoop::stand_in_copies(const std::vector<hal::Dab>& dabs) {
+  // A press sweeps the tool from dab to dab (core/sculpt/stroke.h); copies
+  // of it an eighth of its size apart show the sweep: the scallops between
+  // them are under a hundredth of the tool's radius deep.
+  const float step = std::max(1.0f, tool_size() / 8.0f);
+  constexpr int kMostCopiesBetween = 32;
+  std::vector<hal::Dab> copies;
+  copies.reserve(dabs.size() * 3);
+  for (const hal::Dab& d : dabs) {
+    if (stand_in_last_) {
+      const float gap = glm::distance(stand_in_last_->position, d.position);
+      const int n = std::min(kMostCopiesBetween, static_cast<int>(gap / step));
+      for (int i = 1; i < n; ++i) {
+        const float t = static_cast<float>(i) / static_cast<float>(n);
+        hal::Dab& c = copies.emplace_back(d);
+        c.position = glm::mix(stand_in_last_->position, d.position, t);
+        c.orientation = glm::slerp(stand_in_last_->orientation, d.orientation, t);
+      }
+    }
+    copies.push_back(d);
+    stand_in_last_ = d;
+  }
+  return copies;
+}
+
 void StationLoop::sculpt(const std::vector<hal::Dab>& dabs) {
+  // Shown before sculpting, which takes milliseconds for a big tool.
+  if (stand_ins_ != nullptr && !dabs.empty()) {
+    if (const std::optional<bool> carves = stand_in_carves()) {
+      stand_ins_ns_ =
+          stand_ins_->add(stand_in_copies(dabs), tool_version_, settings_.mirror, *carves);
+      counters_.dabs_stood_in += static_cast<int64_t>(dabs.size());
+    } else {
+      stand_in_last_.reset();
+    }
+  }
   // A fast move's dabs that continue the open swept stroke go to it together:
   // each brick they reach is combined, undo-copied and encoded once, not once
   // a dab, and the material is byte for byte the same (SweptStroke::add()).

@@ -199,6 +199,10 @@ void add_run_command(CLI::App& app, Action& action) {
       "--no-vsync", [&w = *o](int64_t) { w.window.vsync = false; },
       "window: draw as fast as possible (to measure frame rates)");
   cmd->add_flag(
+      "--no-stand-ins", [&w = *o](int64_t) { w.window.stand_ins = false; },
+      "window: show a dab only once it is meshed, not at once by the tool's mesh where it "
+      "landed (to compare)");
+  cmd->add_flag(
       "--hidden", [&w = *o](int64_t) { w.window.visible = false; },
       "window: do not show it (tests, benchmarks)");
   cmd->callback([o, &action] { action = [o] { return run_station(*o); }; });

@@ -116,6 +116,7 @@ uint64_t SurfaceMesher::submit(const core::Volume& volume, uint64_t generation,
 
 int64_t SurfaceSnapshot::apply(SurfaceDelta delta) {
   if (delta.reset) bricks_.clear();
+  change_ = std::max(change_, delta.change);
   int64_t changed = 0;
   for (BrickSurface& b : delta.bricks) {
     ++changed;

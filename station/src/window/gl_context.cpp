@@ -39,6 +39,7 @@ Result<std::unique_ptr<GlWindow>> GlWindow::open(int width, int height, const st
   // No multisampling: Mesa's software OpenGL pays for every sample, and the
   // smooth-shaded surface reads well without it.
   glfwWindowHint(GLFW_SAMPLES, 0);
+  glfwWindowHint(GLFW_STENCIL_BITS, 8);  // carving stand-ins count in it (scene_renderer.cpp)
   GLFWwindow* w = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
   if (w == nullptr) return Error("cannot open an OpenGL 3.3 window: " + g_glfw_error);
   glfwMakeContextCurrent(w);

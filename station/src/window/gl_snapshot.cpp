@@ -15,6 +15,11 @@ bool display_available() {
 }
 
 Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block, int width, int height) {
+  return render_mesh_gl(mesh, block, width, height, core::Tool{}, {});
+}
+
+Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block, int width, int height,
+                                const core::Tool& tool, std::span<const DabStandIn> stand_ins) {
   if (!display_available()) return Error("no display (DISPLAY is not set)");
   auto window = GlWindow::open(64, 64, "sculpt snapshot", /*visible=*/false);
   if (!window) return window.error();
@@ -32,8 +37,9 @@ Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block, int wid
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
   glGenRenderbuffers(1, &depth);
   glBindRenderbuffer(GL_RENDERBUFFER, depth);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+  // With a stencil: a carving stand-in counts in it.
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, width, height);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depth);
   const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
 
   RgbImage image;
@@ -43,9 +49,10 @@ Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block, int wid
     const float aspect = static_cast<float>(width) / static_cast<float>(height);
     gl::SceneView view{camera.view(), camera.projection(aspect), camera.eye(), width, height};
     (*renderer)->show_mesh(mesh);
+    if (!stand_ins.empty()) (*renderer)->set_tool(tool, stand_ins.front().tool_version);
     gl::ToolDraw no_tool;
     no_tool.visible = false;
-    (*renderer)->draw(view, no_tool, block);
+    (*renderer)->draw(view, no_tool, block, stand_ins);
     glFinish();
     image.width = width;
     image.height = height;

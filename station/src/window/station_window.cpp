@@ -162,6 +162,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
   const double n = std::max<double>(1.0, static_cast<double>(f.frame_us.count()));
   const LatencyStats l = c.session_latency();
   const LatencyStats full = c.full_detail_latency();
+  const LatencyStats picture = c.first_picture_latency();
   nlohmann::ordered_json j = {
       {"frames", f.frame_us.count()},
       {"frames_drawn_unsteered", f.frames_drawn_unsteered},
@@ -225,7 +226,16 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
         {"p50", full.p50_us},
         {"p90", full.p90_us},
         {"p99", full.p99_us},
-        {"max", full.max_us}}}};
+        {"max", full.max_us}}},
+      {"first_picture_latency_us",
+       {{"count", picture.count},
+        {"p50", picture.p50_us},
+        {"p90", picture.p90_us},
+        {"p99", picture.p99_us},
+        {"max", picture.max_us}}},
+      {"stand_ins",
+       {{"dabs_stood_in", c.loop().counters().dabs_stood_in},
+        {"dropped", c.stand_ins().dropped()}}}};
   if (haptics != nullptr) j["haptics"] = haptic_figures(*haptics);
   AtomicFileWriter w(path);
   if (!w.ok()) return w.error();
@@ -266,6 +276,8 @@ int run_window(const WindowOptions& o) {
   // Offset and closing take seconds on a big sculpture: computed on a
   // worker, the window draws and steers meanwhile (input_hub.cpp).
   co.loop.background_morphology = true;
+  // A dab that adds the tool is drawn at once (app/dab_stand_ins.h).
+  co.stand_ins = o.stand_ins;
   co.loop.pose.tracker = o.tracker;
   co.normalizer_config_path = hal::default_normalizer_config_path();
   StationController controller(co);
@@ -539,6 +551,8 @@ int run_window(const WindowOptions& o) {
                                   delta->readiness.end());
       surface.apply(std::move(*delta));
     }
+    // Dabs not meshed yet that a stand-in shows (its own lock, not the turn).
+    const std::vector<DabStandIn> stand_ins = controller.stand_ins().showing(surface.change());
     const int64_t t_upload = hal::monotonic_ns();
     figures.mesh_ms += static_cast<double>(t_upload - t_mesh) * 1e-6;
     if (steering) {
@@ -574,7 +588,7 @@ int run_window(const WindowOptions& o) {
     figures.upload_ms += static_cast<double>(t_draw - t_upload) * 1e-6;
     if (steering) turn.unlock();
     if (drawn.known) {
-      (*renderer)->draw(drawn.view, drawn.tool, drawn.block);
+      (*renderer)->draw(drawn.view, drawn.tool, drawn.block, stand_ins);
       if (drawn.haptics) (*renderer)->draw_haptics(drawn.view, *drawn.haptics);
       if (drawn.tool_region) {
         // Voxel centres are at integers: the region's voxels span lo - 0.5 to hi - 0.5.

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../cli/run_sculpt.h"
+#include "picture_difference.h"
 #include "scratch_dir.h"
 #include "sculpt/core/files/volume_file.h"
 #include "sculpt/sim/session/session_file.h"
@@ -284,25 +285,10 @@ TEST(StationWindow, AToolGivenWholePlaysLiveAsItReplaysWithTheLibraryShown) {
   EXPECT_EQ(from_window.volume().content_hash(), stats["volume_hash"].get<uint64_t>());
 }
 
-// How two pictures of the same size differ: the mean over pixels of the
-// largest channel difference, and the share of pixels where it is over 24.
-struct PictureDifference {
-  double mean = 0;
-  double visible_share = 0;
-};
+using ::sculpt::test::PictureDifference;
 
 PictureDifference difference(const Picture& a, const Picture& b) {
-  double sum = 0;
-  int64_t visible = 0;
-  for (size_t i = 0; i < a.rgb.size(); i += 3) {
-    int worst = 0;
-    for (size_t k = 0; k < 3; ++k)
-      worst = std::max(worst, std::abs(a.rgb[i + k] - b.rgb[i + k]));
-    sum += worst;
-    visible += worst > 24;
-  }
-  const double pixels = static_cast<double>(a.rgb.size() / 3);
-  return {sum / pixels, static_cast<double>(visible) / pixels};
+  return ::sculpt::test::picture_difference(a.rgb, b.rgb);
 }
 
 // The demo sculpture saved as a project, to open in the window.

@@ -163,7 +163,12 @@ void SceneRenderer::set_tool(const core::Tool& tool, uint64_t version) {
   if (version == tool_version_) return;
   tool_version_ = version;
   tool_pivot_ = tool.pivot;
-  tool_mesh_.upload(tool_outline(tool));
+  const core::Mesh outline = tool_outline(tool);
+  tool_mesh_.upload(outline);
+  stand_in_mesh_.upload(std::max({tool.density.dims().x, tool.density.dims().y,
+                                  tool.density.dims().z}) > kToolOutlineCells
+                            ? tool_outline(tool, kStandInCells)
+                            : outline);
 }
 
 void SceneRenderer::draw_lines(const std::vector<glm::vec3>& points, glm::vec4 colour,
@@ -206,7 +211,62 @@ void SceneRenderer::draw_box(const SceneView& view, glm::vec3 lo, glm::vec3 hi, 
   glEnable(GL_DEPTH_TEST);
 }
 
-void SceneRenderer::draw(const SceneView& view, const ToolDraw& tool, glm::vec3 block) {
+void SceneRenderer::draw_tool_copies(std::span<const DabStandIn> stand_ins, bool carving) {
+  for (const DabStandIn& s : stand_ins) {
+    if (s.carves != carving || s.tool_version != tool_version_) continue;
+    for (const bool reflected : {false, true}) {
+      if (reflected && !s.mirror) continue;
+      lit_.set("model", stand_in_model(s, tool_pivot_, reflected));
+      // A reflection turns the triangles' winding over, and so which side
+      // is the front.
+      glFrontFace(reflected ? GL_CW : GL_CCW);
+      stand_in_mesh_.draw();
+    }
+  }
+  glFrontFace(GL_CCW);
+}
+
+void SceneRenderer::draw_stand_ins(std::span<const DabStandIn> stand_ins) {
+  if (stand_in_mesh_.empty() || stand_ins.empty()) return;
+  // Adding: the tool's mesh where each dab put it, drawn as clay, is the
+  // picture of the clay after them (the visible surface of a union).
+  draw_tool_copies(stand_ins, /*carving=*/false);
+  const bool carving =
+      std::any_of(stand_ins.begin(), stand_ins.end(), [](const DabStandIn& s) { return s.carves; });
+  if (carving) {
+    // Carving: where the clay's visible surface lies inside a tool, the
+    // tool's far side behind it is the wall of the hole. Inside is counted
+    // in the stencil: a tool face in front of the clay's surface enters
+    // (front) or leaves (back) the tool on the way to it.
+    glEnable(GL_STENCIL_TEST);
+    glClearStencil(0);
+    glClear(GL_STENCIL_BUFFER_BIT);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    glStencilFunc(GL_ALWAYS, 0, 0xff);
+    glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, GL_INCR_WRAP);
+    glStencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, GL_DECR_WRAP);
+    draw_tool_copies(stand_ins, true);
+    // The far sides there: of a stroke's overlapping tools, the farthest
+    // one is where their union ends along the ray.
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    glStencilFunc(GL_NOTEQUAL, 0, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_FRONT);
+    glDepthFunc(GL_GREATER);
+    draw_tool_copies(stand_ins, true);
+    glDepthFunc(GL_LESS);
+    glCullFace(GL_BACK);
+    glDisable(GL_STENCIL_TEST);
+  }
+  lit_.set("model", glm::mat4(1.0f));
+}
+
+void SceneRenderer::draw(const SceneView& view, const ToolDraw& tool, glm::vec3 block,
+                         std::span<const DabStandIn> stand_ins) {
   const glm::mat4 vp = view.projection * view.view;
   glViewport(0, 0, view.width, view.height);
   glClearColor(0.16f, 0.17f, 0.19f, 1.0f);
@@ -251,6 +311,7 @@ void SceneRenderer::draw(const SceneView& view, const ToolDraw& tool, glm::vec3 
   glCullFace(GL_BACK);
   for (const GpuMesh* m : visible_)
     m->draw();
+  draw_stand_ins(stand_ins);
   glDisable(GL_CULL_FACE);  // a sheet is seen from both sides
   if (!sheet_mesh_.empty()) {
     // A sheet is not clay: a cool blue, brighter while it is being edited.

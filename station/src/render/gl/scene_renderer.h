@@ -21,6 +21,7 @@
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/sculpt/sculptor.h"
 #include "sculpt/core/tool/tool.h"
+#include "sculpt/station/app/dab_stand_ins.h"
 #include "sculpt/station/view/haptic_overlay.h"
 #include "sculpt/station/view/surface_mesher.h"
 
@@ -73,7 +74,11 @@ class SceneRenderer {
   /// The NURBS sheet's mesh (empty: no sheet), uploaded when `version`
   /// differs from the last one given; `editing` draws it highlighted.
   void set_sheet(const core::Mesh& mesh, uint64_t version, bool editing);
-  void draw(const SceneView& view, const ToolDraw& tool, glm::vec3 block_dims);
+  /// Draws the scene; `stand_ins`: dabs not meshed yet, drawn as clay added
+  /// or carved by the tool's mesh where each put it (app/dab_stand_ins.h;
+  /// carving needs a stencil buffer).
+  void draw(const SceneView& view, const ToolDraw& tool, glm::vec3 block_dims,
+            std::span<const DabStandIn> stand_ins = {});
   /// Over what draw() drew: a force device's proxy, device point, ghost and
   /// force arrow (view/haptic_overlay.h), drawn through the clay so the
   /// device is seen where it has sunk in.
@@ -94,6 +99,11 @@ class SceneRenderer {
   // for at most kRefineBudgetNs.
   void refine_normals(const core::Volume& volume, bool whole);
   void draw_lines(const std::vector<glm::vec3>& points, glm::vec4 colour, const glm::mat4& mvp);
+  // Dabs not meshed yet (app/dab_stand_ins.h), over the clay just drawn
+  // with lit_ in use and back faces culled.
+  void draw_stand_ins(std::span<const DabStandIn> stand_ins);
+  // The tool's mesh where each adding (or carving) stand-in put it.
+  void draw_tool_copies(std::span<const DabStandIn> stand_ins, bool carving);
 
   ShaderProgram lit_;
   ShaderProgram flat_;
@@ -102,6 +112,7 @@ class SceneRenderer {
   uint64_t tool_version_ = ~uint64_t{0};
   glm::vec3 tool_pivot_{0.0f};
   GpuMesh tool_mesh_;
+  GpuMesh stand_in_mesh_;  // the tool finer (view/tool_outline.h), drawn as clay
   GpuMesh single_mesh_;
   GpuMesh sheet_mesh_;
   uint64_t sheet_version_ = ~uint64_t{0};

@@ -5,8 +5,10 @@
 //
 // A dab's latency is known only when the mesher says the change holding it
 // is meshed, so dabs pass four stages: made (note_dabs), handed to the
-// mesher as change N (submitted), first shown (meshed up to change N, maybe
-// coarse), and shown at full detail. Both latencies are kept.
+// mesher as change N (submitted), first meshed (up to change N, maybe
+// coarse), and meshed at full detail. Both latencies are kept, and a third:
+// to the dab's first picture, which is its stand-in's when one showed it
+// before it was sculpted (dab_stand_ins.h), else its first mesh.
 //
 // Thread safety: one thread (the station's main loop).
 
@@ -21,10 +23,13 @@ namespace sculpt::station {
 
 class InputStatistics {
  public:
-  /// `count` dabs were made from a report read at `report_t_ns`.
-  void note_dabs(int64_t count, int64_t report_t_ns);
+  /// `count` dabs were made from a report read at `report_t_ns`, of which
+  /// `stood_in` (the first ones) were shown by stand-ins published at
+  /// `stand_in_ns`.
+  void note_dabs(int64_t count, int64_t report_t_ns, int64_t stood_in = 0,
+                 int64_t stand_in_ns = 0);
   /// Whether dabs were made since the last submitted().
-  bool dabs_waiting() const { return !made_t_ns_.empty(); }
+  bool dabs_waiting() const { return !made_.empty(); }
   /// At `now_ns`, the dabs made so far went to the mesher as change
   /// `change`. A change already meshed (the mesher had nothing new: the
   /// dabs touched no voxel) shows them at once.
@@ -38,6 +43,8 @@ class InputStatistics {
   LatencyStats session_latency() const { return latency_stats(all_us_); }
   /// Report to full detail on screen, the whole session.
   LatencyStats full_detail_latency() const { return latency_stats(full_detail_us_); }
+  /// Report to the first picture of the dab (stand-in or mesh), the whole session.
+  LatencyStats first_picture_latency() const { return latency_stats(first_picture_us_); }
 
   /// The reader's count of motion samples so far; returns the report rate
   /// over about the last second once one has passed, else a negative value.
@@ -46,11 +53,16 @@ class InputStatistics {
   void restart_report_rate() { rate_started_ = false; }
 
  private:
+  struct Made {
+    int64_t report_t_ns;
+    bool pictured;  // its first picture (a stand-in) is counted already
+  };
   struct Meshing {
     uint64_t change;
     int64_t report_t_ns;
+    bool pictured;
   };
-  std::vector<int64_t> made_t_ns_;  // report times of dabs not yet submitted
+  std::vector<Made> made_;  // dabs not yet submitted
   std::deque<Meshing> meshing_;     // submitted, waiting for their meshes
   std::deque<Meshing> detailing_;   // shown, waiting for full detail
   uint64_t ready_change_ = 0;       // the last ready() figures
@@ -58,6 +70,7 @@ class InputStatistics {
   std::deque<double> recent_us_;
   LatencyHistogram all_us_;  // fixed memory: the station runs for hours
   LatencyHistogram full_detail_us_;
+  LatencyHistogram first_picture_us_;
   bool rate_started_ = false;
   int64_t rate_since_ns_ = 0;
   int64_t rate_samples_ = 0;

@@ -140,6 +140,9 @@ struct ControllerOptions {
   double autosave_seconds = 5.0;
   /// The input.conf the sensitivity and deadzone settings are saved to.
   std::string normalizer_config_path;
+  /// Dabs that add the tool are published as stand-ins before they are
+  /// sculpted (stand_ins(), dab_stand_ins.h): on where a window draws them.
+  bool stand_ins = false;
 };
 
 class StationController {
@@ -352,6 +355,11 @@ class StationController {
   LatencyStats recent_latency() const { return stats_.recent_latency(); }
   LatencyStats session_latency() const { return stats_.session_latency(); }
   LatencyStats full_detail_latency() const { return stats_.full_detail_latency(); }
+  LatencyStats first_picture_latency() const { return stats_.first_picture_latency(); }
+  /// The stand-ins of dabs not yet meshed (ControllerOptions::stand_ins);
+  /// safe from any thread without mutex().
+  DabStandIns& stand_ins() { return stand_ins_; }
+  const DabStandIns& stand_ins() const { return stand_ins_; }
   const DeviceStatus& device_status() const { return device_; }
 
   // --- files ---------------------------------------------------------------
@@ -382,7 +390,8 @@ class StationController {
   bool report(const Status& status, const std::string& done);
   void camera_motion(const hal::InputEvent& e);
   static int64_t report_time(int64_t t_ns, int64_t now_ns);
-  void note_dabs(int64_t dabs_before, int64_t t_ns);
+  // The dabs made since `before` came from a report read at `t_ns`.
+  void note_dabs(const StationCounters& before, int64_t t_ns);
   ProjectView view() const;
   // Starts an autosave on another thread when one is due (projects file).
   void autosave_if_due(int64_t now_ns);
@@ -400,6 +409,7 @@ class StationController {
 
   ControllerOptions options_;
   StationLoop loop_;
+  DabStandIns stand_ins_;
   OrbitCamera camera_;
   LodSelector lod_;
   DeviceTarget device_target_ = DeviceTarget::kTool;

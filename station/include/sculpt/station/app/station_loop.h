@@ -39,6 +39,7 @@
 #include "sculpt/hal/types/input_event.h"
 #include "sculpt/sim/session/session.h"
 #include "sculpt/station/app/brush_preview.h"
+#include "sculpt/station/app/dab_stand_ins.h"
 #include "sculpt/station/app/sheet_editor.h"
 #include "sculpt/station/app/touch_mode.h"
 #include "sculpt/station/settings/station_settings.h"
@@ -104,6 +105,8 @@ struct StationCounters {
   int64_t tracking_losses = 0;
   /// Path brushes shown on the path so far while a press went on.
   int64_t brush_previews = 0;
+  /// Dabs shown by a stand-in before they were sculpted (dab_stand_ins.h).
+  int64_t dabs_stood_in = 0;
 };
 
 class StationLoop {
@@ -194,6 +197,12 @@ class StationLoop {
   /// it on the volume (one undo step); nothing when none is pending. Every
   /// handle() and restore() settles first.
   void settle();
+  /// Dabs that add or carve the whole tool are published to `board` before
+  /// they are sculpted, for the window to draw (dab_stand_ins.h); null:
+  /// none. The board must outlive the loop's use of it.
+  void show_stand_ins(DabStandIns* board) { stand_ins_ = board; }
+  /// When the last stand-ins were published (hal::monotonic_ns()).
+  int64_t stand_ins_published_ns() const { return stand_ins_ns_; }
   /// Why the last sheet command or grab did nothing (empty if it worked).
   const std::string& sheet_problem() const { return sheet_problem_; }
 
@@ -226,6 +235,11 @@ class StationLoop {
   // Whether the open swept stroke's mode, strength and accumulation are the
   // settings' (else a new sweep starts where the tool is).
   bool stroke_sculpts_as_set() const;
+  // Whether a dab now adds (false) or carves (true) the tool's whole solid
+  // where it lands, which a stand-in can show; nullopt: neither.
+  std::optional<bool> stand_in_carves() const;
+  // `dabs` and copies of the tool between them where the press sweeps it.
+  std::vector<hal::Dab> stand_in_copies(const std::vector<hal::Dab>& dabs);
   void tool_moved();
   // Touch mode's half of a motion sample: the tool onto the proxy.
   void touch_moved(const hal::InputEvent& e);
@@ -272,6 +286,9 @@ class StationLoop {
   PathBrush brush_ = PathBrush::kClay;
   float brush_strength_ = 1.0f;
   std::optional<core::MirrorPlane> brush_mirror_;
+  DabStandIns* stand_ins_ = nullptr;
+  int64_t stand_ins_ns_ = 0;
+  std::optional<hal::Dab> stand_in_last_;  // the press's last dab stood in
   std::vector<core::StrokeSample> brush_path_;
   BrushPreview preview_;
   SheetEditor sheet_;

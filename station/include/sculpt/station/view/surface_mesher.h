@@ -98,9 +98,12 @@ class SurfaceSnapshot {
   int64_t apply(SurfaceDelta delta);
   const std::unordered_map<int64_t, BrickSurface>& bricks() const { return bricks_; }
   int64_t triangle_count() const;
+  /// The newest submitted change the meshes include (maybe coarse).
+  uint64_t change() const { return change_; }
 
  private:
   std::unordered_map<int64_t, BrickSurface> bricks_;  // by brick index
+  uint64_t change_ = 0;
 };
 
 struct MesherCounters {

@@ -12,6 +12,10 @@ namespace sculpt::station {
 /// Cells a side the outline is meshed from, at most (a power-of-two
 /// averaging brings a bigger tool below it).
 constexpr int kToolOutlineCells = 64;
+/// The same for a dab's stand-in (app/dab_stand_ins.h), drawn as clay beside
+/// the clay's own meshes: a 4:1 averaging (the demo's 135^3 head ball at 64
+/// cells) shades in rings there; 2:1 does not show.
+constexpr int kStandInCells = 128;
 
 /// The tool's iso-surface in the tool's voxel coordinates (as its density
 /// grid), from its voxels averaged over blocks of 2^k, k the smallest with

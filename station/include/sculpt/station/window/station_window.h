@@ -56,6 +56,8 @@ struct WindowOptions {
   /// command), so replays map the same way.
   hal::TrackerCalibration tracker;
   bool vsync = true;
+  /// Dabs drawn by a stand-in before their mesh is ready (app/dab_stand_ins.h).
+  bool stand_ins = true;
   bool visible = true;
   int width = 1280;
   int height = 800;
