@@ -52,6 +52,16 @@ std::vector<DabStandIn> DabStandIns::showing(uint64_t meshed_change) {
   return kept_;
 }
 
+void DabStandIns::set_tool(ToolMesh tool) {
+  std::lock_guard lock(mutex_);
+  tool_ = std::move(tool);
+}
+
+DabStandIns::ToolMesh DabStandIns::tool() const {
+  std::lock_guard lock(mutex_);
+  return tool_;
+}
+
 size_t DabStandIns::kept() const {
   std::lock_guard lock(mutex_);
   return kept_.size();

@@ -15,6 +15,7 @@
 #include "sculpt/core/tool/tool_scale.h"
 #include "sculpt/sim/session/command_limits.h"
 #include "sculpt/station/settings/command_codec.h"
+#include "sculpt/station/view/tool_outline.h"
 
 #include <algorithm>
 #include <cmath>
@@ -260,6 +261,21 @@ void StationLoop::apply_tool() {
   sculptor_->set_tool(tool_);
   ++tool_version_;
   reset_sampler();
+  if (stand_ins_ != nullptr) give_stand_ins_the_tool();
+}
+
+void StationLoop::show_stand_ins(DabStandIns* board) {
+  stand_ins_ = board;
+  if (stand_ins_ != nullptr) give_stand_ins_the_tool();
+}
+
+void StationLoop::give_stand_ins_the_tool() {
+  // Meshed here, with the tool: 2-5 ms for the demo's head ball, which the
+  // frame would otherwise spend, and a dab's stand-in is ready to draw as
+  // soon as it is published.
+  stand_ins_->set_tool({tool_version_,
+                        std::make_shared<const core::Mesh>(tool_outline(tool_, kStandInCells)),
+                        tool_.pivot});
 }
 
 void StationLoop::set_custom_tool(core::Tool tool, CustomToolSource source, core::Box region) {

@@ -4,6 +4,7 @@
 
 #include "render/gl/scene_renderer.h"
 #include "sculpt/station/view/orbit_camera.h"
+#include "sculpt/station/view/tool_outline.h"
 #include "window/gl_context.h"
 
 namespace sculpt::station {
@@ -49,7 +50,11 @@ Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block, int wid
     const float aspect = static_cast<float>(width) / static_cast<float>(height);
     gl::SceneView view{camera.view(), camera.projection(aspect), camera.eye(), width, height};
     (*renderer)->show_mesh(mesh);
-    if (!stand_ins.empty()) (*renderer)->set_tool(tool, stand_ins.front().tool_version);
+    if (!stand_ins.empty()) {
+      (*renderer)->set_stand_in_tool(
+          {stand_ins.front().tool_version,
+           std::make_shared<const core::Mesh>(tool_outline(tool, kStandInCells)), tool.pivot});
+    }
     gl::ToolDraw no_tool;
     no_tool.visible = false;
     (*renderer)->draw(view, no_tool, block, stand_ins);

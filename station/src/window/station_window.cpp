@@ -553,6 +553,7 @@ int run_window(const WindowOptions& o) {
     }
     // Dabs not meshed yet that a stand-in shows (its own lock, not the turn).
     const std::vector<DabStandIn> stand_ins = controller.stand_ins().showing(surface.change());
+    (*renderer)->set_stand_in_tool(controller.stand_ins().tool());
     const int64_t t_upload = hal::monotonic_ns();
     figures.mesh_ms += static_cast<double>(t_upload - t_mesh) * 1e-6;
     if (steering) {

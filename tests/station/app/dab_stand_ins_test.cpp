@@ -14,7 +14,6 @@
 #include "sculpt/station/app/station_loop.h"
 #include "sculpt/station/render/software_renderer.h"
 #include "sculpt/station/settings/command_codec.h"
-#include "sculpt/station/view/tool_outline.h"
 
 namespace sculpt::station {
 namespace {
@@ -157,11 +156,15 @@ TEST(DabStandIns, TheClayAsItWasWithTheStandInsLooksLikeTheClayAfterTheDab) {
     ASSERT_FALSE(stand_ins.empty());
 
     core::Mesh drawn = before;
-    const core::Mesh tool = tool_outline(loop.tool(), kStandInCells);
+    // The tool's mesh as the loop gave it to the board with the tool.
+    const DabStandIns::ToolMesh tool = board.tool();
+    ASSERT_TRUE(tool.mesh);
+    EXPECT_EQ(tool.version, loop.tool_version());
+    EXPECT_EQ(tool.pivot, loop.tool().pivot);
     for (const DabStandIn& s : stand_ins) {
-      EXPECT_EQ(s.tool_version, loop.tool_version());
+      EXPECT_EQ(s.tool_version, tool.version);
       for (const bool reflected : {false, true})
-        append(drawn, tool, stand_in_model(s, loop.tool().pivot, reflected), reflected);
+        append(drawn, *tool.mesh, stand_in_model(s, tool.pivot, reflected), reflected);
     }
     SoftwareView view = view_of(after, glm::vec3(0.0f), glm::vec3(256.0f));
     view.width = view.height = 400;

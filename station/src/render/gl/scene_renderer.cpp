@@ -163,12 +163,14 @@ void SceneRenderer::set_tool(const core::Tool& tool, uint64_t version) {
   if (version == tool_version_) return;
   tool_version_ = version;
   tool_pivot_ = tool.pivot;
-  const core::Mesh outline = tool_outline(tool);
-  tool_mesh_.upload(outline);
-  stand_in_mesh_.upload(std::max({tool.density.dims().x, tool.density.dims().y,
-                                  tool.density.dims().z}) > kToolOutlineCells
-                            ? tool_outline(tool, kStandInCells)
-                            : outline);
+  tool_mesh_.upload(tool_outline(tool));
+}
+
+void SceneRenderer::set_stand_in_tool(const DabStandIns::ToolMesh& tool) {
+  if (tool.version == stand_in_version_ || !tool.mesh) return;
+  stand_in_version_ = tool.version;
+  stand_in_pivot_ = tool.pivot;
+  stand_in_mesh_.upload(*tool.mesh);
 }
 
 void SceneRenderer::draw_lines(const std::vector<glm::vec3>& points, glm::vec4 colour,
@@ -213,10 +215,10 @@ void SceneRenderer::draw_box(const SceneView& view, glm::vec3 lo, glm::vec3 hi, 
 
 void SceneRenderer::draw_tool_copies(std::span<const DabStandIn> stand_ins, bool carving) {
   for (const DabStandIn& s : stand_ins) {
-    if (s.carves != carving || s.tool_version != tool_version_) continue;
+    if (s.carves != carving || s.tool_version != stand_in_version_) continue;
     for (const bool reflected : {false, true}) {
       if (reflected && !s.mirror) continue;
-      lit_.set("model", stand_in_model(s, tool_pivot_, reflected));
+      lit_.set("model", stand_in_model(s, stand_in_pivot_, reflected));
       // A reflection turns the triangles' winding over, and so which side
       // is the front.
       glFrontFace(reflected ? GL_CW : GL_CCW);

@@ -71,6 +71,8 @@ class SceneRenderer {
   /// Remakes the tool's mesh when `version` differs from the last one given
   /// (StationLoop::tool_version).
   void set_tool(const core::Tool& tool, uint64_t version);
+  /// The mesh stand-ins are drawn with, uploaded when its version moved.
+  void set_stand_in_tool(const DabStandIns::ToolMesh& tool);
   /// The NURBS sheet's mesh (empty: no sheet), uploaded when `version`
   /// differs from the last one given; `editing` draws it highlighted.
   void set_sheet(const core::Mesh& mesh, uint64_t version, bool editing);
@@ -113,6 +115,8 @@ class SceneRenderer {
   glm::vec3 tool_pivot_{0.0f};
   GpuMesh tool_mesh_;
   GpuMesh stand_in_mesh_;  // the tool finer (view/tool_outline.h), drawn as clay
+  uint64_t stand_in_version_ = ~uint64_t{0};
+  glm::vec3 stand_in_pivot_{0.0f};
   GpuMesh single_mesh_;
   GpuMesh sheet_mesh_;
   uint64_t sheet_version_ = ~uint64_t{0};

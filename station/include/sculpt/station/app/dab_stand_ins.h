@@ -27,6 +27,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <span>
@@ -36,6 +37,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "sculpt/core/mesh/mesh.h"
 #include "sculpt/core/sculpt/sculptor.h"
 #include "sculpt/hal/stroke/stroke_sampler.h"
 
@@ -75,11 +77,23 @@ class DabStandIns {
   /// the stand-ins of those go, the rest are returned.
   std::vector<DabStandIn> showing(uint64_t meshed_change);
 
+  /// The mesh stand-ins of tool `version` are drawn with (view/
+  /// tool_outline.h, kStandInCells), made by the sculpting thread when the
+  /// tool changes: a stand-in is then ready to draw when it is published.
+  struct ToolMesh {
+    uint64_t version = ~uint64_t{0};
+    std::shared_ptr<const core::Mesh> mesh;  ///< in the tool's voxel coordinates
+    glm::vec3 pivot{0.0f};                   ///< the tool's pivot in them
+  };
+  void set_tool(ToolMesh tool);
+  ToolMesh tool() const;
+
   size_t kept() const;
   int64_t dropped() const;
 
  private:
   mutable std::mutex mutex_;
+  ToolMesh tool_;
   std::vector<DabStandIn> kept_;  // oldest first
   int64_t dropped_ = 0;
 };

@@ -200,7 +200,7 @@ class StationLoop {
   /// Dabs that add or carve the whole tool are published to `board` before
   /// they are sculpted, for the window to draw (dab_stand_ins.h); null:
   /// none. The board must outlive the loop's use of it.
-  void show_stand_ins(DabStandIns* board) { stand_ins_ = board; }
+  void show_stand_ins(DabStandIns* board);
   /// When the last stand-ins were published (hal::monotonic_ns()).
   int64_t stand_ins_published_ns() const { return stand_ins_ns_; }
   /// Why the last sheet command or grab did nothing (empty if it worked).
@@ -240,6 +240,7 @@ class StationLoop {
   std::optional<bool> stand_in_carves() const;
   // `dabs` and copies of the tool between them where the press sweeps it.
   std::vector<hal::Dab> stand_in_copies(const std::vector<hal::Dab>& dabs);
+  void give_stand_ins_the_tool();
   void tool_moved();
   // Touch mode's half of a motion sample: the tool onto the proxy.
   void touch_moved(const hal::InputEvent& e);
