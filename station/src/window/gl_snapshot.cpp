@@ -53,7 +53,9 @@ Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block, int wid
     if (!stand_ins.empty()) {
       (*renderer)->set_stand_in_tool(
           {stand_ins.front().tool_version,
-           std::make_shared<const core::Mesh>(tool_outline(tool, kStandInCells)), tool.pivot});
+           std::make_shared<const core::Mesh>(stand_in_outline(tool)),
+           std::make_shared<const core::Mesh>(stand_in_outline(tool, /*coarse=*/true)),
+           tool.pivot});
     }
     gl::ToolDraw no_tool;
     no_tool.visible = false;

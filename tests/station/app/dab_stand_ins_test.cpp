@@ -97,13 +97,20 @@ TEST(DabStandIns, StandInOnlyForDabsThatAddOrCarveTheWholeTool) {
   ASSERT_GT(carved, static_cast<size_t>(added));
   EXPECT_TRUE(board.showing(0).back().carves);
   EXPECT_FALSE(board.showing(0).front().carves);
-  // Smoothing and a weaker addition leave something else: no stand-in.
+  // Smoothing and a weaker addition leave something else, and a carving
+  // tool other than a ball is not stood in yet: no stand-in.
   loop.handle(sim::Command{sim::CommandKind::kMode, choice_of(core::SculptMode::kSmooth)});
   dab_at(loop, {20, 24, 40});
+  loop.handle(sim::Command{sim::CommandKind::kMode, choice_of(core::SculptMode::kSubtract)});
+  loop.handle(
+      sim::Command{sim::CommandKind::kTool, choice_of(sim::ToolShape::kCube), {8.0f, 0.0f}});
+  dab_at(loop, {20, 24, 40});
+  loop.handle(
+      sim::Command{sim::CommandKind::kTool, choice_of(sim::ToolShape::kSphere), {10.0f, 0.0f}});
   loop.handle(sim::Command{sim::CommandKind::kMode, choice_of(core::SculptMode::kAdd)});
   loop.handle(sim::Command{sim::CommandKind::kStrength, 0, {0.5f}});
   dab_at(loop, {20, 24, 40});
-  EXPECT_GT(loop.counters().dabs, static_cast<int64_t>(carved) + 1);
+  EXPECT_GT(loop.counters().dabs, static_cast<int64_t>(carved) + 2);
   EXPECT_EQ(board.kept(), carved);
   EXPECT_EQ(loop.counters().dabs_stood_in, static_cast<int64_t>(carved));
 

@@ -4,6 +4,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "sculpt/core/mesh/mesh.h"
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/volume/volume.h"
 
@@ -14,8 +15,46 @@ TEST(ToolOutline, ASmallToolIsMeshedWhole) {
   const core::Tool tool = core::make_sphere_tool(12.0f);
   const core::Mesh outline = tool_outline(tool);
   const core::Mesh whole = core::marching_cubes(core::Volume::from_dense(tool.density), 0);
-  EXPECT_EQ(outline.positions, whole.positions);
-  EXPECT_EQ(outline.triangles.size(), whole.triangles.size());
+  // The same surface (marched with empty cells round it, shifted back).
+  ASSERT_EQ(outline.positions.size(), whole.positions.size());
+  for (size_t i = 0; i < whole.positions.size(); ++i)
+    EXPECT_LT(glm::length(outline.positions[i] - whole.positions[i]), 1e-4f) << i;
+  EXPECT_EQ(outline.triangles, whole.triangles);
+}
+
+double signed_volume(const core::Mesh& m) {
+  double v = 0;
+  for (const glm::uvec3& t : m.triangles)
+    v += glm::dot(m.positions[t.x], glm::cross(m.positions[t.y], m.positions[t.z])) / 6.0;
+  return v;
+}
+
+// A cube's grid ends where its density does: marched as it is, its faces
+// on the grid stayed open, and a carving stand-in needs it closed.
+TEST(ToolOutline, IsClosedWhereTheToolFillsItsGrid) {
+  const core::Mesh outline = tool_outline(core::make_cube_tool(20.0f));
+  const core::MeshTopology topology = core::check_topology(outline);
+  EXPECT_EQ(topology.boundary_edges, 0);
+  EXPECT_EQ(topology.misoriented_edges, 0);
+  EXPECT_NEAR(signed_volume(outline), 20.0 * 20.0 * 20.0, 400.0);  // outward, the cube's
+}
+
+TEST(ToolOutline, ABallIsASphereAtItsSurfaceLevel) {
+  for (const float hardness : {1.0f, 0.3f}) {
+    const core::Tool ball = core::make_sphere_tool(24.0f, hardness);
+    const core::Mesh sphere = ball_outline(ball);
+    const core::Mesh marched = tool_outline(ball, kStandInCells);
+    EXPECT_EQ(core::check_topology(sphere).misoriented_edges, 0);
+    // Where the marched surface is, on average, and facing out.
+    double marched_radius = 0;
+    for (const glm::vec3& p : marched.positions)
+      marched_radius += glm::length(p - ball.pivot);
+    marched_radius /= static_cast<double>(marched.positions.size());
+    for (const glm::vec3& p : sphere.positions)
+      EXPECT_NEAR(glm::length(p - ball.pivot), marched_radius, 0.2) << hardness;
+    EXPECT_GT(signed_volume(sphere), 0.0);
+    EXPECT_NEAR(signed_volume(sphere) / signed_volume(marched), 1.0, 0.03) << hardness;
+  }
 }
 
 TEST(ToolOutline, ABigToolIsMeshedCoarseInItsPlace) {

@@ -52,7 +52,8 @@ struct Dabbed {
 
 // A stroke of `mode` with a `size`-voxel ball along `path` on the clay,
 // mirrored across x = 128: the meshes before and after, and its stand-ins.
-Dabbed stroke(core::SculptMode mode, float size, const std::vector<glm::vec3>& path) {
+Dabbed stroke(core::SculptMode mode, float size, const std::vector<glm::vec3>& path,
+              sim::ToolShape shape = sim::ToolShape::kSphere) {
   StationLoop::Options o;
   o.volume_dims = glm::ivec3(kBlock);
   o.clay_margin = 64;
@@ -60,8 +61,7 @@ Dabbed stroke(core::SculptMode mode, float size, const std::vector<glm::vec3>& p
   StationLoop loop(o);
   DabStandIns board;
   loop.show_stand_ins(&board);
-  loop.handle(
-      sim::Command{sim::CommandKind::kTool, choice_of(sim::ToolShape::kSphere), {size, 0.0f}});
+  loop.handle(sim::Command{sim::CommandKind::kTool, choice_of(shape), {size, 0.0f}});
   loop.handle(sim::Command{sim::CommandKind::kMode, choice_of(mode)});
   loop.handle(sim::Command{sim::CommandKind::kMirror, 0, {128.0f}});
   auto pose = [](glm::vec3 p) {
@@ -123,6 +123,11 @@ TEST(StandInPictures, AddingAndCarvingLookLikeTheSculptedClay) {
     groove.push_back({96.4f, y, 195.3f});
   expect_stand_ins_look_sculpted(stroke(core::SculptMode::kSubtract, 12.0f, groove),
                                  "a groove carved with a ball of radius 12");
+  // A cube of 40 voxels (its stand-in marched from its voxels) added on an
+  // edge of the clay.
+  expect_stand_ins_look_sculpted(
+      stroke(core::SculptMode::kAdd, 40.0f, {{84.6f, 190.3f, 186.7f}}, sim::ToolShape::kCube),
+      "a 40-voxel cube added");
 }
 
 }  // namespace

@@ -167,10 +167,11 @@ void SceneRenderer::set_tool(const core::Tool& tool, uint64_t version) {
 }
 
 void SceneRenderer::set_stand_in_tool(const DabStandIns::ToolMesh& tool) {
-  if (tool.version == stand_in_version_ || !tool.mesh) return;
+  if (tool.version == stand_in_version_ || !tool.mesh || !tool.coarse) return;
   stand_in_version_ = tool.version;
   stand_in_pivot_ = tool.pivot;
   stand_in_mesh_.upload(*tool.mesh);
+  stand_in_coarse_.upload(*tool.coarse);
 }
 
 void SceneRenderer::draw_lines(const std::vector<glm::vec3>& points, glm::vec4 colour,
@@ -214,6 +215,13 @@ void SceneRenderer::draw_box(const SceneView& view, glm::vec3 lo, glm::vec3 hi, 
 }
 
 void SceneRenderer::draw_tool_copies(std::span<const DabStandIn> stand_ins, bool carving) {
+  // Past a budget of triangles (about what the clay itself holds), the
+  // coarser mesh: tens of a big tool's copies waiting at once would
+  // otherwise make the frames that show them several times longer.
+  constexpr int64_t kTriangleBudget = 200'000;
+  const int64_t copies = static_cast<int64_t>(stand_ins.size());
+  const GpuMesh& mesh =
+      copies * stand_in_mesh_.triangles() <= kTriangleBudget ? stand_in_mesh_ : stand_in_coarse_;
   for (const DabStandIn& s : stand_ins) {
     if (s.carves != carving || s.tool_version != stand_in_version_) continue;
     for (const bool reflected : {false, true}) {
@@ -222,7 +230,7 @@ void SceneRenderer::draw_tool_copies(std::span<const DabStandIn> stand_ins, bool
       // A reflection turns the triangles' winding over, and so which side
       // is the front.
       glFrontFace(reflected ? GL_CW : GL_CCW);
-      stand_in_mesh_.draw();
+      mesh.draw();
     }
   }
   glFrontFace(GL_CCW);

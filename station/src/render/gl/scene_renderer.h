@@ -114,7 +114,8 @@ class SceneRenderer {
   uint64_t tool_version_ = ~uint64_t{0};
   glm::vec3 tool_pivot_{0.0f};
   GpuMesh tool_mesh_;
-  GpuMesh stand_in_mesh_;  // the tool finer (view/tool_outline.h), drawn as clay
+  GpuMesh stand_in_mesh_;    // the tool finer (view/tool_outline.h), drawn as clay
+  GpuMesh stand_in_coarse_;  // and as the outline, when many wait
   uint64_t stand_in_version_ = ~uint64_t{0};
   glm::vec3 stand_in_pivot_{0.0f};
   GpuMesh single_mesh_;

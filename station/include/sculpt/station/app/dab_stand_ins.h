@@ -83,7 +83,11 @@ class DabStandIns {
   struct ToolMesh {
     uint64_t version = ~uint64_t{0};
     std::shared_ptr<const core::Mesh> mesh;  ///< in the tool's voxel coordinates
-    glm::vec3 pivot{0.0f};                   ///< the tool's pivot in them
+    /// The same from voxels averaged twice as far (kToolOutlineCells): what
+    /// is drawn when many stand-ins wait at once (a big tool's stroke on a
+    /// loaded machine), so that they do not slow the frames down.
+    std::shared_ptr<const core::Mesh> coarse;
+    glm::vec3 pivot{0.0f};  ///< the tool's pivot in them
   };
   void set_tool(ToolMesh tool);
   ToolMesh tool() const;

@@ -24,6 +24,7 @@
 // Thread safety: one thread (the main loop) calls everything.
 
 #include <cstdint>
+#include <future>
 #include <memory>
 #include <optional>
 #include <span>
@@ -289,7 +290,8 @@ class StationLoop {
   std::optional<core::MirrorPlane> brush_mirror_;
   DabStandIns* stand_ins_ = nullptr;
   int64_t stand_ins_ns_ = 0;
-  std::optional<hal::Dab> stand_in_last_;  // the press's last dab stood in
+  std::optional<hal::Dab> stand_in_last_;             // the press's last dab stood in
+  std::future<DabStandIns::ToolMesh> stand_in_tool_;  // being meshed for the board
   std::vector<core::StrokeSample> brush_path_;
   BrushPreview preview_;
   SheetEditor sheet_;
