@@ -152,6 +152,14 @@ nlohmann::ordered_json haptic_figures(const HapticStation& h) {
             {"slowest_update_ms", f.patch.slowest_update_ms}}}};
 }
 
+nlohmann::ordered_json latency_figures(const LatencyStats& l) {
+  return {{"count", l.count},
+          {"p50", l.p50_us},
+          {"p90", l.p90_us},
+          {"p99", l.p99_us},
+          {"max", l.max_us}};
+}
+
 Status write_stats(const std::string& path, const RunFigures& f, const StationController& c,
                    const HapticStation* haptics) {
   // What the program holds, apart from what the allocator keeps free: a
@@ -160,9 +168,6 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
   auto at = [&](double q) { return f.frame_us.quantile_us(q) * 1e-3; };
   const double total = f.frames_total_ms;
   const double n = std::max<double>(1.0, static_cast<double>(f.frame_us.count()));
-  const LatencyStats l = c.session_latency();
-  const LatencyStats full = c.full_detail_latency();
-  const LatencyStats picture = c.first_picture_latency();
   nlohmann::ordered_json j = {
       {"frames", f.frame_us.count()},
       {"frames_drawn_unsteered", f.frames_drawn_unsteered},
@@ -215,24 +220,9 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
       {"volume_hash", c.loop().volume().content_hash()},
       {"solid_voxels", solid_voxels(c.loop().volume())},
       {"triangles", f.triangles},
-      {"dab_latency_us",
-       {{"count", l.count},
-        {"p50", l.p50_us},
-        {"p90", l.p90_us},
-        {"p99", l.p99_us},
-        {"max", l.max_us}}},
-      {"full_detail_latency_us",
-       {{"count", full.count},
-        {"p50", full.p50_us},
-        {"p90", full.p90_us},
-        {"p99", full.p99_us},
-        {"max", full.max_us}}},
-      {"first_picture_latency_us",
-       {{"count", picture.count},
-        {"p50", picture.p50_us},
-        {"p90", picture.p90_us},
-        {"p99", picture.p99_us},
-        {"max", picture.max_us}}},
+      {"dab_latency_us", latency_figures(c.session_latency())},
+      {"full_detail_latency_us", latency_figures(c.full_detail_latency())},
+      {"first_picture_latency_us", latency_figures(c.first_picture_latency())},
       {"stand_ins",
        {{"dabs_stood_in", c.loop().counters().dabs_stood_in},
         {"dropped", c.stand_ins().dropped()}}}};
