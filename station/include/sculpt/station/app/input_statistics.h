@@ -26,8 +26,7 @@ class InputStatistics {
   /// `count` dabs were made from a report read at `report_t_ns`, of which
   /// `stood_in` (the first ones) were shown by stand-ins published at
   /// `stand_in_ns`.
-  void note_dabs(int64_t count, int64_t report_t_ns, int64_t stood_in = 0,
-                 int64_t stand_in_ns = 0);
+  void note_dabs(int64_t count, int64_t report_t_ns, int64_t stood_in = 0, int64_t stand_in_ns = 0);
   /// Whether dabs were made since the last submitted().
   bool dabs_waiting() const { return !made_.empty(); }
   /// At `now_ns`, the dabs made so far went to the mesher as change
@@ -62,10 +61,10 @@ class InputStatistics {
     int64_t report_t_ns;
     bool pictured;
   };
-  std::vector<Made> made_;  // dabs not yet submitted
-  std::deque<Meshing> meshing_;     // submitted, waiting for their meshes
-  std::deque<Meshing> detailing_;   // shown, waiting for full detail
-  uint64_t ready_change_ = 0;       // the last ready() figures
+  std::vector<Made> made_;         // dabs not yet submitted
+  std::deque<Meshing> meshing_;    // submitted, waiting for their meshes
+  std::deque<Meshing> detailing_;  // shown, waiting for full detail
+  uint64_t ready_change_ = 0;      // the last ready() figures
   uint64_t full_detail_change_ = 0;
   std::deque<double> recent_us_;
   LatencyHistogram all_us_;  // fixed memory: the station runs for hours

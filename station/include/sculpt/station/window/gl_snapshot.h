@@ -26,8 +26,7 @@ Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block_dims, in
 
 /// The same with `stand_ins` of dabs made with `tool` drawn over it, as the
 /// window draws them while the dabs wait for their meshes.
-Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block_dims, int width,
-                                int height, const core::Tool& tool,
-                                std::span<const DabStandIn> stand_ins);
+Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block_dims, int width, int height,
+                                const core::Tool& tool, std::span<const DabStandIn> stand_ins);
 
 }  // namespace sculpt::station
