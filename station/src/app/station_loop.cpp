@@ -18,6 +18,7 @@
 #include "sculpt/station/view/tool_outline.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -270,9 +271,14 @@ void StationLoop::show_stand_ins(DabStandIns* board) {
 }
 
 void StationLoop::give_stand_ins_the_tool() {
+  // A march still running for an earlier tool is let finish on its own: a
+  // future from std::async would wait for it when replaced.
+  if (stand_in_tool_.valid()) retired_marches_.push_back(std::move(stand_in_tool_));
+  std::erase_if(retired_marches_, [](const std::future<DabStandIns::ToolMesh>& f) {
+    return f.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+  });
   // A ball's is a sphere, made at once.
   if (tool_.sphere_radius_vox > 0.0f) {
-    stand_in_tool_ = {};
     stand_ins_->set_tool(
         {tool_version_, std::make_shared<const core::Mesh>(stand_in_outline(tool_)),
          std::make_shared<const core::Mesh>(stand_in_outline(tool_, true)), tool_.pivot});
@@ -652,7 +658,7 @@ std::vector<hal::Dab> StationLoop::stand_in_copies(const std::vector<hal::Dab>& 
   for (const hal::Dab& d : dabs) {
     if (stand_in_last_) {
       const float gap = glm::distance(stand_in_last_->position, d.position);
-      const int n = std::min(kMostCopiesBetween, static_cast<int>(gap / step));
+      const int n = std::min(kMostCopiesBetween, static_cast<int>(std::ceil(gap / step)));
       for (int i = 1; i < n; ++i) {
         const float t = static_cast<float>(i) / static_cast<float>(n);
         hal::Dab& c = copies.emplace_back(d);

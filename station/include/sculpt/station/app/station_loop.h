@@ -292,6 +292,7 @@ class StationLoop {
   int64_t stand_ins_ns_ = 0;
   std::optional<hal::Dab> stand_in_last_;             // the press's last dab stood in
   std::future<DabStandIns::ToolMesh> stand_in_tool_;  // being meshed for the board
+  std::vector<std::future<DabStandIns::ToolMesh>> retired_marches_;  // for tools since replaced
   std::vector<core::StrokeSample> brush_path_;
   BrushPreview preview_;
   SheetEditor sheet_;
