@@ -14,6 +14,15 @@ Brick& Brick::operator=(const Brick& other) {
   return *this;
 }
 
+bool Brick::holds_same_voxels(const Brick& other) const {
+  if (is_uniform() || other.is_uniform())
+    return is_uniform() && other.is_uniform() && value_ == other.value_;
+  const WaveletPyramid& a = *pyramid_;
+  const WaveletPyramid& b = *other.pyramid_;
+  return a.edge() == b.edge() && a.levels() == b.levels() &&
+         std::ranges::equal(a.coefficients(), b.coefficients());
+}
+
 void Brick::encode(std::span<const uint8_t> voxels, int edge, int levels) {
   // A brick away from the surface is all 0 or all 255: the common case, and the
   // reason memory grows with the sculpted surface rather than the bounding box.

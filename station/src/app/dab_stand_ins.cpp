@@ -3,8 +3,14 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "sculpt/hal/types/clock.h"
+#include "sculpt/station/view/tool_outline.h"
 
 namespace sculpt::station {
+
+DabStandIns::ToolMesh DabStandIns::ToolMesh::of(const core::Tool& tool, uint64_t version) {
+  return {version, std::make_shared<const core::Mesh>(stand_in_outline(tool)),
+          std::make_shared<const core::Mesh>(stand_in_outline(tool, /*coarse=*/true)), tool.pivot};
+}
 
 glm::mat4 stand_in_model(const DabStandIn& s, glm::vec3 pivot, bool reflected) {
   // The pivot goes to the dab's position, turned by its orientation.

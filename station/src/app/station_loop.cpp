@@ -15,7 +15,6 @@
 #include "sculpt/core/tool/tool_scale.h"
 #include "sculpt/sim/session/command_limits.h"
 #include "sculpt/station/settings/command_codec.h"
-#include "sculpt/station/view/tool_outline.h"
 
 #include <algorithm>
 #include <chrono>
@@ -279,9 +278,7 @@ void StationLoop::give_stand_ins_the_tool() {
   });
   // A ball's is a sphere, made at once.
   if (tool_.sphere_radius_vox > 0.0f) {
-    stand_ins_->set_tool(
-        {tool_version_, std::make_shared<const core::Mesh>(stand_in_outline(tool_)),
-         std::make_shared<const core::Mesh>(stand_in_outline(tool_, true)), tool_.pivot});
+    stand_ins_->set_tool(DabStandIns::ToolMesh::of(tool_, tool_version_));
     return;
   }
   // Another tool's is marched from its voxels on a thread of its own (tens
@@ -290,9 +287,7 @@ void StationLoop::give_stand_ins_the_tool() {
   // it came sooner: a stand-in is ready to draw when it is published.
   stand_in_tool_ = std::async(std::launch::async, [tool = std::make_shared<const core::Tool>(tool_),
                                                    version = tool_version_] {
-    return DabStandIns::ToolMesh{
-        version, std::make_shared<const core::Mesh>(stand_in_outline(*tool)),
-        std::make_shared<const core::Mesh>(stand_in_outline(*tool, /*coarse=*/true)), tool->pivot};
+    return DabStandIns::ToolMesh::of(*tool, version);
   });
 }
 

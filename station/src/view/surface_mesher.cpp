@@ -293,6 +293,15 @@ void SurfaceMesher::run() {
       published.assign(static_cast<size_t>(mirror->brick_count()), 0);
     }
     const glm::ivec3 grid = mirror->brick_grid();
+    // A brick stored again with the voxels it had is not re-meshed: a ball
+    // brush's preview puts its whole path back and brushes it again, and
+    // only the bricks near the path's new end come out different.
+    int64_t unchanged = 0;
+    if (!reset)
+      unchanged = static_cast<int64_t>(std::erase_if(work.bricks, [&](const auto& entry) {
+        return mirror->brick(core::grid_position(entry.first, grid))
+            .holds_same_voxels(entry.second);
+      }));
     // A refinement under way is handed the change too: copies, as the
     // mirror takes the bricks.
     std::unordered_map<int64_t, core::Brick> handed;
@@ -361,6 +370,7 @@ void SurfaceMesher::run() {
       ++counters_.updates;
       counters_.bricks_meshed += update.bricks_meshed;
       counters_.bricks_reused += update.bricks_reused;
+      counters_.bricks_unchanged += unchanged;
       counters_.coarse_first += reset && refining ? 1 : 0;
       counters_.coarse_updates += !reset && refining ? 1 : 0;
       counters_.update_page_faults += faults;

@@ -4,7 +4,6 @@
 
 #include "render/gl/scene_renderer.h"
 #include "sculpt/station/view/orbit_camera.h"
-#include "sculpt/station/view/tool_outline.h"
 #include "window/gl_context.h"
 
 namespace sculpt::station {
@@ -52,10 +51,7 @@ Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block, int wid
     (*renderer)->show_mesh(mesh);
     if (!stand_ins.empty()) {
       (*renderer)->set_stand_in_tool(
-          {stand_ins.front().tool_version,
-           std::make_shared<const core::Mesh>(stand_in_outline(tool)),
-           std::make_shared<const core::Mesh>(stand_in_outline(tool, /*coarse=*/true)),
-           tool.pivot});
+          DabStandIns::ToolMesh::of(tool, stand_ins.front().tool_version));
     }
     gl::ToolDraw no_tool;
     no_tool.visible = false;

@@ -180,6 +180,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
        {{"changes", f.mesher.submits},
         {"bricks_submitted", f.mesher.bricks_submitted},
         {"bricks_coalesced", f.mesher.bricks_coalesced},
+        {"bricks_unchanged", f.mesher.bricks_unchanged},
         {"pending_bricks_max", f.mesher.pending_bricks_max},
         {"coarse_first", f.mesher.coarse_first},
         {"update_page_faults", f.mesher.update_page_faults},

@@ -165,6 +165,30 @@ TEST(Volume, AReplacedBrickReadsAsTheOriginalsAndMovesItsVersion) {
   EXPECT_TRUE(mirror.take_dirty_bricks().empty());  // a mirror has nothing to re-mesh for us
 }
 
+TEST(Volume, BricksHoldTheSameVoxelsExactlyWhenTheirVoxelsAreEqual) {
+  // How the mesher skips a brick stored again unchanged (a brush preview
+  // brushing its path again).
+  const VolumeOptions options{.brick_edge = 16, .levels = 4};
+  Volume v = Volume::from_dense(sphere_density(40), options);
+  const Volume before = v;
+  v.edit(Box{{0, 0, 0}, {40, 40, 40}}, [](glm::ivec3, std::span<uint8_t>) {});
+  DenseGrid<uint8_t> patch(glm::ivec3(1), 77);
+  v.write({20, 3, 20}, patch);  // one voxel of brick (1, 0, 1)
+  int same = 0;
+  for (int64_t i = 0; i < v.brick_count(); ++i) {
+    const glm::ivec3 b = grid_position(i, v.brick_grid());
+    EXPECT_GT(v.brick_version(b), before.brick_version(b));
+    const bool changed = b == glm::ivec3(1, 0, 1);
+    EXPECT_EQ(v.brick(b).holds_same_voxels(before.brick(b)), !changed) << "brick " << i;
+    same += changed ? 0 : 1;
+  }
+  EXPECT_EQ(same, v.brick_count() - 1);
+  EXPECT_TRUE(Brick(3).holds_same_voxels(Brick(3)));
+  EXPECT_FALSE(Brick(3).holds_same_voxels(Brick(4)));
+  EXPECT_FALSE(Brick(3).holds_same_voxels(v.brick({1, 0, 1})));
+  EXPECT_FALSE(v.brick({1, 0, 1}).holds_same_voxels(Brick(3)));
+}
+
 TEST(Volume, WriteReencodesOnlyTheTouchedBricks) {
   Volume v({100, 100, 100}, 0, small_bricks(32, 5));
   // 10^3 voxels at (28..38) straddle the brick edge at 32 on every axis: 8 bricks.

@@ -83,6 +83,10 @@ class Sculpting {
     sculptor_->set_tool(core::make_sphere_tool(2.5f));
     ++generation_;
   }
+  /// Stores every brick again with the voxels it has.
+  void store_again() {
+    volume_->edit(core::Box{glm::ivec3(0), volume_->dims()}, [](glm::ivec3, std::span<uint8_t>) {});
+  }
   const core::Volume& volume() const { return *volume_; }
   uint64_t generation() const { return generation_; }
 
@@ -309,6 +313,30 @@ TEST(SurfaceMesher, NothingChangedIsNoChange) {
   EXPECT_EQ(mesher.submit(s.volume(), s.generation(), levels), first + 1);
   mesher.wait_until_meshed();
   EXPECT_EQ(mesher.counters().submits, 2);
+}
+
+TEST(SurfaceMesher, BricksStoredAgainUnchangedAreNotMeshedAgain) {
+  Sculpting s(48, 4);
+  SurfaceMesher mesher(0, 0.0f);
+  SurfaceSnapshot snapshot;
+  const std::vector<int> levels = levels_for(s.volume(), 0);
+  mesher.submit(s.volume(), s.generation(), levels);
+  mesher.wait_until_meshed();
+  const int64_t meshed = mesher.counters().bricks_meshed;
+  s.store_again();
+  mesher.submit(s.volume(), s.generation(), levels);
+  mesher.wait_until_meshed();
+  EXPECT_EQ(mesher.counters().bricks_unchanged, s.volume().brick_count());
+  EXPECT_EQ(mesher.counters().bricks_meshed, meshed);
+  s.store_again();
+  s.dab();
+  mesher.submit(s.volume(), s.generation(), levels);
+  mesher.wait_until_meshed();
+  EXPECT_GT(mesher.counters().bricks_meshed, meshed);
+  EXPECT_GT(mesher.counters().bricks_unchanged, s.volume().brick_count());
+  while (std::optional<SurfaceDelta> delta = mesher.take())
+    snapshot.apply(std::move(*delta));
+  expect_same_surface(snapshot, s.volume(), levels, 0.0f);
 }
 
 TEST(SurfaceMesher, ZoomingOutAndBackInMeshesNoBrickTwice) {

@@ -32,6 +32,11 @@ class Brick {
   /// Reconstructs level `level` ((edge >> level)^3 values).
   void extract_level(int level, std::span<uint8_t> out) const;
 
+  /// Whether both bricks hold the same voxels. Encoding is canonical (a
+  /// brick of one value is uniform, and the lossless Haar transform of the
+  /// same voxels gives the same coefficients), so this compares encodings.
+  bool holds_same_voxels(const Brick& other) const;
+
   bool is_uniform() const { return pyramid_ == nullptr; }
   /// The value of a uniform brick.
   uint8_t uniform_value() const { return value_; }

@@ -39,6 +39,7 @@
 
 #include "sculpt/core/mesh/mesh.h"
 #include "sculpt/core/sculpt/sculptor.h"
+#include "sculpt/core/tool/tool.h"
 #include "sculpt/hal/stroke/stroke_sampler.h"
 
 namespace sculpt::station {
@@ -88,6 +89,9 @@ class DabStandIns {
     /// loaded machine), so that they do not slow the frames down.
     std::shared_ptr<const core::Mesh> coarse;
     glm::vec3 pivot{0.0f};  ///< the tool's pivot in them
+
+    /// `tool`'s stand_in_outline() at both sizes, for tool version `version`.
+    static ToolMesh of(const core::Tool& tool, uint64_t version);
   };
   void set_tool(ToolMesh tool);
   ToolMesh tool() const;

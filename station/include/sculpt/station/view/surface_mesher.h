@@ -110,6 +110,7 @@ struct MesherCounters {
   int64_t submits = 0;             ///< changes handed over
   int64_t bricks_submitted = 0;    ///< brick copies handed over
   int64_t bricks_coalesced = 0;    ///< replaced by a newer copy before meshing
+  int64_t bricks_unchanged = 0;    ///< stored again with the voxels the mesher had: not re-meshed
   int64_t updates = 0;             ///< mesh updates run
   int64_t bricks_meshed = 0;       ///< brick meshes remade
   int64_t bricks_reused = 0;       ///< given back from an earlier level of detail (zooming back)
