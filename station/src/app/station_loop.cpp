@@ -632,8 +632,11 @@ std::optional<bool> StationLoop::stand_in_carves() const {
       return false;
     case core::SculptMode::kSubtract:
     case core::SculptMode::kDifference:
-      // Balls only: a carved 50-voxel cube's stand-in drew its side walls
-      // but not its floor in the picture test, for a reason not yet found.
+      // Balls only. A carving stand-in draws the tool's far side behind
+      // the clay as the hole's wall, which it is only where it lies inside
+      // the clay; a box carved astride an edge of the clay opens through to
+      // what is behind, and its stand-in showed a wall there (found with
+      // pictures of a 50-voxel cube). A ball rarely reaches through.
       if (tool_.sphere_radius_vox > 0.0f) return true;
       break;
     case core::SculptMode::kSmooth:
