@@ -182,6 +182,7 @@ void InputHub::poll(int64_t now, bool land) {
   } else {
     release_held(now);
     controller_.device_frame(input_, now, commands);
+    controller_.loop().catch_up_brush_preview(hal::monotonic_ns());
   }
   if (const hal::DeviceReader* reader = registry_->reader(device_id_); reader != nullptr)
     controller_.reader_samples(reader->counters().motion_samples, now);

@@ -11,13 +11,21 @@ constexpr int64_t kSecondNs = 1'000'000'000;
 }  // namespace
 
 void InputStatistics::note_dabs(int64_t count, int64_t report_t_ns, int64_t stood_in,
-                                int64_t stand_in_ns) {
+                                int64_t stand_in_ns, int64_t unshown) {
   stood_in = std::clamp<int64_t>(stood_in, 0, count);
   for (int64_t i = 0; i < stood_in; ++i)
     first_picture_us_.add(static_cast<double>(std::max<int64_t>(0, stand_in_ns - report_t_ns)) *
                           1e-3);
-  made_.insert(made_.end(), static_cast<size_t>(stood_in), Made{report_t_ns, true});
-  made_.insert(made_.end(), static_cast<size_t>(count - stood_in), Made{report_t_ns, false});
+  unshown_.insert(unshown_.end(), static_cast<size_t>(stood_in), Made{report_t_ns, true});
+  unshown_.insert(unshown_.end(), static_cast<size_t>(count - stood_in), Made{report_t_ns, false});
+  still_unshown(unshown);
+}
+
+void InputStatistics::still_unshown(int64_t unshown) {
+  while (static_cast<int64_t>(unshown_.size()) > std::max<int64_t>(0, unshown)) {
+    made_.push_back(unshown_.front());
+    unshown_.pop_front();
+  }
 }
 
 void InputStatistics::submitted(uint64_t change, int64_t now_ns) {

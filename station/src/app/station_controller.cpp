@@ -334,7 +334,7 @@ int64_t StationController::report_time(int64_t t_ns, int64_t now_ns) {
 void StationController::note_dabs(const StationCounters& before, int64_t t_ns) {
   const StationCounters& now = loop_.counters();
   stats_.note_dabs(now.dabs - before.dabs, t_ns, now.dabs_stood_in - before.dabs_stood_in,
-                   loop_.stand_ins_published_ns());
+                   loop_.stand_ins_published_ns(), loop_.dabs_not_yet_shown());
 }
 
 void StationController::device_frame(
@@ -428,6 +428,8 @@ int64_t StationController::update_mesh(int64_t now_ns) {
 }
 
 void StationController::surface_submitted(uint64_t change, int64_t now_ns) {
+  // A ball brush's dabs a preview (or the press's end) showed since.
+  stats_.still_unshown(loop_.dabs_not_yet_shown());
   // Something to autosave: new dabs, or the sheet moved under the device.
   if (stats_.dabs_waiting() || loop_.sheet().version() != sheet_version_) ++generation_;
   sheet_version_ = loop_.sheet().version();

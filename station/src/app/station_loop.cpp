@@ -13,6 +13,7 @@
 #include "sculpt/core/sculpt/smooth_brush.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 #include "sculpt/core/tool/tool_scale.h"
+#include "sculpt/hal/types/clock.h"
 #include "sculpt/sim/session/command_limits.h"
 #include "sculpt/station/settings/command_codec.h"
 
@@ -596,7 +597,14 @@ void StationLoop::finish_brush() {
   brush_path_.clear();
 }
 
+void StationLoop::catch_up_brush_preview(int64_t now_ns) {
+  if (!options_.preview_brushes || dabs_not_yet_shown() <= 0) return;
+  if (now_ns - preview_ended_ns_ < 2 * preview_took_ns_) return;
+  show_brush_preview();
+}
+
 void StationLoop::show_brush_preview() {
+  const int64_t start_ns = hal::monotonic_ns();
   const float radius = tool_size() * 0.5f;
   const core::Box region = path_brush_reach(*volume_, brush_path_, radius, brush_mirror_);
   if (region.empty()) return;
@@ -608,6 +616,8 @@ void StationLoop::show_brush_preview() {
                              brush_strength_, brush_mirror_);
   });
   ++counters_.brush_previews;
+  preview_ended_ns_ = hal::monotonic_ns();
+  preview_took_ns_ = preview_ended_ns_ - start_ns;
 }
 
 bool StationLoop::stroke_sculpts_as_set() const {

@@ -56,6 +56,31 @@ TEST(InputStatistics, ADabThatChangedNothingIsShownWhenItIsSubmitted) {
   EXPECT_EQ(s.full_detail_latency().count, 2);
 }
 
+TEST(InputStatistics, ABallBrushDabWaitsForThePreviewThatShowsIt) {
+  // A smoothing press: the first dab changes nothing (no preview yet), the
+  // second brings a preview of both, the third waits for the press's end.
+  InputStatistics s;
+  s.note_dabs(1, 10 * kMs, 0, 0, /*unshown=*/1);
+  EXPECT_FALSE(s.dabs_waiting());
+  s.submitted(1, 10 * kMs);  // nothing changed: no mesh to wait for, yet
+  s.ready(1, 1, 11 * kMs);
+  EXPECT_EQ(s.session_latency().count, 0);
+  s.note_dabs(1, 12 * kMs, 0, 0, /*unshown=*/0);  // the preview
+  s.submitted(2, 13 * kMs);
+  s.ready(2, 2, 16 * kMs);
+  EXPECT_EQ(s.session_latency().count, 2);
+  EXPECT_EQ(s.recent_latency().max_us, 6000.0);  // the first dab's: 10 to 16 ms
+  EXPECT_EQ(s.first_picture_latency().max_us, 6000.0);
+  s.note_dabs(1, 20 * kMs, 0, 0, /*unshown=*/1);
+  s.submitted(2, 20 * kMs);
+  EXPECT_EQ(s.session_latency().count, 2);
+  s.still_unshown(0);  // the press ended: the brush applied for real
+  s.submitted(3, 30 * kMs);
+  s.ready(3, 3, 32 * kMs);
+  EXPECT_EQ(s.session_latency().count, 3);
+  EXPECT_EQ(s.session_latency().max_us, 12000.0);
+}
+
 TEST(InputStatistics, TheReportRateIsOverAboutASecond) {
   InputStatistics s;
   EXPECT_LT(s.reader_samples(0, 0), 0);            // the start

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "sculpt/core/sculpt/clay_brush.h"
 #include "sculpt/core/sculpt/flatten_brush.h"
 #include "sculpt/core/sculpt/grab_brush.h"
@@ -177,6 +179,35 @@ TEST(StationBrushes, ABrushShowsWhileThePressGoesOn) {
     loop.handle(c);
   EXPECT_EQ(loop.counters().brush_previews, 0);
   EXPECT_EQ(loop.volume().content_hash(), core_brush(BallBrush::kGrab).content_hash());
+}
+
+// The dabs the previews' cadence leaves for later (the path's tail when the
+// hand stops) are shown between polls once the last preview is twice its
+// own time behind, and the press still leaves exactly the whole path's brush.
+TEST(StationBrushes, ThePathsTailIsShownWhenThePreviewsHaveTimeForIt) {
+  StationLoop loop(options());
+  const std::vector<sim::Command> commands = stroke_commands(BallBrush::kClay);
+  // Up to the first moment past a preview with a dab it does not show.
+  size_t next = 0;
+  while (next < commands.size() &&
+         (loop.counters().brush_previews == 0 || loop.dabs_not_yet_shown() == 0))
+    loop.handle(commands[next++]);
+  ASSERT_GT(loop.dabs_not_yet_shown(), 0) << "the cadence showed every dab";
+  ASSERT_TRUE(loop.pressed());
+  const int64_t previews = loop.counters().brush_previews;
+  loop.catch_up_brush_preview(0);  // the last preview has just ended: not yet
+  EXPECT_EQ(loop.counters().brush_previews, previews);
+  EXPECT_GT(loop.dabs_not_yet_shown(), 0);
+  loop.catch_up_brush_preview(std::numeric_limits<int64_t>::max() / 2);
+  EXPECT_EQ(loop.counters().brush_previews, previews + 1);
+  EXPECT_EQ(loop.dabs_not_yet_shown(), 0);
+  loop.catch_up_brush_preview(std::numeric_limits<int64_t>::max() / 2);  // nothing new
+  EXPECT_EQ(loop.counters().brush_previews, previews + 1);
+  // The rest of the press and its release: the whole path's brush.
+  while (next < commands.size())
+    loop.handle(commands[next++]);
+  EXPECT_EQ(loop.dabs_not_yet_shown(), 0);
+  EXPECT_EQ(loop.volume().content_hash(), core_brush(BallBrush::kClay).content_hash());
 }
 
 // Smooth mode with the ball tool is core's smooth brush along the path (one

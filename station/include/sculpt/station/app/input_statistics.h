@@ -25,8 +25,14 @@ class InputStatistics {
  public:
   /// `count` dabs were made from a report read at `report_t_ns`, of which
   /// `stood_in` (the first ones) were shown by stand-ins published at
-  /// `stand_in_ns`.
-  void note_dabs(int64_t count, int64_t report_t_ns, int64_t stood_in = 0, int64_t stand_in_ns = 0);
+  /// `stand_in_ns`; `unshown` of the dabs made so far (the newest) changed
+  /// nothing yet and wait for a later change (still_unshown()).
+  void note_dabs(int64_t count, int64_t report_t_ns, int64_t stood_in = 0, int64_t stand_in_ns = 0,
+                 int64_t unshown = 0);
+  /// Of the dabs held as unshown, all but the newest `unshown` are in the
+  /// next change: a ball brush's dabs wait for the preview that shows them
+  /// (or the press's end), not for nothing.
+  void still_unshown(int64_t unshown);
   /// Whether dabs were made since the last submitted().
   bool dabs_waiting() const { return !made_.empty(); }
   /// At `now_ns`, the dabs made so far went to the mesher as change
@@ -61,6 +67,7 @@ class InputStatistics {
     int64_t report_t_ns;
     bool pictured;
   };
+  std::deque<Made> unshown_;       // dabs that changed nothing yet, oldest first
   std::vector<Made> made_;         // dabs not yet submitted
   std::deque<Meshing> meshing_;    // submitted, waiting for their meshes
   std::deque<Meshing> detailing_;  // shown, waiting for full detail

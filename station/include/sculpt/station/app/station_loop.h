@@ -204,6 +204,19 @@ class StationLoop {
   void show_stand_ins(DabStandIns* board);
   /// When the last stand-ins were published (hal::monotonic_ns()).
   int64_t stand_ins_published_ns() const { return stand_ins_ns_; }
+  /// At `now_ns` (hal::monotonic_ns()), between polls of the devices:
+  /// shows the press's ball-brush path again when dabs came that no
+  /// preview shows and the last preview ended at least twice its own time
+  /// ago. The dabs BrushPreview::due() leaves for later (the path's tail
+  /// when the hand slows or stops) so show within about three previews'
+  /// time, and previews take at most about a third of the sculpting thread.
+  void catch_up_brush_preview(int64_t now_ns);
+  /// Dabs of the press's ball-brush path that no preview shows yet (they
+  /// show at the next preview, or when the press ends); 0 without one.
+  int64_t dabs_not_yet_shown() const {
+    if (brush_path_.empty()) return 0;
+    return static_cast<int64_t>(brush_path_.size() - preview_.shown_samples());
+  }
   /// Why the last sheet command or grab did nothing (empty if it worked).
   const std::string& sheet_problem() const { return sheet_problem_; }
 
@@ -290,6 +303,8 @@ class StationLoop {
   std::optional<core::MirrorPlane> brush_mirror_;
   DabStandIns* stand_ins_ = nullptr;
   int64_t stand_ins_ns_ = 0;
+  int64_t preview_ended_ns_ = 0;  // the last brush preview's end and time taken
+  int64_t preview_took_ns_ = 0;
   std::optional<hal::Dab> stand_in_last_;             // the press's last dab stood in
   std::future<DabStandIns::ToolMesh> stand_in_tool_;  // being meshed for the board
   std::vector<std::future<DabStandIns::ToolMesh>> retired_marches_;  // for tools since replaced
