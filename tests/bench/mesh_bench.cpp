@@ -17,6 +17,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "sculpt/core/mesh/brick_simplify.h"
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/mesh/mixed_level_mesh.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
@@ -323,6 +324,69 @@ BENCHMARK(BM_MeshMixedLevelCoarseFirstAfterBigDab)
     ->UseManualTime()
     ->Iterations(20)
     ->Unit(benchmark::kMillisecond);
+
+// The window's simplifier on every brick of the 256^3 sphere at level 0 and
+// the station's default bound (0.2 voxel); most of its time was the check
+// that a result keeps the march's topology (check_topology, run twice a
+// brick), measured alone in BM_CheckTopology.
+const MeshCache& sphere_bricks(int n) {
+  static std::map<int, std::unique_ptr<MeshCache>> caches;
+  auto& c = caches[n];
+  if (!c) {
+    c = std::make_unique<MeshCache>(0, MarchingCubesOptions{127.5f, 0});
+    c->update(sphere(n));
+  }
+  return *c;
+}
+
+std::vector<const BrickMesh*> non_empty_bricks(const MeshCache& cache) {
+  std::vector<const BrickMesh*> bricks;
+  const glm::ivec3 g = cache.brick_grid();
+  for (int z = 0; z < g.z; ++z)
+    for (int y = 0; y < g.y; ++y)
+      for (int x = 0; x < g.x; ++x)
+        if (const BrickMesh& b = cache.brick_mesh({x, y, z}); !b.mesh.triangles.empty())
+          bricks.push_back(&b);
+  return bricks;
+}
+
+void BM_SimplifyBricks(benchmark::State& state) {
+  const std::vector<const BrickMesh*> bricks = non_empty_bricks(sphere_bricks(256));
+  int64_t kept = 0, marched = 0;
+  for (auto _ : state) {
+    kept = marched = 0;
+    for (const BrickMesh* b : bricks) {
+      const SimplifiedBrick s = simplify_brick_mesh(*b, 0.2f);
+      kept += static_cast<int64_t>(s.brick.mesh.triangles.size());
+      marched += static_cast<int64_t>(b->mesh.triangles.size());
+    }
+  }
+  state.counters["bricks"] = static_cast<double>(bricks.size());
+  state.counters["triangles_marched"] = static_cast<double>(marched);
+  state.counters["triangles_kept"] = static_cast<double>(kept);
+}
+BENCHMARK(BM_SimplifyBricks)->Unit(benchmark::kMillisecond);
+
+// range(0) = 0: every brick's mesh checked on its own (as the simplifier
+// does); 1: the whole sphere welded into one mesh (as an export is).
+void BM_CheckTopology(benchmark::State& state) {
+  const MeshCache& cache = sphere_bricks(256);
+  const std::vector<const BrickMesh*> bricks = non_empty_bricks(cache);
+  const Mesh welded = state.range(0) == 1 ? cache.welded_mesh() : Mesh{};
+  int64_t edges = 0;
+  for (auto _ : state) {
+    edges = 0;
+    if (state.range(0) == 1) {
+      edges = check_topology(welded).edges;
+    } else {
+      for (const BrickMesh* b : bricks)
+        edges += check_topology(b->mesh).edges;
+    }
+    benchmark::DoNotOptimize(edges);
+  }
+  state.counters["edges"] = static_cast<double>(edges);
+}
+BENCHMARK(BM_CheckTopology)->Arg(0)->Arg(1)->ArgName("welded")->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace sculpt::core

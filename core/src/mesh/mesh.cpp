@@ -1,6 +1,7 @@
 #include "sculpt/core/mesh/mesh.h"
 
 #include <algorithm>
+#include <cassert>
 #include <limits>
 #include <numeric>
 #include <tuple>
@@ -13,71 +14,84 @@ namespace sculpt::core {
 MeshTopology check_topology(const Mesh& mesh) {
   MeshTopology t;
   t.faces = static_cast<int64_t>(mesh.triangles.size());
-  // Directed edges (from, to); an undirected edge appears as its two directions.
-  struct Directed {
-    uint32_t lo, hi;
-    bool forward;
-    bool operator<(const Directed& o) const {
-      return std::tie(lo, hi, forward) < std::tie(o.lo, o.hi, o.forward);
-    }
+  // Each vertex's entries are grouped by a counting sort over the vertex
+  // indices (dense: below positions.size()), so the work is linear in the
+  // triangles; sorting all the mesh's edges as tuples took the window's
+  // simplifier half its time. A vertex holds the edges it is the lower end
+  // of (with their direction) and its link: the edge opposite to it in
+  // each of its triangles.
+  struct Edge {
+    uint32_t hi;
+    bool forward;  // walked from the lower end to `hi`
   };
-  std::vector<Directed> edges;
-  edges.reserve(mesh.triangles.size() * 3);
-  // Link of each vertex: the edge opposite to it in each of its triangles.
-  struct Link {
-    uint32_t v, a, b;
-    bool operator<(const Link& o) const { return std::tie(v, a, b) < std::tie(o.v, o.a, o.b); }
+  struct LinkEdge {
+    uint32_t a, b;
   };
-  std::vector<Link> links;
-  links.reserve(mesh.triangles.size() * 3);
+  const size_t vertex_count = mesh.positions.size();
+  std::vector<uint32_t> edge_start(vertex_count + 1, 0), link_start(vertex_count + 1, 0);
   for (const glm::uvec3& tri : mesh.triangles) {
     if (tri.x == tri.y || tri.y == tri.z || tri.z == tri.x) {
       ++t.degenerate_triangles;
       continue;
     }
+    assert(std::max({tri.x, tri.y, tri.z}) < vertex_count);
+    for (int k = 0; k < 3; ++k) {
+      ++edge_start[std::min(tri[k], tri[(k + 1) % 3]) + 1];
+      ++link_start[tri[k] + 1];
+    }
+  }
+  std::partial_sum(edge_start.begin(), edge_start.end(), edge_start.begin());
+  std::partial_sum(link_start.begin(), link_start.end(), link_start.begin());
+  std::vector<Edge> edges(edge_start.back());
+  std::vector<LinkEdge> links(link_start.back());
+  std::vector<uint32_t> edge_end(edge_start.begin(), edge_start.end() - 1);
+  std::vector<uint32_t> link_end(link_start.begin(), link_start.end() - 1);
+  for (const glm::uvec3& tri : mesh.triangles) {
+    if (tri.x == tri.y || tri.y == tri.z || tri.z == tri.x) continue;
     for (int k = 0; k < 3; ++k) {
       const uint32_t a = tri[k], b = tri[(k + 1) % 3], c = tri[(k + 2) % 3];
-      edges.push_back({std::min(a, b), std::max(a, b), a < b});
-      links.push_back({a, b, c});
+      edges[edge_end[std::min(a, b)]++] = {std::max(a, b), a < b};
+      links[link_end[a]++] = {b, c};
     }
   }
-  std::sort(edges.begin(), edges.end());
-  for (size_t i = 0; i < edges.size();) {
-    size_t j = i;
-    int forward = 0;
-    while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) {
-      forward += edges[j].forward;
-      ++j;
+
+  for (size_t v = 0; v < vertex_count; ++v) {
+    // The undirected edges from v: each used once (a border), twice (walked
+    // once each way, else misoriented) or more (non-manifold).
+    const auto e0 = edges.begin() + edge_start[v], e1 = edges.begin() + edge_start[v + 1];
+    std::sort(e0, e1, [](const Edge& p, const Edge& q) { return p.hi < q.hi; });
+    for (auto i = e0; i != e1;) {
+      auto j = i;
+      int forward = 0;
+      for (; j != e1 && j->hi == i->hi; ++j)
+        forward += j->forward;
+      const auto uses = j - i;
+      ++t.edges;
+      if (uses == 1) ++t.boundary_edges;
+      if (uses > 2) ++t.nonmanifold_edges;
+      if (uses == 2 && forward != 1) ++t.misoriented_edges;
+      i = j;
     }
-    const size_t uses = j - i;
-    ++t.edges;
-    if (uses == 1) ++t.boundary_edges;
-    if (uses > 2) ++t.nonmanifold_edges;
-    if (uses == 2 && forward != 1) ++t.misoriented_edges;
-    i = j;
-  }
-  // A manifold vertex's link edges chain into exactly one cycle.
-  std::sort(links.begin(), links.end());
-  for (size_t i = 0; i < links.size();) {
-    size_t j = i;
-    while (j < links.size() && links[j].v == links[i].v)
-      ++j;
+    // A manifold vertex's link edges chain into exactly one cycle.
+    const auto l0 = links.begin() + link_start[v], l1 = links.begin() + link_start[v + 1];
+    if (l0 == l1) continue;
     ++t.vertices;
-    const size_t n = j - i;
-    uint32_t at = links[i].a;
-    size_t steps = 0;
+    std::sort(l0, l1, [](const LinkEdge& p, const LinkEdge& q) {
+      return std::tie(p.a, p.b) < std::tie(q.a, q.b);
+    });
+    const auto n = l1 - l0;
+    uint32_t at = l0->a;
+    ptrdiff_t steps = 0;
     while (steps <= n) {
-      // links[i..j) are sorted by a: find the link edge leaving `at`.
-      auto it =
-          std::lower_bound(links.begin() + static_cast<ptrdiff_t>(i),
-                           links.begin() + static_cast<ptrdiff_t>(j), Link{links[i].v, at, 0});
-      if (it == links.begin() + static_cast<ptrdiff_t>(j) || it->a != at) break;
+      // Sorted by a: the link edge leaving `at`.
+      const auto it =
+          std::lower_bound(l0, l1, at, [](const LinkEdge& e, uint32_t from) { return e.a < from; });
+      if (it == l1 || it->a != at) break;
       at = it->b;
       ++steps;
-      if (at == links[i].a) break;
+      if (at == l0->a) break;
     }
-    if (steps != n || at != links[i].a) ++t.nonmanifold_vertices;
-    i = j;
+    if (steps != n || at != l0->a) ++t.nonmanifold_vertices;
   }
   return t;
 }

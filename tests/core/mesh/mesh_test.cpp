@@ -5,6 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+#include <random>
+#include <set>
+#include <utility>
+#include <vector>
+
 namespace sculpt::core {
 namespace {
 
@@ -69,6 +75,108 @@ TEST(MeshTopology, InwardWindingGivesNegativeVolume) {
     std::swap(t.y, t.z);
   EXPECT_TRUE(check_topology(m).closed());
   EXPECT_DOUBLE_EQ(enclosed_volume(m), -1.0);
+}
+
+// check_topology's counts by their definitions, with ordered maps: each
+// undirected edge's uses and directions, and each vertex's link (the edge
+// opposite it in each of its triangles) as one cycle: every link vertex
+// left once and entered once, all of them reached from one.
+MeshTopology topology_by_definition(const Mesh& m) {
+  MeshTopology t;
+  t.faces = static_cast<int64_t>(m.triangles.size());
+  std::map<std::pair<uint32_t, uint32_t>, std::pair<int, int>> uses;  // {uses, forward}
+  std::map<uint32_t, std::vector<std::pair<uint32_t, uint32_t>>> link;
+  for (const glm::uvec3& tri : m.triangles) {
+    if (tri.x == tri.y || tri.y == tri.z || tri.z == tri.x) {
+      ++t.degenerate_triangles;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = tri[k], b = tri[(k + 1) % 3], c = tri[(k + 2) % 3];
+      auto& u = uses[{std::min(a, b), std::max(a, b)}];
+      ++u.first;
+      u.second += a < b;
+      link[a].push_back({b, c});
+    }
+  }
+  for (const auto& [edge, u] : uses) {
+    ++t.edges;
+    t.boundary_edges += u.first == 1;
+    t.nonmanifold_edges += u.first > 2;
+    t.misoriented_edges += u.first == 2 && u.second != 1;
+  }
+  for (const auto& [v, edges] : link) {
+    ++t.vertices;
+    std::map<uint32_t, int> out, in;
+    std::map<uint32_t, uint32_t> next;
+    for (const auto& [a, b] : edges) {
+      ++out[a];
+      ++in[b];
+      next[a] = b;
+    }
+    bool cycle = out.size() == edges.size() && in.size() == edges.size();
+    for (const auto& [a, n] : out)
+      cycle = cycle && in.contains(a);
+    if (cycle) {
+      std::set<uint32_t> seen;
+      for (uint32_t at = edges[0].first; seen.insert(at).second;)
+        at = next[at];
+      cycle = seen.size() == edges.size();
+    }
+    t.nonmanifold_vertices += !cycle;
+  }
+  return t;
+}
+
+TEST(MeshTopology, CountsMatchTheirDefinitionsOnDamagedCubes) {
+  // Two cubes sharing a corner, then triangles dropped, doubled, flipped,
+  // made degenerate or given another corner, a few at a time: closed,
+  // open, pinched and non-manifold meshes alike.
+  Mesh two = cube();
+  for (glm::uvec3 t : cube().triangles)
+    two.triangles.push_back(t + 7u);
+  two.positions.resize(15);
+  std::mt19937 random(7);
+  int damaged = 0, pinched = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    Mesh m = two;
+    const int changes = static_cast<int>(random() % 4);
+    for (int c = 0; c < changes && !m.triangles.empty(); ++c) {
+      const size_t i = random() % m.triangles.size();
+      switch (random() % 5) {
+        case 0:
+          m.triangles.erase(m.triangles.begin() + static_cast<ptrdiff_t>(i));
+          break;
+        case 1:
+          m.triangles.push_back(m.triangles[i]);
+          break;
+        case 2:
+          std::swap(m.triangles[i].y, m.triangles[i].z);
+          break;
+        case 3:
+          m.triangles[i].y = m.triangles[i].x;
+          break;
+        default:
+          m.triangles[i][static_cast<int>(random() % 3)] = static_cast<uint32_t>(random() % 15);
+          break;
+      }
+    }
+    const MeshTopology got = check_topology(m), want = topology_by_definition(m);
+    ASSERT_EQ(got.vertices, want.vertices) << "trial " << trial;
+    ASSERT_EQ(got.edges, want.edges) << "trial " << trial;
+    ASSERT_EQ(got.faces, want.faces) << "trial " << trial;
+    ASSERT_EQ(got.boundary_edges, want.boundary_edges) << "trial " << trial;
+    ASSERT_EQ(got.nonmanifold_edges, want.nonmanifold_edges) << "trial " << trial;
+    ASSERT_EQ(got.misoriented_edges, want.misoriented_edges) << "trial " << trial;
+    ASSERT_EQ(got.nonmanifold_vertices, want.nonmanifold_vertices) << "trial " << trial;
+    ASSERT_EQ(got.degenerate_triangles, want.degenerate_triangles) << "trial " << trial;
+    damaged += !got.closed();
+    pinched += got.closed() && got.nonmanifold_vertices > 0;
+  }
+  // Both kinds were met: damaged, and closed but pinched (the shared
+  // corner, or a corner moved onto another).
+  EXPECT_GT(damaged, 1000);
+  EXPECT_GT(pinched, 300);
 }
 
 }  // namespace

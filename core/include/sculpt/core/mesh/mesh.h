@@ -45,7 +45,8 @@ struct MeshTopology {
   }
 };
 
-/// Counts edges, boundary and non-manifold elements. O(F log F).
+/// Counts edges, boundary and non-manifold elements (indices below
+/// positions.size(), asserted) in time linear in the mesh's size.
 MeshTopology check_topology(const Mesh& mesh);
 
 /// The axis-aligned box of the positions (lo > hi in every axis when empty).
