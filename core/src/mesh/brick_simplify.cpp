@@ -6,6 +6,8 @@
 
 #include <meshoptimizer.h>
 
+#include "sculpt/core/mesh/mesh.h"
+
 namespace sculpt::core {
 
 namespace {
@@ -23,27 +25,9 @@ constexpr float kEstimateShare = 0.5f;
 // every vertex next to a face, so nothing can reach across one.
 std::vector<bool> face_band(const BrickMesh& brick) {
   const Mesh& m = brick.mesh;
-  std::vector<std::pair<uint64_t, uint32_t>> edges;  // undirected edge, a vertex of it
-  edges.reserve(m.triangles.size() * 3);
-  for (const glm::uvec3& t : m.triangles)
-    for (int c = 0; c < 3; ++c) {
-      const uint32_t a = t[c], b = t[(c + 1) % 3];
-      edges.push_back({(uint64_t{std::min(a, b)} << 32) | std::max(a, b), a});
-    }
-  std::sort(edges.begin(), edges.end());
-  std::vector<bool> on_border(m.positions.size(), false);
+  std::vector<bool> on_border = border_vertices(m);
   for (const BrickMesh::Seam& seam : brick.seams)
     on_border[seam.vertex] = true;
-  for (size_t i = 0; i < edges.size();) {
-    size_t j = i;
-    while (j < edges.size() && edges[j].first == edges[i].first)
-      ++j;
-    if (j - i == 1) {
-      on_border[edges[i].first >> 32] = true;
-      on_border[edges[i].first & 0xffffffffu] = true;
-    }
-    i = j;
-  }
   std::vector<bool> band(m.triangles.size(), false);
   for (size_t t = 0; t < m.triangles.size(); ++t) {
     const glm::uvec3& tri = m.triangles[t];

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <limits>
 #include <numeric>
+#include <span>
 #include <tuple>
 
 #include <glm/common.hpp>
@@ -11,89 +12,134 @@
 
 namespace sculpt::core {
 
+namespace {
+
+// Values grouped by a vertex index, each group sorted: a counting sort over
+// the indices (dense: below the vertex count), so grouping is linear in the
+// values and each sort is over a vertex's few. Sorting all of a mesh's
+// edges as tuples instead took the window's simplifier half its time.
+// `each(put)` calls put(vertex, value) for every value, the same ones each
+// time: it is called twice, to count and to fill.
+template <class Value>
+class ByVertex {
+ public:
+  template <class Each>
+  ByVertex(size_t vertex_count, Each each) : start_(vertex_count + 1, 0) {
+    each([&](uint32_t v, const Value&) {
+      assert(v < vertex_count);
+      ++start_[v + 1];
+    });
+    std::partial_sum(start_.begin(), start_.end(), start_.begin());
+    values_.resize(start_.back());
+    std::vector<uint32_t> end(start_.begin(), start_.end() - 1);
+    each([&](uint32_t v, const Value& value) { values_[end[v]++] = value; });
+    for (size_t v = 0; v < vertex_count; ++v)
+      std::sort(values_.begin() + start_[v], values_.begin() + start_[v + 1]);
+  }
+  std::span<const Value> of(size_t v) const {
+    return std::span(values_).subspan(start_[v], start_[v + 1] - start_[v]);
+  }
+
+ private:
+  std::vector<uint32_t> start_;
+  std::vector<Value> values_;
+};
+
+// An undirected edge as its lower end keeps it.
+struct Edge {
+  uint32_t hi;
+  bool forward;  // walked from the lower end to `hi`
+  bool operator<(const Edge& o) const { return std::tie(hi, forward) < std::tie(o.hi, o.forward); }
+};
+
+bool degenerate(const glm::uvec3& tri) {
+  return tri.x == tri.y || tri.y == tri.z || tri.z == tri.x;
+}
+
+// Every triangle's edges (degenerate triangles' too, unless skipped), by
+// their lower end.
+ByVertex<Edge> edges_by_lower_end(const Mesh& mesh, bool skip_degenerate) {
+  return ByVertex<Edge>(mesh.positions.size(), [&](auto put) {
+    for (const glm::uvec3& tri : mesh.triangles) {
+      if (skip_degenerate && degenerate(tri)) continue;
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t a = tri[k], b = tri[(k + 1) % 3];
+        put(std::min(a, b), Edge{std::max(a, b), a < b});
+      }
+    }
+  });
+}
+
+// Calls f(hi, uses, forward_uses) for each undirected edge of the group of
+// lower end edges `from` (sorted).
+template <class F>
+void for_each_edge(std::span<const Edge> from, F f) {
+  for (size_t i = 0; i < from.size();) {
+    size_t j = i;
+    int forward = 0;
+    for (; j < from.size() && from[j].hi == from[i].hi; ++j)
+      forward += from[j].forward;
+    f(from[i].hi, j - i, forward);
+    i = j;
+  }
+}
+
+}  // namespace
+
 MeshTopology check_topology(const Mesh& mesh) {
   MeshTopology t;
   t.faces = static_cast<int64_t>(mesh.triangles.size());
-  // Each vertex's entries are grouped by a counting sort over the vertex
-  // indices (dense: below positions.size()), so the work is linear in the
-  // triangles; sorting all the mesh's edges as tuples took the window's
-  // simplifier half its time. A vertex holds the edges it is the lower end
-  // of (with their direction) and its link: the edge opposite to it in
-  // each of its triangles.
-  struct Edge {
-    uint32_t hi;
-    bool forward;  // walked from the lower end to `hi`
-  };
+  t.degenerate_triangles = std::ranges::count_if(mesh.triangles, degenerate);
+  const ByVertex<Edge> edges = edges_by_lower_end(mesh, /*skip_degenerate=*/true);
+  // Each vertex's link: the edge opposite to it in each of its triangles.
   struct LinkEdge {
     uint32_t a, b;
+    bool operator<(const LinkEdge& o) const { return std::tie(a, b) < std::tie(o.a, o.b); }
   };
-  const size_t vertex_count = mesh.positions.size();
-  std::vector<uint32_t> edge_start(vertex_count + 1, 0), link_start(vertex_count + 1, 0);
-  for (const glm::uvec3& tri : mesh.triangles) {
-    if (tri.x == tri.y || tri.y == tri.z || tri.z == tri.x) {
-      ++t.degenerate_triangles;
-      continue;
+  const ByVertex<LinkEdge> links(mesh.positions.size(), [&](auto put) {
+    for (const glm::uvec3& tri : mesh.triangles) {
+      if (degenerate(tri)) continue;
+      for (int k = 0; k < 3; ++k)
+        put(tri[k], LinkEdge{tri[(k + 1) % 3], tri[(k + 2) % 3]});
     }
-    assert(std::max({tri.x, tri.y, tri.z}) < vertex_count);
-    for (int k = 0; k < 3; ++k) {
-      ++edge_start[std::min(tri[k], tri[(k + 1) % 3]) + 1];
-      ++link_start[tri[k] + 1];
-    }
-  }
-  std::partial_sum(edge_start.begin(), edge_start.end(), edge_start.begin());
-  std::partial_sum(link_start.begin(), link_start.end(), link_start.begin());
-  std::vector<Edge> edges(edge_start.back());
-  std::vector<LinkEdge> links(link_start.back());
-  std::vector<uint32_t> edge_end(edge_start.begin(), edge_start.end() - 1);
-  std::vector<uint32_t> link_end(link_start.begin(), link_start.end() - 1);
-  for (const glm::uvec3& tri : mesh.triangles) {
-    if (tri.x == tri.y || tri.y == tri.z || tri.z == tri.x) continue;
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t a = tri[k], b = tri[(k + 1) % 3], c = tri[(k + 2) % 3];
-      edges[edge_end[std::min(a, b)]++] = {std::max(a, b), a < b};
-      links[link_end[a]++] = {b, c};
-    }
-  }
+  });
 
-  for (size_t v = 0; v < vertex_count; ++v) {
-    // The undirected edges from v: each used once (a border), twice (walked
-    // once each way, else misoriented) or more (non-manifold).
-    const auto e0 = edges.begin() + edge_start[v], e1 = edges.begin() + edge_start[v + 1];
-    std::sort(e0, e1, [](const Edge& p, const Edge& q) { return p.hi < q.hi; });
-    for (auto i = e0; i != e1;) {
-      auto j = i;
-      int forward = 0;
-      for (; j != e1 && j->hi == i->hi; ++j)
-        forward += j->forward;
-      const auto uses = j - i;
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    // Each edge is used once (a border), twice (walked once each way, else
+    // misoriented) or more (non-manifold).
+    for_each_edge(edges.of(v), [&](uint32_t, size_t uses, int forward) {
       ++t.edges;
       if (uses == 1) ++t.boundary_edges;
       if (uses > 2) ++t.nonmanifold_edges;
       if (uses == 2 && forward != 1) ++t.misoriented_edges;
-      i = j;
-    }
-    // A manifold vertex's link edges chain into exactly one cycle.
-    const auto l0 = links.begin() + link_start[v], l1 = links.begin() + link_start[v + 1];
-    if (l0 == l1) continue;
-    ++t.vertices;
-    std::sort(l0, l1, [](const LinkEdge& p, const LinkEdge& q) {
-      return std::tie(p.a, p.b) < std::tie(q.a, q.b);
     });
-    const auto n = l1 - l0;
-    uint32_t at = l0->a;
-    ptrdiff_t steps = 0;
-    while (steps <= n) {
+    // A manifold vertex's link edges chain into exactly one cycle.
+    const std::span<const LinkEdge> link = links.of(v);
+    if (link.empty()) continue;
+    ++t.vertices;
+    uint32_t at = link.front().a;
+    size_t steps = 0;
+    while (steps <= link.size()) {
       // Sorted by a: the link edge leaving `at`.
-      const auto it =
-          std::lower_bound(l0, l1, at, [](const LinkEdge& e, uint32_t from) { return e.a < from; });
-      if (it == l1 || it->a != at) break;
+      const auto it = std::ranges::lower_bound(link, at, {}, &LinkEdge::a);
+      if (it == link.end() || it->a != at) break;
       at = it->b;
       ++steps;
-      if (at == l0->a) break;
+      if (at == link.front().a) break;
     }
-    if (steps != n || at != l0->a) ++t.nonmanifold_vertices;
+    if (steps != link.size() || at != link.front().a) ++t.nonmanifold_vertices;
   }
   return t;
+}
+
+std::vector<bool> border_vertices(const Mesh& mesh) {
+  std::vector<bool> border(mesh.positions.size(), false);
+  const ByVertex<Edge> edges = edges_by_lower_end(mesh, /*skip_degenerate=*/false);
+  for (size_t v = 0; v < mesh.positions.size(); ++v)
+    for_each_edge(edges.of(v), [&](uint32_t hi, size_t uses, int) {
+      if (uses == 1) border[v] = border[hi] = true;
+    });
+  return border;
 }
 
 double surface_area(const Mesh& mesh) {

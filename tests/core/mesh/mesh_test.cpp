@@ -42,6 +42,10 @@ TEST(MeshTopology, HoleFlipAndPinchAreFound) {
   hole.triangles.pop_back();
   EXPECT_EQ(check_topology(hole).boundary_edges, 3);
   EXPECT_FALSE(check_topology(hole).closed());
+  const glm::uvec3 gone = cube().triangles.back();
+  const std::vector<bool> border = border_vertices(hole);
+  for (uint32_t v = 0; v < 8; ++v)
+    EXPECT_EQ(border[v], v == gone.x || v == gone.y || v == gone.z) << v;
 
   Mesh flipped = cube();
   std::swap(flipped.triangles[0].y, flipped.triangles[0].z);
@@ -75,6 +79,18 @@ TEST(MeshTopology, InwardWindingGivesNegativeVolume) {
     std::swap(t.y, t.z);
   EXPECT_TRUE(check_topology(m).closed());
   EXPECT_DOUBLE_EQ(enclosed_volume(m), -1.0);
+}
+
+// The ends of the edges of one triangle, degenerate triangles' included.
+std::vector<bool> border_by_definition(const Mesh& m) {
+  std::map<std::pair<uint32_t, uint32_t>, int> uses;
+  for (const glm::uvec3& tri : m.triangles)
+    for (int k = 0; k < 3; ++k)
+      ++uses[std::minmax(tri[k], tri[(k + 1) % 3])];
+  std::vector<bool> border(m.positions.size(), false);
+  for (const auto& [edge, n] : uses)
+    if (n == 1) border[edge.first] = border[edge.second] = true;
+  return border;
 }
 
 // check_topology's counts by their definitions, with ordered maps: each
@@ -128,7 +144,7 @@ MeshTopology topology_by_definition(const Mesh& m) {
   return t;
 }
 
-TEST(MeshTopology, CountsMatchTheirDefinitionsOnDamagedCubes) {
+TEST(MeshTopology, CountsAndBordersMatchTheirDefinitionsOnDamagedCubes) {
   // Two cubes sharing a corner, then triangles dropped, doubled, flipped,
   // made degenerate or given another corner, a few at a time: closed,
   // open, pinched and non-manifold meshes alike.
@@ -170,6 +186,7 @@ TEST(MeshTopology, CountsMatchTheirDefinitionsOnDamagedCubes) {
     ASSERT_EQ(got.misoriented_edges, want.misoriented_edges) << "trial " << trial;
     ASSERT_EQ(got.nonmanifold_vertices, want.nonmanifold_vertices) << "trial " << trial;
     ASSERT_EQ(got.degenerate_triangles, want.degenerate_triangles) << "trial " << trial;
+    ASSERT_EQ(border_vertices(m), border_by_definition(m)) << "trial " << trial;
     damaged += !got.closed();
     pinched += got.closed() && got.nonmanifold_vertices > 0;
   }
