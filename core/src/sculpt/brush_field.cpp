@@ -228,7 +228,14 @@ int64_t write(Volume& volume, Sculptor& sculptor, const Field& before, const Box
   assert(&sculptor.volume() == &volume);
   if (region.empty()) return 0;
   const PathDistance distance(path, region, ball.reach());
-  DenseGrid<uint8_t> out = volume.read(region, 0);
+  // The result starts from `before`, not from the volume: a preview that
+  // re-brushes part of a longer path finds its last result there.
+  DenseGrid<uint8_t> out(region.hi - region.lo);
+  for (int z = region.lo.z; z < region.hi.z; ++z)
+    for (int y = region.lo.y; y < region.hi.y; ++y)
+      for (int x = region.lo.x; x < region.hi.x; ++x)
+        out.at(x - region.lo.x, y - region.lo.y, z - region.lo.z) =
+            static_cast<uint8_t>(before.at({x, y, z}));
   int64_t changed = 0;
   for (int z = region.lo.z; z < region.hi.z; ++z)
     for (int y = region.lo.y; y < region.hi.y; ++y)

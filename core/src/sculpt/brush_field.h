@@ -116,8 +116,10 @@ bool fit_plane(const Field& field, std::span<const StrokeSample> path, const Bal
 /// Writes, for every voxel of `region` the ball swept through `path` weighs
 /// (weight w > 0; c the path's nearest point), round(value(v, w, c))
 /// clamped to 0..255, as one undo step of `sculptor` (its volume is
-/// `volume`, asserted). `before` holds region's material. Returns the voxels
-/// changed (0: nothing written, no undo step).
+/// `volume`, asserted). `before` holds region's material before the stroke;
+/// the voxels not weighed are written back from it, whatever `volume` holds
+/// there. Returns the voxels changed from `before` (0: nothing written, no
+/// undo step).
 int64_t write(Volume& volume, Sculptor& sculptor, const Field& before, const Box& region,
               std::span<const StrokeSample> path, const Ball& ball,
               const std::function<float(glm::ivec3 v, float w, glm::vec3 c)>& value);

@@ -23,17 +23,23 @@ Status check_smooth_brush(const SmoothBrushOptions& o) {
 
 int64_t smooth_stroke(Volume& volume, Sculptor& sculptor, std::span<const StrokeSample> path,
                       const SmoothBrushOptions& o) {
-  assert(!path.empty() && check_smooth_brush(o));
+  return smooth_stroke_part(volume, sculptor, path, o, Box{glm::ivec3(0), volume.dims()}, volume);
+}
+
+int64_t smooth_stroke_part(Volume& volume, Sculptor& sculptor, std::span<const StrokeSample> path,
+                           const SmoothBrushOptions& o, const Box& part, const Volume& before) {
+  assert(!path.empty() && check_smooth_brush(o) && before.dims() == volume.dims());
   const brush::Ball ball{o.radius_vox, o.hardness, o.strength};
-  const Box region = brush::reach_box(volume, path, ball);
+  const Box region = intersect(brush::reach_box(volume, path, ball), part);
   if (region.empty()) return 0;
-  // The blur reads `passes` voxels around each voxel it writes.
-  const brush::Field before(volume, region, o.passes);
-  brush::Field blurred = before;
+  // The blur reads `passes` voxels around each voxel it writes: the same
+  // values, with the same rounding, however far the field reaches beyond.
+  const brush::Field material(before, region, o.passes);
+  brush::Field blurred = material;
   brush::blur(blurred.grid(), o.passes);
-  return brush::write(volume, sculptor, before, region, path, ball,
+  return brush::write(volume, sculptor, material, region, path, ball,
                       [&](glm::ivec3 v, float w, glm::vec3) {
-                        const float m = before.at(v);
+                        const float m = material.at(v);
                         return m + w * (blurred.at(v) - m);
                       });
 }

@@ -11,29 +11,46 @@ bool BrushPreview::due(size_t samples, size_t shown) {
   return samples >= shown + std::max<size_t>(2, shown / 8);
 }
 
-int64_t BrushPreview::show(core::Volume& volume, const core::Box& region, size_t samples,
-                           const std::function<int64_t()>& apply) {
-  revert(volume);
+void BrushPreview::keep(const core::Volume& volume, const core::Box& region) {
+  if (!before_ || before_->dims() != volume.dims() ||
+      before_->brick_edge() != volume.brick_edge() || before_->levels() != volume.levels())
+    before_ = std::make_unique<core::Volume>(volume.dims(), uint8_t{0}, volume.options());
   const core::Box bricks = volume.bricks_overlapping(region);
   for (int z = bricks.lo.z; z < bricks.hi.z; ++z)
     for (int y = bricks.lo.y; y < bricks.hi.y; ++y)
       for (int x = bricks.lo.x; x < bricks.hi.x; ++x) {
         const glm::ivec3 b(x, y, z);
-        kept_.push_back({b, volume.brick(b), volume.brick_version(b)});
+        if (std::ranges::any_of(kept_, [&](const Kept& k) { return k.brick == b; })) continue;
+        kept_.push_back({b, volume.brick_version(b)});
+        before_->replace_brick(b, volume.brick(b));
       }
+}
+
+int64_t BrushPreview::show(core::Volume& volume, const core::Box& region, size_t samples,
+                           const std::function<int64_t()>& apply) {
+  revert(volume);
+  keep(volume, region);
   active_ = true;
   shown_samples_ = samples;
   return apply();
 }
 
+int64_t BrushPreview::extend(core::Volume& volume, const core::Box& region, size_t samples,
+                             const std::function<int64_t(const core::Volume& before)>& apply) {
+  assert(active_ && samples > shown_samples_);
+  keep(volume, region);
+  shown_samples_ = samples;
+  return apply(*before_);
+}
+
 void BrushPreview::revert(core::Volume& volume) {
   if (!active_) return;
   std::vector<uint8_t> voxels;
-  for (Kept& k : kept_) {
+  for (const Kept& k : kept_) {
     if (volume.brick_version(k.brick) == k.version) continue;  // unchanged
     const size_t edge = static_cast<size_t>(volume.brick_edge());
     voxels.resize(edge * edge * edge);
-    k.before.extract_level(0, voxels);
+    before_->brick(k.brick).extract_level(0, voxels);
     volume.store_brick(k.brick, voxels);
   }
   kept_.clear();

@@ -117,6 +117,21 @@ std::vector<core::StrokeSample> mirrored_path(std::span<const core::StrokeSample
 
 }  // namespace
 
+namespace {
+
+// A core ball brush's options for the station's tool size, hardness and
+// strength (clamped).
+template <class Options>
+Options ball_brush_options(float radius_vox, float hardness, float strength) {
+  Options o;
+  o.radius_vox = brush_radius(radius_vox);
+  o.hardness = std::clamp(hardness, 0.0f, 1.0f);
+  o.strength = std::clamp(strength, 0.0f, 1.0f);
+  return o;
+}
+
+}  // namespace
+
 core::Box path_brush_reach(const core::Volume& volume, std::span<const core::StrokeSample> path,
                            float radius_vox, std::optional<core::MirrorPlane> mirror) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
@@ -137,14 +152,8 @@ core::Box path_brush_reach(const core::Volume& volume, std::span<const core::Str
 int64_t path_brush_stroke(core::Volume& volume, core::Sculptor& sculptor, PathBrush brush,
                           std::span<const core::StrokeSample> path, float radius_vox,
                           float hardness, float strength, std::optional<core::MirrorPlane> mirror) {
-  const float r = brush_radius(radius_vox);
-  const float h = std::clamp(hardness, 0.0f, 1.0f);
-  const float w = std::clamp(strength, 0.0f, 1.0f);
-  auto with = [&](auto o) {
-    o.radius_vox = r;
-    o.hardness = h;
-    o.strength = w;
-    return o;
+  auto with = [&]<class Options>(Options) {
+    return ball_brush_options<Options>(radius_vox, hardness, strength);
   };
   auto apply = [&](core::Sculptor& s, std::span<const core::StrokeSample> p) -> int64_t {
     switch (brush) {
@@ -610,12 +619,34 @@ void StationLoop::show_brush_preview() {
   if (region.empty()) return;
   // A scratch sculptor: a preview is no undo step (finish_brush() makes the
   // press's one).
-  preview_.show(*volume_, region, brush_path_.size(), [&] {
-    core::Sculptor scratch(*volume_);
-    return path_brush_stroke(*volume_, scratch, brush_, brush_path_, radius, settings_.hardness,
-                             brush_strength_, brush_mirror_);
-  });
+  const size_t shown = preview_.shown_samples();
+  const glm::vec3 ball(radius, settings_.hardness, brush_strength_);
+  if (brush_ == PathBrush::kSmooth && !brush_mirror_ && preview_.active() && shown > 0 &&
+      shown < brush_path_.size() && ball == preview_ball_) {
+    // Smoothing: a voxel's result is its weight's (the largest over the
+    // path), so only what the segments from the last shown sample on reach
+    // changes; the blur reads options.passes voxels around it.
+    const auto options =
+        ball_brush_options<core::SmoothBrushOptions>(radius, settings_.hardness, brush_strength_);
+    const std::span<const core::StrokeSample> tail = std::span(brush_path_).subspan(shown - 1);
+    const core::Box part = path_brush_reach(*volume_, tail, radius, std::nullopt);
+    const core::Box read =
+        core::intersect(core::Box{part.lo - options.passes, part.hi + options.passes},
+                        core::Box{glm::ivec3(0), volume_->dims()});
+    preview_.extend(*volume_, read, brush_path_.size(), [&](const core::Volume& before) {
+      core::Sculptor scratch(*volume_);
+      return core::smooth_stroke_part(*volume_, scratch, brush_path_, options, part, before);
+    });
+    ++counters_.brush_previews_extended;
+  } else {
+    preview_.show(*volume_, region, brush_path_.size(), [&] {
+      core::Sculptor scratch(*volume_);
+      return path_brush_stroke(*volume_, scratch, brush_, brush_path_, radius, settings_.hardness,
+                               brush_strength_, brush_mirror_);
+    });
+  }
   ++counters_.brush_previews;
+  preview_ball_ = ball;
   preview_ended_ns_ = hal::monotonic_ns();
   preview_took_ns_ = preview_ended_ns_ - start_ns;
 }

@@ -226,7 +226,10 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
       {"first_picture_latency_us", latency_figures(c.first_picture_latency())},
       {"stand_ins",
        {{"dabs_stood_in", c.loop().counters().dabs_stood_in},
-        {"dropped", c.stand_ins().dropped()}}}};
+        {"dropped", c.stand_ins().dropped()}}},
+      {"brush_previews",
+       {{"shown", c.loop().counters().brush_previews},
+        {"extended", c.loop().counters().brush_previews_extended}}}};
   if (haptics != nullptr) j["haptics"] = haptic_figures(*haptics);
   AtomicFileWriter w(path);
   if (!w.ok()) return w.error();

@@ -210,6 +210,65 @@ TEST(StationBrushes, ThePathsTailIsShownWhenThePreviewsHaveTimeForIt) {
   EXPECT_EQ(loop.volume().content_hash(), core_brush(BallBrush::kClay).content_hash());
 }
 
+// A smoothing preview of a grown path brushes again only what the new
+// samples reach, and shows exactly what smoothing the path so far at once
+// leaves: after each pointer report a preview is forced and the volume
+// compared with core's smooth brush on the same samples.
+TEST(StationBrushes, AGrownSmoothingPreviewIsTheSmoothingOfThePathSoFar) {
+  std::vector<sim::Command> commands = stroke_commands(BallBrush::kClay);
+  for (sim::Command& c : commands)
+    if (c.kind == sim::CommandKind::kMode) c.choice = choice_of(core::SculptMode::kSmooth);
+  // The samples the sampler has placed after each pose of the path.
+  hal::StrokeSampler sampler(tool_size_vox(sim::ToolShape::kSphere, kRadius, 0.0f), 0.25f);
+  std::vector<hal::Dab> dabs;
+  std::vector<size_t> placed;
+  const std::vector<glm::vec3> p = path();
+  hal::ToolPose pose;
+  pose.position = p.front();
+  sampler.begin(pose, dabs);
+  placed.push_back(dabs.size());
+  for (size_t i = 1; i < p.size(); ++i) {
+    pose.position = p[i];
+    sampler.add(pose, dabs);
+    placed.push_back(dabs.size());
+  }
+  std::vector<core::StrokeSample> samples;
+  for (const hal::Dab& d : dabs)
+    samples.push_back({d.position, d.orientation});
+  core::SmoothBrushOptions o;
+  o.radius_vox = kRadius;
+  o.hardness = kHardness;
+  o.strength = kStrength;
+
+  StationLoop loop(options());
+  size_t pose_index = 0, compared = 0;
+  for (const sim::Command& c : commands) {
+    loop.handle(c);
+    if (c.kind == sim::CommandKind::kPress) pose_index = 0;
+    if (c.kind == sim::CommandKind::kPointer) ++pose_index;
+    if (!loop.pressed() || c.kind == sim::CommandKind::kRelease) continue;
+    loop.catch_up_brush_preview(std::numeric_limits<int64_t>::max() / 2);
+    ASSERT_EQ(loop.dabs_not_yet_shown(), 0);
+    const size_t n = placed[pose_index];
+    if (n == 0) continue;
+    core::Volume expected = clay_block(kDims, kMargin);
+    core::Sculptor sculptor(expected);
+    core::smooth_stroke(expected, sculptor, std::span(samples).first(n), o);
+    ASSERT_EQ(voxels_differing(loop.volume(), expected), 0) << n << " samples";
+    ++compared;
+  }
+  EXPECT_EQ(compared, p.size());
+  // The first preview brushes the path; every later one extends it.
+  EXPECT_GE(loop.counters().brush_previews, 4);
+  EXPECT_EQ(loop.counters().brush_previews_extended, loop.counters().brush_previews - 1);
+  // The release: the whole path's brush, one undo step.
+  core::Volume whole = clay_block(kDims, kMargin);
+  core::Sculptor sculptor(whole);
+  core::smooth_stroke(whole, sculptor, samples, o);
+  EXPECT_EQ(loop.volume().content_hash(), whole.content_hash());
+  EXPECT_EQ(loop.sculptor().history().undo_depth(), 1u);
+}
+
 // Smooth mode with the ball tool is core's smooth brush along the path (one
 // undo step, shown while the press goes on).
 TEST(StationBrushes, SmoothModeWithTheBallIsTheSmoothBrush) {

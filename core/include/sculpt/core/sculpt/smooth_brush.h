@@ -23,6 +23,7 @@
 #include <span>
 
 #include "sculpt/base/result.h"
+#include "sculpt/core/grid/box.h"
 #include "sculpt/core/sculpt/brush_limits.h"
 #include "sculpt/core/sculpt/stroke.h"
 
@@ -51,5 +52,17 @@ Status check_smooth_brush(const SmoothBrushOptions& options);
 /// Returns the voxels changed.
 int64_t smooth_stroke(Volume& volume, Sculptor& sculptor, std::span<const StrokeSample> path,
                       const SmoothBrushOptions& options);
+
+/// What smooth_stroke() writes within `part` (clipped to the path's reach),
+/// reading the material as it was before the stroke from `before` (the
+/// volume's dims, asserted; read within `part` grown by options.passes)
+/// whatever `volume` holds there now; the rest of `volume` is left as it
+/// is. A voxel's result depends only on the material around it and its
+/// weight, the largest the path gives it: a preview of a path grown by a
+/// few samples re-smooths the part their segments reach and leaves the
+/// rest of the last preview as it was (station/app/brush_preview.h).
+int64_t smooth_stroke_part(Volume& volume, Sculptor& sculptor, std::span<const StrokeSample> path,
+                           const SmoothBrushOptions& options, const Box& part,
+                           const Volume& before);
 
 }  // namespace sculpt::core

@@ -12,13 +12,17 @@
 // A preview writes no undo step (it runs on a scratch sculptor) and keeps
 // the bricks it may change as they were (compressed, as the volume holds
 // them), so putting them back is exact. Only bricks a preview changed are
-// stored again: the rest keep their versions and meshes.
+// stored again: the rest keep their versions and meshes. A brush whose
+// result at a voxel does not depend on the path's far parts (smoothing)
+// need not start again: extend() brushes again only what the path's new
+// samples reach, reading the kept material.
 //
 // Thread safety: the sculpting thread's, like the volume.
 
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -42,6 +46,16 @@ class BrushPreview {
   /// samples. Returns what `apply` returns.
   int64_t show(core::Volume& volume, const core::Box& region, size_t samples,
                const std::function<int64_t()>& apply);
+  /// Runs `apply` without putting anything back first: the brush on the
+  /// path's first `samples` samples (more than shown_samples(), asserted,
+  /// a preview being active) written only where it differs from the last
+  /// preview's, within `region`. Keeps the bricks overlapping `region` not
+  /// kept yet (none of the earlier previews changed them); `apply` reads
+  /// the material as it was before the stroke from the volume it is given
+  /// (the volume's dims, holding it for every kept brick; other bricks are
+  /// the volume's own). Returns what `apply` returns.
+  int64_t extend(core::Volume& volume, const core::Box& region, size_t samples,
+                 const std::function<int64_t(const core::Volume& before)>& apply);
   /// Puts back the bricks the last preview changed (nothing if none).
   void revert(core::Volume& volume);
   /// A preview is shown and not reverted.
@@ -52,10 +66,14 @@ class BrushPreview {
  private:
   struct Kept {
     glm::ivec3 brick;
-    core::Brick before;
     uint64_t version;  // the brick's version when kept
   };
+  // Keeps the bricks overlapping `region` that are not kept yet.
+  void keep(const core::Volume& volume, const core::Box& region);
   std::vector<Kept> kept_;
+  // The material before the stroke: the kept bricks as they were, the
+  // other bricks uniform (unread).
+  std::unique_ptr<core::Volume> before_;
   bool active_ = false;
   size_t shown_samples_ = 0;
 };

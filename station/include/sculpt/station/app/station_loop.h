@@ -106,6 +106,9 @@ struct StationCounters {
   int64_t tracking_losses = 0;
   /// Path brushes shown on the path so far while a press went on.
   int64_t brush_previews = 0;
+  /// Of those, smoothing previews that brushed only what the path's new
+  /// samples reach (BrushPreview::extend) instead of the whole path again.
+  int64_t brush_previews_extended = 0;
   /// Dabs shown by a stand-in before they were sculpted (dab_stand_ins.h).
   int64_t dabs_stood_in = 0;
 };
@@ -305,6 +308,9 @@ class StationLoop {
   int64_t stand_ins_ns_ = 0;
   int64_t preview_ended_ns_ = 0;  // the last brush preview's end and time taken
   int64_t preview_took_ns_ = 0;
+  // The ball the shown preview brushed with (radius, hardness, strength):
+  // a preview extends it only with the same.
+  glm::vec3 preview_ball_{-1.0f};
   std::optional<hal::Dab> stand_in_last_;             // the press's last dab stood in
   std::future<DabStandIns::ToolMesh> stand_in_tool_;  // being meshed for the board
   std::vector<std::future<DabStandIns::ToolMesh>> retired_marches_;  // for tools since replaced

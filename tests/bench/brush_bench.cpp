@@ -1,0 +1,70 @@
+// A smoothing preview as the path grows (the station's ball-brush previews,
+// station/app/brush_preview.h): the brush applied again to the whole path
+// (range(1) = 0, what every preview did before) against smoothing only what
+// the path's newest segment reaches, reading the material before the stroke
+// from a kept copy (range(1) = 1, smooth_stroke_part()). range(0): the
+// path's samples so far, 2 voxels apart along a circle on the surface of the
+// 256^3 peers.py sphere; the ball of radius 8 with the default hardness,
+// strength and 4 blur passes. Timed by hand around the brush call only (the
+// volume's copy is set-up), one thread.
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <span>
+#include <vector>
+
+#include "sculpt/core/sculpt/smooth_brush.h"
+#include "sculpt/core/shapes/analytic_shapes.h"
+#include "sculpt/core/util/parallel_for.h"
+
+namespace sculpt::core {
+namespace {
+
+void BM_SmoothPreview(benchmark::State& state) {
+  const auto samples = static_cast<size_t>(state.range(0));
+  const bool extend = state.range(1) != 0;
+  static const Volume* material = new Volume(sphere_volume(256, 0.35f));
+  set_default_threads(1);
+  const glm::vec3 centre(127.5f);
+  const float radius = 0.35f * 256.0f;
+  std::vector<StrokeSample> path;
+  for (size_t k = 0; k < samples; ++k) {
+    const float a = 2.0f * static_cast<float>(k) / radius;
+    path.push_back({centre + radius * glm::vec3(std::cos(a), std::sin(a), 0.0f),
+                    glm::quat(1.0f, 0.0f, 0.0f, 0.0f)});
+  }
+  SmoothBrushOptions o;
+  o.radius_vox = 8.0f;
+  // The last preview, of the path but its newest sample.
+  Volume shown = *material;
+  {
+    Sculptor s(shown);
+    smooth_stroke(shown, s, std::span(path).first(samples - 1), o);
+  }
+  // What the newest segment reaches (the station's box: radius + 2).
+  const float reach = o.radius_vox + 2.0f;
+  const glm::vec3 a = path[samples - 2].position_vox, b = path[samples - 1].position_vox;
+  const Box part{glm::ivec3(glm::floor(glm::min(a, b) - reach)),
+                 glm::ivec3(glm::ceil(glm::max(a, b) + reach)) + 1};
+  int64_t changed = 0;
+  for (auto _ : state) {
+    Volume v = extend ? shown : *material;
+    Sculptor s(v);
+    const auto start = std::chrono::steady_clock::now();
+    changed =
+        extend ? smooth_stroke_part(v, s, path, o, part, *material) : smooth_stroke(v, s, path, o);
+    state.SetIterationTime(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  state.counters["voxels_changed"] = static_cast<double>(changed);
+}
+BENCHMARK(BM_SmoothPreview)
+    ->ArgsProduct({{8, 32, 128}, {0, 1}})
+    ->ArgNames({"samples", "extend"})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace sculpt::core
