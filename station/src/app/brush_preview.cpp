@@ -47,11 +47,14 @@ void BrushPreview::revert(core::Volume& volume) {
   if (!active_) return;
   std::vector<uint8_t> voxels;
   for (const Kept& k : kept_) {
-    if (volume.brick_version(k.brick) == k.version) continue;  // unchanged
-    const size_t edge = static_cast<size_t>(volume.brick_edge());
-    voxels.resize(edge * edge * edge);
-    before_->brick(k.brick).extract_level(0, voxels);
-    volume.store_brick(k.brick, voxels);
+    if (volume.brick_version(k.brick) != k.version) {  // changed: put back
+      const size_t edge = static_cast<size_t>(volume.brick_edge());
+      voxels.resize(edge * edge * edge);
+      before_->brick(k.brick).extract_level(0, voxels);
+      volume.store_brick(k.brick, voxels);
+    }
+    // A stroke's kept bricks are not held past it.
+    before_->replace_brick(k.brick, core::Brick());
   }
   kept_.clear();
   active_ = false;
