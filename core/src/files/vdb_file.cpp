@@ -384,6 +384,10 @@ Status send_grid(int fd, std::istream& in, const VdbLimits& limits) {
   const rlimit limit{bytes, bytes};
   setrlimit(RLIMIT_AS, &limit);
 #endif
+  const auto cpu = static_cast<rlim_t>(std::max(1, limits.reader_cpu_seconds));
+  const rlimit cpu_limit{cpu, cpu + 1};  // SIGXCPU, a second later SIGKILL
+  setrlimit(RLIMIT_CPU, &cpu_limit);
+  std::signal(SIGXCPU, SIG_DFL);
   if (limits.reader_stderr_to_null) {
     ::setenv("LIBC_FATAL_STDERR_", "1", 1);  // glibc's abort messages: stderr, not the tty
     const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
@@ -574,6 +578,10 @@ Result<VdbGridsIn> read_vdb(std::istream& in, const std::string& name, const Vdb
     }
   }
   if (r.answered && WIFEXITED(status) && WEXITSTATUS(status) == 0) return std::move(r.grids);
+  if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU) {
+    return Error(name + ": OpenVDB could not read it in " +
+                 std::to_string(limits.reader_cpu_seconds) + " s of CPU time (a damaged file?)");
+  }
   if (WIFSIGNALED(status) && !(killed && WTERMSIG(status) == SIGKILL)) {
     return Error(name + ": OpenVDB could not read it (crashed: signal " +
                  std::to_string(WTERMSIG(status)) + ")");

@@ -286,6 +286,17 @@ TEST(VdbFile, AFileThatCrashesOpenVdbIsAnErrorNotACrash) {
   expect_refused(file, "OpenVDB");
 }
 
+// A file the fuzzer found that keeps OpenVDB's parser busy for minutes
+// (14 under ASan): the reader is stopped at its CPU limit and the file refused.
+TEST(VdbFile, AFileThatKeepsOpenVdbBusyIsRefusedAtTheCpuLimit) {
+  VdbLimits limits;
+  limits.reader_cpu_seconds = 1;
+  auto r = read_vdb(data("slow_parse.vdb"), limits);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message().find("slow_parse.vdb"), std::string::npos) << r.error().message();
+  EXPECT_NE(r.error().message().find("1 s of CPU time"), std::string::npos) << r.error().message();
+}
+
 TEST(VdbFile, AHugeLengthIsRefusedWithoutThisProcessAllocatingIt) {
   if (kSanitized) GTEST_SKIP() << "no address space limit under a sanitizer";
   // Our file with its "creator" string claiming 4 GiB - 1 bytes: OpenVDB
