@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cstdarg>
 #include <cstdio>
 #include <cstring>
 
@@ -41,6 +42,8 @@ StationPanel::~StationPanel() {
 }
 
 void StationPanel::draw(const FrameFigures& f, int64_t now) {
+  figures_due_ = now - figures_at_ >= kFiguresEveryNs;
+  if (figures_due_) figures_at_ = now;
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Sculpt station");
@@ -53,7 +56,7 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     } else {
       ImGui::Text("%s (%s)%s", d.name.c_str(), d.backend.c_str(),
                   d.connected ? "" : " - unplugged");
-      ImGui::Text("%.0f reports/s", d.report_rate_hz);
+      figure("%.0f reports/s", d.report_rate_hz);
       if (d.battery_percent >= 0)
         ImGui::Text("battery %d%%%s", d.battery_percent, d.charging ? " (charging)" : "");
     }
@@ -211,7 +214,7 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
         lod.frame_budget_ms = budget;
         changed = true;
       }
-      if (lod.frame_budget_ms > 0) ImGui::Text("coarsening bias %.2f", c_.lod().bias());
+      if (lod.frame_budget_ms > 0) figure("coarsening bias %.2f", c_.lod().bias());
       if (changed && lod.fixed_level >= 0) lod.fixed_level = -1;
     } else {
       if (lod.fixed_level < 0) lod.fixed_level = 0;
@@ -232,24 +235,38 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     draw_haptics(now);
 
   if (ImGui::CollapsingHeader("Figures", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::Text("%.0f fps (%.1f ms), %lld triangles", f.fps, f.frame_ms,
-                static_cast<long long>(f.triangles));
+    figure("%.0f fps (%.1f ms), %lld triangles", f.fps, f.frame_ms,
+           static_cast<long long>(f.triangles));
     const LatencyStats l = c_.recent_latency();
-    ImGui::Text("dab latency p50 %.2f ms, p99 %.2f ms", l.p50_us * 1e-3, l.p99_us * 1e-3);
-    ImGui::Text("dabs %lld, strokes %lld", static_cast<long long>(c_.loop().counters().dabs),
-                static_cast<long long>(c_.loop().counters().strokes));
+    figure("dab latency p50 %.2f ms, p99 %.2f ms", l.p50_us * 1e-3, l.p99_us * 1e-3);
+    figure("dabs %lld, strokes %lld", static_cast<long long>(c_.loop().counters().dabs),
+           static_cast<long long>(c_.loop().counters().strokes));
     // How often a non-ball tool's placement found its rotated voxels made
     // (the ball is swept without rotating).
     const core::RotatedToolCacheStats rc = c_.loop().rotation_cache_stats();
-    ImGui::Text("rotation cache: %.0f%% of %lld placements, %.0f%% of voxels",
-                100.0 * rc.placement_hit_rate(), static_cast<long long>(rc.placements),
-                100.0 * rc.voxel_hit_rate());
+    figure("rotation cache: %.0f%% of %lld placements, %.0f%% of voxels",
+           100.0 * rc.placement_hit_rate(), static_cast<long long>(rc.placements),
+           100.0 * rc.voxel_hit_rate());
   }
   if (!c_.status().empty()) ImGui::TextWrapped("%s", c_.status().c_str());
   ImGui::End();
 }
 
+void StationPanel::figure(const char* format, ...) {
+  std::string& line = figure_lines_[format];
+  if (figures_due_ || line.empty()) {
+    char text[256];
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(text, sizeof(text), format, args);
+    va_end(args);
+    line = text;
+  }
+  ImGui::TextUnformatted(line.c_str());
+}
+
 void StationPanel::drop_thumbnails() {
+  ++textures_version_;
   for (LibraryEntry& e : library_)
     if (e.texture != 0) glDeleteTextures(1, &e.texture);
   library_.clear();
@@ -446,17 +463,17 @@ void StationPanel::draw_haptics(int64_t now) {
     haptic_ticks_ = f.ticks;
     haptic_since_ns_ = now;
   }
-  ImGui::Text("loop %.0f Hz%s, late ticks %lld of %lld", haptic_rate_hz_,
-              f.realtime ? " (real-time)" : "", static_cast<long long>(f.late_ticks),
-              static_cast<long long>(f.ticks));
+  figure("loop %.0f Hz%s, late ticks %lld of %lld", haptic_rate_hz_,
+         f.realtime ? " (real-time)" : "", static_cast<long long>(f.late_ticks),
+         static_cast<long long>(f.ticks));
   if (f.threads == 2)
-    ImGui::Text("standby thread on another core: %lld late wake-ups covered",
-                static_cast<long long>(f.standby_rescues));
-  ImGui::Text("worst period %.2f ms, max force %.2f N, ramp %.0f%%", f.worst_period_us * 1e-3,
-              f.max_force_n, f.ramp * 100.0f);
+    figure("standby thread on another core: %lld late wake-ups covered",
+           static_cast<long long>(f.standby_rescues));
+  figure("worst period %.2f ms, max force %.2f N, ramp %.0f%%", f.worst_period_us * 1e-3,
+         f.max_force_n, f.ramp * 100.0f);
   const ContactRecord& contact = h.contact();
-  ImGui::Text("%s%s, force %.2f N", contact.contact ? "in contact" : "free",
-              contact.clutched ? ", clutched" : "", glm::length(h.tick().force_n));
+  figure("%s%s, force %.2f N", contact.contact ? "in contact" : "free",
+         contact.clutched ? ", clutched" : "", glm::length(h.tick().force_n));
 }
 
 void StationPanel::draw_sheet(int64_t now) {

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "sculpt/station/app/station_controller.h"
@@ -29,6 +30,11 @@ class StationPanel {
   void ask_new_block();
   /// A force device's section (null: none).
   void set_haptics(HapticStation* haptics) { haptics_ = haptics; }
+  /// Changes when a texture the panel shows is made or dropped (PanelLayer).
+  uint64_t textures_version() const { return textures_version_; }
+
+  /// How often figures that change every frame are shown anew.
+  static constexpr int64_t kFiguresEveryNs = 250'000'000;
 
  private:
   void draw_sheet(int64_t now_ns);
@@ -40,6 +46,11 @@ class StationPanel {
   void refresh_library();
   void drop_thumbnails();
   void draw_haptics(int64_t now_ns);
+  // A line of figures (rates, latencies, forces) as it read at the last
+  // refresh: numbers that change sixty times a second cannot be read, and a
+  // panel that looks as it did is drawn from PanelLayer's picture of it.
+  // Each call site's format string names its line.
+  void figure(const char* format, ...) __attribute__((format(printf, 2, 3)));
 
   StationController& c_;
   HapticStation* haptics_ = nullptr;
@@ -63,6 +74,10 @@ class StationPanel {
   char recording_[512] = {};
   float sensitivity_ = 1.0f;
   float deadzone_ = 0.06f;
+  uint64_t textures_version_ = 0;
+  bool figures_due_ = true;
+  int64_t figures_at_ = 0;
+  std::unordered_map<const char*, std::string> figure_lines_;
 };
 
 }  // namespace sculpt::station

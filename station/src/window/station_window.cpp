@@ -40,6 +40,7 @@
 #include "sculpt/station/view/surface_mesher.h"
 #include "sculpt/station/view/volume_raycast.h"
 #include "sculpt/station/window/keymap.h"
+#include "sculpt/station/window/panel_layer.h"
 #include "window/gl_context.h"
 #include "window/station_panel.h"
 
@@ -86,6 +87,7 @@ struct RunFigures {
   double input_ms = 0, mesh_ms = 0, upload_ms = 0, draw_ms = 0;
   int64_t started_ns = 0;              // the first frame's start
   int64_t frames_drawn_unsteered = 0;  // the sculpting thread held the turn: drawn without it
+  int64_t panel_rasters = 0;           // frames that drew the panel's triangles (PanelLayer)
   InputHubFigures hub;
 };
 
@@ -175,6 +177,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
       {"frame_ms_p50", at(0.5)},
       {"frame_ms_p90", at(0.9)},
       {"frame_ms_p99", at(0.99)},
+      {"panel_drawn_anew", f.panel_rasters},
       {"brick_uploads", f.uploads},
       {"mesher",
        {{"changes", f.mesher.submits},
@@ -403,6 +406,7 @@ int run_window(const WindowOptions& o) {
   glfwSetScrollCallback(w, on_scroll);
   StationPanel panel(controller);
   panel.set_haptics(haptics.get());
+  PanelLayer panel_layer;
 
   SurfaceSnapshot surface;
   SurfaceDelta unreported;  // meshes' ready times not yet given to the statistics
@@ -638,7 +642,8 @@ int run_window(const WindowOptions& o) {
     // After NewFrame() a Render() follows: the draw data are this frame's, or
     // the last one's again.
     if (ImDrawData* panel_draw = ImGui::GetDrawData(); panel_draw != nullptr)
-      ImGui_ImplOpenGL3_RenderDrawData(panel_draw);
+      panel_layer.draw(*panel_draw, panel.textures_version());
+    figures.panel_rasters = panel_layer.rasters();
     glfwSwapBuffers(w);
     figures.draw_ms += static_cast<double>(hal::monotonic_ns() - t_draw) * 1e-6;
 

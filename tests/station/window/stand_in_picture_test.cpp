@@ -4,8 +4,6 @@
 // adding and carving, mirrored. Without a display the test runs itself
 // again under xvfb-run (Mesa's software OpenGL, as in CI).
 
-#include <sys/wait.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -21,27 +19,10 @@
 #include "sculpt/station/app/station_loop.h"
 #include "sculpt/station/settings/command_codec.h"
 #include "sculpt/station/window/gl_snapshot.h"
+#include "xvfb_rerun.h"
 
 namespace sculpt::station {
 namespace {
-
-// Runs the current test again in a process of its own under xvfb-run;
-// false when there is no xvfb-run (the test is then skipped).
-bool rerun_under_xvfb(const sculpt::test::ScratchDir& dir) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) return false;
-  const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
-  // Mesa keeps some of its allocations to the end: not this test's leaks.
-  const std::string command =
-      "ASAN_OPTIONS=\"${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0\" xvfb-run -a -f '" +
-      (dir.path() / "xvfb-auth").string() + "' -s '-screen 0 640x480x24' '" + self +
-      "' --gtest_filter=" + info->test_suite_name() + "." + info->name() + " > '" +
-      (dir.path() / "out.txt").string() + "' 2>&1";
-  const int status = std::system(command.c_str());
-  std::printf("%s", test::read_text(dir.path() / "out.txt").c_str());
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "under xvfb-run";
-  return true;
-}
 
 constexpr int kBlock = 256;  // clay from 64 to 192 on every axis
 constexpr int kPixels = 400;
@@ -113,7 +94,7 @@ void expect_stand_ins_look_sculpted(const Dabbed& d, const char* what) {
 TEST(StandInPictures, AddingAndCarvingLookLikeTheSculptedClay) {
   if (!display_available()) {
     sculpt::test::ScratchDir dir;
-    if (!rerun_under_xvfb(dir)) GTEST_SKIP() << "no display and no xvfb-run";
+    if (!sculpt::test::rerun_under_xvfb(dir)) GTEST_SKIP() << "no display and no xvfb-run";
     return;
   }
   // The demo's head ball (radius 66), astride the clay's front face.
