@@ -32,6 +32,48 @@ core::DenseGrid<uint8_t> averaged(const core::DenseGrid<uint8_t>& density, int s
   return out;
 }
 
+// Where a ball's density, falling outward, crosses the surface level
+// (127.5): bisection over the signed distance from the ball's radius.
+float surface_radius(const core::Tool& ball) {
+  assert(ball.sphere_radius_vox > 0.0f);
+  const float r = ball.sphere_radius_vox;
+  float inside = -r, outside = 4.0f;
+  for (int i = 0; i < 40; ++i) {
+    const float mid = 0.5f * (inside + outside);
+    (core::tool_density(mid, r, ball.hardness) > 127 ? inside : outside) = mid;
+  }
+  return r + 0.5f * (inside + outside);
+}
+
+// A sphere about `centre` with segments at most `edge` voxels long, a whole
+// number of them round the equator, and half as many rings pole to pole.
+core::Mesh uv_sphere(glm::vec3 centre, float radius, float edge) {
+  constexpr float kPi = 3.14159265358979f;
+  const int segments = std::clamp(static_cast<int>(std::ceil(2.0f * kPi * radius / edge)), 12, 256);
+  const int rings = std::max(6, segments / 2);
+  core::Mesh mesh;
+  for (int i = 0; i <= rings; ++i) {
+    const float polar = kPi * static_cast<float>(i) / static_cast<float>(rings);
+    for (int j = 0; j <= segments; ++j) {
+      // The seam's last column is its first again, to the bit: no crack.
+      const float azimuth =
+          2.0f * kPi * static_cast<float>(j % segments) / static_cast<float>(segments);
+      const glm::vec3 n(std::sin(polar) * std::cos(azimuth), std::cos(polar),
+                        std::sin(polar) * std::sin(azimuth));
+      mesh.positions.push_back(centre + radius * n);
+      mesh.normals.push_back(n);
+    }
+  }
+  // Wound as the marching cubes wind the clay, outward faces counter-clockwise.
+  const auto at = [&](int i, int j) { return static_cast<uint32_t>(i * (segments + 1) + j); };
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      if (i > 0) mesh.triangles.push_back({at(i, j), at(i, j + 1), at(i + 1, j)});
+      if (i + 1 < rings) mesh.triangles.push_back({at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)});
+    }
+  return mesh;
+}
+
 }  // namespace
 
 core::Mesh tool_outline(const core::Tool& tool, int max_cells) {
@@ -63,43 +105,15 @@ core::Mesh tool_outline(const core::Tool& tool, int max_cells) {
 }
 
 core::Mesh ball_outline(const core::Tool& ball, bool coarse) {
-  assert(ball.sphere_radius_vox > 0.0f);
-  const float r = ball.sphere_radius_vox;
-  // Where the density, falling outward, crosses the surface level (127.5):
-  // bisection over the signed distance from the ball's radius.
-  float inside = -r, outside = 4.0f;
-  for (int i = 0; i < 40; ++i) {
-    const float mid = 0.5f * (inside + outside);
-    (core::tool_density(mid, r, ball.hardness) > 127 ? inside : outside) = mid;
-  }
-  const float radius = r + 0.5f * (inside + outside);
-  // Segments about three voxels long (six when coarse), a whole number of
-  // them round the equator, and half as many rings from pole to pole.
-  constexpr float kPi = 3.14159265358979f;
-  const float edge = coarse ? 6.0f : 3.0f;
-  const int segments = std::clamp(static_cast<int>(2.0f * kPi * radius / edge), 12, 256);
-  const int rings = std::max(6, segments / 2);
-  core::Mesh mesh;
-  for (int i = 0; i <= rings; ++i) {
-    const float polar = kPi * static_cast<float>(i) / static_cast<float>(rings);
-    for (int j = 0; j <= segments; ++j) {
-      // The seam's last column is its first again, to the bit: no crack.
-      const float azimuth =
-          2.0f * kPi * static_cast<float>(j % segments) / static_cast<float>(segments);
-      const glm::vec3 n(std::sin(polar) * std::cos(azimuth), std::cos(polar),
-                        std::sin(polar) * std::sin(azimuth));
-      mesh.positions.push_back(ball.pivot + radius * n);
-      mesh.normals.push_back(n);
-    }
-  }
-  // Wound as the marching cubes wind the clay, outward faces counter-clockwise.
-  const auto at = [&](int i, int j) { return static_cast<uint32_t>(i * (segments + 1) + j); };
-  for (int i = 0; i < rings; ++i)
-    for (int j = 0; j < segments; ++j) {
-      if (i > 0) mesh.triangles.push_back({at(i, j), at(i, j + 1), at(i + 1, j)});
-      if (i + 1 < rings) mesh.triangles.push_back({at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)});
-    }
-  return mesh;
+  return uv_sphere(ball.pivot, surface_radius(ball), coarse ? 6.0f : 3.0f);
+}
+
+core::Mesh window_tool_outline(const core::Tool& tool) {
+  if (!(tool.sphere_radius_vox > 0.0f)) return tool_outline(tool);
+  // A quad's diagonal, about 1.4 edges long, dips edge^2 / (4 radius)
+  // inside the sphere at its middle: the edge that keeps it to the bound.
+  const float radius = surface_radius(tool);
+  return uv_sphere(tool.pivot, radius, std::sqrt(4.0f * radius * kWindowBallErrorVox));
 }
 
 core::Mesh stand_in_outline(const core::Tool& tool, bool coarse) {

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
+
 #include <glm/geometric.hpp>
 
 #include "sculpt/core/mesh/mesh.h"
@@ -71,6 +74,32 @@ TEST(ToolOutline, ABigToolIsMeshedCoarseInItsPlace) {
   // Within a coarse voxel (4) of the ball's surface, in the tool's coordinates.
   EXPECT_LT(worst, 4.0);
   EXPECT_GT(outline.positions.size(), 1000u);
+}
+
+// The window draws a ball as a sphere: few triangles, every edge's midpoint
+// near the ball's surface (the silhouette is made of edges).
+TEST(ToolOutline, TheWindowDrawsABallAsASphereOfFewTriangles) {
+  for (const float radius : {6.0f, 20.0f, 47.0f, 48.0f, 66.0f, 110.0f}) {
+    const core::Tool ball = core::make_sphere_tool(radius);
+    const core::Mesh drawn = window_tool_outline(ball);
+    const core::Mesh sphere = ball_outline(ball);
+    const float surface = glm::length(sphere.positions.front() - ball.pivot);
+    float worst = 0.0f;
+    for (const glm::uvec3& t : drawn.triangles)
+      for (int k = 0; k < 3; ++k) {
+        const glm::vec3 mid = 0.5f * (drawn.positions[t[k]] + drawn.positions[t[(k + 1) % 3]]);
+        worst = std::max(worst, surface - glm::length(mid - ball.pivot));
+      }
+    std::printf("radius %.0f: %zu triangles, edge midpoints within %.3f voxel\n", radius,
+                drawn.triangles.size(), worst);
+    EXPECT_EQ(core::check_topology(drawn).misoriented_edges, 0) << radius;
+    EXPECT_LT(worst, kWindowBallErrorVox + 1e-3f) << radius;
+    // Marched at 2:1, the 66-voxel ball was 29k triangles.
+    EXPECT_LT(drawn.triangles.size(), 8'000u) << radius;
+  }
+  // Any other tool: its outline.
+  const core::Tool cube = core::make_cube_tool(20.0f);
+  EXPECT_EQ(window_tool_outline(cube).triangles, tool_outline(cube).triangles);
 }
 
 }  // namespace

@@ -171,7 +171,7 @@ void SceneRenderer::set_tool(const core::Tool& tool, uint64_t version) {
   if (version == tool_version_) return;
   tool_version_ = version;
   tool_pivot_ = tool.pivot;
-  tool_mesh_.upload(tool_outline(tool));
+  tool_mesh_.upload(window_tool_outline(tool));
 }
 
 void SceneRenderer::set_stand_in_tool(const DabStandIns::ToolMesh& tool) {
