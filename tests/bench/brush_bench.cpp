@@ -1,12 +1,13 @@
-// A smoothing preview as the path grows (the station's ball-brush previews,
-// station/app/brush_preview.h): the brush applied again to the whole path
-// (range(1) = 0, what every preview did before) against smoothing only what
-// the path's newest segment reaches, reading the material before the stroke
-// from a kept copy (range(1) = 1, smooth_stroke_part()). range(0): the
-// path's samples so far, 2 voxels apart along a circle on the surface of the
-// 256^3 peers.py sphere; the ball of radius 8 with the default hardness,
-// strength and 4 blur passes. Timed by hand around the brush call only (the
-// volume's copy is set-up), one thread.
+// A smoothing, inflating or pinching preview as the path grows (the
+// station's ball-brush previews, station/app/brush_preview.h): the brush
+// applied again to the whole path (range(1) = 0, what every preview did
+// before) against brushing only what the path's newest segment reaches,
+// reading the material before the stroke from a kept copy (range(1) = 1,
+// *_stroke_part()). range(0): the path's samples so far, 2 voxels apart
+// along a circle on the surface of the 256^3 peers.py sphere; the ball of
+// radius 8 with each brush's default hardness, strength (smoothing: 4 blur
+// passes; inflating: 1 voxel). Timed by hand around the brush call only
+// (the volume's copy is set-up), one thread.
 
 #include <benchmark/benchmark.h>
 
@@ -15,6 +16,8 @@
 #include <span>
 #include <vector>
 
+#include "sculpt/core/sculpt/inflate_brush.h"
+#include "sculpt/core/sculpt/pinch_brush.h"
 #include "sculpt/core/sculpt/smooth_brush.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 #include "sculpt/core/util/parallel_for.h"
@@ -22,7 +25,12 @@
 namespace sculpt::core {
 namespace {
 
-void BM_SmoothPreview(benchmark::State& state) {
+template <class Options>
+void brush_preview(benchmark::State& state,
+                   int64_t (*whole)(Volume&, Sculptor&, std::span<const StrokeSample>,
+                                    const Options&),
+                   int64_t (*part_of)(Volume&, Sculptor&, std::span<const StrokeSample>,
+                                      const Options&, const Box&, const Volume&)) {
   const auto samples = static_cast<size_t>(state.range(0));
   const bool extend = state.range(1) != 0;
   static const Volume* material = new Volume(sphere_volume(256, 0.35f));
@@ -35,13 +43,13 @@ void BM_SmoothPreview(benchmark::State& state) {
     path.push_back({centre + radius * glm::vec3(std::cos(a), std::sin(a), 0.0f),
                     glm::quat(1.0f, 0.0f, 0.0f, 0.0f)});
   }
-  SmoothBrushOptions o;
+  Options o;
   o.radius_vox = 8.0f;
   // The last preview, of the path but its newest sample.
   Volume shown = *material;
   {
     Sculptor s(shown);
-    smooth_stroke(shown, s, std::span(path).first(samples - 1), o);
+    whole(shown, s, std::span(path).first(samples - 1), o);
   }
   // What the newest segment reaches (the station's box: radius + 2).
   const float reach = o.radius_vox + 2.0f;
@@ -53,14 +61,33 @@ void BM_SmoothPreview(benchmark::State& state) {
     Volume v = extend ? shown : *material;
     Sculptor s(v);
     const auto start = std::chrono::steady_clock::now();
-    changed =
-        extend ? smooth_stroke_part(v, s, path, o, part, *material) : smooth_stroke(v, s, path, o);
+    changed = extend ? part_of(v, s, path, o, part, *material) : whole(v, s, path, o);
     state.SetIterationTime(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   state.counters["voxels_changed"] = static_cast<double>(changed);
 }
+
+void BM_SmoothPreview(benchmark::State& state) {
+  brush_preview<SmoothBrushOptions>(state, smooth_stroke, smooth_stroke_part);
+}
+void BM_InflatePreview(benchmark::State& state) {
+  brush_preview<InflateBrushOptions>(state, inflate_stroke, inflate_stroke_part);
+}
+void BM_PinchPreview(benchmark::State& state) {
+  brush_preview<PinchBrushOptions>(state, pinch_stroke, pinch_stroke_part);
+}
 BENCHMARK(BM_SmoothPreview)
+    ->ArgsProduct({{8, 32, 128}, {0, 1}})
+    ->ArgNames({"samples", "extend"})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_InflatePreview)
+    ->ArgsProduct({{8, 32, 128}, {0, 1}})
+    ->ArgNames({"samples", "extend"})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PinchPreview)
     ->ArgsProduct({{8, 32, 128}, {0, 1}})
     ->ArgNames({"samples", "extend"})
     ->UseManualTime()

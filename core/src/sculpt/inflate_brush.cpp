@@ -21,26 +21,43 @@ Status check_inflate_brush(const InflateBrushOptions& o) {
   return brush::check_positive("distance", o.distance_vox, kMaxInflateDistanceVox);
 }
 
+namespace {
+
+// Each blur round spreads the gradient a voxel farther from the surface.
+int blur_passes(const InflateBrushOptions& o) {
+  return static_cast<int>(std::ceil(o.distance_vox)) + 1;
+}
+
+}  // namespace
+
+int inflate_read_margin(const InflateBrushOptions& o) {
+  // The blur reads its passes around the gradient's voxels, a voxel beyond
+  // the sample, which lies up to distance_vox inward.
+  return static_cast<int>(std::ceil(o.distance_vox)) + blur_passes(o) + 2;
+}
+
 int64_t inflate_stroke(Volume& volume, Sculptor& sculptor, std::span<const StrokeSample> path,
                        const InflateBrushOptions& o) {
-  assert(!path.empty() && check_inflate_brush(o));
+  return inflate_stroke_part(volume, sculptor, path, o, Box{glm::ivec3(0), volume.dims()}, volume);
+}
+
+int64_t inflate_stroke_part(Volume& volume, Sculptor& sculptor, std::span<const StrokeSample> path,
+                            const InflateBrushOptions& o, const Box& part, const Volume& before) {
+  assert(!path.empty() && check_inflate_brush(o) && before.dims() == volume.dims());
   const brush::Ball ball{o.radius_vox, o.hardness, o.strength};
-  const Box region = brush::reach_box(volume, path, ball);
+  const Box region = intersect(brush::reach_box(volume, path, ball), part);
   if (region.empty()) return 0;
-  // Each blur round spreads the gradient a voxel farther from the surface.
-  const int passes = static_cast<int>(std::ceil(o.distance_vox)) + 1;
-  const int margin = static_cast<int>(std::ceil(o.distance_vox)) + passes + 2;
-  const brush::Field before(volume, region, margin);
-  brush::Field blurred = before;
-  brush::blur(blurred.grid(), passes);
-  return brush::write(volume, sculptor, before, region, path, ball,
+  const brush::Field material(before, region, inflate_read_margin(o));
+  brush::Field blurred = material;
+  brush::blur(blurred.grid(), blur_passes(o));
+  return brush::write(volume, sculptor, material, region, path, ball,
                       [&](glm::ivec3 v, float w, glm::vec3) {
                         const glm::vec3 p(v);
                         const glm::vec3 g = blurred.gradient(p);
                         const float len = glm::length(g);
-                        if (len <= 1e-3f) return before.at(v);
+                        if (len <= 1e-3f) return material.at(v);
                         // The gradient points inward: the sample lies inward.
-                        return before.sample(p + g / len * (w * o.distance_vox));
+                        return material.sample(p + g / len * (w * o.distance_vox));
                       });
 }
 

@@ -15,17 +15,27 @@ Status check_pinch_brush(const PinchBrushOptions& o) {
   return brush::check_ball({o.radius_vox, o.hardness, o.strength});
 }
 
+int pinch_read_margin(const PinchBrushOptions& o) {
+  // A voxel at the reach reads up to twice as far from the path.
+  const brush::Ball ball{o.radius_vox, o.hardness, o.strength};
+  return static_cast<int>(std::ceil(ball.reach())) + 2;
+}
+
 int64_t pinch_stroke(Volume& volume, Sculptor& sculptor, std::span<const StrokeSample> path,
                      const PinchBrushOptions& o) {
-  assert(!path.empty() && check_pinch_brush(o));
+  return pinch_stroke_part(volume, sculptor, path, o, Box{glm::ivec3(0), volume.dims()}, volume);
+}
+
+int64_t pinch_stroke_part(Volume& volume, Sculptor& sculptor, std::span<const StrokeSample> path,
+                          const PinchBrushOptions& o, const Box& part, const Volume& before) {
+  assert(!path.empty() && check_pinch_brush(o) && before.dims() == volume.dims());
   const brush::Ball ball{o.radius_vox, o.hardness, o.strength};
-  const Box region = brush::reach_box(volume, path, ball);
+  const Box region = intersect(brush::reach_box(volume, path, ball), part);
   if (region.empty()) return 0;
-  // A voxel at the reach reads up to twice as far from the path.
-  const brush::Field before(volume, region, static_cast<int>(std::ceil(ball.reach())) + 2);
-  return brush::write(volume, sculptor, before, region, path, ball,
+  const brush::Field material(before, region, pinch_read_margin(o));
+  return brush::write(volume, sculptor, material, region, path, ball,
                       [&](glm::ivec3 v, float w, glm::vec3 c) {
-                        return before.sample(c + (1.0f + w) * (glm::vec3(v) - c));
+                        return material.sample(c + (1.0f + w) * (glm::vec3(v) - c));
                       });
 }
 

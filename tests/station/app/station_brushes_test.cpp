@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <optional>
+#include <string>
 
 #include "sculpt/core/sculpt/clay_brush.h"
 #include "sculpt/core/sculpt/flatten_brush.h"
@@ -210,14 +212,11 @@ TEST(StationBrushes, ThePathsTailIsShownWhenThePreviewsHaveTimeForIt) {
   EXPECT_EQ(loop.volume().content_hash(), core_brush(BallBrush::kClay).content_hash());
 }
 
-// A smoothing preview of a grown path brushes again only what the new
-// samples reach, and shows exactly what smoothing the path so far at once
-// leaves: after each pointer report a preview is forced and the volume
-// compared with core's smooth brush on the same samples.
-TEST(StationBrushes, AGrownSmoothingPreviewIsTheSmoothingOfThePathSoFar) {
-  std::vector<sim::Command> commands = stroke_commands(BallBrush::kClay);
-  for (sim::Command& c : commands)
-    if (c.kind == sim::CommandKind::kMode) c.choice = choice_of(core::SculptMode::kSmooth);
+// A preview of a grown path, smoothing, inflating or pinching, brushes
+// again only what the new samples reach, and shows exactly what the brush
+// on the path so far at once leaves: after each pointer report a preview is
+// forced and the volume compared with core's brush on the same samples.
+TEST(StationBrushes, AGrownPreviewIsTheBrushOnThePathSoFar) {
   // The samples the sampler has placed after each pose of the path.
   hal::StrokeSampler sampler(tool_size_vox(sim::ToolShape::kSphere, kRadius, 0.0f), 0.25f);
   std::vector<hal::Dab> dabs;
@@ -235,38 +234,55 @@ TEST(StationBrushes, AGrownSmoothingPreviewIsTheSmoothingOfThePathSoFar) {
   std::vector<core::StrokeSample> samples;
   for (const hal::Dab& d : dabs)
     samples.push_back({d.position, d.orientation});
-  core::SmoothBrushOptions o;
-  o.radius_vox = kRadius;
-  o.hardness = kHardness;
-  o.strength = kStrength;
 
-  StationLoop loop(options());
-  size_t pose_index = 0, compared = 0;
-  for (const sim::Command& c : commands) {
-    loop.handle(c);
-    if (c.kind == sim::CommandKind::kPress) pose_index = 0;
-    if (c.kind == sim::CommandKind::kPointer) ++pose_index;
-    if (!loop.pressed() || c.kind == sim::CommandKind::kRelease) continue;
-    loop.catch_up_brush_preview(std::numeric_limits<int64_t>::max() / 2);
-    ASSERT_EQ(loop.dabs_not_yet_shown(), 0);
-    const size_t n = placed[pose_index];
-    if (n == 0) continue;
-    core::Volume expected = clay_block(kDims, kMargin);
-    core::Sculptor sculptor(expected);
-    core::smooth_stroke(expected, sculptor, std::span(samples).first(n), o);
-    ASSERT_EQ(voxels_differing(loop.volume(), expected), 0) << n << " samples";
-    ++compared;
+  // Smooth mode with the ball is the smooth brush; inflate and pinch are
+  // brushes of their own.
+  const std::optional<BallBrush> kExtending[] = {std::nullopt, BallBrush::kInflate,
+                                                 BallBrush::kPinch};
+  for (const std::optional<BallBrush> brush : kExtending) {
+    const std::string name = brush ? std::to_string(static_cast<int>(*brush)) : "smooth";
+    std::vector<sim::Command> commands = stroke_commands(brush.value_or(BallBrush::kClay));
+    if (!brush)
+      for (sim::Command& c : commands)
+        if (c.kind == sim::CommandKind::kMode) c.choice = choice_of(core::SculptMode::kSmooth);
+    auto brushed = [&](size_t n) {
+      core::Volume v = clay_block(kDims, kMargin);
+      const std::vector<core::StrokeSample> first(samples.begin(), samples.begin() + n);
+      if (brush) {
+        core_brush(v, *brush, first);
+      } else {
+        core::Sculptor sculptor(v);
+        core::SmoothBrushOptions o;
+        o.radius_vox = kRadius;
+        o.hardness = kHardness;
+        o.strength = kStrength;
+        core::smooth_stroke(v, sculptor, first, o);
+      }
+      return v;
+    };
+
+    StationLoop loop(options());
+    size_t pose_index = 0, compared = 0;
+    for (const sim::Command& c : commands) {
+      loop.handle(c);
+      if (c.kind == sim::CommandKind::kPress) pose_index = 0;
+      if (c.kind == sim::CommandKind::kPointer) ++pose_index;
+      if (!loop.pressed() || c.kind == sim::CommandKind::kRelease) continue;
+      loop.catch_up_brush_preview(std::numeric_limits<int64_t>::max() / 2);
+      ASSERT_EQ(loop.dabs_not_yet_shown(), 0) << name;
+      const size_t n = placed[pose_index];
+      if (n == 0) continue;
+      ASSERT_EQ(voxels_differing(loop.volume(), brushed(n)), 0) << name << ", " << n << " samples";
+      ++compared;
+    }
+    EXPECT_EQ(compared, p.size()) << name;
+    // The first preview brushes the path; every later one extends it.
+    EXPECT_GE(loop.counters().brush_previews, 4) << name;
+    EXPECT_EQ(loop.counters().brush_previews_extended, loop.counters().brush_previews - 1) << name;
+    // The release: the whole path's brush, one undo step.
+    EXPECT_EQ(loop.volume().content_hash(), brushed(samples.size()).content_hash()) << name;
+    EXPECT_EQ(loop.sculptor().history().undo_depth(), 1u) << name;
   }
-  EXPECT_EQ(compared, p.size());
-  // The first preview brushes the path; every later one extends it.
-  EXPECT_GE(loop.counters().brush_previews, 4);
-  EXPECT_EQ(loop.counters().brush_previews_extended, loop.counters().brush_previews - 1);
-  // The release: the whole path's brush, one undo step.
-  core::Volume whole = clay_block(kDims, kMargin);
-  core::Sculptor sculptor(whole);
-  core::smooth_stroke(whole, sculptor, samples, o);
-  EXPECT_EQ(loop.volume().content_hash(), whole.content_hash());
-  EXPECT_EQ(loop.sculptor().history().undo_depth(), 1u);
 }
 
 // Smooth mode with the ball tool is core's smooth brush along the path (one

@@ -18,6 +18,7 @@
 #include <span>
 
 #include "sculpt/base/result.h"
+#include "sculpt/core/grid/box.h"
 #include "sculpt/core/sculpt/brush_limits.h"
 #include "sculpt/core/sculpt/stroke.h"
 
@@ -47,5 +48,18 @@ Status check_inflate_brush(const InflateBrushOptions& options);
 /// Returns the voxels changed.
 int64_t inflate_stroke(Volume& volume, Sculptor& sculptor, std::span<const StrokeSample> path,
                        const InflateBrushOptions& options);
+
+/// What inflate_stroke() writes within `part` (clipped to the path's
+/// reach), reading the material as it was before the stroke from `before`
+/// (the volume's dims, asserted; read within `part` grown by
+/// inflate_read_margin()) whatever `volume` holds there now; the rest of
+/// `volume` is left as it is. A voxel's result depends only on the material
+/// around it and its weight: a preview of a grown path re-inflates only what
+/// the new samples reach (as smooth_stroke_part()).
+int64_t inflate_stroke_part(Volume& volume, Sculptor& sculptor, std::span<const StrokeSample> path,
+                            const InflateBrushOptions& options, const Box& part,
+                            const Volume& before);
+/// How far beyond the voxels it writes inflate_stroke_part() reads `before`.
+int inflate_read_margin(const InflateBrushOptions& options);
 
 }  // namespace sculpt::core

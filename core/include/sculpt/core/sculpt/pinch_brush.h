@@ -21,6 +21,7 @@
 #include <span>
 
 #include "sculpt/base/result.h"
+#include "sculpt/core/grid/box.h"
 #include "sculpt/core/sculpt/brush_limits.h"
 #include "sculpt/core/sculpt/stroke.h"
 
@@ -43,5 +44,17 @@ Status check_pinch_brush(const PinchBrushOptions& options);
 /// changed.
 int64_t pinch_stroke(Volume& volume, Sculptor& sculptor, std::span<const StrokeSample> path,
                      const PinchBrushOptions& options);
+
+/// What pinch_stroke() writes within `part` (clipped to the path's reach),
+/// reading the material as it was before the stroke from `before` (the
+/// volume's dims, asserted; read within `part` grown by
+/// pinch_read_margin()) whatever `volume` holds there now. A voxel's result
+/// depends only on the material around it, its weight and the path's
+/// nearest point, which samples that do not reach it leave as they were: a
+/// preview of a grown path re-pinches only what the new samples reach.
+int64_t pinch_stroke_part(Volume& volume, Sculptor& sculptor, std::span<const StrokeSample> path,
+                          const PinchBrushOptions& options, const Box& part, const Volume& before);
+/// How far beyond the voxels it writes pinch_stroke_part() reads `before`.
+int pinch_read_margin(const PinchBrushOptions& options);
 
 }  // namespace sculpt::core

@@ -64,5 +64,9 @@ int64_t smooth_stroke(Volume& volume, Sculptor& sculptor, std::span<const Stroke
 int64_t smooth_stroke_part(Volume& volume, Sculptor& sculptor, std::span<const StrokeSample> path,
                            const SmoothBrushOptions& options, const Box& part,
                            const Volume& before);
+/// How far beyond the voxels it writes smooth_stroke_part() reads `before`.
+inline int smooth_read_margin(const SmoothBrushOptions& options) {
+  return options.passes;
+}
 
 }  // namespace sculpt::core
