@@ -130,13 +130,6 @@ Options ball_brush_options(float radius_vox, float hardness, float strength) {
   return o;
 }
 
-// The brushes whose result at a voxel depends only on the material around
-// it and what the path gives it there: a preview of a grown path redoes
-// only what the new samples reach (core's *_stroke_part()).
-bool extends_its_preview(PathBrush brush) {
-  return brush == PathBrush::kSmooth || brush == PathBrush::kInflate || brush == PathBrush::kPinch;
-}
-
 }  // namespace
 
 core::Box path_brush_reach(const core::Volume& volume, std::span<const core::StrokeSample> path,
@@ -628,18 +621,18 @@ void StationLoop::show_brush_preview() {
   // press's one).
   const size_t shown = preview_.shown_samples();
   const glm::vec3 ball(radius, settings_.hardness, brush_strength_);
-  if (extends_its_preview(brush_) && !brush_mirror_ && preview_.active() && shown > 0 &&
-      shown < brush_path_.size() && ball == preview_ball_) {
-    // Smoothing, inflating, pinching: a voxel's result is its weight's (the
-    // largest over the path; pinching, with the path's nearest point), so
-    // only what the segments from the last shown sample on reach changes.
-    const std::span<const core::StrokeSample> tail = std::span(brush_path_).subspan(shown - 1);
-    const core::Box part = path_brush_reach(*volume_, tail, radius, std::nullopt);
+  bool extended = false;
+  if (!brush_mirror_ && preview_.active() && shown > 0 && shown < brush_path_.size() &&
+      ball == preview_ball_) {
+    // Redoes only what the segments from the last shown sample on reach,
+    // reading the material as it was before the stroke around them.
     auto extend = [&]<class Options>(
                       Options, int (*read_margin)(const Options&),
                       int64_t (*stroke_part)(core::Volume&, core::Sculptor&,
                                              std::span<const core::StrokeSample>, const Options&,
                                              const core::Box&, const core::Volume&)) {
+      const std::span<const core::StrokeSample> tail = std::span(brush_path_).subspan(shown - 1);
+      const core::Box part = path_brush_reach(*volume_, tail, radius, std::nullopt);
       const auto options = ball_brush_options<Options>(radius, settings_.hardness, brush_strength_);
       const int margin = read_margin(options);
       const core::Box read = core::intersect(core::Box{part.lo - margin, part.hi + margin},
@@ -648,13 +641,32 @@ void StationLoop::show_brush_preview() {
         core::Sculptor scratch(*volume_);
         return stroke_part(*volume_, scratch, brush_path_, options, part, before);
       });
+      return true;
     };
-    if (brush_ == PathBrush::kSmooth)
-      extend(core::SmoothBrushOptions{}, core::smooth_read_margin, core::smooth_stroke_part);
-    else if (brush_ == PathBrush::kInflate)
-      extend(core::InflateBrushOptions{}, core::inflate_read_margin, core::inflate_stroke_part);
-    else
-      extend(core::PinchBrushOptions{}, core::pinch_read_margin, core::pinch_stroke_part);
+    switch (brush_) {
+      // A voxel's result is its weight's (the largest over the path;
+      // pinching, with the path's nearest point) and the material around it.
+      case PathBrush::kSmooth:
+        extended =
+            extend(core::SmoothBrushOptions{}, core::smooth_read_margin, core::smooth_stroke_part);
+        break;
+      case PathBrush::kInflate:
+        extended = extend(core::InflateBrushOptions{}, core::inflate_read_margin,
+                          core::inflate_stroke_part);
+        break;
+      case PathBrush::kPinch:
+        extended =
+            extend(core::PinchBrushOptions{}, core::pinch_read_margin, core::pinch_stroke_part);
+        break;
+      // Clay and flatten fit a plane to the whole path, and grab drags what
+      // lay under the path's start: their previews start again.
+      case PathBrush::kClay:
+      case PathBrush::kFlatten:
+      case PathBrush::kGrab:
+        break;
+    }
+  }
+  if (extended) {
     ++counters_.brush_previews_extended;
   } else {
     preview_.show(*volume_, region, brush_path_.size(), [&] {
