@@ -161,5 +161,38 @@ TEST(BrickSimplify, NothingToDoComesBackAsItWas) {
   EXPECT_EQ(simplify_brick_mesh(BrickMesh{}, 0.1f).brick, BrickMesh{});
 }
 
+// Vertex cache misses per triangle of a FIFO cache of `size` vertices.
+double cache_misses_per_triangle(const Mesh& m, size_t size) {
+  std::vector<uint32_t> fifo;
+  int64_t misses = 0;
+  for (const glm::uvec3& t : m.triangles)
+    for (int c = 0; c < 3; ++c) {
+      if (std::find(fifo.begin(), fifo.end(), t[c]) != fifo.end()) continue;
+      ++misses;
+      fifo.push_back(t[c]);
+      if (fifo.size() > size) fifo.erase(fifo.begin());
+    }
+  return static_cast<double>(misses) / static_cast<double>(std::max<size_t>(1, m.triangles.size()));
+}
+
+// A software renderer shades a vertex again once it has left its cache: the
+// simplified triangles come in an order that uses recent vertices again.
+TEST(BrickSimplify, TrianglesComeInAnOrderForAVertexCache) {
+  const Volume v = sphere_volume(128);
+  const Meshed m = mesh_bricks(v, std::vector<int>(static_cast<size_t>(v.brick_count()), 0), 0.2f,
+                               /*every_other=*/false);
+  double total = 0;
+  int64_t triangles = 0;
+  for (const BrickMesh& b : m.simplified) {
+    total += cache_misses_per_triangle(b.mesh, 16) * static_cast<double>(b.mesh.triangles.size());
+    triangles += static_cast<int64_t>(b.mesh.triangles.size());
+  }
+  ASSERT_GT(triangles, 0);
+  // About 0.5 per triangle is a big closed mesh's least; a brick's open
+  // border costs more. Measured: 1.14 as simplified but not ordered, 0.78
+  // ordered.
+  EXPECT_LT(total / static_cast<double>(triangles), 0.85);
+}
+
 }  // namespace
 }  // namespace sculpt::core
