@@ -88,6 +88,17 @@ glm::vec3 mode_colour(core::SculptMode mode) {
   return {0.8f, 0.8f, 0.8f};
 }
 
+// The centre of a mesh's bounding box (0 for an empty mesh).
+glm::vec3 bounds_centre(const core::Mesh& mesh) {
+  if (mesh.positions.empty()) return glm::vec3(0.0f);
+  glm::vec3 lo = mesh.positions.front(), hi = lo;
+  for (const glm::vec3& p : mesh.positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  return 0.5f * (lo + hi);
+}
+
 }  // namespace
 
 Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create() {
@@ -121,9 +132,10 @@ SurfaceSync SceneRenderer::sync_surface(const core::Volume* volume, const Surfac
       slot.source = b.mesh;
       slot.distance_normals = false;
       slot.stamp = b.version;
+      slot.centre = bounds_centre(b.mesh->mesh);
       ++sync.uploaded;
     }
-    visible_.push_back(&slot.mesh);
+    visible_.push_back({&slot.mesh, slot.centre});
     sync.triangles += slot.mesh.triangles();
   }
   if (distance_normals_ && volume != nullptr) refine_normals(*volume, whole);
@@ -157,7 +169,7 @@ void SceneRenderer::set_distance_normals(bool on) {
 
 void SceneRenderer::show_mesh(const core::Mesh& mesh) {
   single_mesh_.upload(mesh);
-  visible_.assign(1, &single_mesh_);
+  visible_.assign(1, {&single_mesh_, glm::vec3(0.0f)});
 }
 
 void SceneRenderer::set_sheet(const core::Mesh& mesh, uint64_t version, bool editing) {
@@ -327,8 +339,14 @@ void SceneRenderer::draw(const SceneView& view, const ToolDraw& tool, glm::vec3 
   // half its time shading them unless they are culled.
   glEnable(GL_CULL_FACE);
   glCullFace(GL_BACK);
-  for (const GpuMesh* m : visible_)
-    m->draw();
+  // Nearest first: a software renderer tests depth before it shades, so a
+  // fragment hidden by nearer clay already drawn costs little.
+  std::sort(visible_.begin(), visible_.end(), [&](const Drawn& a, const Drawn& b) {
+    return glm::dot(a.centre - view.eye, a.centre - view.eye) <
+           glm::dot(b.centre - view.eye, b.centre - view.eye);
+  });
+  for (const Drawn& d : visible_)
+    d.mesh->draw();
   draw_stand_ins(stand_ins);
   glDisable(GL_CULL_FACE);  // a sheet is seen from both sides
   if (!sheet_mesh_.empty()) {

@@ -96,6 +96,12 @@ class SceneRenderer {
     GpuMesh mesh;
     std::shared_ptr<const core::BrickMesh> source;  // what was uploaded
     bool distance_normals = false;                  // re-shaded since the last upload
+    glm::vec3 centre{0.0f};                         // of the mesh's bounds, voxels
+  };
+  // A mesh to draw and where it is: the clay is drawn nearest first.
+  struct Drawn {
+    const GpuMesh* mesh = nullptr;
+    glm::vec3 centre{0.0f};
   };
   // Re-shades slots with the distance field's normals, in the slots' order,
   // for at most kRefineBudgetNs.
@@ -110,7 +116,7 @@ class SceneRenderer {
   ShaderProgram lit_;
   ShaderProgram flat_;
   std::unordered_map<uint64_t, Slot> slots_;  // key: brick index
-  std::vector<const GpuMesh*> visible_;
+  std::vector<Drawn> visible_;
   uint64_t tool_version_ = ~uint64_t{0};
   glm::vec3 tool_pivot_{0.0f};
   GpuMesh tool_mesh_;
