@@ -105,15 +105,16 @@ core::Mesh tool_outline(const core::Tool& tool, int max_cells) {
 }
 
 core::Mesh ball_outline(const core::Tool& ball, bool coarse) {
-  return uv_sphere(ball.pivot, surface_radius(ball), coarse ? 6.0f : 3.0f);
+  // A quad's diagonal, about 1.4 edges long, dips edge^2 / (4 radius)
+  // inside the sphere at its middle: the edge that keeps it to the bound.
+  const float radius = surface_radius(ball);
+  const float error = coarse ? kCoarseBallErrorVox : kWindowBallErrorVox;
+  return uv_sphere(ball.pivot, radius, std::sqrt(4.0f * radius * error));
 }
 
 core::Mesh window_tool_outline(const core::Tool& tool) {
   if (!(tool.sphere_radius_vox > 0.0f)) return tool_outline(tool);
-  // A quad's diagonal, about 1.4 edges long, dips edge^2 / (4 radius)
-  // inside the sphere at its middle: the edge that keeps it to the bound.
-  const float radius = surface_radius(tool);
-  return uv_sphere(tool.pivot, radius, std::sqrt(4.0f * radius * kWindowBallErrorVox));
+  return ball_outline(tool);
 }
 
 core::Mesh stand_in_outline(const core::Tool& tool, bool coarse) {

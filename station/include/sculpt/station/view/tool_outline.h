@@ -28,18 +28,20 @@ core::Mesh tool_outline(const core::Tool& tool, int max_cells = kToolOutlineCell
 /// A ball tool's (sphere_radius_vox > 0) iso-surface as a sphere about its
 /// pivot, of the radius where its density crosses the surface level (the
 /// hardness moves it inwards), with exact normals: microseconds, where
-/// marching the demo's 135^3 head ball takes 5-10 ms. Edges of about three
-/// voxels (`coarse`: six); the silhouette stays within a fifth of a voxel.
+/// marching the demo's 135^3 head ball takes 5-10 ms. Its edges are as long
+/// as keep every edge's middle within kWindowBallErrorVox of the sphere
+/// (`coarse`: about kCoarseBallErrorVox, edges twice as long): the demo's
+/// 66-voxel ball is 4.2k triangles. Fixed three-voxel edges made it 19k,
+/// drawn for every dab that waited for its mesh, and those frames made the
+/// frame time's p99.
 core::Mesh ball_outline(const core::Tool& ball, bool coarse = false);
-
-/// What the window draws for the tool: for a ball, the sphere at its
-/// surface level with edges as long as keep every edge's middle within
-/// kWindowBallErrorVox of it (the demo's 66-voxel ball: 4.2k triangles,
-/// where marched at 2:1 it was 29k, drawn twice a frame, its ghost and
-/// itself, and frames with it on screen made the frame time's p99); any
-/// other tool, tool_outline().
-core::Mesh window_tool_outline(const core::Tool& tool);
 constexpr float kWindowBallErrorVox = 0.15f;
+constexpr float kCoarseBallErrorVox = 4.0f * kWindowBallErrorVox;
+
+/// What the window draws for the tool: for a ball, ball_outline() (marched
+/// at 2:1 the demo's ball was 29k triangles, drawn twice a frame, its ghost
+/// and itself); any other tool, tool_outline().
+core::Mesh window_tool_outline(const core::Tool& tool);
 
 /// What a dab's stand-in is drawn with: ball_outline() for a ball, else
 /// tool_outline() at kStandInCells (`coarse`: kToolOutlineCells).
