@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cassert>
 
+#include "sculpt/core/grid/grid_index.h"
+
 namespace sculpt::station {
 
 bool BrushPreview::due(size_t samples, size_t shown) {
@@ -13,14 +15,18 @@ bool BrushPreview::due(size_t samples, size_t shown) {
 
 void BrushPreview::keep(const core::Volume& volume, const core::Box& region) {
   if (!before_ || before_->dims() != volume.dims() ||
-      before_->brick_edge() != volume.brick_edge() || before_->levels() != volume.levels())
+      before_->brick_edge() != volume.brick_edge() || before_->levels() != volume.levels()) {
     before_ = std::make_unique<core::Volume>(volume.dims(), uint8_t{0}, volume.options());
+    is_kept_.assign(static_cast<size_t>(volume.brick_count()), false);
+  }
   const core::Box bricks = volume.bricks_overlapping(region);
   for (int z = bricks.lo.z; z < bricks.hi.z; ++z)
     for (int y = bricks.lo.y; y < bricks.hi.y; ++y)
       for (int x = bricks.lo.x; x < bricks.hi.x; ++x) {
         const glm::ivec3 b(x, y, z);
-        if (std::ranges::any_of(kept_, [&](const Kept& k) { return k.brick == b; })) continue;
+        const size_t index = core::grid_index(b, before_->brick_grid());
+        if (is_kept_[index]) continue;
+        is_kept_[index] = true;
         kept_.push_back({b, volume.brick_version(b)});
         before_->replace_brick(b, volume.brick(b));
       }
@@ -55,6 +61,7 @@ void BrushPreview::revert(core::Volume& volume) {
     }
     // A stroke's kept bricks are not held past it.
     before_->replace_brick(k.brick, core::Brick());
+    is_kept_[core::grid_index(k.brick, before_->brick_grid())] = false;
   }
   kept_.clear();
   active_ = false;

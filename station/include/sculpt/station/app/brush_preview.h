@@ -71,6 +71,7 @@ class BrushPreview {
   // Keeps the bricks overlapping `region` that are not kept yet.
   void keep(const core::Volume& volume, const core::Box& region);
   std::vector<Kept> kept_;
+  std::vector<bool> is_kept_;  // by brick (core::grid_index): whether in kept_
   // The material before the stroke: the kept bricks as they were, the
   // other bricks uniform (unread).
   std::unique_ptr<core::Volume> before_;
