@@ -641,22 +641,19 @@ void StationLoop::show_brush_preview() {
         core::Sculptor scratch(*volume_);
         return stroke_part(*volume_, scratch, brush_path_, options, part, before);
       });
-      return true;
+      extended = true;
     };
     switch (brush_) {
       // A voxel's result is its weight's (the largest over the path;
       // pinching, with the path's nearest point) and the material around it.
       case PathBrush::kSmooth:
-        extended =
-            extend(core::SmoothBrushOptions{}, core::smooth_read_margin, core::smooth_stroke_part);
+        extend(core::SmoothBrushOptions{}, core::smooth_read_margin, core::smooth_stroke_part);
         break;
       case PathBrush::kInflate:
-        extended = extend(core::InflateBrushOptions{}, core::inflate_read_margin,
-                          core::inflate_stroke_part);
+        extend(core::InflateBrushOptions{}, core::inflate_read_margin, core::inflate_stroke_part);
         break;
       case PathBrush::kPinch:
-        extended =
-            extend(core::PinchBrushOptions{}, core::pinch_read_margin, core::pinch_stroke_part);
+        extend(core::PinchBrushOptions{}, core::pinch_read_margin, core::pinch_stroke_part);
         break;
       // Clay and flatten fit a plane to the whole path, and grab drags what
       // lay under the path's start: their previews start again.
