@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "sculpt/core/distance/surface_normals.h"
+#include "sculpt/core/mesh/mesh.h"
 #include "sculpt/station/view/tool_outline.h"
 
 namespace sculpt::station::gl {
@@ -88,15 +89,12 @@ glm::vec3 mode_colour(core::SculptMode mode) {
   return {0.8f, 0.8f, 0.8f};
 }
 
-// The centre of a mesh's bounding box (0 for an empty mesh).
+// The centre of a mesh's bounding box (0 for an empty mesh, whose bounds
+// are inverted).
 glm::vec3 bounds_centre(const core::Mesh& mesh) {
   if (mesh.positions.empty()) return glm::vec3(0.0f);
-  glm::vec3 lo = mesh.positions.front(), hi = lo;
-  for (const glm::vec3& p : mesh.positions) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  return 0.5f * (lo + hi);
+  const core::MeshBounds b = core::mesh_bounds(mesh);
+  return 0.5f * (b.lo + b.hi);
 }
 
 }  // namespace
