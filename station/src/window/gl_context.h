@@ -26,6 +26,25 @@ class GlWindow {
   GLFWwindow* window_;
 };
 
+/// A framebuffer of its own, width x height, with colour, depth and stencil
+/// (a carving stand-in counts in the stencil), bound while it lives: an
+/// invisible window's own framebuffer may be smaller than asked, or not
+/// exist at all. Needs a current context; the default framebuffer is bound
+/// again when it goes.
+class OffscreenTarget {
+ public:
+  OffscreenTarget(int width, int height);
+  ~OffscreenTarget();
+  OffscreenTarget(const OffscreenTarget&) = delete;
+  OffscreenTarget& operator=(const OffscreenTarget&) = delete;
+  /// Whether the driver can draw into it.
+  bool complete() const { return complete_; }
+
+ private:
+  GLuint fbo_ = 0, colour_ = 0, depth_ = 0;
+  bool complete_ = false;
+};
+
 /// Reads the current framebuffer's colour (width x height) top row first.
 void read_pixels(int width, int height, std::vector<uint8_t>& rgb);
 

@@ -265,6 +265,11 @@ int run_window(const WindowOptions& o) {
   glfwSwapInterval(o.vsync ? 1 : 0);
   auto renderer = gl::SceneRenderer::create();
   if (!renderer) return fail(renderer.error());
+  {
+    int fb_w = 0, fb_h = 0;
+    glfwGetFramebufferSize(w, &fb_w, &fb_h);
+    (*renderer)->warm_up(std::max(fb_w, 1), std::max(fb_h, 1));
+  }
 
   ControllerOptions co;
   co.loop.mesh = false;      // the window meshes what it draws (below), at its levels

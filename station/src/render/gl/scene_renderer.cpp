@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <utility>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -291,6 +293,61 @@ void SceneRenderer::draw_stand_ins(std::span<const DabStandIn> stand_ins) {
     glDisable(GL_STENCIL_TEST);
   }
   lit_.set("model", glm::mat4(1.0f));
+}
+
+void SceneRenderer::warm_up(int width, int height) {
+  // A cube of side 2 about the origin, seen from outside: each pass draws
+  // fragments (a state's code may be made when it first shades one).
+  core::Mesh cube;
+  for (int i = 0; i < 8; ++i)
+    cube.positions.emplace_back((i & 1) ? 1.0f : -1.0f, (i & 2) ? 1.0f : -1.0f,
+                                (i & 4) ? 1.0f : -1.0f);
+  cube.normals = cube.positions;
+  cube.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                    {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  GpuMesh clay, stand_in, stand_in_coarse, sheet, tool;
+  for (GpuMesh* m : {&clay, &stand_in, &stand_in_coarse, &sheet, &tool})
+    m->upload(cube);
+  // The renderer's own meshes step aside for the cube's, and come back.
+  std::swap(stand_in, stand_in_mesh_);
+  std::swap(stand_in_coarse, stand_in_coarse_);
+  std::swap(sheet, sheet_mesh_);
+  std::swap(tool, tool_mesh_);
+  std::vector<Drawn> drawn{{&clay, glm::vec3(0.0f)}};
+  std::swap(drawn, visible_);
+  const uint64_t stand_in_version = std::exchange(stand_in_version_, 0);
+  const glm::vec3 tool_pivot = std::exchange(tool_pivot_, glm::vec3(0.0f));
+  const glm::vec3 stand_in_pivot = std::exchange(stand_in_pivot_, glm::vec3(0.0f));
+
+  SceneView view;
+  view.eye = {0.0f, 0.0f, 6.0f};
+  view.view = glm::lookAt(view.eye, glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+  view.projection = glm::perspective(glm::radians(45.0f), 1.0f, 0.1f, 100.0f);
+  view.width = width;
+  view.height = height;
+  std::vector<DabStandIn> stand_ins(2);
+  stand_ins[0].position = glm::vec3(0.3f);
+  stand_ins[1].position = glm::vec3(-0.3f);
+  stand_ins[1].carves = true;
+  ToolDraw pointer;
+  pointer.position = glm::vec3(0.5f);
+  draw(view, pointer, glm::vec3(2.0f), stand_ins);
+  HapticOverlay overlay;
+  overlay.proxy = overlay.ghost = overlay.device =
+      overlay.force = {glm::vec3(-1.0f), glm::vec3(1.0f)};
+  draw_haptics(view, overlay);
+  draw_box(view, glm::vec3(-1.0f), glm::vec3(1.0f), glm::vec4(1.0f));
+  glFinish();
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+
+  std::swap(stand_in, stand_in_mesh_);
+  std::swap(stand_in_coarse, stand_in_coarse_);
+  std::swap(sheet, sheet_mesh_);
+  std::swap(tool, tool_mesh_);
+  std::swap(drawn, visible_);
+  stand_in_version_ = stand_in_version;
+  tool_pivot_ = tool_pivot;
+  stand_in_pivot_ = stand_in_pivot;
 }
 
 void SceneRenderer::draw(const SceneView& view, const ToolDraw& tool, glm::vec3 block,

@@ -81,6 +81,16 @@ class SceneRenderer {
   /// carving needs a stencil buffer).
   void draw(const SceneView& view, const ToolDraw& tool, glm::vec3 block_dims,
             std::span<const DabStandIn> stand_ins = {});
+  /// Draws every kind of thing draw(), draw_haptics() and draw_box() draw
+  /// (clay, adding and carving stand-ins, a sheet, the tool and its ghost,
+  /// lines), a small cube each, into a `width` x `height` frame that is then
+  /// cleared, and waits for it. A software renderer (Mesa's llvmpipe)
+  /// makes its code for each state the first time it draws with it: 11-20
+  /// ms more than a warm call here with Mesa's shader cache filled, 157-165
+  /// ms on a machine's first run. Done once when the window opens, the
+  /// first frames and the sculptor's first dab do not wait for it. Leaves
+  /// the renderer as it found it.
+  void warm_up(int width, int height);
   /// Over what draw() drew: a force device's proxy, device point, ghost and
   /// force arrow (view/haptic_overlay.h), drawn through the clay so the
   /// device is seen where it has sunk in.
