@@ -37,6 +37,11 @@ SurfaceMesher::SurfaceMesher(int threads, float simplify_error, size_t warm_heap
       thread_([this, warm_heap_bytes] {
         name_this_thread("mesher");
         if (warm_heap_bytes > 0) warm_this_threads_heap(warm_heap_bytes);
+        {
+          std::lock_guard lock(mutex_);
+          warm_ = true;
+        }
+        meshed_.notify_all();
         run();
       }),
       simplifier_([this] {
@@ -139,6 +144,11 @@ int64_t SurfaceSnapshot::triangle_count() const {
 std::optional<SurfaceDelta> SurfaceMesher::take() {
   std::lock_guard lock(mutex_);
   return std::exchange(ready_, std::nullopt);
+}
+
+void SurfaceMesher::wait_until_warm() {
+  std::unique_lock lock(mutex_);
+  meshed_.wait(lock, [&] { return warm_; });
 }
 
 void SurfaceMesher::wait_until_meshed() {

@@ -50,9 +50,12 @@ namespace {
 constexpr float kOrbitRadPerPixel = 0.008f;
 constexpr float kKeyMoveVoxPerSecond = 60.0f;
 constexpr int kMaxDrawnLevel = 2;  // coarser than 1/4 resolution looks like a blob
-// The mesher's heap, touched when it starts (SurfaceMesher): more than the
-// 14 MB the first big dab's meshes took.
-constexpr size_t kMesherWarmHeapBytes = size_t{32} << 20;
+// The mesher's heap, touched when it starts (SurfaceMesher). 32 MiB was
+// more than the demo's first big dab's meshes took (14 MB), but the 512^3
+// bust's updates still faulted 8.6-13.5k pages (8 us each here); with
+// 96 MiB, none, and its first-mesh latency fell from p99 89-116 ms, max
+// 150-172 ms to p99 54-78 ms, max 99-126 ms (three pairs of runs).
+constexpr size_t kMesherWarmHeapBytes = size_t{96} << 20;
 
 int fail(const Error& e) {
   std::fprintf(stderr, "sculpt run: %s\n", e.message().c_str());
@@ -394,6 +397,8 @@ int run_window(const WindowOptions& o) {
   // pages (7 ms). Touching 96 MiB takes 26-28 ms when the window opens
   // (32 MiB: 12 ms; where a fault costs 8 us, about 0.2 s).
   hub.prepare(size_t{96} << 20);
+  // The mesher touched its own meanwhile, on the other core.
+  mesher.wait_until_warm();
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();

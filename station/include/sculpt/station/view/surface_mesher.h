@@ -160,6 +160,11 @@ class SurfaceMesher {
   /// The meshes made since the previous call; nothing when none.
   std::optional<SurfaceDelta> take();
 
+  /// Waits until the mesher thread has touched the heap it was given
+  /// (warm_heap_bytes; at once when none): the window starts its devices
+  /// after it, so a first dab never waits for it.
+  void wait_until_warm();
+
   /// Waits until every submitted change is meshed, simplified and ready to
   /// take (tests, a screenshot of a given frame, the end of a run).
   void wait_until_meshed();
@@ -231,6 +236,7 @@ class SurfaceMesher {
   Pending pending_;
   bool has_pending_ = false;
   bool busy_ = false;
+  bool warm_ = false;                       // the mesher thread's heap is touched (meshed_ tells)
   std::unique_ptr<Refinement> refinement_;  // the newest volume's, until taken over
   uint64_t refine_epochs_ = 0;
   bool hold_refinement_ = false;
