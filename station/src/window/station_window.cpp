@@ -52,9 +52,9 @@ constexpr float kKeyMoveVoxPerSecond = 60.0f;
 constexpr int kMaxDrawnLevel = 2;  // coarser than 1/4 resolution looks like a blob
 // The mesher's heap, touched when it starts (SurfaceMesher). 32 MiB was
 // more than the demo's first big dab's meshes took (14 MB), but the 512^3
-// bust's updates still faulted 8.6-13.5k pages (8 us each here); with
-// 96 MiB, none, and its first-mesh latency fell from p99 89-116 ms, max
-// 150-172 ms to p99 54-78 ms, max 99-126 ms (three pairs of runs).
+// bust's updates still faulted 6-13.5k pages a run (8 us each here); with
+// 96 MiB, 0-2 in five runs of six, and its first-mesh latency fell from p99
+// 78-116 ms, max 97-172 ms to p99 54-78 ms, max 92-126 ms (five pairs).
 constexpr size_t kMesherWarmHeapBytes = size_t{96} << 20;
 
 int fail(const Error& e) {
