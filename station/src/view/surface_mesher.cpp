@@ -280,10 +280,21 @@ void SurfaceMesher::run() {
       busy_ = true;
     }
     if (refined) {
-      // The refiner has every change meshed coarse since the new volume:
-      // its volume and meshes take over, and replace every coarse mesh.
+      // The refiner's pass is done: its volume and meshes take over, and
+      // replace every coarse mesh. The changes handed over during the pass
+      // are applied and meshed here, at full detail, as any change is: a
+      // refiner that caught up pass after pass chased a busy sculptor (on
+      // the 512^3 bust, dabs waited 280-600 ms for their full detail).
       mirror = std::move(refined->volume);
       cache = std::move(refined->cache);
+      const glm::ivec3 grid = mirror->brick_grid();
+      for (auto& [i, brick] : refined->bricks)
+        mirror->replace_brick(core::grid_position(i, grid), std::move(brick));
+      const core::MeshUpdate update = cache->update(*mirror, refined->levels);
+      for (int64_t i = 0; i < mirror->brick_count(); ++i)
+        if (refined->simplified_versions[static_cast<size_t>(i)] !=
+            cache->brick_mesh_version(core::grid_position(i, grid)))
+          refined->simplified[static_cast<size_t>(i)] = nullptr;  // remade since: not simplified
       published.assign(static_cast<size_t>(mirror->brick_count()), 0);
       publish_cache(refined->change, true, true, refined.get());
       refining = false;
@@ -291,6 +302,7 @@ void SurfaceMesher::run() {
         std::lock_guard lock(mutex_);
         busy_ = false;
         ++counters_.refinements;
+        counters_.bricks_meshed += update.bricks_meshed;
       }
       meshed_.notify_all();
       continue;
@@ -395,7 +407,7 @@ void SurfaceMesher::refine() {
   for (;;) {
     refine_wake_.wait(lock, [&] {
       return stop_ || (!hold_refinement_ && refinement_ && refinement_->volume &&
-                       refinement_->refined_change != refinement_->change);
+                       refinement_->refined_change == 0);
     });
     if (stop_) return;
     // The volume and its cache are the refiner's alone during a pass.
@@ -433,7 +445,7 @@ void SurfaceMesher::refine() {
     refinement_->simplified = std::move(simplified);
     refinement_->simplified_versions = std::move(simplified_versions);
     refinement_->refined_change = change;
-    if (refinement_->ready()) wake_.notify_one();
+    wake_.notify_one();
   }
 }
 

@@ -292,6 +292,12 @@ TEST(SurfaceMesher, ThePlayedDemoEndsOnTheSurfaceMeshedFromScratch) {
   if (auto delta = mesher.take()) snapshot.apply(std::move(*delta));
   EXPECT_GT(snapshot.triangle_count(), 10000);
   expect_same_surface(snapshot, loop.volume(), levels);
+  // Each new volume (the window's block, then the session's) was refined
+  // in one pass at most, however many dabs came during it: the mesher
+  // meshed those itself when it took the pass over.
+  const MesherCounters c = mesher.counters();
+  EXPECT_EQ(c.refinements, 1);
+  EXPECT_LE(c.refine_passes, c.coarse_first);
   // Simplified brick by brick, at the levels the camera gave, the bricks
   // still meet without a crack: welded, the surface is closed.
   std::vector<const core::BrickMesh*> parts;
