@@ -158,6 +158,14 @@ void SurfaceMesher::wait_until_meshed() {
   });
 }
 
+void SurfaceMesher::hold_take_over(bool hold) {
+  {
+    std::lock_guard lock(mutex_);
+    hold_take_over_ = hold;
+  }
+  wake_.notify_all();
+}
+
 void SurfaceMesher::hold_refinement(bool hold) {
   {
     std::lock_guard lock(mutex_);
@@ -266,10 +274,10 @@ void SurfaceMesher::run() {
     std::unique_ptr<Refinement> refined;
     {
       std::unique_lock lock(mutex_);
-      wake_.wait(lock,
-                 [&] { return stop_ || has_pending_ || (refinement_ && refinement_->ready()); });
+      auto take_over = [&] { return refinement_ && refinement_->ready() && !hold_take_over_; };
+      wake_.wait(lock, [&] { return stop_ || has_pending_ || take_over(); });
       if (stop_) return;
-      if (refinement_ && refinement_->ready()) {
+      if (take_over()) {
         refined = std::move(refinement_);
         refinement_.reset();
       } else {

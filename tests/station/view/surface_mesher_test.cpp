@@ -238,6 +238,42 @@ TEST(SurfaceMesher, DabsOnANewVolumeAreShownCoarseWhileItIsRefined) {
   EXPECT_EQ(c.refine_us.count(), c.refine_passes);
 }
 
+// The refiner makes one pass over a new volume, however many dabs come
+// during and after it; the mesher meshes those itself when it takes the
+// pass over, at full detail, and the surface is the one meshed from scratch.
+TEST(SurfaceMesher, TheRefinerMakesOnePassAndTheMesherCatchesUp) {
+  Sculpting s(64, 11);
+  SurfaceMesher mesher;
+  SurfaceSnapshot snapshot;
+  const std::vector<int> full(static_cast<size_t>(s.volume().brick_count()), 0);
+  mesher.hold_take_over(true);
+  const uint64_t first = mesher.submit(s.volume(), s.generation(), full);
+  take_change(mesher, snapshot, first);
+  while (mesher.counters().refine_passes < 1)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  // Dabs after the pass: meshed coarse at once, waiting for the take-over.
+  uint64_t last = first;
+  for (int d = 0; d < 6; ++d) {
+    s.dab();
+    last = mesher.submit(s.volume(), s.generation(), full);
+    const SurfaceDelta dab = take_change(mesher, snapshot, last);
+    EXPECT_LT(dab.full_detail_change, first);
+  }
+  EXPECT_GT(last, first);
+  EXPECT_EQ(mesher.counters().refine_passes, 1);
+  EXPECT_EQ(mesher.counters().refinements, 0);
+  mesher.hold_take_over(false);
+  mesher.wait_until_meshed();
+  while (std::optional<SurfaceDelta> delta = mesher.take()) {
+    EXPECT_EQ(delta->full_detail_change, last);
+    snapshot.apply(std::move(*delta));
+  }
+  expect_same_surface(snapshot, s.volume(), full);
+  const MesherCounters c = mesher.counters();
+  EXPECT_EQ(c.refine_passes, 1);
+  EXPECT_EQ(c.refinements, 1);
+}
+
 // A newer volume abandons the refinement of the one before: only the newer
 // one's refined meshes are taken over.
 TEST(SurfaceMesher, ANewerVolumeAbandonsTheRefinementUnderWay) {

@@ -178,6 +178,11 @@ class SurfaceMesher {
   /// a new volume and of the changes after it can be seen to come first.
   /// wait_until_meshed() waits for the refinement too: release it first.
   void hold_refinement(bool hold);
+  /// Tests: while held, the mesher does not take a finished refinement
+  /// over, so the changes made after its one pass can be seen to wait for
+  /// the take-over, not for another pass. wait_until_meshed() waits for the
+  /// take-over too: release it first.
+  void hold_take_over(bool hold);
 
  private:
   struct Pending {
@@ -243,6 +248,7 @@ class SurfaceMesher {
   std::unique_ptr<Refinement> refinement_;  // the newest volume's, until taken over
   uint64_t refine_epochs_ = 0;
   bool hold_refinement_ = false;
+  bool hold_take_over_ = false;
   // Published meshes waiting to be simplified, oldest first, one per brick.
   std::deque<int64_t> simplify_order_;
   std::unordered_map<int64_t, BrickSurface> simplify_jobs_;
