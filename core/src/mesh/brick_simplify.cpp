@@ -26,9 +26,9 @@ constexpr unsigned kVertexCacheSize = 16;
 // neighbour may join the same two (an edge of four triangles once welded),
 // and the flat fans that close gaps on a face fold. Keeping the band keeps
 // every vertex next to a face, so nothing can reach across one.
-std::vector<bool> face_band(const BrickMesh& brick) {
+// `on_border`: the mesh's border vertices (check_topology).
+std::vector<bool> face_band(const BrickMesh& brick, std::vector<bool> on_border) {
   const Mesh& m = brick.mesh;
-  std::vector<bool> on_border = border_vertices(m);
   for (const BrickMesh::Seam& seam : brick.seams)
     on_border[seam.vertex] = true;
   std::vector<bool> band(m.triangles.size(), false);
@@ -81,7 +81,10 @@ SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error) {
                 sizeof(glm::uvec3) == 3 * sizeof(unsigned));
   const float* positions = &in.positions[0].x;
   const size_t vertex_count = in.positions.size();
-  const std::vector<bool> band = face_band(brick);
+  // The march's topology, which simplifying must keep, and its border.
+  std::vector<bool> border;
+  const MeshTopology marched = check_topology(in, &border);
+  const std::vector<bool> band = face_band(brick, std::move(border));
   std::vector<unsigned> kept, inner;
   for (size_t t = 0; t < in.triangles.size(); ++t) {
     std::vector<unsigned>& to = band[t] ? kept : inner;
@@ -90,7 +93,6 @@ SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error) {
   // The simplifier's error is relative to the mesh's extent.
   const float scale = meshopt_simplifyScale(positions, vertex_count, sizeof(glm::vec3));
   if (inner.empty() || !(scale > 0.0f)) return {brick, 0.0f};
-  const MeshTopology marched = check_topology(in);
   // meshoptimizer does not check every collapse against folding the
   // surface onto itself: now and then (one brick of the played demo's
   // thousand) a collapse makes an edge of four triangles. Such a result is

@@ -86,8 +86,9 @@ void for_each_edge(std::span<const Edge> from, F f) {
 
 }  // namespace
 
-MeshTopology check_topology(const Mesh& mesh) {
+MeshTopology check_topology(const Mesh& mesh, std::vector<bool>* border) {
   MeshTopology t;
+  if (border != nullptr) border->assign(mesh.positions.size(), false);
   t.faces = static_cast<int64_t>(mesh.triangles.size());
   t.degenerate_triangles = std::ranges::count_if(mesh.triangles, degenerate);
   const ByVertex<Edge> edges = edges_by_lower_end(mesh, /*skip_degenerate=*/true);
@@ -107,9 +108,12 @@ MeshTopology check_topology(const Mesh& mesh) {
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
     // Each edge is used once (a border), twice (walked once each way, else
     // misoriented) or more (non-manifold).
-    for_each_edge(edges.of(v), [&](uint32_t, size_t uses, int forward) {
+    for_each_edge(edges.of(v), [&](uint32_t hi, size_t uses, int forward) {
       ++t.edges;
-      if (uses == 1) ++t.boundary_edges;
+      if (uses == 1) {
+        ++t.boundary_edges;
+        if (border != nullptr) (*border)[v] = (*border)[hi] = true;
+      }
       if (uses > 2) ++t.nonmanifold_edges;
       if (uses == 2 && forward != 1) ++t.misoriented_edges;
     });
@@ -130,16 +134,6 @@ MeshTopology check_topology(const Mesh& mesh) {
     if (steps != link.size() || at != link.front().a) ++t.nonmanifold_vertices;
   }
   return t;
-}
-
-std::vector<bool> border_vertices(const Mesh& mesh) {
-  std::vector<bool> border(mesh.positions.size(), false);
-  const ByVertex<Edge> edges = edges_by_lower_end(mesh, /*skip_degenerate=*/false);
-  for (size_t v = 0; v < mesh.positions.size(); ++v)
-    for_each_edge(edges.of(v), [&](uint32_t hi, size_t uses, int) {
-      if (uses == 1) border[v] = border[hi] = true;
-    });
-  return border;
 }
 
 double surface_area(const Mesh& mesh) {

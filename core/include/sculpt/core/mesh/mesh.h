@@ -46,12 +46,10 @@ struct MeshTopology {
 };
 
 /// Counts edges, boundary and non-manifold elements (indices below
-/// positions.size(), asserted) in time linear in the mesh's size.
-MeshTopology check_topology(const Mesh& mesh);
-/// Whether each vertex is an end of an edge of one triangle only (a hole's
-/// or an open surface's border), degenerate triangles' edges counted too.
-/// Linear time, as check_topology().
-std::vector<bool> border_vertices(const Mesh& mesh);
+/// positions.size(), asserted) in time linear in the mesh's size. `border`,
+/// when given, is set to whether each vertex is an end of a boundary edge
+/// (a hole's or an open surface's border), from the same grouping of edges.
+MeshTopology check_topology(const Mesh& mesh, std::vector<bool>* border = nullptr);
 
 /// The axis-aligned box of the positions (lo > hi in every axis when empty).
 struct MeshBounds {
