@@ -43,6 +43,7 @@
 #include "sculpt/station/window/panel_layer.h"
 #include "window/gl_context.h"
 #include "window/station_panel.h"
+#include "window/window_events.h"
 
 namespace sculpt::station {
 namespace {
@@ -404,6 +405,10 @@ int run_window(const WindowOptions& o) {
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // the panel's layout is not worth a file in the cwd
   ImGui::StyleColorsDark();
+  // The window's sizes, focus and cursor as its events said (window_events.h);
+  // watched first, so that ImGui's backend passes its events on.
+  WindowEvents window_events;
+  watch_window(w, &window_events);
   ImGui_ImplGlfw_InitForOpenGL(w, /*install_callbacks=*/true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
   PointerState pointer;
@@ -411,15 +416,13 @@ int run_window(const WindowOptions& o) {
   // tool (the first frame that steers may come after a session's device
   // has placed it; a jump to the cursor there would sculpt what the
   // recording did not).
-  glfwGetCursorPos(w, &pointer.x, &pointer.y);
+  pointer.x = window_events.cursor_x;
+  pointer.y = window_events.cursor_y;
   g_pointer = &pointer;
   glfwSetScrollCallback(w, on_scroll);
   StationPanel panel(controller);
   panel.set_haptics(haptics.get());
   PanelLayer panel_layer;
-  // Mouse buttons ImGui's backend saw pressed in frames whose panel was not drawn.
-  constexpr size_t kMouseButtons = sizeof(ImGuiIO::MouseDown) / sizeof(ImGuiIO::MouseDown[0]);
-  bool panel_buttons_unseen[kMouseButtons] = {};
 
   SurfaceSnapshot surface;
   SurfaceDelta unreported;  // meshes' ready times not yet given to the statistics
@@ -470,17 +473,15 @@ int run_window(const WindowOptions& o) {
     // busy does not wait but draws what it has (the meshes made meanwhile
     // included), and the next frame that gets the turn steers (mouse, keys,
     // levels, panel). The last frame waits: it shows everything.
-    // The window's sizes and the cursor are asked of the X server (a round
-    // trip each, up to 12 ms under Xvfb beside llvmpipe), so before the turn:
-    // the sculpting thread never waits for the display server.
-    int fb_w = 1, fb_h = 1, win_w = 1, win_h = 1;
-    glfwGetFramebufferSize(w, &fb_w, &fb_h);
-    glfwGetWindowSize(w, &win_w, &win_h);
-    double mx = 0.0, my = 0.0;
-    glfwGetCursorPos(w, &mx, &my);
     std::unique_lock turn = hub.frame_turn(final_frame);
     const bool steering = turn.owns_lock();
     if (!steering) ++figures.frames_drawn_unsteered;
+    // From the window's events: asking the X server is a round trip, up to
+    // 12 ms under Xvfb beside llvmpipe, which the turn would make the
+    // sculpting thread wait for.
+    const int fb_w = window_events.framebuffer_w, fb_h = window_events.framebuffer_h;
+    const int win_w = window_events.window_w, win_h = window_events.window_h;
+    const double mx = window_events.cursor_x, my = window_events.cursor_y;
     const float aspect =
         static_cast<float>(std::max(fb_w, 1)) / static_cast<float>(std::max(fb_h, 1));
     ImGuiIO& io = ImGui::GetIO();
@@ -618,19 +619,11 @@ int run_window(const WindowOptions& o) {
     }
     // The panel reads and sets the controller: drawn with the turn, else
     // the last frame's panel is drawn again.
-    // The backends' new frame asks the X server for sizes, focus and cursor
-    // (up to 8.5 ms measured), so it too comes before the turn. A frame
-    // without the turn skips ImGui's frame: the buttons it saw pressed are
-    // kept for the next, so a click shorter than a frame still counts.
-    ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
-    for (size_t i = 0; i < kMouseButtons; ++i)
-      io.MouseDown[i] = io.MouseDown[i] || panel_buttons_unseen[i];
     turn = hub.frame_turn(final_frame);
     const bool panel_turn = turn.owns_lock();
-    for (size_t i = 0; i < kMouseButtons; ++i)
-      panel_buttons_unseen[i] = !panel_turn && io.MouseDown[i];
     if (panel_turn) {
+      ImGui_ImplOpenGL3_NewFrame();
+      begin_panel_frame(w, window_events);  // ImGui's GLFW backend asks the X server five times
       ImGui::NewFrame();
       frame_figures.triangles = sync.triangles;
       frame_figures.uploaded = sync.uploaded;
