@@ -18,6 +18,7 @@
 
 #include <gtest/gtest.h>
 
+#include "imgui_gl_window.h"
 #include "scratch_dir.h"
 #include "sculpt/station/window/gl_snapshot.h"
 #include "sculpt/station/window/panel_layer.h"
@@ -27,39 +28,6 @@ namespace sculpt::station {
 namespace {
 
 constexpr int kWidth = 320, kHeight = 240;
-
-// A hidden window with an OpenGL 3.3 core context and an ImGui context
-// drawing through ImGui's OpenGL backend (no GLFW backend: the test sets
-// ImGui's display itself and gives it no input).
-class PanelGl {
- public:
-  PanelGl() {
-    if (glfwInit() != GLFW_TRUE) return;
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-    window_ = glfwCreateWindow(kWidth, kHeight, "panel layer test", nullptr, nullptr);
-    if (window_ == nullptr) return;
-    glfwMakeContextCurrent(window_);
-    ImGui::CreateContext();
-    ImGui::GetIO().IniFilename = nullptr;
-    ImGui::StyleColorsDark();
-    ImGui_ImplOpenGL3_Init("#version 330 core");
-  }
-  ~PanelGl() {
-    if (window_ == nullptr) return;
-    ImGui_ImplOpenGL3_Shutdown();
-    ImGui::DestroyContext();
-    glfwDestroyWindow(window_);
-    glfwTerminate();
-  }
-  bool ok() const { return window_ != nullptr; }
-
- private:
-  GLFWwindow* window_ = nullptr;
-};
 
 // A panel like the station's: a translucent window with text and a button.
 ImDrawData& panel_frame(const std::string& line) {
@@ -136,8 +104,8 @@ TEST(PanelLayer, LooksAsThePanelDrawnDirectlyAndIsDrawnAnewOnlyWhenItChanges) {
     if (!sculpt::test::rerun_under_xvfb(dir)) GTEST_SKIP() << "no display and no xvfb-run";
     return;
   }
-  PanelGl gl;
-  ASSERT_TRUE(gl.ok()) << "no OpenGL 3.3 context";
+  test::ImGuiGlWindow gl(kWidth, kHeight, "panel layer test");
+  ASSERT_NE(gl.get(), nullptr) << "no OpenGL 3.3 context";
   draw_background();
   const std::vector<uint8_t> background = pixels();
 

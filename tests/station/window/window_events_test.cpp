@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "imgui_gl_window.h"
 #include "scratch_dir.h"
 #include "sculpt/station/window/gl_snapshot.h"
 #include "window/window_events.h"
@@ -22,37 +23,6 @@ namespace sculpt::station {
 namespace {
 
 constexpr int kWidth = 320, kHeight = 240;
-
-// A hidden window with an OpenGL 3.3 core context (ImGui's OpenGL backend
-// builds the font atlas ImGui::NewFrame() needs) and an ImGui context.
-class EventsWindow {
- public:
-  EventsWindow() {
-    if (glfwInit() != GLFW_TRUE) return;
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-    window_ = glfwCreateWindow(kWidth, kHeight, "window events test", nullptr, nullptr);
-    if (window_ == nullptr) return;
-    glfwMakeContextCurrent(window_);
-    ImGui::CreateContext();
-    ImGui::GetIO().IniFilename = nullptr;
-    ImGui_ImplOpenGL3_Init("#version 330 core");
-  }
-  ~EventsWindow() {
-    if (window_ == nullptr) return;
-    ImGui_ImplOpenGL3_Shutdown();
-    ImGui::DestroyContext();
-    glfwDestroyWindow(window_);
-    glfwTerminate();
-  }
-  GLFWwindow* get() const { return window_; }
-
- private:
-  GLFWwindow* window_ = nullptr;
-};
 
 // One ImGui frame started from the events; `check` runs inside it.
 template <class Check>
@@ -70,7 +40,8 @@ TEST(WindowEvents, KeepWhatTheCallbacksSayAndStartImGuisFrameFromIt) {
     if (!sculpt::test::rerun_under_xvfb(dir)) GTEST_SKIP() << "no display and no xvfb-run";
     return;
   }
-  EventsWindow window;
+  // ImGui's OpenGL backend builds the font atlas ImGui::NewFrame() needs.
+  test::ImGuiGlWindow window(kWidth, kHeight, "window events test");
   GLFWwindow* w = window.get();
   ASSERT_NE(w, nullptr) << "no OpenGL 3.3 context";
   WindowEvents events;
