@@ -56,12 +56,11 @@ bool degenerate(const glm::uvec3& tri) {
   return tri.x == tri.y || tri.y == tri.z || tri.z == tri.x;
 }
 
-// Every triangle's edges (degenerate triangles' too, unless skipped), by
-// their lower end.
-ByVertex<Edge> edges_by_lower_end(const Mesh& mesh, bool skip_degenerate) {
+// The edges of every triangle that is not degenerate, by their lower end.
+ByVertex<Edge> edges_by_lower_end(const Mesh& mesh) {
   return ByVertex<Edge>(mesh.positions.size(), [&](auto put) {
     for (const glm::uvec3& tri : mesh.triangles) {
-      if (skip_degenerate && degenerate(tri)) continue;
+      if (degenerate(tri)) continue;
       for (int k = 0; k < 3; ++k) {
         const uint32_t a = tri[k], b = tri[(k + 1) % 3];
         put(std::min(a, b), Edge{std::max(a, b), a < b});
@@ -91,7 +90,7 @@ MeshTopology check_topology(const Mesh& mesh, std::vector<bool>* border) {
   if (border != nullptr) border->assign(mesh.positions.size(), false);
   t.faces = static_cast<int64_t>(mesh.triangles.size());
   t.degenerate_triangles = std::ranges::count_if(mesh.triangles, degenerate);
-  const ByVertex<Edge> edges = edges_by_lower_end(mesh, /*skip_degenerate=*/true);
+  const ByVertex<Edge> edges = edges_by_lower_end(mesh);
   // Each vertex's link: the edge opposite to it in each of its triangles.
   struct LinkEdge {
     uint32_t a, b;

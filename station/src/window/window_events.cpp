@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <cfloat>
+#include <tuple>
 
 namespace sculpt::station {
 namespace {
@@ -10,6 +11,10 @@ namespace {
 // GLFW's callbacks carry no context but the window, whose user pointer is
 // not ours to take (a library may use it): one watched window at a time.
 WindowEvents* g_events = nullptr;
+
+// begin_panel_frame() sets one ImGui button per kept press.
+static_assert(std::tuple_size_v<decltype(WindowEvents::pressed)> <=
+              sizeof(ImGuiIO::MouseDown) / sizeof(ImGuiIO::MouseDown[0]));
 
 extern "C" void on_framebuffer_size(GLFWwindow*, int width, int height) {
   g_events->framebuffer_w = width;
