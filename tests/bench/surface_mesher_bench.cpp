@@ -6,6 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <thread>
 #include <vector>
@@ -85,6 +86,65 @@ BENCHMARK(BM_MesherBigDabOnANewVolume)
     ->UseManualTime()
     ->Iterations(10)
     ->Unit(benchmark::kMillisecond);
+
+// What the sculpting thread pays to hand a big dab's bricks to the mesher
+// (SurfaceMesher::submit): the demo's 66-voxel ball on the 256^3 sphere,
+// then the same hand-over for a whole new 512^3 volume (a new block, an
+// opened project). submit() is timed, the dab before it is counted
+// (dab_ms), the mesher's work is not.
+void BM_HandOver(benchmark::State& state) {
+  const bool whole = state.range(0) == 1;
+  const core::Volume sphere = core::sphere_volume(whole ? 512 : 256);
+  const core::Tool ball = core::make_sphere_tool(66.0f);
+  const std::vector<int> full(static_cast<size_t>(sphere.brick_count()), 0);
+  SurfaceMesher mesher(2, 0.0f);
+  uint64_t generation = 1;
+  core::Volume volume = sphere;
+  mesher.submit(volume, generation, full);
+  mesher.wait_until_meshed();
+  core::Sculptor sculptor(volume);
+  sculptor.set_tool(ball);
+  int64_t i = 0;
+  double dab_ms = 0;
+  for (auto _ : state) {
+    if (!whole) {
+      const Clock::time_point dabbed = Clock::now();
+      core::Dab dab;
+      const float a = 0.3f * static_cast<float>(i++);
+      dab.position_vox =
+          glm::vec3(127.5f) + 0.35f * 256.0f * glm::vec3(std::cos(a), std::sin(a), 0.0f);
+      dab.mode = i % 2 ? core::SculptMode::kAdd : core::SculptMode::kSubtract;
+      sculptor.dab(dab);
+      dab_ms += ms(Clock::now() - dabbed);
+    } else {
+      ++generation;
+    }
+    const Clock::time_point start = Clock::now();
+    mesher.submit(volume, generation, full);
+    state.SetIterationTime(std::chrono::duration<double>(Clock::now() - start).count());
+    mesher.wait_until_meshed();
+  }
+  // The dab itself: it writes bricks the mesher may still hold.
+  state.counters["dab_ms"] = dab_ms / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_HandOver)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("whole_512")
+    ->UseManualTime()
+    ->Iterations(12)
+    ->Unit(benchmark::kMillisecond);
+
+// The autosave's copy of the volume, made on the sculpting thread before
+// another thread writes it: the 512^3 sphere.
+void BM_VolumeCopy(benchmark::State& state) {
+  const core::Volume sphere = core::sphere_volume(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    core::Volume copy = sphere;
+    benchmark::DoNotOptimize(copy);
+  }
+}
+BENCHMARK(BM_VolumeCopy)->Arg(256)->Arg(512)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace sculpt::station

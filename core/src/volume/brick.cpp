@@ -5,18 +5,45 @@
 
 namespace sculpt::core {
 
-Brick::Brick(const Brick& other)
+Brick::Brick(Brick&& other) noexcept
     : value_(other.value_),
-      pyramid_(other.pyramid_ ? std::make_unique<WaveletPyramid>(*other.pyramid_) : nullptr) {}
+      pyramid_(std::move(other.pyramid_)),
+      shared_(other.shared_.exchange(false, std::memory_order_relaxed)) {}
+
+Brick& Brick::operator=(Brick&& other) noexcept {
+  if (this != &other) {
+    value_ = other.value_;
+    pyramid_ = std::move(other.pyramid_);
+    shared_.store(other.shared_.exchange(false, std::memory_order_relaxed),
+                  std::memory_order_relaxed);
+  }
+  return *this;
+}
+
+Brick::Brick(const Brick& other) : value_(other.value_), pyramid_(other.pyramid_) {
+  if (pyramid_) {
+    other.shared_.store(true, std::memory_order_relaxed);
+    shared_.store(true, std::memory_order_relaxed);
+  }
+}
 
 Brick& Brick::operator=(const Brick& other) {
   if (this != &other) *this = Brick(other);
   return *this;
 }
 
+WaveletPyramid& Brick::own_blank_pyramid(int edge, int levels) {
+  if (!pyramid_ || shares_pyramid() || pyramid_->edge() != edge || pyramid_->levels() != levels) {
+    pyramid_ = std::make_shared<WaveletPyramid>(edge, levels);
+    shared_.store(false, std::memory_order_relaxed);
+  }
+  return *pyramid_;
+}
+
 bool Brick::holds_same_voxels(const Brick& other) const {
   if (is_uniform() || other.is_uniform())
     return is_uniform() && other.is_uniform() && value_ == other.value_;
+  if (pyramid_ == other.pyramid_) return true;  // a copy not encoded since
   const WaveletPyramid& a = *pyramid_;
   const WaveletPyramid& b = *other.pyramid_;
   return a.edge() == b.edge() && a.levels() == b.levels() &&
@@ -35,12 +62,10 @@ void Brick::encode(std::span<const uint8_t> voxels, int edge, int levels) {
   if (differs == 0) {
     value_ = first;
     pyramid_.reset();
+    shared_.store(false, std::memory_order_relaxed);
     return;
   }
-  if (!pyramid_ || pyramid_->edge() != edge || pyramid_->levels() != levels) {
-    pyramid_ = std::make_unique<WaveletPyramid>(edge, levels);
-  }
-  pyramid_->encode(voxels);
+  own_blank_pyramid(edge, levels).encode(voxels);
 }
 
 void Brick::encode_region(std::span<const uint8_t> voxels, int edge, int levels,
@@ -65,7 +90,13 @@ void Brick::encode_region(std::span<const uint8_t> voxels, int edge, int levels,
   if (uniform) {
     value_ = voxels[0];
     pyramid_.reset();
+    shared_.store(false, std::memory_order_relaxed);
     return;
+  }
+  if (shares_pyramid()) {
+    // Copy on write: the other holders keep the pyramid as it was.
+    pyramid_ = std::make_shared<WaveletPyramid>(*pyramid_);
+    shared_.store(false, std::memory_order_relaxed);
   }
   pyramid_->encode_region(voxels, lo, hi);
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <random>
 #include <set>
+#include <thread>
 
 #include "sculpt/core/shapes/analytic_shapes.h"
 #include "sculpt/core/wavelet/haar_1d.h"
@@ -257,6 +258,81 @@ TEST(Volume, StoringAChangedBoxEqualsStoringTheBrick) {
   EXPECT_EQ(part.take_dirty_bricks(), full.take_dirty_bricks());
   EXPECT_EQ(part.content_hash(), full.content_hash());
   EXPECT_EQ(part.to_dense(0), full.to_dense(0));
+}
+
+TEST(Volume, ACopySharesItsBricksAndKeepsItsVoxelsWhileTheOriginalIsEdited) {
+  // The autosave's copy, the mesher's bricks and the undo history's: each
+  // shares the pyramids (copy on write) and must read what was copied.
+  const DenseGrid<uint8_t> g = random_grid({40, 40, 40}, 33);
+  Volume v = Volume::from_dense(g, small_bricks(16, 4));
+  const Volume copy = v;
+  for (int64_t i = 0; i < v.brick_count(); ++i) {
+    const glm::ivec3 b = grid_position(i, v.brick_grid());
+    ASSERT_FALSE(v.brick(b).is_uniform());
+    EXPECT_EQ(copy.brick(b).pyramid(), v.brick(b).pyramid()) << "brick " << i;
+    EXPECT_TRUE(v.brick(b).shares_pyramid());
+  }
+  const uint64_t copied_hash = copy.content_hash();
+
+  // A changed box (re-encoded in place of a shared pyramid: copied first),
+  // a whole brick, and a brick made uniform.
+  std::vector<uint8_t> voxels(16 * 16 * 16);
+  const glm::ivec3 in_part(1, 1, 1);
+  v.decode_brick(in_part, voxels);
+  const Box changed{glm::ivec3(20, 21, 22), glm::ivec3(25, 23, 30)};
+  for (int z = changed.lo.z; z < changed.hi.z; ++z)
+    for (int y = changed.lo.y; y < changed.hi.y; ++y)
+      for (int x = changed.lo.x; x < changed.hi.x; ++x)
+        voxels[(static_cast<size_t>(z - 16) * 16 + (y - 16)) * 16 + (x - 16)] ^= 0x3C;
+  v.store_brick(in_part, voxels, changed);
+  v.write({0, 0, 0}, random_grid({16, 16, 16}, 34));
+  v.write({16, 0, 0}, DenseGrid<uint8_t>({16, 16, 16}, 200));
+  EXPECT_TRUE(v.brick({1, 0, 0}).is_uniform());
+
+  EXPECT_EQ(copy.content_hash(), copied_hash);
+  EXPECT_EQ(copy.to_dense(0), g);
+  for (const glm::ivec3 b : {in_part, glm::ivec3(0, 0, 0)}) {
+    EXPECT_NE(v.brick(b).pyramid(), copy.brick(b).pyramid());
+    EXPECT_FALSE(v.brick(b).shares_pyramid());
+  }
+  EXPECT_EQ(v.brick({2, 2, 2}).pyramid(), copy.brick({2, 2, 2}).pyramid());  // untouched
+  // What was stored is what a volume encoded from scratch holds.
+  const Volume fresh = Volume::from_dense(v.to_dense(0), small_bricks(16, 4));
+  EXPECT_EQ(v.content_hash(), fresh.content_hash());
+  for (int64_t i = 0; i < v.brick_count(); ++i) {
+    const glm::ivec3 b = grid_position(i, v.brick_grid());
+    EXPECT_TRUE(v.brick(b).holds_same_voxels(fresh.brick(b))) << "brick " << i;
+  }
+
+  // A brick of its own is re-encoded in its own storage, not copied again.
+  const WaveletPyramid* own = v.brick(in_part).pyramid();
+  v.store_brick(in_part, voxels, changed);
+  EXPECT_EQ(v.brick(in_part).pyramid(), own);
+}
+
+TEST(Volume, ACopyIsReadOnAnotherThreadWhileTheOriginalIsEdited) {
+  // The station's mesher and autosave read their copies on their own
+  // threads while the sculpting thread goes on (ThreadSanitizer runs this).
+  const DenseGrid<uint8_t> g = random_grid({48, 48, 48}, 35);
+  Volume v = Volume::from_dense(g, small_bricks(16, 4));
+  std::vector<Volume> copies;
+  for (int round = 0; round < 4; ++round) {
+    copies.push_back(v);
+    const Volume& copy = copies.back();
+    const uint64_t want = copy.content_hash();
+    uint64_t read = 0;
+    std::thread reader([&] {
+      for (int i = 0; i < 3; ++i)
+        read = copy.content_hash();
+    });
+    for (int i = 0; i < 20; ++i)
+      v.write({(round * 7 + i * 5) % 40, (i * 11) % 40, (i * 3) % 40},
+              DenseGrid<uint8_t>({8, 8, 8}, static_cast<uint8_t>(round * 20 + i)));
+    reader.join();
+    EXPECT_EQ(read, want) << "round " << round;
+  }
+  for (size_t i = 1; i < copies.size(); ++i)
+    EXPECT_NE(copies[i].content_hash(), copies[i - 1].content_hash());
 }
 
 TEST(Volume, UniformBricksCostConstantMemory) {
