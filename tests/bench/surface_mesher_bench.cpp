@@ -136,7 +136,7 @@ BENCHMARK(BM_HandOver)
     ->Unit(benchmark::kMillisecond);
 
 // The autosave's copy of the volume, made on the sculpting thread before
-// another thread writes it: the 512^3 sphere.
+// another thread writes it: the 256^3 and 512^3 spheres.
 void BM_VolumeCopy(benchmark::State& state) {
   const core::Volume sphere = core::sphere_volume(static_cast<int>(state.range(0)));
   for (auto _ : state) {
