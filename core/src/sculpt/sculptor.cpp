@@ -393,14 +393,16 @@ DabStats Sculptor::apply(RotatedToolCache& cache, const Dab& dab) {
   cache.add_row_counts(rows);
   stats.bricks_decoded += static_cast<int>(jobs.size());
   const int64_t t_store = now_ns();
+  std::vector<Volume::BrickStore> stores;
   for (size_t k = 0; k < jobs.size(); ++k) {
     if (combined[k].changed == 0) continue;
     history_.before_change(volume_, jobs[k].b);
-    volume_.store_brick(jobs[k].b, std::span<uint8_t>(voxels[k]).first(brick_bytes),
-                        combined[k].touched);
+    stores.push_back(
+        {jobs[k].b, std::span<uint8_t>(voxels[k]).first(brick_bytes), combined[k].touched});
     ++stats.bricks_changed;
     stats.voxels_changed += combined[k].changed;
   }
+  volume_.store_bricks(stores);
   stats.encode_ns += now_ns() - t_store;
   return stats;
 }

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <utility>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -469,6 +470,8 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
   };
   std::vector<Job> jobs;
   std::unordered_map<int64_t, size_t> job_of;  // brick index -> jobs
+  // First reached, or stored since: decoded after the loop.
+  std::vector<std::pair<glm::ivec3, StrokeBrick*>> to_decode;
   const int64_t t_decode = now_ns();
   for (uint32_t si = 0; si < sweeps.size(); ++si) {
     const Sweep& sw = sweeps[si];
@@ -511,12 +514,8 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
               held.coverage = take_buffer(brick_bytes + kCombineRowSlack);
               if (!accumulate) held.before = take_buffer(brick_bytes + kCombineRowSlack);
             }
-            volume.decode_brick(b, std::span<uint8_t>(held.current).first(brick_bytes));
+            to_decode.emplace_back(b, &held);
             held.version = volume.brick_version(b);
-            if (!accumulate)
-              std::copy(held.current.begin(), held.current.end(), held.before.begin());
-            // run_balls() clears a row's coverage when it first reaches it.
-            if (!lean) std::fill(held.coverage.begin(), held.coverage.end(), uint8_t{0});
             held.open.clear();
             held.segment = -1;
             ++stats.bricks_decoded;
@@ -526,6 +525,23 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
           job_of.emplace(index, jobs.size());
           jobs.push_back({b, bb, &held, {si}});
         }
+  }
+  // A big ball's first segment reaches a hundred bricks; each decode reads
+  // only the volume and writes only its brick's buffers, so they share the
+  // cores.
+  const auto decode = [&](int64_t k) {
+    const auto& [b, held_ptr] = to_decode[static_cast<size_t>(k)];
+    StrokeBrick& held = *held_ptr;
+    volume.decode_brick(b, std::span<uint8_t>(held.current).first(brick_bytes));
+    if (!accumulate) std::copy(held.current.begin(), held.current.end(), held.before.begin());
+    // run_balls() clears a row's coverage when it first reaches it.
+    if (!lean) std::fill(held.coverage.begin(), held.coverage.end(), uint8_t{0});
+  };
+  if (to_decode.size() >= kParallelBricks) {
+    parallel_for(static_cast<int64_t>(to_decode.size()), decode);
+  } else {
+    for (size_t k = 0; k < to_decode.size(); ++k)
+      decode(static_cast<int64_t>(k));
   }
   stats.decode_ns += now_ns() - t_decode;
 
@@ -901,15 +917,18 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
   stats.apply_ns += now_ns() - t_apply;
 
   const int64_t t_store = now_ns();
+  std::vector<Volume::BrickStore> stores;
   for (Job& job : jobs) {
     if (job.changed == 0) continue;
     sculptor_.history_.before_change(volume, job.b);
-    volume.store_brick(job.b, std::span<uint8_t>(job.held->current).first(brick_bytes),
-                       job.touched);
-    job.held->version = volume.brick_version(job.b);
+    stores.push_back(
+        {job.b, std::span<uint8_t>(job.held->current).first(brick_bytes), job.touched});
     ++stats.bricks_changed;
     stats.voxels_changed += job.changed;
   }
+  volume.store_bricks(stores);
+  for (Job& job : jobs)
+    if (job.changed != 0) job.held->version = volume.brick_version(job.b);
   stats.encode_ns += now_ns() - t_store;
   return stats;
 }

@@ -190,6 +190,11 @@ void Volume::remember_stored(size_t i, std::span<const uint8_t> voxels) {
   std::memcpy(recent_voxels_.data() + slot * n, voxels.data(), n);
 }
 
+void Volume::forget_stored(size_t i) {
+  for (int64_t& slot : recent_brick_)
+    if (slot == static_cast<int64_t>(i)) slot = -1;
+}
+
 DenseGrid<uint8_t> Volume::read(const Box& region, int level) const {
   DenseGrid<uint8_t> out(region.size(), 0);
   const int m = options_.brick_edge >> level;
@@ -240,6 +245,33 @@ void Volume::store_brick(glm::ivec3 b, std::span<uint8_t> voxels) {
   pad_outside(b, voxels);
   remember_stored(i, voxels);
   bricks_[i].encode(voxels, options_.brick_edge, options_.levels);
+  count_stored(i);
+}
+
+void Volume::store_brick(glm::ivec3 b, std::span<uint8_t> voxels, const Box& changed) {
+  encode_stored(b, voxels, changed);
+  const size_t i = brick_index(b);
+  remember_stored(i, voxels);
+  count_stored(i);
+}
+
+void Volume::encode_stored(glm::ivec3 b, std::span<uint8_t> voxels, const Box& changed) {
+  const Box box = brick_box(b);
+  const Box local = intersect(changed, box);
+  const int e = options_.brick_edge;
+  Brick& brick = bricks_[brick_index(b)];
+  // A far-face brick's padding repeats its last voxels: a change there can
+  // reach beyond the box, so it takes the whole re-encode.
+  if (local.empty() || box.size() != glm::ivec3(e)) {
+    pad_outside(b, voxels);
+    brick.encode(voxels, e, options_.levels);
+    return;
+  }
+  const glm::ivec3 lo = local.lo - box.lo, hi = local.hi - box.lo;
+  brick.encode_region(voxels, e, options_.levels, {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
+}
+
+void Volume::count_stored(size_t i) {
   ++versions_[i];
   ++stores_;
   if (!dirty_flags_[i]) {
@@ -248,25 +280,32 @@ void Volume::store_brick(glm::ivec3 b, std::span<uint8_t> voxels) {
   }
 }
 
-void Volume::store_brick(glm::ivec3 b, std::span<uint8_t> voxels, const Box& changed) {
-  const Box box = brick_box(b);
-  const Box local = intersect(changed, box);
-  const int e = options_.brick_edge;
-  // A far-face brick's padding repeats its last voxels: a change there can
-  // reach beyond the box, so it takes the whole re-encode.
-  if (local.empty() || box.size() != glm::ivec3(e)) {
-    store_brick(b, voxels);
-    return;
+void Volume::store_bricks(std::span<const BrickStore> stores, int threads) {
+  // Below this many bricks a loop's wake-ups cost more than they share.
+  constexpr size_t kParallelStores = 8;
+  const auto encode = [&](int64_t k) {
+    const BrickStore& s = stores[static_cast<size_t>(k)];
+    encode_stored(s.brick, s.voxels, s.changed);
+  };
+  if (stores.size() < kParallelStores) {
+    for (size_t k = 0; k < stores.size(); ++k)
+      encode(static_cast<int64_t>(k));
+  } else {
+    parallel_for(static_cast<int64_t>(stores.size()), encode, threads);
   }
-  const size_t i = brick_index(b);
-  const glm::ivec3 lo = local.lo - box.lo, hi = local.hi - box.lo;
-  remember_stored(i, voxels);
-  bricks_[i].encode_region(voxels, e, options_.levels, {lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z});
-  ++versions_[i];
-  ++stores_;
-  if (!dirty_flags_[i]) {
-    dirty_flags_[i] = 1;
-    dirty_list_.push_back(static_cast<int64_t>(i));
+  // Only the last kRecentBricks stored stay decoded, as one store after
+  // another would leave them; the earlier ones' old voxels are dropped.
+  const size_t first_kept = stores.size() > static_cast<size_t>(kRecentBricks)
+                                ? stores.size() - static_cast<size_t>(kRecentBricks)
+                                : 0;
+  for (size_t k = 0; k < stores.size(); ++k) {
+    const size_t i = brick_index(stores[k].brick);
+    if (k < first_kept) {
+      forget_stored(i);
+    } else {
+      remember_stored(i, stores[k].voxels);
+    }
+    count_stored(i);
   }
 }
 

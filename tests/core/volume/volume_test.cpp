@@ -260,6 +260,69 @@ TEST(Volume, StoringAChangedBoxEqualsStoringTheBrick) {
   EXPECT_EQ(part.to_dense(0), full.to_dense(0));
 }
 
+TEST(Volume, StoringBricksTogetherEqualsStoringThemOneByOne) {
+  // A big dab's stores: re-encoded on two threads, then counted in order.
+  // The result is the stores one by one: coefficients, versions, the dirty
+  // list and the voxels read back, including a brick that was among the
+  // recently stored (decoded) ones before and is stored again early in the
+  // batch, whose old decoded voxels must not be read.
+  const DenseGrid<uint8_t> g = random_grid({100, 100, 100}, 33);  // 7^3 bricks, far faces padded
+  Volume together = Volume::from_dense(g, small_bricks(16, 4));
+  const glm::ivec3 early{1, 1, 1};
+  std::vector<glm::ivec3> bricks{early};
+  for (int i = 0; i < 29; ++i)
+    bricks.push_back({i % 7, (i / 7) % 7, 3 + i % 4});
+  // Among the recent ones before the batch: the first brick the batch keeps
+  // decoded, then `early`. The batch's other kept stores then take every
+  // slot but `early`'s, so only dropping it keeps its old voxels from being
+  // read.
+  const glm::ivec3 first_kept = bricks[bricks.size() - Volume::kRecentBricks];
+  std::vector<uint8_t> voxels(16 * 16 * 16);
+  for (const glm::ivec3 b : {first_kept, early}) {
+    together.decode_brick(b, voxels);
+    voxels[0] ^= 1;
+    together.store_brick(b, voxels);
+  }
+  Volume apart = together;
+
+  std::mt19937 rng(34);
+  std::uniform_int_distribution<int> corner(0, 15);
+  std::vector<std::vector<uint8_t>> batch_voxels;
+  std::vector<Volume::BrickStore> batch;
+  batch_voxels.reserve(bricks.size());
+  for (const glm::ivec3 b : bricks) {
+    std::vector<uint8_t> v(voxels.size());
+    together.decode_brick(b, v);
+    glm::ivec3 lo{corner(rng), corner(rng), corner(rng)}, hi{corner(rng), corner(rng), corner(rng)};
+    const glm::ivec3 a = glm::min(lo, hi), c = glm::max(lo, hi) + 1;
+    for (int z = a.z; z < c.z; ++z)
+      for (int y = a.y; y < c.y; ++y)
+        for (int x = a.x; x < c.x; ++x)
+          v[(static_cast<size_t>(z) * 16 + y) * 16 + x] ^= 0x3C;
+    batch_voxels.push_back(std::move(v));
+    batch.push_back({b, batch_voxels.back(), Box{b * 16 + a, b * 16 + c}});
+  }
+  for (const Volume::BrickStore& s : batch) {
+    std::vector<uint8_t> copy(s.voxels.begin(), s.voxels.end());
+    apart.store_brick(s.brick, copy, s.changed);
+  }
+  together.store_bricks(batch, 2);
+
+  std::vector<uint8_t> read_together(voxels.size()), read_apart(voxels.size()),
+      decoded(voxels.size());
+  for (int64_t i = 0; i < together.brick_count(); ++i) {
+    const glm::ivec3 b{int(i % 7), int(i / 7 % 7), int(i / 49)};
+    EXPECT_EQ(together.brick_version(b), apart.brick_version(b)) << i;
+    together.decode_brick(b, read_together);
+    apart.decode_brick(b, read_apart);
+    together.brick(b).extract_level(0, decoded);
+    ASSERT_EQ(read_together, read_apart) << "brick " << i;
+    ASSERT_EQ(read_together, decoded) << "brick " << i << ": a stale decoded copy";
+  }
+  EXPECT_EQ(together.take_dirty_bricks(), apart.take_dirty_bricks());
+  EXPECT_EQ(together.content_hash(), apart.content_hash());
+}
+
 TEST(Volume, ACopySharesItsBricksAndKeepsItsVoxelsWhileTheOriginalIsEdited) {
   // The autosave's copy, the mesher's bricks and the undo history's: each
   // shares the pyramids (copy on write) and must read what was copied.

@@ -109,6 +109,18 @@ class Volume {
   /// `changed` (level-0 volume coordinates): re-encodes only the wavelet
   /// coefficients over that part of the brick. Same stored result.
   void store_brick(glm::ivec3 b, std::span<uint8_t> voxels, const Box& changed);
+  /// One brick for store_bricks(): its voxels and the part that changed.
+  struct BrickStore {
+    glm::ivec3 brick;
+    std::span<uint8_t> voxels;  // edge^3, x fastest; re-padded as stored
+    Box changed;                // level-0 volume coordinates
+  };
+  /// store_brick(brick, voxels, changed) for each, in order, with the
+  /// re-encodes spread over `threads` threads (0 = default_threads()): a big
+  /// dab stores a hundred bricks, and their encodes were most of its time on
+  /// the sculpting thread. The same volume, versions and dirty list as the
+  /// stores one by one; the bricks must differ.
+  void store_bricks(std::span<const BrickStore> stores, int threads = 0);
   /// Puts a copy of another volume's brick `b` (same brick edge and levels)
   /// in place of this one's and moves its version on: how a mirror of the
   /// volume on another thread (the station's mesher) follows the sculpting
@@ -145,6 +157,14 @@ class Volume {
   // Keeps the voxels of brick index `i` just stored (after padding) among
   // the recent ones, replacing the oldest.
   void remember_stored(size_t i, std::span<const uint8_t> voxels);
+  // Drops brick index `i` from the recent ones (its voxels there are old).
+  void forget_stored(size_t i);
+  // The re-encode of store_brick(b, voxels, changed), without the book-keeping
+  // below: touches brick `b` only, so different bricks may run at once.
+  void encode_stored(glm::ivec3 b, std::span<uint8_t> voxels, const Box& changed);
+  // The book-keeping of a store: the brick's version, the store count and the
+  // dirty list.
+  void count_stored(size_t i);
 
   glm::ivec3 dims_;
   VolumeOptions options_;
