@@ -68,6 +68,61 @@ Tool shape_tool(glm::vec3 half, float hardness, SignedDistance sd) {
   return tool;
 }
 
+// make_sphere_tool() at hardness 1. A hard ball's density is 255 more than a
+// voxel inside its surface and 0 more than a voxel outside
+// (density_from_distance()'s ramp), so per row only the rim's few voxels at
+// each end need their distance: the rest are filled. The same bytes as
+// evaluating every voxel (tested); the bust's 110-voxel ball (11 million
+// voxels, made while the next dab waits) 33 -> 3 ms.
+Tool hard_ball_tool(float radius_vox) {
+  const glm::ivec3 dims = dims_for(glm::vec3(radius_vox));
+  Tool tool{DenseGrid<uint8_t>(dims, 0), grid_centre(dims), 1.0f};
+  const double r = radius_vox;
+  // Spans from the squared distances, with a voxel of distance to spare on
+  // each side of the ramp, so float rounding in the exact part never meets
+  // a filled voxel.
+  const double inside2 = r > 2.0 ? (r - 2.0) * (r - 2.0) : -1.0;
+  const double outside2 = (r + 2.0) * (r + 2.0);
+  const auto ceil_in = [&](double x) {
+    return std::clamp(static_cast<int>(std::ceil(x)), 0, dims.x);
+  };
+  parallel_for(
+      dims.z,
+      [&](int64_t slice) {
+        const int z = static_cast<int>(slice);
+        for (int y = 0; y < dims.y; ++y) {
+          const double dy = y - static_cast<double>(tool.pivot.y);
+          const double dz = z - static_cast<double>(tool.pivot.z);
+          const double ryz2 = dy * dy + dz * dz;
+          if (ryz2 >= outside2) continue;  // the whole row outside
+          const double cx = tool.pivot.x;
+          const double outer = std::sqrt(outside2 - ryz2) + 1.0;
+          const int x0 = ceil_in(cx - outer), x3 = ceil_in(cx + outer);
+          int x1 = x3, x2 = x3;  // [x1, x2): filled, deep inside
+          if (ryz2 < inside2) {
+            const double inner = std::sqrt(inside2 - ryz2) - 1.0;
+            if (inner > 0.0) {
+              x1 = std::max(ceil_in(cx - inner), x0);
+              x2 = std::max(ceil_in(cx + inner), x1);
+            }
+          }
+          uint8_t* row = &tool.density.at(0, y, z);
+          const auto exact = [&](int x) {
+            row[x] =
+                density_from_distance(glm::length(glm::vec3(x, y, z) - tool.pivot) - radius_vox);
+          };
+          for (int x = x0; x < x1; ++x)
+            exact(x);
+          std::fill(row + x1, row + x2, uint8_t{255});
+          for (int x = x2; x < x3; ++x)
+            exact(x);
+        }
+      },
+      dims.z > 64 ? 0 : 1);
+  tool.sphere_radius_vox = radius_vox;
+  return tool;
+}
+
 float segment_distance(glm::vec2 p, glm::vec2 a, glm::vec2 b) {
   const glm::vec2 ab = b - a;
   const float t = std::clamp(glm::dot(p - a, ab) / glm::dot(ab, ab), 0.0f, 1.0f);
@@ -101,6 +156,7 @@ glm::vec3 grid_centre(glm::ivec3 dims) {
 
 Tool make_sphere_tool(float radius_vox, float hardness) {
   assert(radius_vox > 0.0f);
+  if (hardness >= 1.0f) return hard_ball_tool(radius_vox);
   Tool tool = shape_tool(glm::vec3(radius_vox), hardness,
                          [&](glm::vec3 p) { return glm::length(p) - radius_vox; });
   tool.sphere_radius_vox = radius_vox;

@@ -115,6 +115,64 @@ TEST(ToolRotation, CoreFillMatchesBruteForce) {
 // default result, bit for bit, for the built-in shapes (the ring's core is
 // its hole, value 0), a tool whose reach ball leaves the padded grid (8^3
 // trilinear) and an asymmetric one; both kernels, both samplings.
+// The reach and core radii a prepared tool settles from a few voxels a row
+// (each row's ends and the voxels nearest the pivot, found a word at a time)
+// are those of testing every voxel: solid and hollow balls, a grey cube, a
+// random tool, and pivots off the centre and outside the grid.
+TEST(ToolRotation, PreparedRadiiAreEveryVoxelsBound) {
+  Tool noise = tool_from_grid(DenseGrid<uint8_t>({23, 19, 21}));
+  uint32_t seed = 7;
+  for (uint8_t& v : noise.density.values()) {
+    seed = seed * 1664525u + 1013904223u;
+    v = (seed >> 24) < 40 ? static_cast<uint8_t>(seed >> 16) : 255;
+  }
+  Tool shell = make_sphere_tool(12.0f);
+  for (uint8_t& v : shell.density.values())
+    v = v == 255 ? 0 : v;
+  Tool grey = tool_from_grid(DenseGrid<uint8_t>({37, 35, 33}, 200));
+  std::vector<Tool> tools{make_sphere_tool(14.0f), make_sphere_tool(40.5f), shell, grey, noise};
+  Tool moved = make_sphere_tool(20.0f);
+  moved.pivot += glm::vec3(3.4f, -2.6f, 0.5f);
+  tools.push_back(moved);
+  Tool outside = noise;
+  outside.pivot = glm::vec3(-4.0f, 9.0f, 30.0f);
+  tools.push_back(outside);
+  for (size_t t = 0; t < tools.size(); ++t) {
+    const Tool& tool = tools[t];
+    const PreparedTool prepared(tool);
+    const DenseGrid<uint8_t>& g = tool.density;
+    const glm::ivec3 d = g.dims();
+    const glm::dvec3 pivot(tool.pivot);
+    const glm::ivec3 centre(glm::floor(tool.pivot + 0.5f));
+    const bool centred = g.in_bounds(centre.x, centre.y, centre.z);
+    const uint8_t u = centred ? g.at(centre.x, centre.y, centre.z) : 0;
+    ASSERT_EQ(prepared.core_value(), u) << "tool " << t;
+    for (const Sampling s : {Sampling::kNearest, Sampling::kTrilinear}) {
+      const double m = s == Sampling::kNearest ? 0.5 : 1.0;
+      double reach2 = 0.0, other2 = centred ? 1e300 : 0.0;
+      if (u != 0)  // outside the grid reads 0
+        for (int i = 0; i < 3; ++i) {
+          const double gap = std::max(0.0, std::min(pivot[i] + 1.0, d[i] - pivot[i]) - m);
+          other2 = std::min(other2, gap * gap);
+        }
+      for (int z = 0; z < d.z; ++z)
+        for (int y = 0; y < d.y; ++y)
+          for (int x = 0; x < d.x; ++x) {
+            const uint8_t v = g.at(x, y, z);
+            const glm::dvec3 r = glm::abs(glm::dvec3(x, y, z) - pivot);
+            if (v != 0) reach2 = std::max(reach2, glm::dot(r + m, r + m));
+            if (v != u) {
+              const glm::dvec3 near = glm::max(r - m, 0.0);
+              other2 = std::min(other2, glm::dot(near, near));
+            }
+          }
+      EXPECT_EQ(prepared.reach_vox(s), static_cast<float>(std::sqrt(reach2))) << "tool " << t;
+      EXPECT_EQ(prepared.core_radius_vox(s), centred ? static_cast<float>(std::sqrt(other2)) : 0.0f)
+          << "tool " << t;
+    }
+  }
+}
+
 TEST(ToolRotation, ClippingOffGivesTheDefaultResultBitForBit) {
   const Tool tools[] = {make_sphere_tool(9.0f),
                         make_cube_tool(13.0f),

@@ -174,6 +174,31 @@ TEST(ToolHardness, OneIsTodaysToolAndDabBitForBit) {
   EXPECT_EQ(dab_with(tool_from_grid(before)), dab_with(make_sphere_tool(r, 1.0f)));
 }
 
+TEST(Tool, AHardBallFillsItsInsideAndMeasuresOnlyItsRim) {
+  // make_sphere_tool() at hardness 1 fills what lies deep inside and outside
+  // and takes the distance only near the surface: the same bytes as every
+  // voxel's density_from_distance, at radii from the smallest (no inside
+  // deep enough to fill) to the bust's head ball, on odd and even grids.
+  for (const float r : {0.5f, 1.0f, 1.7f, 2.0f, 2.5f, 3.01f, 12.8f, 40.3f, 66.0f, 110.0f}) {
+    const Tool ball = make_sphere_tool(r);
+    const glm::ivec3 dims = ball.density.dims();
+    const glm::vec3 c = grid_centre(dims);
+    int64_t filled = 0;
+    for (int z = 0; z < dims.z; ++z)
+      for (int y = 0; y < dims.y; ++y)
+        for (int x = 0; x < dims.x; ++x) {
+          const uint8_t want = density_from_distance(glm::length(glm::vec3(x, y, z) - c) - r);
+          ASSERT_EQ(ball.density.at(x, y, z), want)
+              << "radius " << r << " at " << x << " " << y << " " << z;
+          filled += want == 255;
+        }
+    EXPECT_EQ(ball.sphere_radius_vox, r);
+    if (r >= 12.0f) {
+      EXPECT_GT(filled, 0) << r;
+    }
+  }
+}
+
 TEST(ToolHardness, SofterToolsTaperSmoothlyFromTheCentre) {
   const float r = 10.0f;
   int prev_max_step = 256;
