@@ -23,6 +23,7 @@
 #include <unistd.h>
 
 #include "sculpt/base/atomic_file.h"
+#include "sculpt/base/input_file.h"
 
 // Under a sanitizer the child process keeps its report but not the address
 // space limit (see run_reader_child()).
@@ -594,8 +595,7 @@ Result<VdbGridsIn> read_vdb(std::istream& in, const std::string& name, const Vdb
 }
 
 Result<VdbGridsIn> read_vdb(const std::filesystem::path& path, const VdbLimits& limits) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return Error(path.string() + ": is a directory");
+  if (const Status s = check_input_file(path); !s) return s.error();
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error(path.string() + ": cannot open");
   return read_vdb(in, path.string(), limits);

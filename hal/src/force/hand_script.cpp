@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "sculpt/base/input_file.h"
+
 namespace sculpt::hal {
 namespace {
 
@@ -137,6 +139,7 @@ Result<HandScript> parse_hand_script(std::string_view text, const std::string& s
 
 Result<HandScript> read_hand_script(const std::string& path) {
   constexpr std::streamoff kMaxBytes = 64 << 20;
+  if (const Status s = check_input_file(path); !s) return s.error();
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) return Error(path + ": cannot open");
   if (in.tellg() > kMaxBytes) return Error(path + ": larger than 64 MB: not a hand script");

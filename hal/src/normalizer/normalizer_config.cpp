@@ -8,6 +8,8 @@
 #include <sstream>
 #include <vector>
 
+#include "sculpt/base/input_file.h"
+
 namespace sculpt::hal {
 namespace {
 
@@ -183,6 +185,7 @@ Result<NormalizerConfig> parse_normalizer_config(std::string_view text, const st
 }
 
 Result<NormalizerConfig> load_normalizer_config(const std::string& path) {
+  if (const Status s = check_input_file(path); !s) return s.error();
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error(path + ": cannot open");
   std::ostringstream ss;

@@ -4,11 +4,14 @@
 #include <fstream>
 #include <sstream>
 
+#include "sculpt/base/input_file.h"
 #include "sculpt/sim/session/session_text.h"
 
 namespace sculpt::station {
 
 Result<sim::Session> load_session(const std::filesystem::path& path, sim::SessionReadInfo* info) {
+  // A sim device's FILE comes from the device string, not a checked option.
+  if (const Status s = check_input_file(path); !s) return s.error();
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error(path.string() + ": cannot open: " + std::strerror(errno));
   char magic[sizeof(sim::kSessionMagic)] = {};

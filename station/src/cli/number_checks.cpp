@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <string>
 
+#include "sculpt/base/input_file.h"
+
 namespace sculpt::station::cli {
 namespace {
 
@@ -37,8 +39,7 @@ CLI::Validator finite_positive() {
 CLI::Validator input_file() {
   return CLI::Validator(
       [](std::string& path) -> std::string {
-        std::error_code ec;
-        if (std::filesystem::is_directory(path, ec)) return path + ": is a directory";
+        if (const Status s = check_input_file(path); !s) return s.error().message();
         return {};
       },
       "FILE");

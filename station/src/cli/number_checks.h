@@ -11,9 +11,10 @@ namespace sculpt::station::cli {
 CLI::Validator finite_range(double lo, double hi);
 /// A finite number above zero.
 CLI::Validator finite_positive();
-/// An input file's path that is not a folder ("X: is a directory"): every
-/// reader would otherwise open the folder and report it as an empty or
-/// malformed file. A missing file is left to the reader, which names it.
+/// An input file's path that names no folder, FIFO, device or socket
+/// (check_input_file(): "X: is a directory"): a reader would otherwise report
+/// a folder as an empty or malformed file, and wait for ever on a FIFO with
+/// no writer. A missing file is left to the reader, which names it.
 CLI::Validator input_file();
 
 }  // namespace sculpt::station::cli

@@ -11,6 +11,7 @@
 #include <glm/vector_relational.hpp>
 #include <nlohmann/json.hpp>
 
+#include "sculpt/base/input_file.h"
 #include "sculpt/core/tool/tool_scale.h"
 
 #include "sculpt/sim/session/session.h"
@@ -424,8 +425,7 @@ Result<std::vector<Line>> parse(std::istream& in, const std::string& name, glm::
 }
 
 Result<std::vector<Line>> read(const std::string& path, glm::ivec3 volume_dims) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return Error("is a directory").in(path);
+  if (const Status s = check_input_file(path); !s) return s.error();
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error("cannot open the dab script").in(path);
   return parse(in, path, volume_dims);

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sculpt/base/atomic_file.h"
+#include "sculpt/base/input_file.h"
 #include "sculpt/core/grid/grid_index.h"
 #include "sculpt/core/nurbs/nurbs_json.h"
 #include "sculpt/core/wavelet/wavelet_pyramid.h"
@@ -367,8 +368,7 @@ ProjectView view_of(const json& j) {
 
 Result<Project> load_project(const std::filesystem::path& path) {
   const std::string name = path.string();
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return Error(name + ": is a directory");
+  if (const Status s = check_input_file(path); !s) return s.error();
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error(name + ": cannot open: " + std::string(std::strerror(errno)));
   const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),

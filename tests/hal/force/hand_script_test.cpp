@@ -2,6 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <string>
+
+#include "scratch_dir.h"
+
 namespace sculpt::hal {
 namespace {
 
@@ -56,6 +62,17 @@ TEST(HandScript, AMissingFileIsAnError) {
   const auto script = read_hand_script("/nonexistent/hand.txt");
   ASSERT_FALSE(script.ok());
   EXPECT_EQ(script.error().message(), "/nonexistent/hand.txt: cannot open");
+}
+
+// `--haptic sim-arm:FILE` names its script in the device string: a FIFO
+// there is named, not waited for (the open would block until a writer came).
+TEST(HandScript, AFifoIsNamedNotWaitedFor) {
+  const test::ScratchDir dir;
+  const std::string fifo = dir.file("hand.txt");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const auto script = read_hand_script(fifo);
+  ASSERT_FALSE(script.ok());
+  EXPECT_EQ(script.error().message(), fifo + ": is a FIFO (named pipe), not a file");
 }
 
 }  // namespace

@@ -4,7 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <string>
+
 #include "run_sculpt.h"
+#include "scratch_dir.h"
 
 namespace sculpt::station::test {
 namespace {
@@ -48,6 +53,27 @@ TEST(InputPaths, AFolderGivenAsAnInputFileIsNamedAsOne) {
     EXPECT_EQ(r.exit_code, 1) << command;
     EXPECT_EQ(line_count(r.err), 1) << command << r.err;
     EXPECT_NE(r.err.find(folder + ": is a directory"), std::string::npos) << command << r.err;
+  }
+}
+
+// A FIFO (named pipe) given where a file is read blocked the open until a
+// writer came: the command hung. Each place a path is read from, the command
+// line's inputs and the paths inside device strings, now names it instead
+// (a force device's hand script: hand_script_test.cpp, as it needs a display here).
+TEST(InputPaths, AFifoGivenAsAnInputFileIsNamedNotWaitedFor) {
+  const sculpt::test::ScratchDir dir;
+  const std::string fifo = dir.file("pipe.scs");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string commands[] = {"replay " + fifo, "mesh " + fifo + " -o /nonexistent/m.ply",
+                                  "run --open " + fifo + " --frames 2",
+                                  "run --device sim:" + fifo + " --frames 2",
+                                  "record --device sim:" + fifo + " -o /nonexistent/r.scs"};
+  for (const std::string& command : commands) {
+    const CommandResult r = run_sculpt(command);
+    EXPECT_EQ(r.exit_code, 1) << command;
+    EXPECT_EQ(line_count(r.err), 1) << command << r.err;
+    EXPECT_NE(r.err.find(fifo + ": is a FIFO (named pipe), not a file"), std::string::npos)
+        << command << r.err;
   }
 }
 

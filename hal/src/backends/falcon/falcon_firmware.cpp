@@ -12,6 +12,7 @@
 #include <fstream>
 
 #include "falcon_packet.h"
+#include "sculpt/base/input_file.h"
 
 namespace sculpt::hal::falcon {
 namespace {
@@ -301,6 +302,7 @@ FirmwareProbe probe_falcon_firmware(FtdiTransport& transport, int writes, int re
 
 Result<std::vector<uint8_t>> read_falcon_firmware_file(const std::string& path) {
   constexpr std::streamoff kMaxBytes = 1 << 20;
+  if (const Status s = check_input_file(path); !s) return s.error();
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error(path + ": cannot open the Falcon firmware file");
   in.seekg(0, std::ios::end);
