@@ -8,6 +8,7 @@
 #include <thread>
 #include <vector>
 
+#include "sculpt/base/memory_reuse.h"
 #include "sculpt/base/thread_times.h"
 
 namespace sculpt::core {
@@ -15,6 +16,7 @@ namespace sculpt::core {
 namespace {
 
 std::atomic<int> g_default_threads{0};
+std::atomic<size_t> g_pool_warm_bytes{0};
 
 // Depth of parallel_for calls on this thread: a body that calls parallel_for
 // again runs the inner loop serially rather than waiting on workers that are
@@ -75,6 +77,10 @@ class WorkerPool {
  private:
   void work(uint64_t seen) {
     name_this_thread("pool");
+    // Before taking a seat: the loop that started this thread goes on
+    // without it meanwhile.
+    if (const size_t bytes = g_pool_warm_bytes.load(std::memory_order_relaxed); bytes > 0)
+      warm_this_threads_heap(bytes);
     t_loop_depth = 1;
     std::unique_lock lock(mutex_);
     for (;;) {
@@ -136,6 +142,10 @@ int hardware_threads() {
 int default_threads() {
   const int n = g_default_threads.load(std::memory_order_relaxed);
   return n > 0 ? n : hardware_threads();
+}
+
+void warm_pool_threads_when_started(size_t bytes) {
+  g_pool_warm_bytes.store(bytes, std::memory_order_relaxed);
 }
 
 void set_default_threads(int threads) {

@@ -36,12 +36,7 @@ SurfaceMesher::SurfaceMesher(int threads, float simplify_error, size_t warm_heap
       simplify_error_(simplify_error),
       thread_([this, warm_heap_bytes] {
         name_this_thread("mesher");
-        if (warm_heap_bytes > 0) warm_this_threads_heap(warm_heap_bytes);
-        {
-          std::lock_guard lock(mutex_);
-          warm_ = true;
-        }
-        meshed_.notify_all();
+        warm_this_thread(warm_heap_bytes);
         run();
       }),
       simplifier_([this] {
@@ -49,8 +44,9 @@ SurfaceMesher::SurfaceMesher(int threads, float simplify_error, size_t warm_heap
         setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kSimplifierNice);
         simplify();
       }),
-      refiner_([this] {
+      refiner_([this, warm_heap_bytes] {
         name_this_thread("refiner");
+        warm_this_thread(warm_heap_bytes);
         refine();
       }) {}
 
@@ -146,9 +142,18 @@ std::optional<SurfaceDelta> SurfaceMesher::take() {
   return std::exchange(ready_, std::nullopt);
 }
 
+void SurfaceMesher::warm_this_thread(size_t bytes) {
+  if (bytes > 0) warm_this_threads_heap(bytes);
+  {
+    std::lock_guard lock(mutex_);
+    ++threads_warm_;
+  }
+  meshed_.notify_all();
+}
+
 void SurfaceMesher::wait_until_warm() {
   std::unique_lock lock(mutex_);
-  meshed_.wait(lock, [&] { return warm_; });
+  meshed_.wait(lock, [&] { return threads_warm_ == 2; });  // the mesher and the refiner
 }
 
 void SurfaceMesher::wait_until_meshed() {

@@ -20,6 +20,7 @@
 #include "sculpt/base/latency_histogram.h"
 #include "sculpt/base/memory_reuse.h"
 #include "sculpt/base/thread_times.h"
+#include "sculpt/core/util/parallel_for.h"
 #include "sculpt/core/volume/material_bounds.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/hal/registry/device_registry.h"
@@ -56,7 +57,13 @@ constexpr int kMaxDrawnLevel = 2;  // coarser than 1/4 resolution looks like a b
 // bust's updates still faulted 6-13.5k pages a run (8 us each here); with
 // 96 MiB, 0-2 in five runs of six, and its first-mesh latency fell from p99
 // 78-116 ms, max 97-172 ms to p99 54-78 ms, max 92-126 ms (five pairs).
+// The refiner's too: the demo's new block's refinement took 4,700 faults
+// in the session's first half second, beside its first big balls.
 constexpr size_t kMesherWarmHeapBytes = size_t{96} << 20;
+// The pool's threads, which every parallel loop of the sculpting, meshing and
+// refining shares: 1,800 faults a demo session before, most in its first
+// second, while the first big balls were sculpted and meshed.
+constexpr size_t kPoolThreadWarmHeapBytes = size_t{16} << 20;
 
 int fail(const Error& e) {
   std::fprintf(stderr, "sculpt run: %s\n", e.message().c_str());
@@ -263,6 +270,7 @@ int run_window(const WindowOptions& o) {
   // Freed memory stays mapped for the next dab, tool or mesh (memory_reuse.h):
   // up to a quarter of a gigabyte, about twice what a session holds.
   keep_freed_memory(size_t{256} << 20);
+  core::warm_pool_threads_when_started(kPoolThreadWarmHeapBytes);
   auto window = GlWindow::open(o.width, o.height, "Sculpt station", o.visible);
   if (!window) return fail(window.error());
   GLFWwindow* w = (*window)->handle();

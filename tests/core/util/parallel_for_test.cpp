@@ -2,13 +2,20 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
+#include <memory>
 #include <mutex>
 #include <set>
 #include <stdexcept>
 #include <thread>
 #include <vector>
+
+#include "sanitized.h"
+#include "sculpt/base/memory_reuse.h"
 
 namespace sculpt::core {
 namespace {
@@ -61,6 +68,51 @@ TEST(ParallelFor, UsesMoreThanTheCallingThread) {
       },
       2);
   EXPECT_EQ(ids.size(), 2u);
+}
+
+// In a process of its own (the pool is process-wide and its threads start
+// once): the page faults a pool thread takes touching 16 MiB of fresh heap
+// blocks in its first loop, with pool threads asked to warm `warm_bytes` of
+// their heap when they start. Exits 0 when `warm` and it took almost none,
+// or when not `warm` and it took a fault a page (the measurement works).
+[[noreturn]] void exit_on_a_pool_threads_faults(bool warm) {
+  (void)keep_freed_memory(size_t{256} << 20);
+  warm_pool_threads_when_started(warm ? size_t{32} << 20 : 0);
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<long> faults{-1};
+  parallel_for(
+      2,
+      [&](int64_t) {
+        if (std::this_thread::get_id() == caller) {
+          // Holds its index, so the other goes to the pool's thread.
+          while (faults.load() < 0 && std::chrono::steady_clock::now() < give_up)
+            std::this_thread::yield();
+          return;
+        }
+        rusage before{}, after{};
+        getrusage(RUSAGE_THREAD, &before);
+        constexpr size_t kBlock = size_t{64} << 10, kBlocks = 256;  // under the mmap threshold
+        std::vector<std::unique_ptr<volatile char[]>> blocks;
+        for (size_t b = 0; b < kBlocks; ++b) {
+          blocks.emplace_back(new volatile char[kBlock]);
+          for (size_t at = 0; at < kBlock; at += 4096)
+            blocks.back()[at] = 1;
+        }
+        getrusage(RUSAGE_THREAD, &after);
+        faults.store(after.ru_minflt - before.ru_minflt);
+      },
+      2);
+  const long pages = static_cast<long>((size_t{16} << 20) / 4096);
+  const long took = faults.load();
+  std::exit(took >= 0 && (warm ? took < pages / 16 : took > pages / 2) ? 0 : 1);
+}
+
+TEST(ParallelFor, PoolThreadsAskedToWarmTheirHeapTakeNoFaultsInTheirFirstLoop) {
+  if (test::kSanitized) GTEST_SKIP() << "a sanitizer's own allocator keeps no warmed heap";
+  GTEST_FLAG_SET(death_test_style, "threadsafe");  // a fresh process: no pool threads yet
+  EXPECT_EXIT(exit_on_a_pool_threads_faults(false), testing::ExitedWithCode(0), "");
+  EXPECT_EXIT(exit_on_a_pool_threads_faults(true), testing::ExitedWithCode(0), "");
 }
 
 TEST(ParallelFor, ALoopInsideALoopRunsAndCompletes) {

@@ -143,10 +143,12 @@ class SurfaceMesher {
   /// `threads` mesh the changed bricks of one update in parallel (0: all
   /// cores); the meshes do not depend on it. `simplify_error`: in voxels of
   /// each brick's level; 0 publishes the march's meshes only.
-  /// `warm_heap_bytes`: the mesher thread touches that much of its heap
-  /// when it starts (memory_reuse.h), so that the first big dab's meshes
-  /// do not fault page by page (the window's first 66-voxel ball: 3600
-  /// faults, 34 ms against 9 for the next ball).
+  /// `warm_heap_bytes`: the mesher and the refiner threads each touch that
+  /// much of their heap when they start (memory_reuse.h), so that the first
+  /// big dab's meshes do not fault page by page (the window's first
+  /// 66-voxel ball: 3600 faults, 34 ms against 9 for the next ball), nor the
+  /// new block's refinement beside it (4700 faults in the demo's first half
+  /// second).
   explicit SurfaceMesher(int threads = 0, float simplify_error = kSimplifyError,
                          size_t warm_heap_bytes = 0);
   ~SurfaceMesher();
@@ -163,7 +165,7 @@ class SurfaceMesher {
   /// The meshes made since the previous call; nothing when none.
   std::optional<SurfaceDelta> take();
 
-  /// Waits until the mesher thread has touched the heap it was given
+  /// Waits until the mesher and refiner threads have touched the heap they were given
   /// (warm_heap_bytes; at once when none): the window starts its devices
   /// after it, so a first dab never waits for it.
   void wait_until_warm();
@@ -207,6 +209,8 @@ class SurfaceMesher {
   };
   void run();
   void refine();
+  // Touches `bytes` of this thread's heap, then counts it warm.
+  void warm_this_thread(size_t bytes);
   /// Simplifies the bricks the refinement's cache remade (in parallel).
   void simplify_refined(const core::MixedLevelMeshCache& cache,
                         std::vector<std::shared_ptr<const core::BrickMesh>>& simplified,
@@ -244,7 +248,8 @@ class SurfaceMesher {
   Pending pending_;
   bool has_pending_ = false;
   bool busy_ = false;
-  bool warm_ = false;                       // the mesher thread's heap is touched (meshed_ tells)
+  int threads_warm_ =
+      0;  // of the mesher and the refiner, those whose heap is touched (meshed_ tells)
   std::unique_ptr<Refinement> refinement_;  // the newest volume's, until taken over
   uint64_t refine_epochs_ = 0;
   bool hold_refinement_ = false;
