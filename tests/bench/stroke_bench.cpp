@@ -39,10 +39,26 @@ double thread_cpu_s() {
   return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
 }
 
+// The peers.py 256^3 sphere (radius 0.35 * 256), to sculpt as the window's
+// sculpting thread does.
+Volume sphere_to_sculpt() {
+  // Freed memory kept (memory_reuse.h): an undo step's brick copies reuse
+  // the pages the steps it pushed out freed, instead of faulting in fresh
+  // ones at ~8 us a page (measured at spacing 8: the dabs 8.9 -> 7.2 ms,
+  // the stroke 22.9 -> 15.6 ms).
+  keep_freed_memory(size_t{256} << 20);
+  // And 96 MiB of heap touched once (station_window.cpp): without it the
+  // first variant a process runs pays its undo copies' first faults (the
+  // dabs at spacing 8 measured 8.1 ms first, 6.5 ms after others).
+  static const bool warmed = (warm_this_threads_heap(size_t{96} << 20), true);
+  (void)warmed;
+  static const Volume* material = new Volume(sphere_volume(256, 0.35f));
+  return *material;
+}
+
 // Where the time went, per iteration, from the sculptor's own timers (wall
 // time of each phase; encode_ms includes storing).
-void count_where_the_time_went(benchmark::State& state, const DabStats& total,
-                               int64_t iterations) {
+void count_where_the_time_went(benchmark::State& state, const DabStats& total, int64_t iterations) {
   const double per = 1e-6 / static_cast<double>(iterations);
   state.counters["decode_ms"] = static_cast<double>(total.decode_ns) * per;
   state.counters["apply_ms"] = static_cast<double>(total.apply_ns) * per;
@@ -57,20 +73,7 @@ void BM_StrokeVsDabs(benchmark::State& state) {
   const int64_t sweep = state.range(0);
   const bool grid_tool = state.range(1) != 0;
   const float spacing = static_cast<float>(state.range(2));
-  // As the window does (memory_reuse.h): an undo step's brick copies reuse
-  // the pages the steps it pushed out freed, instead of faulting in fresh
-  // ones at ~8 us a page (measured at spacing 8: the dabs 8.9 -> 7.2 ms,
-  // the stroke 22.9 -> 15.6 ms).
-  keep_freed_memory(size_t{256} << 20);
-  // And as the window's sculpting thread does (station_window.cpp), 96 MiB
-  // of heap touched once: without it the first variant a process runs pays
-  // its undo copies' first faults (the dabs at spacing 8 measured 8.1 ms
-  // first, 6.5 ms after others).
-  static const bool warmed = (warm_this_threads_heap(size_t{96} << 20), true);
-  (void)warmed;
-  static Volume* material = nullptr;
-  if (material == nullptr) material = new Volume(sphere_volume(256, 0.35f));
-  Volume v = *material;
+  Volume v = sphere_to_sculpt();
   Sculptor sculptor(v);
   sculptor.set_tool(grid_tool ? tool_from_grid(sphere_density(32, 0.4f))
                               : make_sphere_tool(0.4f * 32.0f));
@@ -135,12 +138,7 @@ BENCHMARK(BM_StrokeVsDabs)
 // the press (a sculptor waits for all of it); the counters say where it
 // went (wall time of the decodes, the sweep and the stores).
 void BM_StrokeBigBall(benchmark::State& state) {
-  keep_freed_memory(size_t{256} << 20);
-  static const bool warmed = (warm_this_threads_heap(size_t{96} << 20), true);
-  (void)warmed;
-  static Volume* material = nullptr;
-  if (material == nullptr) material = new Volume(sphere_volume(256, 0.35f));
-  Volume v = *material;
+  Volume v = sphere_to_sculpt();
   Sculptor sculptor(v);
   sculptor.set_tool(make_sphere_tool(66.0f));
   set_default_threads(static_cast<int>(state.range(0)));
