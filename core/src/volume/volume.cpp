@@ -241,11 +241,7 @@ void Volume::replace_brick(glm::ivec3 b, Brick brick) {
 }
 
 void Volume::store_brick(glm::ivec3 b, std::span<uint8_t> voxels) {
-  const size_t i = brick_index(b);
-  pad_outside(b, voxels);
-  remember_stored(i, voxels);
-  bricks_[i].encode(voxels, options_.brick_edge, options_.levels);
-  count_stored(i);
+  store_brick(b, voxels, Box{});  // no known changed part: the whole re-encode
 }
 
 void Volume::store_brick(glm::ivec3 b, std::span<uint8_t> voxels, const Box& changed) {
@@ -261,7 +257,8 @@ void Volume::encode_stored(glm::ivec3 b, std::span<uint8_t> voxels, const Box& c
   const int e = options_.brick_edge;
   Brick& brick = bricks_[brick_index(b)];
   // A far-face brick's padding repeats its last voxels: a change there can
-  // reach beyond the box, so it takes the whole re-encode.
+  // reach beyond the box, so it takes the whole re-encode (as does a store
+  // with no changed part named).
   if (local.empty() || box.size() != glm::ivec3(e)) {
     pad_outside(b, voxels);
     brick.encode(voxels, e, options_.levels);
