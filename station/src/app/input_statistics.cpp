@@ -30,7 +30,7 @@ void InputStatistics::still_unshown(int64_t unshown) {
 
 void InputStatistics::submitted(uint64_t change, int64_t now_ns) {
   for (const Made& m : made_)
-    meshing_.push_back({change, m.report_t_ns, m.pictured});
+    meshing_.push_back({change, m.report_t_ns, m.pictured, now_ns});
   made_.clear();
   // A dab in the air (or one that left the voxels as they were) has nothing
   // to wait for; without this it would count until the next change meshed.
@@ -48,12 +48,25 @@ void InputStatistics::ready(uint64_t change, uint64_t full_detail_change, int64_
     recent_us_.push_back(first);
     if (recent_us_.size() > kRecentDabs) recent_us_.pop_front();
     all_us_.add(first);
+    const Meshing& m = detailing_.back();
+    note_slow({first, static_cast<double>(m.submitted_ns - m.report_t_ns) * 1e-3, m.change});
     if (!detailing_.back().pictured) first_picture_us_.add(first);
   }
   while (!detailing_.empty() && detailing_.front().change <= full_detail_change) {
     full_detail_us_.add(us(detailing_.front()));
     detailing_.pop_front();
   }
+}
+
+void InputStatistics::note_slow(const SlowDab& dab) {
+  // Kept sorted, slowest first; a dab slower than the last kept one takes
+  // its place and sinks to its rank (eight entries: no heap needed).
+  if (slowest_count_ == kSlowestKept && dab.first_mesh_us <= slowest_.back().first_mesh_us) return;
+  size_t at = std::min(slowest_count_, kSlowestKept - 1);
+  slowest_[at] = dab;
+  slowest_count_ = std::max(slowest_count_, at + 1);
+  for (; at > 0 && slowest_[at - 1].first_mesh_us < slowest_[at].first_mesh_us; --at)
+    std::swap(slowest_[at - 1], slowest_[at]);
 }
 
 LatencyStats InputStatistics::recent_latency() const {

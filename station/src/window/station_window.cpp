@@ -173,6 +173,18 @@ nlohmann::ordered_json latency_figures(const LatencyStats& l) {
           {"max", l.max_us}};
 }
 
+// The slowest dabs to a first mesh, each split into report -> hand-over
+// (the sculpting side) and hand-over -> mesh ready (the mesher).
+nlohmann::ordered_json slowest_dab_figures(std::span<const InputStatistics::SlowDab> dabs) {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const InputStatistics::SlowDab& d : dabs)
+    list.push_back({{"first_mesh_ms", d.first_mesh_us * 1e-3},
+                    {"handed_over_ms", d.handed_over_us * 1e-3},
+                    {"meshing_ms", (d.first_mesh_us - d.handed_over_us) * 1e-3},
+                    {"change", d.change}});
+  return list;
+}
+
 Status write_stats(const std::string& path, const RunFigures& f, const StationController& c,
                    const HapticStation* haptics) {
   // What the program holds, apart from what the allocator keeps free: a
@@ -238,6 +250,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
       {"dab_latency_us", latency_figures(c.session_latency())},
       {"full_detail_latency_us", latency_figures(c.full_detail_latency())},
       {"first_picture_latency_us", latency_figures(c.first_picture_latency())},
+      {"slowest_dabs", slowest_dab_figures(c.slowest_dabs())},
       {"stand_ins",
        {{"dabs_stood_in", c.loop().counters().dabs_stood_in},
         {"dropped", c.stand_ins().dropped()}}},

@@ -26,6 +26,31 @@ TEST(InputStatistics, ADabCountsFromItsReportToTheMeshOfItsChange) {
   EXPECT_EQ(s.session_latency().count, 3);
 }
 
+TEST(InputStatistics, TheSlowestDabsAreKeptSlowestFirstWithWhereTheirTimeWent) {
+  InputStatistics s;
+  // Twelve dabs, one change each: dab i reported at 100 i ms, handed over
+  // i ms later and meshed (7 i mod 12) ms after that, so the slowest are
+  // not the latest.
+  for (int64_t i = 1; i <= 12; ++i) {
+    const int64_t report = 100 * i * kMs;
+    const int64_t handed = report + i * kMs;
+    s.note_dabs(1, report);
+    s.submitted(static_cast<uint64_t>(i), handed);
+    s.ready(static_cast<uint64_t>(i), static_cast<uint64_t>(i), handed + (7 * i % 12) * kMs);
+  }
+  const auto slow = s.slowest();
+  ASSERT_EQ(slow.size(), InputStatistics::kSlowestKept);
+  for (size_t k = 1; k < slow.size(); ++k)
+    EXPECT_GE(slow[k - 1].first_mesh_us, slow[k].first_mesh_us);
+  // The slowest is i = 10 (10 + 10 ms); three dabs took 16 ms, four 12 ms.
+  EXPECT_EQ(slow[0].change, 10u);
+  EXPECT_EQ(slow[0].first_mesh_us, 20000.0);
+  EXPECT_EQ(slow[0].handed_over_us, 10000.0);
+  EXPECT_EQ(slow[1].first_mesh_us, 16000.0);
+  // The four 8 ms and 4 ms dabs are the ones left out.
+  EXPECT_EQ(slow.back().first_mesh_us, 12000.0);
+}
+
 TEST(InputStatistics, FullDetailCanComeLaterThanTheFirstMesh) {
   InputStatistics s;
   s.note_dabs(1, 10 * kMs);

@@ -161,6 +161,22 @@ TEST(StationWindow, RunsTheLiveLoopOnASimDeviceAndTakesAScreenshot) {
   EXPECT_GE(stats["frames"].get<int>(), 1);
   EXPECT_GT(stats["dabs"].get<int>(), 10);
   EXPECT_EQ(stats["dab_latency_us"]["count"], stats["dabs"]);
+  // The slowest dabs are named, slowest first, the slowest the maximum, each
+  // split into its sculpting and its meshing.
+  const auto& slowest = stats["slowest_dabs"];
+  ASSERT_FALSE(slowest.empty());
+  EXPECT_LE(slowest.size(), 8u);
+  EXPECT_NEAR(slowest[0]["first_mesh_ms"].get<double>() * 1e3,
+              stats["dab_latency_us"]["max"].get<double>(), 1.0);
+  for (size_t i = 0; i < slowest.size(); ++i) {
+    const auto& d = slowest[i];
+    EXPECT_NEAR(d["handed_over_ms"].get<double>() + d["meshing_ms"].get<double>(),
+                d["first_mesh_ms"].get<double>(), 1e-6);
+    EXPECT_GE(d["handed_over_ms"].get<double>(), 0.0);
+    if (i > 0) {
+      EXPECT_LE(d["first_mesh_ms"].get<double>(), slowest[i - 1]["first_mesh_ms"].get<double>());
+    }
+  }
   EXPECT_GT(stats["triangles"].get<int>(), 1000);
   // What the window recorded replays to what the window sculpted, bit for
   // bit, however the frames fell.

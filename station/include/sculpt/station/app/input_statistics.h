@@ -12,8 +12,10 @@
 //
 // Thread safety: one thread (the station's main loop).
 
+#include <array>
 #include <cstdint>
 #include <deque>
+#include <span>
 #include <vector>
 
 #include "sculpt/base/latency_histogram.h"
@@ -51,6 +53,19 @@ class InputStatistics {
   /// Report to the first picture of the dab (stand-in or mesh), the whole session.
   LatencyStats first_picture_latency() const { return latency_stats(first_picture_us_); }
 
+  /// One of the session's slowest dabs to a first mesh, split where the
+  /// time went: report -> handed to the mesher (reading, ordering and
+  /// sculpting), then -> its change's first mesh ready to draw (meshing).
+  struct SlowDab {
+    double first_mesh_us = 0;
+    double handed_over_us = 0;
+    uint64_t change = 0;
+  };
+  static constexpr size_t kSlowestKept = 8;
+  /// The slowest dabs so far, slowest first (at most kSlowestKept): the
+  /// few that set a p99 are named, not only counted.
+  std::span<const SlowDab> slowest() const { return {slowest_.data(), slowest_count_}; }
+
   /// The reader's count of motion samples so far; returns the report rate
   /// over about the last second once one has passed, else a negative value.
   double reader_samples(int64_t motion_samples, int64_t now_ns);
@@ -66,7 +81,9 @@ class InputStatistics {
     uint64_t change;
     int64_t report_t_ns;
     bool pictured;
+    int64_t submitted_ns;
   };
+  void note_slow(const SlowDab& dab);
   std::deque<Made> unshown_;       // dabs that changed nothing yet, oldest first
   std::vector<Made> made_;         // dabs not yet submitted
   std::deque<Meshing> meshing_;    // submitted, waiting for their meshes
@@ -77,6 +94,8 @@ class InputStatistics {
   LatencyHistogram all_us_;  // fixed memory: the station runs for hours
   LatencyHistogram full_detail_us_;
   LatencyHistogram first_picture_us_;
+  std::array<SlowDab, kSlowestKept> slowest_{};
+  size_t slowest_count_ = 0;
   bool rate_started_ = false;
   int64_t rate_since_ns_ = 0;
   int64_t rate_samples_ = 0;

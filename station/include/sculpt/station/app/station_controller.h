@@ -356,6 +356,7 @@ class StationController {
   LatencyStats session_latency() const { return stats_.session_latency(); }
   LatencyStats full_detail_latency() const { return stats_.full_detail_latency(); }
   LatencyStats first_picture_latency() const { return stats_.first_picture_latency(); }
+  std::span<const InputStatistics::SlowDab> slowest_dabs() const { return stats_.slowest(); }
   /// The stand-ins of dabs not yet meshed (ControllerOptions::stand_ins);
   /// safe from any thread without mutex().
   DabStandIns& stand_ins() { return stand_ins_; }
