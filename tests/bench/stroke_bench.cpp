@@ -173,5 +173,54 @@ BENCHMARK(BM_StrokeBigBall)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
+// The demo's ring (major radius 12, minor 5) turning as a 6-DOF device
+// turns it, mirrored as the demo's nose is: each iteration a press of two
+// samples 8.4 voxels apart (the demo's longest ring segment) at a new place
+// on the 256^3 sphere and a new orientation, so each of the segment's 17
+// placements, and their mirror images, is rotated anew, on range(0)
+// threads. Wall time of the press; the counters say where it went.
+void BM_StrokeTurningRing(benchmark::State& state) {
+  Volume v = sphere_to_sculpt();
+  Sculptor sculptor(v);
+  sculptor.set_tool(make_ring_tool(12.0f, 5.0f));
+  sculptor.set_mirror(MirrorPlane{0, 128.0f});
+  set_default_threads(static_cast<int>(state.range(0)));
+  const glm::vec3 centre(127.5f);
+  const float radius = 0.35f * 256.0f;
+  const glm::vec3 axis = glm::normalize(glm::vec3(1.0f, 2.0f, 0.5f));
+  auto press = [&](int64_t i) {
+    const float a = 0.37f * static_cast<float>(i);
+    const glm::vec3 on = centre + radius * glm::vec3(0.3f * std::cos(a), 0.3f * std::sin(a), 0.9f);
+    const glm::quat turn = glm::angleAxis(0.05f * static_cast<float>(i), axis);
+    const StrokeSample path[2] = {{on, turn},
+                                  {on + glm::vec3(0.0f, 8.4f, 0.0f),
+                                   glm::angleAxis(0.05f * static_cast<float>(i) + 0.003f, axis)}};
+    return sweep_stroke(sculptor, path,
+                        {i % 2 ? SculptMode::kSubtract : SculptMode::kAdd, 1.0f, false});
+  };
+  for (int64_t w = 0; w < 2; ++w)
+    (void)press(w);  // untimed: the first presses fault in their buffers
+  DabStats total;
+  int64_t i = 2;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    total += press(i);
+    state.SetIterationTime(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    ++i;
+  }
+  set_default_threads(0);
+  count_where_the_time_went(state, total, i - 2);
+  state.counters["voxels_rotated"] =
+      static_cast<double>(sculptor.rotation_cache_stats().voxels_rotated) / static_cast<double>(i);
+}
+BENCHMARK(BM_StrokeTurningRing)
+    ->Arg(1)
+    ->Arg(2)
+    ->ArgName("threads")
+    ->Iterations(40)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
 }  // namespace
 }  // namespace sculpt::core

@@ -77,6 +77,9 @@ constexpr size_t kBatchSpanRows = size_t{1} << 20;
 // Bricks a segment changes at or beyond which they are combined on every core
 // (as Sculptor's big dabs).
 constexpr size_t kParallelBricks = 16;
+// Placements of a tool (not a ball) in one apply() from which its bricks
+// are combined on every core whatever their number.
+constexpr size_t kParallelPlacements = 8;
 
 // std::floor() and std::ceil() to int, for |x| < 2^31: without SSE4.1 (the
 // build targets plain x86-64) those are library calls, four a row of spans.
@@ -464,6 +467,10 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
     Box bb;  // the part of the brick its sweeps can reach
     StrokeBrick* held;
     std::vector<uint32_t> sweeps;
+    // Per entry of `sweeps`, the rotated rows this brick asked its tool's
+    // cache for: the caches take the sums after the bricks are done (the
+    // bricks run on several threads, the cache's counts are not atomic).
+    std::vector<RotatedToolCacheStats> row_counts;
     int64_t changed = 0;
     Box touched{glm::ivec3(std::numeric_limits<int>::max()),
                 glm::ivec3(std::numeric_limits<int>::min())};
@@ -523,7 +530,7 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
             ++stats.bricks_reused;
           }
           job_of.emplace(index, jobs.size());
-          jobs.push_back({b, bb, &held, {si}});
+          jobs.push_back({b, bb, &held, {si}, {}});
         }
   }
   // A big ball's first segment reaches a hundred bricks; each decode reads
@@ -608,7 +615,9 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
       }
     };
 
-    for (const uint32_t si : job.sweeps) {
+    job.row_counts.assign(job.sweeps.size(), RotatedToolCacheStats{});
+    for (size_t w = 0; w < job.sweeps.size(); ++w) {
+      const uint32_t si = job.sweeps[w];
       const Sweep& sw = sweeps[si];
       if (sw.ball) {
         // Balls come here only accumulating (run_balls() takes the rest).
@@ -659,12 +668,12 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
             }
           }
       } else {
+        RotatedToolCacheStats& counts = job.row_counts[w];
         for (const RotatedToolCache::Placement& pl : sw.placements) {
           RotatedToolEntry& entry = *pl.entry;
           const Box eb{entry.box().lo + pl.anchor, entry.box().hi + pl.anchor};
           const Box part = intersect(eb, bb);
           if (part.empty()) continue;
-          RotatedToolCacheStats counts;
           for (int z = part.lo.z; z < part.hi.z; ++z)
             for (int y = part.lo.y; y < part.hi.y; ++y) {
               const size_t k = row_index(y, z);
@@ -697,8 +706,6 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
               for (int i = 0; i < hi - lo; ++i)
                 out[i] = std::max(out[i], f[i]);
             }
-          // A tool's sweep runs on this thread (see below).
-          sw.cache->add_row_counts(counts);
         }
       }
     }
@@ -887,8 +894,10 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
   };
 
   const int64_t t_apply = now_ns();
-  // The ball's sweep reads nothing shared; the rotated tool's rows are filled
-  // lazily in shared entries, so a tool sweep stays on this thread.
+  // A ball's sweep reads nothing shared; a rotated tool's rows are filled
+  // lazily in entries the bricks share, which threads may fill at once
+  // (RotatedToolEntry): a turning tool's segment rotates dozens of
+  // placements, the work of its bricks.
   auto run_job = [&](Job& job, Scratch& scratch) {
     if (lean) {
       run_balls(job, scratch);
@@ -897,7 +906,12 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
     }
   };
   const size_t row_bytes = static_cast<size_t>(edge) + kCombineRowSlack;
-  if (all_balls && jobs.size() >= kParallelBricks) {
+  // A turning tool's segment is work enough on a few bricks: each of its
+  // placements rotates the tool's rows anew.
+  size_t placements = 0;
+  for (const Sweep& sw : sweeps)
+    placements += sw.placements.size();
+  if (jobs.size() >= kParallelBricks || (jobs.size() >= 2 && placements >= kParallelPlacements)) {
     parallel_for(static_cast<int64_t>(jobs.size()), [&](int64_t k) {
       Scratch scratch;
       if (!lean) scratch.sweep = take_buffer(brick_bytes + kCombineRowSlack);
@@ -914,6 +928,10 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
     for (Job& job : jobs)
       run_job(job, scratch_);
   }
+  for (const Job& job : jobs)
+    for (size_t k = 0; k < job.row_counts.size(); ++k)
+      if (RotatedToolCache* cache = sweeps[job.sweeps[k]].cache)
+        cache->add_row_counts(job.row_counts[k]);
   stats.apply_ns += now_ns() - t_apply;
 
   const int64_t t_store = now_ns();

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstring>
+#include <thread>
 
 namespace sculpt::core {
 
@@ -48,8 +49,9 @@ RotatedToolEntry::RotatedToolEntry(const PreparedTool& tool, const glm::mat3& ro
       values_(std::make_unique_for_overwrite<uint8_t[]>(values_size_)) {
   const glm::ivec3 s = frame_.box().size();
   const size_t rows = static_cast<size_t>(s.y) * s.z;
-  done_lo_.assign(rows, 0);
-  done_hi_.assign(rows, 0);
+  rows_ = rows;
+  done_ = std::make_unique<std::atomic<uint32_t>[]>(rows);  // value-initialised: empty
+  filling_ = std::make_unique<std::atomic<bool>[]>(rows);
   reach_lo_.assign(rows, 0);
   reach_hi_.assign(rows, 0);
   for (int z = 0; z < s.z; ++z)
@@ -64,12 +66,21 @@ const uint8_t* RotatedToolEntry::rotate_row(int y, int z, int x0, int x1,
          z < b.hi.z);
   const int ly = y - b.lo.y, lz = z - b.lo.z;
   const size_t r = static_cast<size_t>(lz) * b.size().y + ly;
+  // Rows are short (a tool's width): a thread finding this one taken waits
+  // the few microseconds its filling takes.
+  std::atomic<bool>& filling = filling_[r];
+  while (filling.exchange(true, std::memory_order_acquire))
+    std::this_thread::yield();
   uint8_t* values = &values_[r * stride_];
-  if (done_lo_[r] >= done_hi_[r]) std::memset(values, 0, stride_);
+  const uint32_t done = done_[r].load(std::memory_order_relaxed);  // ordered by the lock
+  int lo = done_lo(done), hi = done_hi(done);
+  if (lo >= hi) std::memset(values, 0, stride_);
   const int a = x0 - b.lo.x, e = x1 - b.lo.x;
   stats.voxels_requested += e - a;
-  int lo = done_lo_[r], hi = done_hi_[r];
   stats.voxels_reused += std::max(0, std::min(e, hi) - std::max(a, lo));
+  // The tool is sampled at integer steps from the row's start (Algorithm 1
+  // in fixed point), so a voxel's value does not depend on which stretch,
+  // or which thread, rotated it.
   if (lo >= hi) {
     frame_.sample_row(*tool_, y, z, x0, x1, values + a);
     stats.voxels_rotated += e - a;
@@ -88,15 +99,16 @@ const uint8_t* RotatedToolEntry::rotate_row(int y, int z, int x0, int x1,
       hi = e;
     }
   }
-  done_lo_[r] = static_cast<int16_t>(lo);
-  done_hi_[r] = static_cast<int16_t>(hi);
+  done_[r].store(static_cast<uint32_t>(lo) | (static_cast<uint32_t>(hi) << 16),
+                 std::memory_order_release);
+  filling.store(false, std::memory_order_release);
   return values + a;
 }
 
 size_t RotatedToolEntry::memory_bytes() const {
   return sizeof(*this) + values_size_ +
-         (done_lo_.size() + done_hi_.size() + reach_lo_.size() + reach_hi_.size()) *
-             sizeof(int16_t);
+         rows_ * (sizeof(std::atomic<uint32_t>) + sizeof(std::atomic<bool>)) +
+         (reach_lo_.size() + reach_hi_.size()) * sizeof(int16_t);
 }
 
 RotatedToolCache::RotatedToolCache(std::shared_ptr<const PreparedTool> tool, Sampling sampling,

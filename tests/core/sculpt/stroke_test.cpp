@@ -535,6 +535,38 @@ TEST(SweptStroke, ABigBallOnEveryCoreEqualsOneCore) {
   EXPECT_EQ(run(1), run(4));
 }
 
+// A turning ring's segments rotate a placement every half voxel, mirrored;
+// its bricks, on every core, fill rows of the same placements at once
+// (bricks side by side in x share rows): the same volume, and the same
+// rotated voxels asked for, as on one core.
+TEST(SweptStroke, ATurningToolOnEveryCoreEqualsOneCore) {
+  auto run = [](int threads, RotatedToolCacheStats* counts) {
+    set_default_threads(threads);
+    Volume v = sphere_volume(160, 0.3f);
+    Sculptor s(v);
+    s.set_tool(make_ring_tool(12.0f, 5.0f));
+    s.set_mirror(MirrorPlane{0, 80.0f});
+    std::vector<StrokeSample> path;
+    for (int i = 0; i <= 8; ++i) {
+      const float fi = static_cast<float>(i);
+      const float a = 0.15f * fi;
+      path.push_back({glm::vec3(56.0f + 3.0f * fi, 40.0f + 8.0f * fi, 80.0f + 20.0f * std::sin(a)),
+                      glm::angleAxis(a, glm::normalize(glm::vec3(1.0f, 2.0f, 0.5f)))});
+    }
+    const DabStats st = sweep_stroke(s, path, {SculptMode::kSubtract, 1.0f, false});
+    set_default_threads(0);
+    EXPECT_GE(st.bricks_decoded + st.bricks_reused, 16);  // enough for every core
+    EXPECT_GT(st.voxels_changed, 10000);
+    *counts = s.rotation_cache_stats();
+    return v.content_hash();
+  };
+  RotatedToolCacheStats one, every;
+  EXPECT_EQ(run(1, &one), run(4, &every));
+  EXPECT_EQ(one.placements, every.placements);
+  EXPECT_EQ(one.voxels_requested, every.voxels_requested);
+  EXPECT_GT(one.voxels_rotated, 0);
+}
+
 // On empty material, adding at full strength leaves each voxel exactly the
 // ball's filling: tool_density() of its distance to the nearest segment,
 // computed here voxel by voxel for paths in every direction.

@@ -18,9 +18,12 @@
 // filled, not the whole rotated box when the entry is made.
 //
 // Memory is bounded: entries are evicted least recently used once their
-// bytes exceed the cap. Not thread-safe: one cache per sculpting thread.
+// bytes exceed the cap. The cache is not thread-safe (one per sculpting
+// thread: acquire() on one thread); an entry's rows may be asked for by
+// several threads at once.
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
@@ -94,7 +97,8 @@ class RotatedToolEntry {
            z < b.hi.z);
     const size_t r = static_cast<size_t>(z - b.lo.z) * b.size().y + (y - b.lo.y);
     const int a = x0 - b.lo.x, e = x1 - b.lo.x;
-    if (done_lo_[r] <= a && e <= done_hi_[r] && a < e) {
+    const uint32_t done = done_[r].load(std::memory_order_acquire);
+    if (done_lo(done) <= a && e <= done_hi(done) && a < e) {
       stats.voxels_requested += e - a;
       stats.voxels_reused += e - a;
       return &values_[r * stride_ + static_cast<size_t>(a)];
@@ -129,8 +133,19 @@ class RotatedToolEntry {
   // Not zeroed as a whole: a row's bytes (and its slack) are zeroed when the
   // row is first filled (rotate_row()).
   std::unique_ptr<uint8_t[]> values_;
-  // Per row (y, z) of the box, the computed stretch [lo, hi) of x offsets.
-  std::vector<int16_t> done_lo_, done_hi_;
+  // Per row (y, z) of the box, the computed stretch [lo, hi) of x offsets,
+  // packed lo | hi << 16. Threads may fill rows of one entry at once (a
+  // stroke's bricks side by side in x share rows, and so do two placements
+  // of one entry at different anchors): a row's stretch is published
+  // (release) after its values are written, so a reader whose stretch is
+  // covered reads finished values without a lock; a stretch only grows, and
+  // growing it writes only bytes outside it.
+  std::unique_ptr<std::atomic<uint32_t>[]> done_;
+  // Per row, held while its stretch grows (rotate_row()).
+  std::unique_ptr<std::atomic<bool>[]> filling_;
+  size_t rows_ = 0;
+  static int done_lo(uint32_t done) { return static_cast<int>(done & 0xFFFFu); }
+  static int done_hi(uint32_t done) { return static_cast<int>(done >> 16); }
   // Per row, the stretch within reach (box-relative x offsets), computed
   // once per placement: a dab then needs no square root per row.
   std::vector<int16_t> reach_lo_, reach_hi_;
