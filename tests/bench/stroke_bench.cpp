@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <functional>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -131,6 +132,28 @@ BENCHMARK(BM_StrokeVsDabs)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
+// Presses press(0), press(1), ... untimed twice (the first presses fault in
+// their buffers), then once per iteration, timed by the wall clock (a
+// sculptor waits for all of a press, whichever threads did it); puts where
+// the time went in the counters and sets the default threads back. Returns
+// how many presses were made.
+int64_t time_presses(benchmark::State& state, const std::function<DabStats(int64_t)>& press) {
+  (void)press(0);
+  (void)press(1);
+  DabStats total;
+  int64_t i = 2;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    total += press(i);
+    state.SetIterationTime(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    ++i;
+  }
+  set_default_threads(0);
+  count_where_the_time_went(state, total, i - 2);
+  return i;
+}
+
 // The demo's head ball (radius 66: about a hundred bricks) pressed once, as
 // the station sculpts it (a stroke of one sample), at a new place on the
 // 256^3 sphere each time, alternately filled and cut, on range(0) threads:
@@ -151,19 +174,7 @@ void BM_StrokeBigBall(benchmark::State& state) {
     return sweep_stroke(sculptor, std::span(&at, 1),
                         {i % 2 ? SculptMode::kSubtract : SculptMode::kAdd, 1.0f, false});
   };
-  for (int64_t w = 0; w < 2; ++w)
-    (void)press(w);  // untimed: the first presses fault in their buffers
-  DabStats total;
-  int64_t i = 0;
-  for (auto _ : state) {
-    const auto t0 = std::chrono::steady_clock::now();
-    total += press(i);
-    state.SetIterationTime(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    ++i;
-  }
-  set_default_threads(0);
-  count_where_the_time_went(state, total, i);
+  time_presses(state, press);
 }
 BENCHMARK(BM_StrokeBigBall)
     ->Arg(1)
@@ -198,21 +209,10 @@ void BM_StrokeTurningRing(benchmark::State& state) {
     return sweep_stroke(sculptor, path,
                         {i % 2 ? SculptMode::kSubtract : SculptMode::kAdd, 1.0f, false});
   };
-  for (int64_t w = 0; w < 2; ++w)
-    (void)press(w);  // untimed: the first presses fault in their buffers
-  DabStats total;
-  int64_t i = 2;
-  for (auto _ : state) {
-    const auto t0 = std::chrono::steady_clock::now();
-    total += press(i);
-    state.SetIterationTime(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    ++i;
-  }
-  set_default_threads(0);
-  count_where_the_time_went(state, total, i - 2);
+  const int64_t presses = time_presses(state, press);
   state.counters["voxels_rotated"] =
-      static_cast<double>(sculptor.rotation_cache_stats().voxels_rotated) / static_cast<double>(i);
+      static_cast<double>(sculptor.rotation_cache_stats().voxels_rotated) /
+      static_cast<double>(presses);
 }
 BENCHMARK(BM_StrokeTurningRing)
     ->Arg(1)
