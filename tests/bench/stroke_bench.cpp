@@ -184,6 +184,38 @@ BENCHMARK(BM_StrokeBigBall)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
+// The demo's first ball: the same press on the empty new 256^3 block the
+// session starts with, where the tool stands (128, 116, 118). Every brick it
+// reaches is uniform, so none is decoded from a pyramid, and each it changes
+// is encoded whole. A new block and sculptor each iteration (untimed).
+void BM_StrokeBigBallOnANewBlock(benchmark::State& state) {
+  (void)sphere_to_sculpt();  // the heap warmed as the station's
+  set_default_threads(static_cast<int>(state.range(0)));
+  const Tool ball = make_sphere_tool(66.0f);
+  const StrokeSample at{glm::vec3(128.0f, 116.0f, 118.0f), glm::quat(1.0f, 0.0f, 0.0f, 0.0f)};
+  DabStats total;
+  int64_t presses = 0;
+  for (auto _ : state) {
+    Volume v(glm::ivec3(256), 0);
+    Sculptor sculptor(v);
+    sculptor.set_tool(ball);
+    const auto t0 = std::chrono::steady_clock::now();
+    total += sweep_stroke(sculptor, std::span(&at, 1), {SculptMode::kAdd, 1.0f, false});
+    state.SetIterationTime(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    ++presses;
+  }
+  set_default_threads(0);
+  count_where_the_time_went(state, total, presses);
+}
+BENCHMARK(BM_StrokeBigBallOnANewBlock)
+    ->Arg(1)
+    ->Arg(2)
+    ->ArgName("threads")
+    ->Iterations(20)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
 // The demo's ring (major radius 12, minor 5) turning as a 6-DOF device
 // turns it, mirrored as the demo's nose is: each iteration a press of two
 // samples 8.4 voxels apart (the demo's longest ring segment) at a new place

@@ -26,7 +26,7 @@ namespace {
 
 #ifdef SCULPT_CAPSULE_AVX2
 __attribute__((target("avx2"))) GrownStretch grow_avx2(const CapsuleRow& c, int x0, int lo, int hi,
-                                                       uint8_t* cov) {
+                                                       uint8_t* cov, int in_lo, int in_hi) {
   const __m256 a_x = _mm256_set1_ps(c.a_x);
   const __m256 abx = _mm256_set1_ps(c.ab.x), aby = _mm256_set1_ps(c.ab.y);
   const __m256 abz = _mm256_set1_ps(c.ab.z);
@@ -47,6 +47,10 @@ __attribute__((target("avx2"))) GrownStretch grow_avx2(const CapsuleRow& c, int 
       _mm256_movemask_epi8(_mm256_cmpeq_epi8(before, _mm256_set1_epi8(static_cast<char>(-1)))));
   for (int g = lo >> 3; g <= (hi - 1) >> 3; ++g) {
     if (((full >> (8 * g)) & 0xFFu) == 0xFFu) continue;
+    if (8 * g >= in_lo && 8 * g + 8 <= in_hi) {  // inside radius - 1: 255, unmeasured
+      group[g] = _mm256_set1_epi32(255);
+      continue;
+    }
     const __m256i x = _mm256_add_epi32(_mm256_set1_epi32(x0 + 8 * g), lane8);
     const __m256 apx = _mm256_sub_ps(_mm256_cvtepi32_ps(x), a_x);
     __m256 t = _mm256_mul_ps(_mm256_add_ps(_mm256_mul_ps(apx, abx), dot_yz), inv_ab2);
@@ -104,12 +108,14 @@ GrownStretch grow_hard_capsule_row_scalar(const CapsuleRow& c, int x0, int lo, i
 }
 
 GrownStretch grow_hard_capsule_row(const CapsuleRow& c, int x0, int lo, int hi, uint8_t* cov,
-                                   uint8_t* fill) {
+                                   uint8_t* fill, int in_lo, int in_hi) {
   if (lo >= hi) return {};
 #ifdef SCULPT_CAPSULE_AVX2
-  if (hi <= 32 && cpu_has_avx2()) return grow_avx2(c, x0, lo, hi, cov);
+  if (hi <= 32 && cpu_has_avx2()) return grow_avx2(c, x0, lo, hi, cov, in_lo, in_hi);
 #endif
-  return grow_hard_capsule_row_scalar(c, x0, lo, hi, cov, fill);
+  for (int x = lo; x < hi; ++x)
+    fill[x] = x >= in_lo && x < in_hi ? uint8_t{255} : hard_capsule_filling(c, x0 + x);
+  return raise_coverage(fill, cov, lo, hi);
 }
 
 }  // namespace sculpt::core

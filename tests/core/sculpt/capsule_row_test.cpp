@@ -15,7 +15,8 @@ namespace {
 // segments in every direction, rows through, beside and past the capsule,
 // every stretch [lo, hi) of the row and coverage of full and empty groups,
 // runs of 0 and 255 and noise, it must give the scalar loop's coverage (the
-// row and the bytes after it) and grown stretch.
+// row and the bytes after it) and grown stretch; and so must it given the
+// stretch inside radius - 1 to fill unmeasured.
 TEST(CapsuleRow, GrowingMatchesTheScalarLoopForEveryStretch) {
   uint32_t s = 11;
   auto next = [&] {
@@ -25,7 +26,7 @@ TEST(CapsuleRow, GrowingMatchesTheScalarLoopForEveryStretch) {
   auto uniform = [&](float lo, float hi) {
     return lo + (hi - lo) * static_cast<float>(next() % 65536) / 65535.0f;
   };
-  int grown_rows = 0, kernel_rows = 0;
+  int grown_rows = 0, kernel_rows = 0, rows_with_inside = 0;
   for (int trial = 0; trial < 300; ++trial) {
     const glm::vec3 a(uniform(-8.0f, 40.0f), uniform(-4.0f, 4.0f), uniform(-4.0f, 4.0f));
     // Points, short and long segments, some along x.
@@ -48,6 +49,25 @@ TEST(CapsuleRow, GrowingMatchesTheScalarLoopForEveryStretch) {
                          radius,
                          inner * inner,
                          (radius + 1.0f) * (radius + 1.0f)};
+    // The row's voxels at least a voxel inside radius - 1, found in double
+    // precision (a capsule meets a row in one stretch): the stroke's spans
+    // name such a stretch for the kernel to fill unmeasured.
+    int in_lo = 32, in_hi = 0;
+    for (int x = 0; x < 32; ++x) {
+      const glm::dvec3 p(static_cast<double>(x0 + x) - static_cast<double>(a.x), apy, apz), d(ab);
+      const double dd = glm::dot(d, d);
+      const double t = dd > 0.0 ? std::clamp(glm::dot(p, d) / dd, 0.0, 1.0) : 0.0;
+      if (glm::length(p - t * d) <= static_cast<double>(inner) - 1.0) {
+        in_lo = std::min(in_lo, x);
+        in_hi = x + 1;
+      }
+    }
+    // Whole 8-voxel groups inside: the kernel fills those unmeasured.
+    for (int g = 0; g < 4; ++g)
+      if (8 * g >= in_lo && 8 * g + 8 <= in_hi) {
+        ++rows_with_inside;
+        break;
+      }
     for (int lo = 0; lo < 32; lo += 1 + static_cast<int>(next() % 4)) {
       for (int hi = lo; hi <= 32; hi += 1 + static_cast<int>(next() % 5)) {
         // Per 8 voxels: filled fully (the kernel skips them), empty, runs of
@@ -66,8 +86,17 @@ TEST(CapsuleRow, GrowingMatchesTheScalarLoopForEveryStretch) {
         std::vector<uint8_t> want = cov, fill(64), scratch(64);
         const GrownStretch w =
             grow_hard_capsule_row_scalar(row, x0, lo, hi, want.data(), fill.data());
+        std::vector<uint8_t> cov_inside = cov;
         const GrownStretch g = grow_hard_capsule_row(row, x0, lo, hi, cov.data(), scratch.data());
         ASSERT_EQ(cov, want) << "trial " << trial << " lo " << lo << " hi " << hi;
+        const GrownStretch gi =
+            grow_hard_capsule_row(row, x0, lo, hi, cov_inside.data(), scratch.data(), in_lo, in_hi);
+        ASSERT_EQ(cov_inside, want) << "inside, trial " << trial << " lo " << lo << " hi " << hi;
+        ASSERT_EQ(gi.begin < gi.end, w.begin < w.end) << "inside, trial " << trial;
+        if (w.begin < w.end) {
+          ASSERT_EQ(gi.begin, w.begin) << "inside, trial " << trial;
+          ASSERT_EQ(gi.end, w.end) << "inside, trial " << trial;
+        }
         ASSERT_EQ(g.begin < g.end, w.begin < w.end) << "trial " << trial;
         if (w.begin < w.end) {
           ASSERT_EQ(g.begin, w.begin) << "trial " << trial << " lo " << lo << " hi " << hi;
@@ -81,6 +110,7 @@ TEST(CapsuleRow, GrowingMatchesTheScalarLoopForEveryStretch) {
   // Enough of both: rows the capsule raised, and rows it left alone.
   EXPECT_GT(grown_rows, kernel_rows / 10);
   EXPECT_LT(grown_rows, kernel_rows);
+  EXPECT_GT(rows_with_inside, 10);  // and rows with groups filled unmeasured
 }
 
 }  // namespace

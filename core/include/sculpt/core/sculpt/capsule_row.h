@@ -74,12 +74,15 @@ GrownStretch raise_coverage(const uint8_t* fill, uint8_t* cov, int lo, int hi);
 /// scratch of at least hi bytes. cov must stay readable and writable for 32
 /// bytes from cov[0] when hi <= 32 (a brick row with its slack): there, with
 /// AVX2, the row is one 32-byte step whose bytes outside [lo, hi) are stored
-/// back unchanged (not safe if another thread writes them meanwhile). The
-/// result is grow_hard_capsule_row_scalar()'s either way.
+/// back unchanged (not safe if another thread writes them meanwhile).
+/// [in_lo, in_hi) (empty by default) may name voxels the caller knows lie
+/// within radius - 1 with a voxel to spare: their filling is 255 and is not
+/// measured (a big ball's rows are mostly inside). The result is
+/// grow_hard_capsule_row_scalar()'s either way.
 GrownStretch grow_hard_capsule_row(const CapsuleRow& c, int x0, int lo, int hi, uint8_t* cov,
-                                   uint8_t* fill);
+                                   uint8_t* fill, int in_lo = 0, int in_hi = 0);
 
-/// The same, a voxel at a time (the reference).
+/// The same, a voxel at a time, every voxel measured (the reference).
 GrownStretch grow_hard_capsule_row_scalar(const CapsuleRow& c, int x0, int lo, int hi, uint8_t* cov,
                                           uint8_t* fill);
 
