@@ -36,6 +36,8 @@ void drain(std::atomic<int64_t>& next, int64_t count, const std::function<void(i
 // waking a sleeping worker costs far less.
 class WorkerPool {
  public:
+  explicit WorkerPool(const char* name) : name_(name) {}
+
   // Runs the loop with up to `helpers` pool threads beside the caller, or
   // returns false at once if another thread's loop holds the pool.
   bool try_run(int64_t count, const std::function<void(int64_t)>& body, int helpers) {
@@ -45,8 +47,7 @@ class WorkerPool {
       std::lock_guard lock(mutex_);
       // A new thread must count this loop as unseen: it takes the lock only
       // after the generation below has moved on.
-      while (static_cast<int>(threads_.size()) < helpers)
-        threads_.emplace_back([this, seen = generation_] { work(seen); });
+      start_locked(helpers);
       body_ = &body;
       count_ = count;
       next_.store(0, std::memory_order_relaxed);
@@ -74,9 +75,20 @@ class WorkerPool {
     return true;
   }
 
+  // Starts threads until the crew has `helpers`.
+  void start(int helpers) {
+    std::lock_guard lock(mutex_);
+    start_locked(helpers);
+  }
+
  private:
+  void start_locked(int helpers) {
+    while (static_cast<int>(threads_.size()) < helpers)
+      threads_.emplace_back([this, seen = generation_] { work(seen); });
+  }
+
   void work(uint64_t seen) {
-    name_this_thread("pool");
+    name_this_thread(name_);
     // Before taking a seat: the loop that started this thread goes on
     // without it meanwhile.
     if (const size_t bytes = g_pool_warm_bytes.load(std::memory_order_relaxed); bytes > 0)
@@ -97,6 +109,7 @@ class WorkerPool {
     }
   }
 
+  const char* name_;
   std::atomic<bool> busy_{false};
   std::mutex mutex_;  // guards everything below but next_
   std::condition_variable wake_;
@@ -110,14 +123,22 @@ class WorkerPool {
   uint64_t generation_ = 0;
 };
 
-// Never destroyed: its threads sleep until the process ends, and a static
-// destructor elsewhere may still run a loop.
-WorkerPool& worker_pool() {
-  static WorkerPool* pool = new WorkerPool;
-  return *pool;
+// Crews of sleeping threads, one taken per loop. The station runs loops
+// from three threads at once (the sculpting thread's big dabs, the mesher's
+// updates, the refiner's passes); with one crew the second loop started
+// threads of its own each time, whose first allocations faulted in fresh
+// pages beside the loops they shared the cores with. Never destroyed: their
+// threads sleep until the process ends, and a static destructor elsewhere
+// may still run a loop.
+constexpr int kCrews = 3;
+WorkerPool& worker_pool(int crew) {
+  static constexpr const char* kNames[kCrews] = {"pool", "pool-2", "pool-3"};
+  static WorkerPool* pools[kCrews] = {new WorkerPool(kNames[0]), new WorkerPool(kNames[1]),
+                                      new WorkerPool(kNames[2])};
+  return *pools[crew];
 }
 
-// The pool is in use by another thread: start threads for this loop alone.
+// Every crew is in use by other threads: start threads for this loop alone.
 void run_on_fresh_threads(int64_t count, const std::function<void(int64_t)>& body,
                           int64_t workers) {
   std::atomic<int64_t> next{0};
@@ -144,8 +165,10 @@ int default_threads() {
   return n > 0 ? n : hardware_threads();
 }
 
-void warm_pool_threads_when_started(size_t bytes) {
-  g_pool_warm_bytes.store(bytes, std::memory_order_relaxed);
+void start_pool_threads(size_t warm_heap_bytes) {
+  g_pool_warm_bytes.store(warm_heap_bytes, std::memory_order_relaxed);
+  for (int crew = 0; crew < kCrews; ++crew)
+    worker_pool(crew).start(hardware_threads() - 1);
 }
 
 void set_default_threads(int threads) {
@@ -164,8 +187,9 @@ void parallel_for(int64_t count, const std::function<void(int64_t)>& body, int t
     Depth() { ++t_loop_depth; }
     ~Depth() { --t_loop_depth; }
   } depth;
-  if (!worker_pool().try_run(count, body, static_cast<int>(workers - 1)))
-    run_on_fresh_threads(count, body, workers);
+  for (int crew = 0; crew < kCrews; ++crew)
+    if (worker_pool(crew).try_run(count, body, static_cast<int>(workers - 1))) return;
+  run_on_fresh_threads(count, body, workers);
 }
 
 }  // namespace sculpt::core

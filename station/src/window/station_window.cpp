@@ -283,7 +283,7 @@ int run_window(const WindowOptions& o) {
   // Freed memory stays mapped for the next dab, tool or mesh (memory_reuse.h):
   // up to a quarter of a gigabyte, about twice what a session holds.
   keep_freed_memory(size_t{256} << 20);
-  core::warm_pool_threads_when_started(kPoolThreadWarmHeapBytes);
+  core::start_pool_threads(kPoolThreadWarmHeapBytes);
   auto window = GlWindow::open(o.width, o.height, "Sculpt station", o.visible);
   if (!window) return fail(window.error());
   GLFWwindow* w = (*window)->handle();

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <pthread.h>
 #include <sys/resource.h>
 
 #include <atomic>
@@ -11,6 +12,7 @@
 #include <mutex>
 #include <set>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -77,7 +79,7 @@ TEST(ParallelFor, UsesMoreThanTheCallingThread) {
 // or when not `warm` and it took a fault a page (the measurement works).
 [[noreturn]] void exit_on_a_pool_threads_faults(bool warm) {
   (void)keep_freed_memory(size_t{256} << 20);
-  warm_pool_threads_when_started(warm ? size_t{32} << 20 : 0);
+  start_pool_threads(warm ? size_t{32} << 20 : 0);
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(1);
   const std::thread::id caller = std::this_thread::get_id();
   std::atomic<long> faults{-1};
@@ -145,6 +147,48 @@ TEST(ParallelFor, LoopsFromTwoThreadsAtOnceBothComplete) {
     ASSERT_EQ(a[i].load(), 1);
     ASSERT_EQ(b[i].load(), 1);
   }
+}
+
+// The station's three loop owners (the sculpting thread, the mesher, the
+// refiner) may each run a loop at once: each gets a crew of sleeping pool
+// threads, and none starts threads of its own ("pool-extra"). Each loop's
+// first index waits until all three loops hold their crews.
+TEST(ParallelFor, ThreeLoopsAtOnceEachRunOnACrewOfPoolThreads) {
+  constexpr int kLoops = 3;
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+  std::atomic<int> holding{0};
+  std::mutex m;
+  std::set<std::string> names;
+  std::vector<std::atomic<int>> hits(kLoops * 64);
+  auto loop = [&](int l) {
+    std::atomic<bool> first{true};
+    parallel_for(
+        64,
+        [&](int64_t i) {
+          if (first.exchange(false)) {
+            holding.fetch_add(1);
+            while (holding.load() < kLoops && std::chrono::steady_clock::now() < give_up)
+              std::this_thread::yield();
+          }
+          char name[16] = {};
+          pthread_getname_np(pthread_self(), name, sizeof name);
+          {
+            std::lock_guard lock(m);
+            names.insert(name);
+          }
+          hits[static_cast<size_t>(l * 64 + i)].fetch_add(1);
+        },
+        2);
+  };
+  std::vector<std::thread> owners;
+  for (int l = 0; l < kLoops; ++l)
+    owners.emplace_back(loop, l);
+  for (std::thread& t : owners)
+    t.join();
+  EXPECT_EQ(holding.load(), kLoops);  // all three were running at once
+  for (const auto& h : hits)
+    ASSERT_EQ(h.load(), 1);
+  EXPECT_EQ(names.count("pool-extra"), 0u);
 }
 
 // An exception thrown on the calling thread reaches the caller after the

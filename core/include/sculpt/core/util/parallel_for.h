@@ -20,19 +20,23 @@ int default_threads();
 /// Sets default_threads() (0 restores the hardware count).
 void set_default_threads(int threads);
 
-/// Pool threads started after this call first touch `bytes` of their heap
-/// (warm_this_threads_heap, base/memory_reuse.h), as the window's own
-/// threads do: their first loops then take no page faults (about 8 us each
-/// on the virtual machines measured; the window's first big dabs were
-/// meshed and sculpted beside 1,800 of them). 0 (the default) touches none.
-void warm_pool_threads_when_started(size_t bytes);
+/// Starts the pool's threads now, each first touching `warm_heap_bytes` of
+/// its heap (warm_this_threads_heap, base/memory_reuse.h), as the window's
+/// own threads do, and so does any pool thread started later: their first
+/// loops then take no page faults (about 8 us each on the virtual machines
+/// measured; the window's first big dabs were meshed and sculpted beside
+/// 1,800 of them). Without this call threads start at their first loop,
+/// unwarmed.
+void start_pool_threads(size_t warm_heap_bytes);
 
 /// Calls `body(i)` for every i in [0, count), spread over `threads` threads
 /// (0 = default_threads()). Work is handed out in order, one index at a time,
 /// so uneven items (uniform vs detailed bricks) balance themselves. `body` must
 /// be safe to call concurrently for different i. A loop started inside
-/// another loop's body runs serially on its thread; loops started by two
-/// threads at once both run in parallel (the second on threads of its own).
+/// another loop's body runs serially on its thread; loops started by
+/// several threads at once all run in parallel, each on a crew of pool
+/// threads of its own (three crews; a fourth loop at once starts threads
+/// for itself).
 void parallel_for(int64_t count, const std::function<void(int64_t)>& body, int threads = 0);
 
 }  // namespace sculpt::core
