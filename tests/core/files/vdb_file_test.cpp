@@ -118,8 +118,16 @@ struct PyView {
 PyView inspect_with_python(const fs::path& file, const std::vector<glm::ivec3>& probes) {
   std::string command =
       "/usr/bin/python3 '" + data("inspect_vdb.py").string() + "' '" + file.string() + "'";
-  for (const glm::ivec3& p : probes)
-    command += " " + std::to_string(p.x) + "," + std::to_string(p.y) + "," + std::to_string(p.z);
+  // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive of
+  // its own) on a chain of temporaries added to a string.
+  for (const glm::ivec3& p : probes) {
+    command += ' ';
+    command += std::to_string(p.x);
+    command += ',';
+    command += std::to_string(p.y);
+    command += ',';
+    command += std::to_string(p.z);
+  }
   PyView v;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return v;
