@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "sculpt/base/atomic_file.h"
+#include "sculpt/base/thread_times.h"
 #include "sculpt/core/mesh/marching_cubes.h"
 #include "sculpt/core/mesh/mesh_io.h"
 #include "sculpt/core/mesh/mesh_simplify.h"
@@ -113,6 +114,8 @@ void StationController::autosave_if_due(int64_t now_ns) {
                    : nullptr;
   autosave_ = std::async(
       std::launch::async, [path = autosave_path(), volume, settings, tool, sheet, view = view()] {
+        // Named for traces and --stats: it would carry the sculpting thread's.
+        name_this_thread("autosave");
         return save_project(path, *volume, settings, tool.get(), view, sheet.get());
       });
 }

@@ -4,6 +4,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "sculpt/base/thread_times.h"
 #include "sculpt/core/distance/hypertexture.h"
 #include "sculpt/core/sculpt/clay_brush.h"
 #include "sculpt/core/sculpt/flatten_brush.h"
@@ -297,6 +298,7 @@ void StationLoop::give_stand_ins_the_tool() {
   // it came sooner: a stand-in is ready to draw when it is published.
   stand_in_tool_ = std::async(std::launch::async, [tool = std::make_shared<const core::Tool>(tool_),
                                                    version = tool_version_] {
+    name_this_thread("stand-in-tool");  // not the sculpting thread's name
     return DabStandIns::ToolMesh::of(*tool, version);
   });
 }
