@@ -100,6 +100,10 @@ struct RunFigures {
   int64_t frames_drawn_unsteered = 0;  // the sculpting thread held the turn: drawn without it
   int64_t panel_rasters = 0;           // frames that drew the panel's triangles (PanelLayer)
   InputHubFigures hub;
+  // CPU by thread as the session's frames ended, while the sculpting thread
+  // still ran (stopped, it would count only under "ended"); empty before.
+  std::vector<ThreadGroupTime> threads_at_end;
+  int64_t threads_at_end_ns = 0;
 };
 
 // Brick by brick, uniform bricks without decoding: --stats-every calls this
@@ -130,11 +134,13 @@ int64_t solid_voxels(const core::Volume& v) {
 // Where each thread's time went since the window started: CPU seconds by
 // thread name (the frame's thread is "sculpt", Mesa's rasterizers
 // "llvmpipe"), and the wall time they shared.
-nlohmann::ordered_json thread_figures(int64_t started_ns) {
+nlohmann::ordered_json thread_figures(const RunFigures& f) {
+  const bool at_end = f.threads_at_end_ns != 0;
   nlohmann::ordered_json cpu = nlohmann::ordered_json::object();
-  for (const ThreadGroupTime& g : thread_cpu_times())
+  for (const ThreadGroupTime& g : at_end ? f.threads_at_end : thread_cpu_times())
     cpu[g.name] = {{"threads", g.threads}, {"cpu_s", g.cpu_s}};
-  return {{"wall_s", static_cast<double>(hal::monotonic_ns() - started_ns) * 1e-9}, {"cpu_s", cpu}};
+  const int64_t until = at_end ? f.threads_at_end_ns : hal::monotonic_ns();
+  return {{"wall_s", static_cast<double>(until - f.started_ns) * 1e-9}, {"cpu_s", cpu}};
 }
 
 // The haptic loop's figures (DESIGN.md §5a), for --stats.
@@ -236,7 +242,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
         {"mesh", f.mesh_ms / n},
         {"upload", f.upload_ms / n},
         {"draw", f.draw_ms / n}}},
-      {"threads", thread_figures(f.started_ns)},
+      {"threads", thread_figures(f)},
       {"undo_mib", static_cast<double>(c.loop().sculptor().history().memory_bytes()) / (1 << 20)},
       {"heap",
        {{"in_use_mib", static_cast<double>(heap.uordblks + heap.hblkhd) / (1 << 20)},
@@ -698,6 +704,8 @@ int run_window(const WindowOptions& o) {
     last_frame = now;
   }
 
+  figures.threads_at_end = thread_cpu_times();
+  figures.threads_at_end_ns = hal::monotonic_ns();
   // What the devices said last is sculpted, and the dabs of the last
   // frames count in the latency figures too.
   hub.stop();

@@ -178,6 +178,10 @@ TEST(StationWindow, RunsTheLiveLoopOnASimDeviceAndTakesAScreenshot) {
     }
   }
   EXPECT_GT(stats["triangles"].get<int>(), 1000);
+  // Where each thread's time went, the sculpting thread's and the mesher's
+  // included (taken as the frames end, while they still run).
+  EXPECT_TRUE(stats["threads"]["cpu_s"].contains("sculpting")) << stats["threads"].dump();
+  EXPECT_TRUE(stats["threads"]["cpu_s"].contains("mesher")) << stats["threads"].dump();
   // What the window recorded replays to what the window sculpted, bit for
   // bit, however the frames fell.
   auto again = load_session(dir.file("again.scs"));
