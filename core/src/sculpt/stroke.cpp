@@ -858,17 +858,16 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
           // stretch spans every sweep's (a mirror image's may lie before or
           // after the tool's along the row, or overlap it).
           GrownStretch grown;
+          // The stretch inside radius - 1 (with a voxel to spare, see
+          // Sweep::spans; empty for a soft ball or a small hard one): 255
+          // without measuring.
+          const int in_lo = std::clamp(sp.z - origin.x, lo, hi);
+          const int in_hi = std::clamp(sp.w - origin.x, in_lo, hi);
           if (hard) {
             const CapsuleRow hr{sw.a.x, ab,        inv_ab2,       apy,   apz,
                                 dot_yz, sw.radius, inner * inner, reach2};
-            // A big ball's stretch inside radius - 1 (with a voxel to
-            // spare, see Sweep::spans) is 255 without measuring.
-            const int in_lo = std::clamp(sp.z - origin.x, lo, hi);
-            const int in_hi = std::clamp(sp.w - origin.x, in_lo, hi);
             grown = grow_hard_capsule_row(hr, origin.x, lo, hi, cov, fill, in_lo, in_hi);
           } else {
-            const int in_lo = std::clamp(sp.z - origin.x, lo, hi);
-            const int in_hi = std::clamp(sp.w - origin.x, in_lo, hi);
             std::memset(fill + lo, 0, static_cast<size_t>(hi - lo));
             if (in_lo < in_hi) std::memset(fill + in_lo, 255, static_cast<size_t>(in_hi - in_lo));
             const CapsuleRow cr{sw.a.x, ab, inv_ab2, apy, apz, dot_yz, sw.radius, -1.0f, reach2};

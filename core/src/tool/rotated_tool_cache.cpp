@@ -49,7 +49,6 @@ RotatedToolEntry::RotatedToolEntry(const PreparedTool& tool, const glm::mat3& ro
       values_(std::make_unique_for_overwrite<uint8_t[]>(values_size_)) {
   const glm::ivec3 s = frame_.box().size();
   const size_t rows = static_cast<size_t>(s.y) * s.z;
-  rows_ = rows;
   done_ = std::make_unique<std::atomic<uint32_t>[]>(rows);  // value-initialised: empty
   filling_ = std::make_unique<std::atomic<bool>[]>(rows);
   reach_lo_.assign(rows, 0);
@@ -107,7 +106,7 @@ const uint8_t* RotatedToolEntry::rotate_row(int y, int z, int x0, int x1,
 
 size_t RotatedToolEntry::memory_bytes() const {
   return sizeof(*this) + values_size_ +
-         rows_ * (sizeof(std::atomic<uint32_t>) + sizeof(std::atomic<bool>)) +
+         reach_lo_.size() * (sizeof(std::atomic<uint32_t>) + sizeof(std::atomic<bool>)) +
          (reach_lo_.size() + reach_hi_.size()) * sizeof(int16_t);
 }
 

@@ -50,7 +50,7 @@ void InputStatistics::ready(uint64_t change, uint64_t full_detail_change, int64_
     all_us_.add(first);
     const Meshing& m = detailing_.back();
     note_slow({first, static_cast<double>(m.submitted_ns - m.report_t_ns) * 1e-3, m.change});
-    if (!detailing_.back().pictured) first_picture_us_.add(first);
+    if (!m.pictured) first_picture_us_.add(first);
   }
   while (!detailing_.empty() && detailing_.front().change <= full_detail_change) {
     full_detail_us_.add(us(detailing_.front()));

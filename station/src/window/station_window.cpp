@@ -101,9 +101,12 @@ struct RunFigures {
   int64_t panel_rasters = 0;           // frames that drew the panel's triangles (PanelLayer)
   InputHubFigures hub;
   // CPU by thread as the session's frames ended, while the sculpting thread
-  // still ran (stopped, it would count only under "ended"); empty before.
-  std::vector<ThreadGroupTime> threads_at_end;
-  int64_t threads_at_end_ns = 0;
+  // still ran (stopped, it would count only under "ended"); none before.
+  struct ThreadsAtEnd {
+    std::vector<ThreadGroupTime> groups;
+    int64_t at_ns = 0;
+  };
+  std::optional<ThreadsAtEnd> threads_at_end;
 };
 
 // Brick by brick, uniform bricks without decoding: --stats-every calls this
@@ -135,12 +138,13 @@ int64_t solid_voxels(const core::Volume& v) {
 // thread name (the frame's thread is "sculpt", Mesa's rasterizers
 // "llvmpipe"), and the wall time they shared.
 nlohmann::ordered_json thread_figures(const RunFigures& f) {
-  const bool at_end = f.threads_at_end_ns != 0;
+  const RunFigures::ThreadsAtEnd now =
+      f.threads_at_end ? *f.threads_at_end
+                       : RunFigures::ThreadsAtEnd{thread_cpu_times(), hal::monotonic_ns()};
   nlohmann::ordered_json cpu = nlohmann::ordered_json::object();
-  for (const ThreadGroupTime& g : at_end ? f.threads_at_end : thread_cpu_times())
+  for (const ThreadGroupTime& g : now.groups)
     cpu[g.name] = {{"threads", g.threads}, {"cpu_s", g.cpu_s}};
-  const int64_t until = at_end ? f.threads_at_end_ns : hal::monotonic_ns();
-  return {{"wall_s", static_cast<double>(until - f.started_ns) * 1e-9}, {"cpu_s", cpu}};
+  return {{"wall_s", static_cast<double>(now.at_ns - f.started_ns) * 1e-9}, {"cpu_s", cpu}};
 }
 
 // The haptic loop's figures (DESIGN.md §5a), for --stats.
@@ -704,8 +708,7 @@ int run_window(const WindowOptions& o) {
     last_frame = now;
   }
 
-  figures.threads_at_end = thread_cpu_times();
-  figures.threads_at_end_ns = hal::monotonic_ns();
+  figures.threads_at_end = RunFigures::ThreadsAtEnd{thread_cpu_times(), hal::monotonic_ns()};
   // What the devices said last is sculpted, and the dabs of the last
   // frames count in the latency figures too.
   hub.stop();

@@ -143,7 +143,6 @@ class RotatedToolEntry {
   std::unique_ptr<std::atomic<uint32_t>[]> done_;
   // Per row, held while its stretch grows (rotate_row()).
   std::unique_ptr<std::atomic<bool>[]> filling_;
-  size_t rows_ = 0;
   static int done_lo(uint32_t done) { return static_cast<int>(done & 0xFFFFu); }
   static int done_hi(uint32_t done) { return static_cast<int>(done >> 16); }
   // Per row, the stretch within reach (box-relative x offsets), computed
