@@ -51,11 +51,9 @@ RotatedToolEntry::RotatedToolEntry(const PreparedTool& tool, const glm::mat3& ro
   const size_t rows = static_cast<size_t>(s.y) * s.z;
   done_ = std::make_unique<std::atomic<uint32_t>[]>(rows);  // value-initialised: empty
   filling_ = std::make_unique<std::atomic<bool>[]>(rows);
-  reach_lo_.assign(rows, 0);
-  reach_hi_.assign(rows, 0);
+  plans_.resize(rows);
   for (int z = 0; z < s.z; ++z)
-    frame_.reach_spans(z, &reach_lo_[static_cast<size_t>(z) * s.y],
-                       &reach_hi_[static_cast<size_t>(z) * s.y]);
+    frame_.row_plans(z, &plans_[static_cast<size_t>(z) * s.y]);
 }
 
 const uint8_t* RotatedToolEntry::rotate_row(int y, int z, int x0, int x1,
@@ -80,20 +78,21 @@ const uint8_t* RotatedToolEntry::rotate_row(int y, int z, int x0, int x1,
   // The tool is sampled at integer steps from the row's start (Algorithm 1
   // in fixed point), so a voxel's value does not depend on which stretch,
   // or which thread, rotated it.
+  const RotationFrame::RowPlan plan = plans_[r];
   if (lo >= hi) {
-    frame_.sample_row(*tool_, y, z, x0, x1, values + a);
+    frame_.sample_row(*tool_, y, z, x0, x1, plan, values + a);
     stats.voxels_rotated += e - a;
     lo = a;
     hi = e;
   } else {
     // Keep one computed stretch per row: fill the gap on either side.
     if (a < lo) {
-      frame_.sample_row(*tool_, y, z, x0, b.lo.x + lo, values + a);
+      frame_.sample_row(*tool_, y, z, x0, b.lo.x + lo, plan, values + a);
       stats.voxels_rotated += lo - a;
       lo = a;
     }
     if (e > hi) {
-      frame_.sample_row(*tool_, y, z, b.lo.x + hi, x1, values + hi);
+      frame_.sample_row(*tool_, y, z, b.lo.x + hi, x1, plan, values + hi);
       stats.voxels_rotated += e - hi;
       hi = e;
     }
@@ -106,8 +105,8 @@ const uint8_t* RotatedToolEntry::rotate_row(int y, int z, int x0, int x1,
 
 size_t RotatedToolEntry::memory_bytes() const {
   return sizeof(*this) + values_size_ +
-         reach_lo_.size() * (sizeof(std::atomic<uint32_t>) + sizeof(std::atomic<bool>)) +
-         (reach_lo_.size() + reach_hi_.size()) * sizeof(int16_t);
+         plans_.size() * (sizeof(std::atomic<uint32_t>) + sizeof(std::atomic<bool>) +
+                          sizeof(RotationFrame::RowPlan));
 }
 
 RotatedToolCache::RotatedToolCache(std::shared_ptr<const PreparedTool> tool, Sampling sampling,

@@ -169,9 +169,11 @@ RotationFrame::RotationFrame(const PreparedTool& tool, const glm::mat3& rotation
   // Samples whose cell floor(s) lies in [0, dims + kPad] per axis read inside
   // the padded grid (both kernels, both samplings): tool coordinates in
   // [-kPad, dims + 1).
-  clip_support_ = false;
+  // Only the axes along which the reach ball leaves the grid can cut a line
+  // (a ring's axis, say): the others are not tested.
   for (int i = 0; i < 3; ++i)
-    if (pivot[i] - reach < -kPad || pivot[i] + reach >= d[i] + 1.0) clip_support_ = true;
+    clip_axis_[i] = pivot[i] - reach < -kPad || pivot[i] + reach >= d[i] + 1.0;
+  clip_support_ = clip_axis_[0] || clip_axis_[1] || clip_axis_[2];
   if (clipping == RotationClipping::kNone) {
     // A reach ball holding the whole box (a voxel to spare for the float
     // spans), no core, and lines cut to the tool's grid: every voxel of the
@@ -184,6 +186,7 @@ RotationFrame::RotationFrame(const PreparedTool& tool, const glm::mat3& rotation
     }
     reach2_ = static_cast<float>(far2);
     core2_ = -1.0f;
+    clip_axis_[0] = clip_axis_[1] = clip_axis_[2] = true;
     clip_support_ = true;
   }
 }
@@ -203,37 +206,43 @@ uint8_t RotationFrame::sample_voxel(const PreparedTool& tool, glm::ivec3 k) cons
   return rotation::trilinear_at(tool.padded(), i, s, pd.x, static_cast<size_t>(pd.x) * pd.y);
 }
 
-void RotationFrame::clip_lines(Lines& lines, int from) const {
-  // The stretch of each line s0 + n * step within the support, widened by
-  // half a voxel so rounding of the (double) bounds can only add samples that
-  // read zero padding; the padding keeps every sample inside the grid. Lines
-  // with none are dropped, the rest keep their order.
-  auto clip = [&](rotation::Line& line) {
-    double lo = 0.0, hi = line.n;
-    for (int i = 0; i < 3; ++i) {
-      const double a = ((kPad - 1 - 0.5) * kOne - line.s[i]);
-      const double b = ((support_hi_[i] + 0.5) * kOne - line.s[i]);
-      if (step_[0][i] == 0) {
-        if (a > 0.0 || b <= 0.0) return false;
-        continue;
-      }
-      double e0 = a * inv_step_x_[i], e1 = b * inv_step_x_[i];
-      if (e0 > e1) std::swap(e0, e1);
-      lo = std::max(lo, fast_ceil(e0));
-      hi = std::min(hi, fast_floor(e1) + 1.0);
+bool RotationFrame::clip_to_support(const int32_t s[3], int count, int& n0, int& n1) const {
+  // Widened by half a voxel so rounding of the (double) bounds can only add
+  // samples that read zero padding; the padding keeps every sample inside
+  // the grid.
+  double lo = 0.0, hi = count;
+  for (int i = 0; i < 3; ++i) {
+    if (!clip_axis_[i]) continue;
+    const double a = ((kPad - 1 - 0.5) * kOne - s[i]);
+    const double b = ((support_hi_[i] + 0.5) * kOne - s[i]);
+    if (step_[0][i] == 0) {
+      if (a > 0.0 || b <= 0.0) return false;
+      continue;
     }
-    if (lo >= hi) return false;
-    const int n0 = static_cast<int>(lo), n1 = static_cast<int>(hi);
+    double e0 = a * inv_step_x_[i], e1 = b * inv_step_x_[i];
+    if (e0 > e1) std::swap(e0, e1);
+    lo = std::max(lo, fast_ceil(e0));
+    hi = std::min(hi, fast_floor(e1) + 1.0);
+  }
+  if (lo >= hi) return false;
+  n0 = static_cast<int>(lo);
+  n1 = static_cast<int>(hi);
+  return true;
+}
+
+void RotationFrame::clip_lines(Lines& lines, int from) const {
+  // Lines with no sample in the support are dropped, the rest keep their
+  // order.
+  int kept = from;
+  for (int l = from; l < lines.count; ++l) {
+    rotation::Line line = lines.at(l);
+    int n0 = 0, n1 = 0;
+    if (!clip_to_support(line.s, line.n, n0, n1)) continue;
     for (int i = 0; i < 3; ++i)
       line.s[i] += n0 * step_[0][i];
     line.out += n0;
     line.n = n1 - n0;
-    return true;
-  };
-  int kept = from;
-  for (int l = from; l < lines.count; ++l) {
-    rotation::Line line = lines.at(l);
-    if (clip(line)) lines.put(kept++, line);
+    lines.put(kept++, line);
   }
   lines.count = kept;
 }
@@ -246,6 +255,11 @@ void RotationFrame::spans(const SpanRun* runs, int count, Spans& out) const {
   k.spans(centre_, reach2_, core2_, static_cast<float>(box_.size().x), runs, count, out);
 }
 
+void RotationFrame::row_start(int y, int z, int32_t s[3]) const {
+  for (int i = 0; i < 3; ++i)
+    s[i] = origin_[i] + y * step_[1][i] + z * step_[2][i];
+}
+
 bool RotationFrame::reach_span(int y, int z, int& x0, int& x1) const {
   Spans sp;
   const SpanRun run{y, z, 1, 0};
@@ -255,7 +269,7 @@ bool RotationFrame::reach_span(int y, int z, int& x0, int& x1) const {
   return x0 < x1;
 }
 
-void RotationFrame::reach_spans(int z, int16_t* x0, int16_t* x1) const {
+void RotationFrame::row_plans(int z, RowPlan* plans) const {
   const glm::ivec3 size = box_.size();
   Spans sp;
   for (int ya = 0; ya < size.y; ya += kSpanRows) {
@@ -263,8 +277,27 @@ void RotationFrame::reach_spans(int z, int16_t* x0, int16_t* x1) const {
     const SpanRun run{ya, z, n, 0};
     spans(&run, 1, sp);
     for (int i = 0; i < n; ++i) {
-      x0[ya + i] = static_cast<int16_t>(sp.x0[i]);
-      x1[ya + i] = static_cast<int16_t>(sp.x1[i]);
+      int x0 = sp.x0[i], x1 = sp.x1[i];
+      if (clip_support_ && x0 < x1) {
+        // The reach stretch cut to the support, as clip_lines() cuts each
+        // line of it: a sample it drops reads zero padding either way.
+        int32_t s[3];
+        row_start(ya + i, z, s);
+        for (int a = 0; a < 3; ++a)
+          s[a] += x0 * step_[0][a];
+        int n0 = 0, n1 = 0;
+        if (clip_to_support(s, x1 - x0, n0, n1)) {
+          x1 = x0 + n1;
+          x0 += n0;
+        } else {
+          x0 = x1 = 0;
+        }
+      }
+      // The core lies inside the support (the tool is solid there).
+      const int c0 = x0 < x1 ? std::clamp(sp.c0[i], x0, x1) : 0;
+      const int c1 = x0 < x1 ? std::clamp(sp.c1[i], c0, x1) : 0;
+      plans[ya + i] = RowPlan{static_cast<int16_t>(x0), static_cast<int16_t>(x1),
+                              static_cast<int16_t>(c0), static_cast<int16_t>(c1)};
     }
   }
 }
@@ -295,10 +328,21 @@ void RotationFrame::sample_row(const PreparedTool& tool, int y, int z, int x0, i
   const SpanRun run{ry, rz, 1, 0};
   spans(&run, 1, sp);
   int32_t row_s[3];
-  for (int i = 0; i < 3; ++i)
-    row_s[i] = origin_[i] + ry * step_[1][i] + rz * step_[2][i];
+  row_start(ry, rz, row_s);
   Lines lines;
   plan_row(row_s, x0 - box_.lo.x, x1 - box_.lo.x, sp.row(0), out, lines);
+  rotation::kernels().sample_lines(tool, sampling_, step_[0], lines, out + (x1 - x0));
+}
+
+void RotationFrame::sample_row(const PreparedTool& tool, int y, int z, int x0, int x1, RowPlan plan,
+                               uint8_t* out) const {
+  assert(x0 <= x1);
+  int32_t row_s[3];
+  row_start(y - box_.lo.y, z - box_.lo.z, row_s);
+  Lines lines;
+  // The plan's stretch is within the support already: no clipping.
+  rotation::plan_row(row_s, step_[0], x0 - box_.lo.x, x1 - box_.lo.x,
+                     Span{plan.x0, plan.x1, plan.c0, plan.c1}, core_value_, out, lines);
   rotation::kernels().sample_lines(tool, sampling_, step_[0], lines, out + (x1 - x0));
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <random>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -218,31 +219,64 @@ TEST(ToolRotation, VectorAndScalarKernelsAgreeExactly) {
     }
 }
 
-// A placement keeps every row's stretch within reach (RotatedToolEntry), a
-// plane at a time: the same stretches as asking row by row.
-TEST(ToolRotation, PlaneReachSpansMatchRowByRow) {
-  const PreparedTool tool(make_sphere_tool(9.0f));
-  for (glm::vec3 angles : kAngles) {
-    const RotationFrame frame(tool, euler_xyz_deg(angles), {0.3f, -2.6f, 1.0f},
-                              Sampling::kTrilinear);
-    const glm::ivec3 size = frame.box().size();
-    std::vector<int16_t> lo(static_cast<size_t>(size.y)), hi(lo.size());
-    int rows = 0;
-    for (int z = 0; z < size.z; ++z) {
-      frame.reach_spans(z, lo.data(), hi.data());
-      for (int y = 0; y < size.y; ++y) {
-        int x0 = 0, x1 = size.x;
-        if (frame.reach_span(y, z, x0, x1)) {
+// A placement plans every row once (RotatedToolEntry), a plane at a time:
+// each plan lies within the row's stretch within reach, cut to the tool's
+// support where the reach ball leaves its grid, nothing outside it is
+// non-zero, and sampling any stretch of the row by its plan gives the values
+// that sampling it afresh gives.
+TEST(ToolRotation, RowPlansSampleAsRowsSampledAfresh) {
+  const PreparedTool sphere(make_sphere_tool(9.0f));
+  // A long thin box: its reach ball (to the farthest corner) leaves the grid
+  // across the thin sides, so most rows' plans are cut to the support.
+  const PreparedTool slab(textured_tool({25, 7, 5}));
+  std::mt19937 rng(7);
+  int slab_rows = 0, slab_cut = 0;
+  for (const PreparedTool* tool : {&sphere, &slab})
+    for (glm::vec3 angles : kAngles) {
+      const RotationFrame frame(*tool, euler_xyz_deg(angles), {0.3f, -2.6f, 1.0f},
+                                Sampling::kTrilinear);
+      const Box& box = frame.box();
+      const glm::ivec3 size = box.size();
+      std::vector<RotationFrame::RowPlan> plans(static_cast<size_t>(size.y));
+      int rows = 0;
+      for (int z = 0; z < size.z; ++z) {
+        frame.row_plans(z, plans.data());
+        for (int y = 0; y < size.y; ++y) {
+          const RotationFrame::RowPlan p = plans[y];
+          int x0 = 0, x1 = size.x;
+          if (!frame.reach_span(y, z, x0, x1)) {
+            ASSERT_EQ(p.x0, p.x1) << y << " " << z;
+            continue;
+          }
           ++rows;
-          ASSERT_EQ(lo[y], x0) << y << " " << z;
-          ASSERT_EQ(hi[y], x1) << y << " " << z;
-        } else {
-          ASSERT_EQ(lo[y], hi[y]) << y << " " << z;
+          if (p.x0 < p.x1) {
+            ASSERT_TRUE(p.x0 >= x0 && p.x1 <= x1) << y << " " << z;
+            ASSERT_TRUE(p.x0 <= p.c0 && p.c0 <= p.c1 && p.c1 <= p.x1) << y << " " << z;
+          }
+          if (tool == &slab) {
+            ++slab_rows;
+            slab_cut += p.x1 - p.x0 < x1 - x0;
+          }
+          const int ty = box.lo.y + y, tz = box.lo.z + z;
+          std::vector<uint8_t> afresh(static_cast<size_t>(size.x)), planned(afresh.size());
+          frame.sample_row(*tool, ty, tz, box.lo.x, box.hi.x, afresh.data());
+          for (int x = 0; x < size.x; ++x) {
+            if (x < p.x0 || x >= p.x1) {
+              ASSERT_EQ(afresh[x], 0) << x << " " << y << " " << z;
+            }
+          }
+          // Two stretches of the row, as a stroke asks for its leading edge.
+          const int a = std::uniform_int_distribution<int>(0, size.x)(rng);
+          const int b = std::uniform_int_distribution<int>(a, size.x)(rng);
+          frame.sample_row(*tool, ty, tz, box.lo.x, box.lo.x + a, p, planned.data());
+          frame.sample_row(*tool, ty, tz, box.lo.x + a, box.lo.x + b, p, planned.data() + a);
+          frame.sample_row(*tool, ty, tz, box.lo.x + b, box.hi.x, p, planned.data() + b);
+          ASSERT_EQ(planned, afresh) << y << " " << z;
         }
       }
+      EXPECT_GT(rows, size.y * size.z / 8);
     }
-    EXPECT_GT(rows, size.y * size.z / 4);
-  }
+  EXPECT_GT(slab_cut, slab_rows / 4);
 }
 
 // The rows' stretches are planned eight rows at a time with AVX2 and one at
@@ -253,19 +287,20 @@ TEST(ToolRotation, VectorAndScalarPlanningGiveTheSameSpans) {
     for (Sampling s : {Sampling::kNearest, Sampling::kTrilinear}) {
       const RotationFrame frame(tool, euler_xyz_deg(angles), {0.7f, 3.2f, -1.9f}, s);
       const glm::ivec3 size = frame.box().size();
-      std::vector<int16_t> lo[2], hi[2];
+      std::vector<int16_t> fields[2];
       for (int vector = 0; vector < 2; ++vector) {
         (void)use_vector_kernel(vector == 1);
+        std::vector<RotationFrame::RowPlan> plans(static_cast<size_t>(size.y));
         for (int z = 0; z < size.z; ++z) {
-          std::vector<int16_t> l(static_cast<size_t>(size.y)), h(l.size());
-          frame.reach_spans(z, l.data(), h.data());
-          lo[vector].insert(lo[vector].end(), l.begin(), l.end());
-          hi[vector].insert(hi[vector].end(), h.begin(), h.end());
+          frame.row_plans(z, plans.data());
+          for (const RotationFrame::RowPlan& p : plans)
+            fields[vector].insert(fields[vector].end(), {p.x0, p.x1, p.c0, p.c1});
         }
       }
-      EXPECT_EQ(lo[0], lo[1]);
-      EXPECT_EQ(hi[0], hi[1]);
-      EXPECT_GT(std::count_if(lo[0].begin(), lo[0].end(), [](int16_t v) { return v > 0; }), 0);
+      (void)use_vector_kernel(true);
+      EXPECT_EQ(fields[0], fields[1]);
+      EXPECT_GT(std::count_if(fields[0].begin(), fields[0].end(), [](int16_t v) { return v > 0; }),
+                0);
     }
 }
 

@@ -106,12 +106,12 @@ class RotatedToolEntry {
     return rotate_row(y, z, x0, x1, stats);
   }
   /// The stretch [x0, x1) of row (y, z) (anchor-relative, inside box())
-  /// within the tool's reach: outside it the row's voxels are 0. Empty
-  /// (x0 == x1) when the row misses the reach ball.
+  /// within the tool's reach and support: outside it the row's voxels are 0.
+  /// Empty (x0 == x1) when the row misses them.
   std::pair<int, int> reach(int y, int z) const {
     const Box& b = frame_.box();
     const size_t r = static_cast<size_t>(z - b.lo.z) * b.size().y + (y - b.lo.y);
-    return {b.lo.x + reach_lo_[r], b.lo.x + reach_hi_[r]};
+    return {b.lo.x + plans_[r].x0, b.lo.x + plans_[r].x1};
   }
   size_t memory_bytes() const;
 
@@ -145,9 +145,12 @@ class RotatedToolEntry {
   std::unique_ptr<std::atomic<bool>[]> filling_;
   static int done_lo(uint32_t done) { return static_cast<int>(done & 0xFFFFu); }
   static int done_hi(uint32_t done) { return static_cast<int>(done >> 16); }
-  // Per row, the stretch within reach (box-relative x offsets), computed
-  // once per placement: a dab then needs no square root per row.
-  std::vector<int16_t> reach_lo_, reach_hi_;
+  // Per row, its stretch within reach and support and its core (box-relative
+  // x offsets), found once per placement: a dab then needs no square root
+  // and no clipping per row, and the stroke skips what reads zero. Sampling
+  // a row piecemeal found them anew each time: a turning ring's stroke spent
+  // more on that than on sampling (docs/performance.md).
+  std::vector<RotationFrame::RowPlan> plans_;
 };
 
 /// A point at this distance from where it should be changes a trilinear

@@ -156,9 +156,24 @@ class RotationFrame {
   /// Narrows [x0, x1) (box-relative) to box-relative row (y, z)'s stretch
   /// within the tool's reach (outside it every sample is 0); false when empty.
   bool reach_span(int y, int z, int& x0, int& x1) const;
-  /// reach_span() of every row of box-relative plane z, from [0, box().size().x):
-  /// x0[y], x1[y] (both 0 when the row misses).
-  void reach_spans(int z, int16_t* x0, int16_t* x1) const;
+
+  /// What sample_row() works out for a row before sampling it, found once:
+  /// the box-relative stretch [x0, x1) whose samples can be non-zero (within
+  /// the reach ball and the tool's support; x0 = x1 = 0 when none) and in it
+  /// the core stretch [c0, c1), filled rather than sampled (c0 = c1 = x1 when
+  /// none).
+  struct RowPlan {
+    int16_t x0 = 0, x1 = 0, c0 = 0, c1 = 0;
+  };
+  /// The plans of every row of box-relative plane z: plans[y]. A cache that
+  /// samples a placement's rows piecemeal (RotatedToolEntry) finds them once
+  /// per placement, eight rows an instruction, rather than a square root and
+  /// a clip per call.
+  void row_plans(int z, RowPlan* plans) const;
+  /// sample_row() of a row whose plan is `plan` (from row_plans()): the same
+  /// values, without finding it again.
+  void sample_row(const PreparedTool& tool, int y, int z, int x0, int x1, RowPlan plan,
+                  uint8_t* out) const;
 
  private:
   // The stages of sample_row() and sample_box(); their batch types and
@@ -177,6 +192,11 @@ class RotationFrame {
   // Narrows lines[from ..] to their samples within the tool's support and
   // drops those with none.
   void clip_lines(rotation::Lines& lines, int from) const;
+  // The samples [n0, n1) of the line s + n step_[0], 0 <= n < count, within
+  // the tool's support (widened by half a voxel); false when none.
+  bool clip_to_support(const int32_t s[3], int count, int& n0, int& n1) const;
+  // The first sample (x = 0) of box-relative row (y, z).
+  void row_start(int y, int z, int32_t s[3]) const;
 
   Box box_;
   Sampling sampling_;
@@ -198,6 +218,9 @@ class RotationFrame {
   // Whether lines must be clipped to the tool's support: not when the reach
   // ball lies inside the padded grid, whose zero border then reads 0 anyway.
   bool clip_support_;
+  // Per axis, whether the reach ball leaves the grid along it (so a line
+  // can leave the support that way).
+  bool clip_axis_[3];
 };
 
 /// A rotated tool: density[0] sits at target voxel `origin`.
