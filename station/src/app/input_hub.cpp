@@ -192,9 +192,11 @@ void InputHub::poll(int64_t now, bool land) {
   if (!levels_.empty()) {
     const core::Volume& volume = controller_.loop().volume();
     if (static_cast<int64_t>(levels_.size()) == volume.brick_count()) {
-      controller_.surface_submitted(
-          mesher_.submit(volume, controller_.loop().volume_generation(), levels_),
-          hal::monotonic_ns());
+      // Handed over when queued, not when submit() returns (see there).
+      int64_t queued_ns = -1;
+      const uint64_t change =
+          mesher_.submit(volume, controller_.loop().volume_generation(), levels_, &queued_ns);
+      controller_.surface_submitted(change, queued_ns >= 0 ? queued_ns : hal::monotonic_ns());
     }
   }
   // Recording and autosave keep the frame's pace: a file write a millisecond

@@ -64,7 +64,7 @@ SurfaceMesher::~SurfaceMesher() {
 }
 
 uint64_t SurfaceMesher::submit(const core::Volume& volume, uint64_t generation,
-                               const std::vector<int>& levels) {
+                               const std::vector<int>& levels, int64_t* queued_ns) {
   const bool reset = generation != generation_;
   // Nothing stored since the previous call (most of the sculpting thread's
   // thousand calls a second): no brick to look at.
@@ -111,6 +111,7 @@ uint64_t SurfaceMesher::submit(const core::Volume& volume, uint64_t generation,
     counters_.pending_bricks_max =
         std::max(counters_.pending_bricks_max, static_cast<int64_t>(p.bricks.size()));
   }
+  if (queued_ns != nullptr) *queued_ns = hal::monotonic_ns();
   wake_.notify_one();
   return change_;
 }

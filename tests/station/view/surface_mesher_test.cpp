@@ -14,6 +14,7 @@
 #include "sculpt/core/sculpt/sculptor.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 #include "sculpt/core/tool/tool.h"
+#include "sculpt/hal/types/clock.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/session_replay.h"
@@ -355,6 +356,26 @@ TEST(SurfaceMesher, NothingChangedIsNoChange) {
   EXPECT_EQ(mesher.submit(s.volume(), s.generation(), levels), first + 1);
   mesher.wait_until_meshed();
   EXPECT_EQ(mesher.counters().submits, 2);
+}
+
+// The window counts a dab handed over when its change is queued (the
+// slowest dabs' split in --stats), which submit() says only when it queues.
+TEST(SurfaceMesher, SubmitSaysWhenItQueuedAChange) {
+  Sculpting s(48, 3);
+  SurfaceMesher mesher;
+  const std::vector<int> levels = levels_for(s.volume(), 0);
+  int64_t queued_ns = -1;
+  const int64_t before = hal::monotonic_ns();
+  mesher.submit(s.volume(), s.generation(), levels, &queued_ns);
+  const int64_t after = hal::monotonic_ns();
+  EXPECT_TRUE(queued_ns >= before && queued_ns <= after) << before << " " << queued_ns;
+  queued_ns = -1;
+  mesher.submit(s.volume(), s.generation(), levels, &queued_ns);
+  EXPECT_EQ(queued_ns, -1);  // nothing changed: nothing queued
+  s.dab();
+  mesher.submit(s.volume(), s.generation(), levels, &queued_ns);
+  EXPECT_GE(queued_ns, after);
+  mesher.wait_until_meshed();
 }
 
 TEST(SurfaceMesher, BricksStoredAgainUnchangedAreNotMeshedAgain) {

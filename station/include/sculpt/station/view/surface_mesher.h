@@ -159,8 +159,13 @@ class SurfaceMesher {
   /// when `generation` differs: a replaced volume) and the level to draw
   /// each brick at (brick order). Returns the change's number (increasing);
   /// returns the previous number and does nothing when neither bricks nor
-  /// levels changed.
-  uint64_t submit(const core::Volume& volume, uint64_t generation, const std::vector<int>& levels);
+  /// levels changed. `queued_ns`, when given, is set to when a change was
+  /// queued (hal::monotonic_ns(), before the mesher is woken) and left alone
+  /// when none was: waking the mesher can give it the core at once and keep
+  /// the caller off one for milliseconds, which a caller timing its
+  /// hand-over after the return would count as handing over.
+  uint64_t submit(const core::Volume& volume, uint64_t generation, const std::vector<int>& levels,
+                  int64_t* queued_ns = nullptr);
 
   /// The meshes made since the previous call; nothing when none.
   std::optional<SurfaceDelta> take();
