@@ -1,5 +1,6 @@
 #include "sculpt/sim/replay/sim_backend.h"
 
+#include <algorithm>
 #include <atomic>
 
 #include "sculpt/sim/replay/session_player.h"
@@ -22,19 +23,27 @@ struct SimBackend::Shared {
   int64_t last_t_ns = 0;
   int64_t offset_ns = 0;               // added to every time after the first round
   std::atomic<bool> unplugged{false};  // since changed() last said so
+  // False until start_playing() for a backend made to wait: the player is
+  // made paused and resumed (its pacing restarted) by the first read after.
+  std::atomic<bool> started{true};
 };
 
 namespace {
 
 using Shared = SimBackend::Shared;
 
+// How often a device waiting for start_playing() looks again.
+constexpr int64_t kStartPollNs = 1'000'000;
+
 class SimDevice final : public hal::Device {
  public:
   // One device at a time reads the shared player (SimBackend::open()).
   SimDevice(std::shared_ptr<SimBackend::Shared> shared, hal::DeviceInfo info)
       : shared_(std::move(shared)), info_(std::move(info)) {
-    if (!shared_->player)
+    if (!shared_->player) {
       shared_->player = std::make_unique<SessionPlayer>(shared_->session, shared_->speed);
+      if (!shared_->started.load()) shared_->player->pause();
+    }
   }
   const hal::DeviceInfo& info() const override { return info_; }
 
@@ -47,6 +56,14 @@ class SimDevice final : public hal::Device {
     // Never wait past the timeout: a pause in the recording must not keep the
     // reader thread from noticing that it should stop.
     const int64_t deadline = sh.player->clock().now_ns() + int64_t{timeout_ms} * 1'000'000;
+    if (!sh.started.load(std::memory_order_acquire)) {
+      // Not started: looked at again within a millisecond, so that the
+      // session starts when the station does.
+      sh.player->clock().sleep_until_ns(
+          std::min(deadline, sh.player->clock().now_ns() + kStartPollNs));
+      return hal::ReadResult::kTimeout;
+    }
+    if (sh.player->paused()) sh.player->resume();  // started: the clock runs from now
     if (sh.player->at_end() && sh.loop) next_round();
     SessionPlayer& player = *sh.player;
     while (!player.at_end()) {
@@ -105,8 +122,10 @@ class SimDevice final : public hal::Device {
 
 }  // namespace
 
-SimBackend::SimBackend(Session session, std::string path, double speed, bool loop)
+SimBackend::SimBackend(Session session, std::string path, double speed, bool loop,
+                       bool wait_for_start)
     : shared_(std::make_shared<Shared>()) {
+  shared_->started.store(!wait_for_start);
   info_ = session.header.device;
   info_.backend = "sim";
   info_.path = std::move(path);
@@ -134,6 +153,10 @@ bool SimBackend::changed() {
 
 bool SimBackend::played() const {
   return shared_->played.load();
+}
+
+void SimBackend::start_playing() {
+  shared_->started.store(true, std::memory_order_release);
 }
 
 std::vector<std::pair<int64_t, Command>> SimBackend::take_commands() {

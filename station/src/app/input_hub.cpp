@@ -108,6 +108,9 @@ void InputHub::note_devices() {
 }
 
 void InputHub::run() {
+  // A session played as a device starts now, with the polls that take its
+  // reports (sim_backend.h).
+  if (sim_ != nullptr) sim_->start_playing();
   timespec next{};
   clock_gettime(CLOCK_MONOTONIC, &next);
   while (!stop_.load(std::memory_order_relaxed)) {

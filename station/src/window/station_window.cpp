@@ -357,8 +357,9 @@ int run_window(const WindowOptions& o) {
     *config = *recorded;
     registry = std::make_unique<hal::DeviceRegistry>(std::vector<std::unique_ptr<hal::Backend>>{},
                                                      *config, reader_options);
+    // Its clock starts with the sculpting thread's polls (InputHub::run()).
     auto backend = std::make_unique<sim::SimBackend>(std::move(session).value(), file, o.sim_speed,
-                                                     o.sim_loop);
+                                                     o.sim_loop, /*wait_for_start=*/true);
     sim_backend = backend.get();
     registry->add_backend(std::move(backend), /*first=*/true);
     auto id = registry->open_device("sim");

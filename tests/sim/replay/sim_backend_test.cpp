@@ -81,6 +81,31 @@ TEST(SimBackend, PlaysTheSessionDeviceThroughTheHalInterfaces) {
   EXPECT_EQ((*device)->read(e, 0), hal::ReadResult::kRemoved);  // the old handle stays gone
 }
 
+// The window opens a session's device while it is still starting; made to
+// wait, the device hands out nothing, commands included, however long ago
+// its records fell due, until the station starts to poll.
+TEST(SimBackend, AWaitingDeviceHandsOutNothingUntilStarted) {
+  const Session s = short_session();
+  SimBackend backend(s, "short.scs", /*speed=*/1000.0, /*loop=*/false, /*wait_for_start=*/true);
+  auto devices = backend.enumerate();
+  ASSERT_TRUE(devices.ok());
+  auto device = backend.open((*devices)[0]);
+  ASSERT_TRUE(device.ok());
+  hal::RawEvent e;
+  // At a thousand times real time the whole session is due within these reads.
+  for (int i = 0; i < 20; ++i)
+    ASSERT_EQ((*device)->read(e, 5), hal::ReadResult::kTimeout) << i;
+  EXPECT_TRUE(backend.take_commands().empty());
+  EXPECT_FALSE(backend.played());
+
+  backend.start_playing();
+  int events = 0;
+  for (int timeouts = 0; timeouts < 3 && events == 0;)
+    (*device)->read(e, 50) == hal::ReadResult::kEvent ? ++events : ++timeouts;
+  EXPECT_EQ(events, 1);
+  EXPECT_FALSE(backend.take_commands().empty());  // the commands before the first report
+}
+
 TEST(SimBackend, ReadHonoursItsTimeoutDuringAPauseInTheRecording) {
   Session s;
   s.header.device.vendor_id = 0x256f;

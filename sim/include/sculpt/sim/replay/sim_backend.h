@@ -29,7 +29,10 @@ class SimBackend final : public hal::Backend {
   /// Plays `session` (read from `path`) at `speed`; with `loop`, over and
   /// over (each round's times follow the last's a second after its end, so
   /// time keeps increasing): the soak test's endless sculptor.
-  SimBackend(Session session, std::string path, double speed = 1.0, bool loop = false);
+  /// With `wait_for_start`, the device hands out nothing, and the session's
+  /// clock does not run, until start_playing().
+  SimBackend(Session session, std::string path, double speed = 1.0, bool loop = false,
+             bool wait_for_start = false);
   std::string_view name() const override { return "sim"; }
   hal::BackendStatus status() override { return {}; }
   Result<std::vector<hal::DeviceInfo>> enumerate() override;
@@ -41,6 +44,13 @@ class SimBackend final : public hal::Backend {
   bool played() const;
   /// Station commands whose time has come (thread-safe), in order.
   std::vector<std::pair<int64_t, Command>> take_commands();
+  /// Starts the session's clock of a backend made to wait for it: its first
+  /// record is due now, the rest at their recorded spacing. The window
+  /// calls it as its sculpting thread starts to poll: a device opened while
+  /// the window was still starting had handed its first 50 ms of reports
+  /// out at once, and the demo's first ball came in one poll with the new
+  /// block and the tool change (docs/performance.md). Thread-safe; once.
+  void start_playing();
 
   struct Shared;
 
