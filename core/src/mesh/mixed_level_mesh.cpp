@@ -731,6 +731,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
   parallel_for(
       static_cast<int64_t>(stale_bricks.size()),
       [&](int64_t i) {
+        if (cancelled_ && cancelled_()) return;
         thread_local std::vector<float> block;
         const glm::ivec3 b = stale_bricks[static_cast<size_t>(i)];
         CachedBrick& cb = bricks_[index(b)];

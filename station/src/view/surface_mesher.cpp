@@ -366,6 +366,7 @@ void SurfaceMesher::run() {
           refinement_->levels = work.levels;
           refinement_->change = work.change;
         }
+        current_epoch_.store(refining ? refinement_->epoch : 0, std::memory_order_relaxed);
       }
     } else if (refining) {
       {
@@ -440,8 +441,15 @@ void SurfaceMesher::refine() {
     const glm::ivec3 grid = volume->brick_grid();
     for (auto& [i, brick] : bricks)
       volume->replace_brick(core::grid_position(i, grid), std::move(brick));
+    // A newer volume ends the pass between bricks (its result is dropped).
+    auto replaced = [this, epoch] {
+      return current_epoch_.load(std::memory_order_relaxed) != epoch;
+    };
+    cache->set_cancel(replaced);
     (void)cache->update(*volume, levels);
-    if (simplify_error_ > 0) simplify_refined(*cache, simplified, simplified_versions);
+    cache->set_cancel(nullptr);
+    if (simplify_error_ > 0 && !replaced())
+      simplify_refined(*cache, simplified, simplified_versions);
     const int64_t end = hal::monotonic_ns();
     lock.lock();
     ++counters_.refine_passes;

@@ -4,6 +4,7 @@
 #include "sculpt/core/mesh/mixed_level_mesh.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -200,6 +201,25 @@ TEST(MixedLevelMeshCache, FollowsEditsAnywhereAsMeshingFromScratchWould) {
     EXPECT_GT(u.bricks_changed, 0) << i;
     EXPECT_LE(u.bricks_changed, 27) << i;
     EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, levels)) << i;
+  }
+}
+
+// A cancelled update meshes no brick after the cancel says so (the station's
+// refiner stops a pass over a volume that a newer one replaced); a cache
+// that is not cancelled meshes them all.
+TEST(MixedLevelMeshCache, ACancelledUpdateMeshesNoMoreBricks) {
+  const Volume v = sphere_volume(128);  // 4^3 bricks
+  const std::vector<int> levels(static_cast<size_t>(v.brick_count()), 0);
+  MixedLevelMeshCache whole(MarchingCubesOptions{.threads = 2});
+  const int64_t all = whole.update(v, levels).bricks_meshed;
+  ASSERT_GT(all, 16);
+  for (const int after : {0, 5}) {
+    MixedLevelMeshCache cut(MarchingCubesOptions{.threads = 2});
+    std::atomic<int> asked{0};
+    cut.set_cancel([&] { return asked.fetch_add(1) >= after; });
+    const MeshUpdate u = cut.update(v, levels);
+    EXPECT_EQ(asked.load(), v.brick_count());  // asked before every brick
+    EXPECT_LE(u.bricks_meshed, after) << after;
   }
 }
 

@@ -31,6 +31,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <unordered_map>
 #include <vector>
@@ -90,6 +91,13 @@ class MixedLevelMeshCache {
   /// Bytes the meshes kept from other levels may take (0: keep none).
   void set_kept_mesh_budget(size_t bytes) { kept_budget_bytes_ = bytes; }
   size_t kept_mesh_bytes() const { return kept_bytes_; }
+
+  /// Asked before each brick update() meshes, from the threads meshing
+  /// (none by default): once it says true, update() meshes no more bricks and
+  /// returns, and the cache is fit only to be discarded (a refinement of a
+  /// volume that a newer one replaced: the station's refiner spent up to
+  /// 60 ms finishing such a pass beside the new volume's first dabs).
+  void set_cancel(std::function<bool()> cancelled) { cancelled_ = std::move(cancelled); }
 
   /// Brings the meshes up to date with `volume` and `brick_levels` (one per
   /// brick, index (b.z * grid.y + b.y) * grid.x + b.x, each in
@@ -174,6 +182,7 @@ class MixedLevelMeshCache {
   void trim_kept_meshes();
 
   MarchingCubesOptions options_;
+  std::function<bool()> cancelled_;
   const Volume* volume_ = nullptr;
   glm::ivec3 dims_{0};
   glm::ivec3 grid_{0};

@@ -45,6 +45,7 @@
 // take() from one thread (the renderer's); both may run while the mesher
 // works.
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -257,6 +258,9 @@ class SurfaceMesher {
       0;  // of the mesher and the refiner, those whose heap is touched (meshed_ tells)
   std::unique_ptr<Refinement> refinement_;  // the newest volume's, until taken over
   uint64_t refine_epochs_ = 0;
+  // The epoch of the refinement under way (0: none), read by the refiner's
+  // pass between bricks: a pass whose volume was replaced stops.
+  std::atomic<uint64_t> current_epoch_{0};
   bool hold_refinement_ = false;
   bool hold_take_over_ = false;
   // Published meshes waiting to be simplified, oldest first, one per brick.
