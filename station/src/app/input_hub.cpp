@@ -108,13 +108,20 @@ void InputHub::note_devices() {
 }
 
 void InputHub::run() {
-  // A session played as a device starts now, with the polls that take its
-  // reports (sim_backend.h).
-  if (sim_ != nullptr) sim_->start_playing();
+  const int64_t started_ns = hal::monotonic_ns();
   timespec next{};
   clock_gettime(CLOCK_MONOTONIC, &next);
   while (!stop_.load(std::memory_order_relaxed)) {
     const int64_t before_lock = hal::monotonic_ns();
+    // A session played as a device starts once the window's opening
+    // surface is meshed (sim_backend.h), as a sculptor starts once the
+    // sculpture is on screen, and at the latest after kSessionStartWaitNs.
+    if (sim_ != nullptr && !session_started_ &&
+        ((!levels_.empty() && mesher_.meshed()) ||
+         hal::monotonic_ns() - started_ns > kSessionStartWaitNs)) {
+      sim_->start_playing();
+      session_started_ = true;
+    }
     {
       std::lock_guard lock(mutex_);
       const int64_t now = hal::monotonic_ns();

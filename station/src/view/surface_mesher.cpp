@@ -157,11 +157,18 @@ void SurfaceMesher::wait_until_warm() {
   meshed_.wait(lock, [&] { return threads_warm_ == 2; });  // the mesher and the refiner
 }
 
+bool SurfaceMesher::all_meshed_locked() const {
+  return !has_pending_ && !busy_ && !refinement_ && simplify_order_.empty() && !simplifying_;
+}
+
 void SurfaceMesher::wait_until_meshed() {
   std::unique_lock lock(mutex_);
-  meshed_.wait(lock, [&] {
-    return !has_pending_ && !busy_ && !refinement_ && simplify_order_.empty() && !simplifying_;
-  });
+  meshed_.wait(lock, [&] { return all_meshed_locked(); });
+}
+
+bool SurfaceMesher::meshed() const {
+  std::lock_guard lock(mutex_);
+  return all_meshed_locked();
 }
 
 void SurfaceMesher::hold_take_over(bool hold) {

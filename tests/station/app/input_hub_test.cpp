@@ -33,8 +33,8 @@ struct LiveSession {
 
 // The session as a device, as the window plays it (`sculpt run --device sim:`),
 // its raw reports tapped into `recorder`'s recording when given.
-LiveSession play_live(const std::string& name, double speed,
-                      StationController* recorder = nullptr) {
+LiveSession play_live(const std::string& name, double speed, StationController* recorder = nullptr,
+                      bool wait_for_start = false) {
   auto session = load_session(sim::bundled_session_path(name));
   EXPECT_TRUE(session.ok());
   auto config = hal::parse_normalizer_config(session->header.normalizer_config, name);
@@ -46,8 +46,9 @@ LiveSession play_live(const std::string& name, double speed,
     reader_options.on_raw = [recorder](const hal::RawEvent& e) { recorder->raw_report(e); };
   live.registry = std::make_unique<hal::DeviceRegistry>(
       std::vector<std::unique_ptr<hal::Backend>>{}, *config, reader_options);
-  auto backend = std::make_unique<sim::SimBackend>(std::move(session).value(),
-                                                   sim::bundled_session_path(name), speed);
+  auto backend =
+      std::make_unique<sim::SimBackend>(std::move(session).value(), sim::bundled_session_path(name),
+                                        speed, /*loop=*/false, wait_for_start);
   live.sim = backend.get();
   live.registry->add_backend(std::move(backend), /*first=*/true);
   EXPECT_TRUE(live.registry->open_device("sim").ok());
@@ -122,6 +123,45 @@ TEST(InputHub, ALiveSessionSculptedOnItsThreadEndsOnTheReplaysVolume) {
   // then alternate one for one); `--stats` reports it (sculpting.polls).
   EXPECT_GT(snapshot.triangle_count(), 100);
   EXPECT_EQ(controller.session_latency().count, dabs);  // every dab's latency counted
+}
+
+// The window's session device waits for the station: the hub starts it once
+// the opening surface is meshed (the render thread has given levels and the
+// mesher is done), not while the window is still starting.
+TEST(InputHub, AWaitingSessionStartsOnceTheOpeningSurfaceIsMeshed) {
+  test::ScratchDir dir;
+  StationController controller(quiet_controller(dir));
+  SurfaceMesher mesher;
+  LiveSession live = play_live("sheet", 8.0, nullptr, /*wait_for_start=*/true);
+  InputHub hub(controller, std::move(live.registry), live.sim, live.normalizer, mesher);
+  const uint64_t opening = controller.loop().volume().content_hash();
+  hub.start();
+  // No levels yet (no frame has drawn): polled, but nothing played.
+  while (true) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    std::lock_guard turn(hub.mutex());
+    if (hub.figures().polls >= 20) break;
+  }
+  {
+    std::lock_guard turn(hub.mutex());
+    EXPECT_EQ(controller.loop().volume().content_hash(), opening);
+    EXPECT_EQ(controller.loop().counters().dabs, 0);
+    EXPECT_FALSE(hub.replay_done());
+    const core::Volume& v = controller.loop().volume();
+    hub.set_levels(std::vector<int>(static_cast<size_t>(v.brick_count()), 0));
+  }
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!hub.replay_done() && std::chrono::steady_clock::now() < give_up) {
+    {
+      std::lock_guard turn(hub.mutex());
+      (void)mesher.take();
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ASSERT_TRUE(hub.replay_done()) << "the session did not end in 60 s";
+  hub.stop();
+  int64_t dabs = 0;
+  EXPECT_EQ(controller.loop().volume().content_hash(), replayed_hash("sheet", &dabs));
 }
 
 // The short session unplugs its device mid-stroke and plugs it back in: the

@@ -45,11 +45,12 @@ class SimBackend final : public hal::Backend {
   /// Station commands whose time has come (thread-safe), in order.
   std::vector<std::pair<int64_t, Command>> take_commands();
   /// Starts the session's clock of a backend made to wait for it: its first
-  /// record is due now, the rest at their recorded spacing. The window
-  /// calls it as its sculpting thread starts to poll: a device opened while
-  /// the window was still starting had handed its first 50 ms of reports
-  /// out at once, and the demo's first ball came in one poll with the new
-  /// block and the tool change (docs/performance.md). Thread-safe; once.
+  /// record is due now, the rest at their recorded spacing. The window's
+  /// sculpting thread calls it once the opening surface is meshed
+  /// (InputHub::run()): a device opened while the window was still starting
+  /// had handed its first 50 ms of reports out at once, and the demo's first
+  /// ball came in one poll with the new block and the tool change
+  /// (docs/performance.md). Thread-safe; once.
   void start_playing();
 
   struct Shared;

@@ -135,6 +135,9 @@ class InputHub {
   std::vector<std::pair<int64_t, sim::Command>> held_commands_;
   int64_t newest_report_t_ns_;
   int64_t last_scan_ns_ = 0;
+  // Whether the session played as a device has been started (run()).
+  bool session_started_ = false;
+  static constexpr int64_t kSessionStartWaitNs = 2'000'000'000;
   int64_t last_tick_ns_ = 0;
   uint32_t device_id_ = 0;  // the device the panel reports on
   InputHubFigures figures_;

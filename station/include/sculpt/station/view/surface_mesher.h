@@ -179,6 +179,9 @@ class SurfaceMesher {
   /// Waits until every submitted change is meshed, simplified and ready to
   /// take (tests, a screenshot of a given frame, the end of a run).
   void wait_until_meshed();
+  /// Whether wait_until_meshed() would return at once: every change handed
+  /// over meshed, refined and simplified.
+  bool meshed() const;
 
   MesherCounters counters() const;
 
@@ -215,6 +218,8 @@ class SurfaceMesher {
   };
   void run();
   void refine();
+  // meshed(), mutex_ held.
+  bool all_meshed_locked() const;
   // Touches `bytes` of this thread's heap, then counts it warm.
   void warm_this_thread(size_t bytes);
   /// Simplifies the bricks the refinement's cache remade (in parallel).
