@@ -357,7 +357,7 @@ int run_window(const WindowOptions& o) {
     *config = *recorded;
     registry = std::make_unique<hal::DeviceRegistry>(std::vector<std::unique_ptr<hal::Backend>>{},
                                                      *config, reader_options);
-    // Its clock starts with the sculpting thread's polls (InputHub::run()).
+    // Its clock starts once the opening surface is meshed (InputHub::run()).
     auto backend = std::make_unique<sim::SimBackend>(std::move(session).value(), file, o.sim_speed,
                                                      o.sim_loop, /*wait_for_start=*/true);
     sim_backend = backend.get();
