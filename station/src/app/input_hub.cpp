@@ -113,18 +113,18 @@ void InputHub::run() {
   clock_gettime(CLOCK_MONOTONIC, &next);
   while (!stop_.load(std::memory_order_relaxed)) {
     const int64_t before_lock = hal::monotonic_ns();
-    // A session played as a device starts once the window's opening
-    // surface is meshed (sim_backend.h), as a sculptor starts once the
-    // sculpture is on screen, and at the latest after kSessionStartWaitNs.
-    if (sim_ != nullptr && !session_started_ &&
-        ((!levels_.empty() && mesher_.meshed()) ||
-         hal::monotonic_ns() - started_ns > kSessionStartWaitNs)) {
-      sim_->start_playing();
-      session_started_ = true;
-    }
     {
       std::lock_guard lock(mutex_);
       const int64_t now = hal::monotonic_ns();
+      // A session played as a device starts once the window's opening
+      // surface is meshed (sim_backend.h), as a sculptor starts once the
+      // sculpture is on screen, and at the latest after kSessionStartWaitNs.
+      // (Under the lock: the render thread gives the levels.)
+      if (sim_ != nullptr && !session_started_ &&
+          ((!levels_.empty() && mesher_.meshed()) || now - started_ns > kSessionStartWaitNs)) {
+        sim_->start_playing();
+        session_started_ = true;
+      }
       figures_.lock_wait_ms += static_cast<double>(now - before_lock) * 1e-6;
       poll(now);
       figures_.sculpt_ms += static_cast<double>(hal::monotonic_ns() - now) * 1e-6;
