@@ -143,7 +143,9 @@ class RotationFrame {
   /// Writes target voxels [x0, x1) of row (y, z) (target coordinates, inside
   /// box()) into out[0 .. x1 - x0), which must hold zeros: only the stretch
   /// whose samples can be non-zero is written, the tool's core filled, the
-  /// rest sampled stepping incrementally along x.
+  /// rest sampled stepping incrementally along x. Each call finds the row's
+  /// reach and clips its lines anew, as sample_box() does: the reference the
+  /// planned sample_row() below is tested against (the cache uses that one).
   void sample_row(const PreparedTool& tool, int y, int z, int x0, int x1, uint8_t* out) const;
   /// The whole box into out (box().size(), x fastest, zeros on entry) by
   /// Algorithm 1: the basis is inverse-rotated once; each voxel is one step
