@@ -271,6 +271,37 @@ TEST(MixedLevelMeshCache, MaterialAppearingAmongUniformBricksIsMeshed) {
   EXPECT_EQ(cache.triangle_count(), 0);
 }
 
+TEST(MixedLevelMeshCache, ABallInAUniformBrickReMeshesOnlyTheBricksThatReadIt) {
+  // A brick that was uniform had nothing decoded to compare with, and its
+  // whole box counted as changed: every brick around re-meshed (a big ball
+  // added in the air made 304 bricks stale where 107 read voxels it
+  // changed). Its old voxels are its uniform value: a ball well inside it,
+  // in the air or carved out of solid clay, re-meshes it alone, at any mix
+  // of levels, and the meshes are those of a fresh meshing.
+  for (const uint8_t fill : {uint8_t{0}, uint8_t{255}}) {
+    Volume v(glm::ivec3(96), fill, VolumeOptions{.brick_edge = 16, .levels = 4});
+    const std::vector<int> levels = levels_by(v, [](glm::ivec3 b) { return b.x % 2; });
+    MixedLevelMeshCache cache;
+    // Some surface elsewhere (bricks 4 and 5; 3 to 5 meshed, 2 to 5 decoded),
+    // so that uniform bricks sit beside meshed ones.
+    v.write({70, 70, 70}, DenseGrid<uint8_t>(glm::ivec3(20), static_cast<uint8_t>(255 - fill)));
+    cache.update(v, levels);
+    const uint8_t other = static_cast<uint8_t>(255 - fill);
+    // A 6-voxel cube in the middle of brick (1, 1, 1): voxels 21..26, more
+    // than the two-voxel margin a level-0 neighbour reads from its faces.
+    v.write({21, 21, 21}, DenseGrid<uint8_t>(glm::ivec3(6), other));
+    const MeshUpdate u = cache.update(v, levels);
+    EXPECT_EQ(u.bricks_changed, 1) << int{fill};
+    EXPECT_GT(cache.triangle_count(), 0);
+    EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, levels)) << int{fill};
+    // Across a face: the brick beside it reads the change too.
+    v.write({30, 22, 22}, DenseGrid<uint8_t>(glm::ivec3(4), other));
+    const MeshUpdate across = cache.update(v, levels);
+    EXPECT_GE(across.bricks_changed, 2) << int{fill};
+    EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, levels)) << int{fill};
+  }
+}
+
 TEST(MixedLevelMeshCache, ZoomingBackReMeshesNothing) {
   // Levels by camera distance: near (fine), then far (coarse), then near
   // again. The way back gives every brick the mesh it had, marching none.

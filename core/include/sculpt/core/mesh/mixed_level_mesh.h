@@ -170,6 +170,11 @@ class MixedLevelMeshCache {
   // Whether every brick within `r` of b (outside the volume: 0) is uniform
   // with one value: then b's mesh is empty whatever its level.
   bool uniform_around(glm::ivec3 b, int r) const;
+  // Whether a brick within two of b (the widest reach) is at level k.
+  bool level_used_around(glm::ivec3 b, int k) const;
+  // A brick's uniform value, or kNotUniform.
+  static constexpr int16_t kNotUniform = -1;
+  static int16_t uniform_value_of(const Brick& brick);
   // Meshes brick b at cb.level into cb; `block` is the caller's scratch.
   void mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<float>& block);
   void stitch(glm::ivec3 b, int k, BrickMesh& out, MixedLevelStats& st) const;
@@ -191,6 +196,7 @@ class MixedLevelMeshCache {
   std::array<glm::ivec3, 8> level_dims_{};  // volume_->level_dims(k), looked up per sample
   std::vector<CachedBrick> bricks_;
   std::vector<uint64_t> seen_versions_;            // brick versions as of the last update
+  std::vector<int16_t> seen_uniform_;              // their uniform values then (or kNotUniform)
   std::unordered_map<uint64_t, Decoded> decoded_;  // key: brick index * 8 + level
   int64_t decodes_ = 0;
   // While stale bricks are meshed in parallel: decoded_ is read only.
