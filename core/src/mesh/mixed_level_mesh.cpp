@@ -234,14 +234,15 @@ bool MixedLevelMeshCache::uniform_around(glm::ivec3 b, int r) const {
   return true;
 }
 
-bool MixedLevelMeshCache::level_used_around(glm::ivec3 b, int k) const {
+unsigned MixedLevelMeshCache::levels_used_around(glm::ivec3 b) const {
   // The widest reach (two bricks) around: the bricks that may read b.
+  unsigned used = 0;
   for (int dz = -2; dz <= 2; ++dz)
     for (int dy = -2; dy <= 2; ++dy)
       for (int dx = -2; dx <= 2; ++dx)
-        if (const glm::ivec3 nb = b + glm::ivec3(dx, dy, dz); in_grid(nb) && level_of(nb) == k)
-          return true;
-  return false;
+        if (const glm::ivec3 nb = b + glm::ivec3(dx, dy, dz); in_grid(nb))
+          used |= 1u << level_of(nb);
+  return used;
 }
 
 int16_t MixedLevelMeshCache::uniform_value_of(const Brick& brick) {
@@ -614,8 +615,9 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
           continue;
         }
         const int m0 = edge_;
+        const unsigned used = levels_used_around(n);
         for (int k = 0; k <= volume.levels(); ++k) {
-          if (!level_used_around(n, k)) continue;
+          if (!(used & (1u << k))) continue;
           Decoded& old = decoded_[static_cast<uint64_t>(index(n)) * 8 + static_cast<uint64_t>(k)];
           const size_t m = static_cast<size_t>(m0 >> k);
           old.voxels.assign(m * m * m, static_cast<uint8_t>(was_uniform));

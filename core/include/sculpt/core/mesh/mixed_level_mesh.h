@@ -170,8 +170,9 @@ class MixedLevelMeshCache {
   // Whether every brick within `r` of b (outside the volume: 0) is uniform
   // with one value: then b's mesh is empty whatever its level.
   bool uniform_around(glm::ivec3 b, int r) const;
-  // Whether a brick within two of b (the widest reach) is at level k.
-  bool level_used_around(glm::ivec3 b, int k) const;
+  // The levels of the bricks within two of b (the widest reach), bit k set
+  // for level k.
+  unsigned levels_used_around(glm::ivec3 b) const;
   // A brick's uniform value, or kNotUniform.
   static constexpr int16_t kNotUniform = -1;
   static int16_t uniform_value_of(const Brick& brick);

@@ -1,0 +1,57 @@
+#include "sculpt/base/thread_priority.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <filesystem>
+#include <iterator>
+#include <string>
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+namespace sculpt {
+
+std::vector<int> process_thread_ids() {
+  std::vector<int> ids;
+  std::error_code ec;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task", ec)) {
+    const std::string name = task.path().filename().string();
+    int id = 0;
+    const auto [end, error] = std::from_chars(name.data(), name.data() + name.size(), id);
+    if (error == std::errc() && end == name.data() + name.size()) ids.push_back(id);
+  }
+  if (ec) return {};
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+std::vector<int> threads_started(std::span<const int> before, std::span<const int> now) {
+  std::vector<int> started;
+  std::set_difference(now.begin(), now.end(), before.begin(), before.end(),
+                      std::back_inserter(started));
+  return started;
+}
+
+int this_thread_id() {
+  return static_cast<int>(gettid());
+}
+
+int thread_niceness(int id) {
+  // getpriority() may return -1 as a niceness: errno tells an error apart.
+  errno = 0;
+  const int nice = getpriority(PRIO_PROCESS, static_cast<id_t>(id));
+  return errno != 0 ? -100 : nice;
+}
+
+int make_threads_nicer(std::span<const int> ids, int nice) {
+  int changed = 0;
+  for (const int id : ids) {
+    const int now = thread_niceness(id);
+    if (now == -100 || now >= nice) continue;  // ended, or nicer already
+    if (setpriority(PRIO_PROCESS, static_cast<id_t>(id), nice) == 0) ++changed;
+  }
+  return changed;
+}
+
+}  // namespace sculpt
