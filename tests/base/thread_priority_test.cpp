@@ -58,7 +58,7 @@ TEST(ThreadPriority, MakesThreadsNicerAndNeverLessNice) {
   EXPECT_EQ(make_threads_nicer(ids, nicer), 1);
   EXPECT_EQ(thread_niceness(drawing.id()), nicer);
   EXPECT_EQ(thread_niceness(sculpting.id()), base);    // only the threads named
-  EXPECT_EQ(thread_niceness(this_thread_id()), base);  // the caller included
+  EXPECT_EQ(thread_niceness(this_thread_id()), base);  // nor the caller
   EXPECT_EQ(make_threads_nicer(ids, base + 1), 0);     // a nicer thread keeps its niceness
   EXPECT_EQ(thread_niceness(drawing.id()), nicer);
 }

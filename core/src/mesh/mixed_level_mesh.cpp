@@ -608,8 +608,8 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         // uniform itself, its old voxels are known all the same: compared
         // with them, only the part that moved counts as changed (a big
         // ball added in the air moved 92 bricks; their whole boxes made
-        // 304 bricks stale where 107 read voxels that changed). Decoded at
-        // the levels the bricks around it mesh at, which they read anyway.
+        // 304 bricks stale, the voxels that changed 142). Decoded at the
+        // levels the bricks around it mesh at, which they read anyway.
         if (was_uniform == kNotUniform) {
           changed.push_back(Box{n * edge_, (n + 1) * edge_});
           continue;

@@ -301,8 +301,7 @@ int run_window(const WindowOptions& o) {
   auto window = GlWindow::open(o.width, o.height, "Sculpt station", o.visible);
   if (!window) return fail(window.error());
   // The OpenGL driver's own threads (llvmpipe's rasterisers) draw the frames.
-  const std::vector<int> drawing_threads =
-      threads_started(threads_before_gl, process_thread_ids());
+  const std::vector<int> drawing_threads = threads_started(threads_before_gl, process_thread_ids());
   GLFWwindow* w = (*window)->handle();
   glfwSwapInterval(o.vsync ? 1 : 0);
   auto renderer = gl::SceneRenderer::create();
@@ -501,9 +500,9 @@ int run_window(const WindowOptions& o) {
   // the force loop) keep their niceness; those the frame starts later (a
   // tool's stand-in mesh, an autosave, an offset from the panel) inherit it,
   // and none of them is more urgent than a frame. Measured on the demo, at
-  // 5 against none: the first ball's meshing 14.8-15.8 against 16.0-17.2 ms
-  // beside llvmpipe, dab latency p99 8.1-8.8 against 11.5-12.2 ms (three
-  // runs each); 12 did no better.
+  // 5 against none: the first ball's meshing 14.8, 20.7, 14.9 against 17.0,
+  // 16.0, 17.2 ms beside llvmpipe, dab latency p99 8.4, 8.8, 8.1 against
+  // 12.2, 11.5, 11.8 ms, frames as fast (three runs each); 12 did no better.
   {
     std::vector<int> drawing = drawing_threads;
     drawing.push_back(this_thread_id());
