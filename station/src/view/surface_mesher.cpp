@@ -4,9 +4,9 @@
 #include <utility>
 
 #include <sys/resource.h>
-#include <unistd.h>
 
 #include "sculpt/base/memory_reuse.h"
+#include "sculpt/base/thread_priority.h"
 #include "sculpt/base/thread_times.h"
 #include "sculpt/core/mesh/brick_simplify.h"
 #include "sculpt/core/mesh/mixed_level_mesh.h"
@@ -25,8 +25,8 @@ int64_t minor_faults_of_this_thread() {
 // The level a new volume is first shown at.
 constexpr int kCoarseLevel = 2;
 // Simplifying is the least urgent work of the window: it yields the cores
-// to sculpting, meshing and drawing (raising one's own niceness needs no
-// privilege; failing to is harmless).
+// to sculpting, meshing and drawing (thread_priority.h; failing to is
+// harmless).
 constexpr int kSimplifierNice = 10;
 
 }  // namespace
@@ -41,7 +41,8 @@ SurfaceMesher::SurfaceMesher(int threads, float simplify_error, size_t warm_heap
       }),
       simplifier_([this] {
         name_this_thread("simplifier");
-        setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kSimplifierNice);
+        const int self[] = {this_thread_id()};
+        make_threads_nicer(self, kSimplifierNice);
         simplify();
       }),
       refiner_([this, warm_heap_bytes] {
