@@ -614,12 +614,11 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
           changed.push_back(Box{n * edge_, (n + 1) * edge_});
           continue;
         }
-        const int m0 = edge_;
         const unsigned used = levels_used_around(n);
         for (int k = 0; k <= volume.levels(); ++k) {
           if (!(used & (1u << k))) continue;
           Decoded& old = decoded_[static_cast<uint64_t>(index(n)) * 8 + static_cast<uint64_t>(k)];
-          const size_t m = static_cast<size_t>(m0 >> k);
+          const size_t m = static_cast<size_t>(edge_ >> k);
           old.voxels.assign(m * m * m, static_cast<uint8_t>(was_uniform));
           redecodes.push_back({n, k, &old});
         }
