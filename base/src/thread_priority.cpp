@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iterator>
 #include <string>
 
+#include <sched.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -24,6 +27,16 @@ std::vector<int> process_thread_ids() {
   if (ec) return {};
   std::sort(ids.begin(), ids.end());
   return ids;
+}
+
+std::vector<int> threads_named(std::string_view name) {
+  std::vector<int> named;
+  for (const int id : process_thread_ids()) {
+    std::ifstream comm("/proc/self/task/" + std::to_string(id) + "/comm");
+    std::string line;
+    if (std::getline(comm, line) && line == name) named.push_back(id);
+  }
+  return named;
 }
 
 std::vector<int> threads_started(std::span<const int> before, std::span<const int> now) {
@@ -52,6 +65,34 @@ int make_threads_nicer(std::span<const int> ids, int nice) {
     if (setpriority(PRIO_PROCESS, static_cast<id_t>(id), nice) == 0) ++changed;
   }
   return changed;
+}
+
+std::string make_threads_realtime(std::span<const int> ids, int priority) {
+  sched_param param{};
+  param.sched_priority = priority;
+  std::string why_not;
+  for (const int id : ids) {
+    if (sched_setscheduler(id, SCHED_FIFO | SCHED_RESET_ON_FORK, &param) == 0) continue;
+    if (errno == ESRCH) continue;  // it ended meanwhile
+    if (why_not.empty()) why_not = std::strerror(errno);
+  }
+  return why_not;
+}
+
+ThreadScheduling this_thread_scheduling() {
+  ThreadScheduling s;
+  s.policy = sched_getscheduler(0) & ~SCHED_RESET_ON_FORK;
+  sched_param param{};
+  if (sched_getparam(0, &param) == 0) s.priority = param.sched_priority;
+  return s;
+}
+
+bool set_this_thread_scheduling(const ThreadScheduling& s) {
+  sched_param param{};
+  param.sched_priority = s.priority;
+  // The flag, once set, only a privileged thread may clear: keeping it set
+  // lets a helper that ran a real-time loop go back to ordinary.
+  return sched_setscheduler(0, s.policy | SCHED_RESET_ON_FORK, &param) == 0;
 }
 
 }  // namespace sculpt

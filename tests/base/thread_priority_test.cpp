@@ -1,12 +1,18 @@
-// Making threads nicer: the window puts drawing behind sculpting and meshing
-// this way (station_window.cpp).
+// Making threads nicer and real-time: the window puts a dab's path ahead of
+// drawing, and drawing behind sculpting and meshing, this way
+// (station_window.cpp).
 
 #include "sculpt/base/thread_priority.h"
 
 #include <algorithm>
 #include <atomic>
+#include <functional>
 #include <latch>
+#include <string>
 #include <thread>
+
+#include <pthread.h>
+#include <sched.h>
 
 #include <gtest/gtest.h>
 
@@ -16,14 +22,19 @@ namespace {
 // A thread that runs until released, and says its kernel id.
 class ParkedThread {
  public:
-  ParkedThread()
-      : thread_([this] {
+  explicit ParkedThread(const char* name = nullptr)
+      : thread_([this, name] {
+          if (name != nullptr) pthread_setname_np(pthread_self(), name);
           id_.store(this_thread_id());
           started_.count_down();
           release_.wait();
+          if (on_release_) on_release_();
         }) {
     started_.wait();
   }
+  // Runs `f` on the thread when it is released (before the destructor
+  // joins it).
+  void on_release(std::function<void()> f) { on_release_ = std::move(f); }
   ~ParkedThread() {
     release_.count_down();
     thread_.join();
@@ -34,8 +45,14 @@ class ParkedThread {
   std::atomic<int> id_{0};
   std::latch started_{1};
   std::latch release_{1};
+  std::function<void()> on_release_;
   std::thread thread_;
 };
+
+// The policy of thread `id` of this process, without SCHED_RESET_ON_FORK.
+int policy_of(int id) {
+  return sched_getscheduler(id) & ~SCHED_RESET_ON_FORK;
+}
 
 TEST(ThreadPriority, FindsTheThreadsStartedInBetween) {
   const std::vector<int> before = process_thread_ids();
@@ -70,6 +87,47 @@ TEST(ThreadPriority, SkipsAThreadThatEnded) {
   const int ids[] = {ended};
   // Nothing to change (setpriority would fail on it as well): no error, 0.
   EXPECT_EQ(make_threads_nicer(ids, 19), 0);
+}
+
+TEST(ThreadPriority, FindsThreadsByName) {
+  ParkedThread reader("tp-reader"), other("tp-other");
+  EXPECT_EQ(threads_named("tp-reader"), std::vector<int>{reader.id()});
+  EXPECT_TRUE(threads_named("tp-none").empty());
+}
+
+TEST(ThreadPriority, MakesThreadsRealtimeButNotTheThreadsTheyStart) {
+  std::atomic<int> child_policy{-1};
+  {
+    ParkedThread sculpting, drawing;
+    const int ids[] = {sculpting.id()};
+    if (const std::string why_not = make_threads_realtime(ids, 1); !why_not.empty())
+      GTEST_SKIP() << "no real-time priority here: " << why_not;
+    EXPECT_EQ(policy_of(sculpting.id()), SCHED_FIFO);
+    EXPECT_EQ(policy_of(drawing.id()), SCHED_OTHER);  // only the threads named
+    EXPECT_EQ(policy_of(this_thread_id()), SCHED_OTHER);
+    // A thread the real-time one starts is ordinary: a long job started
+    // from the sculpting thread must not keep the frames off the cores.
+    sculpting.on_release(
+        [&] { std::thread([&] { child_policy.store(policy_of(this_thread_id())); }).join(); });
+  }  // released: the child is started and joined
+  EXPECT_EQ(child_policy.load(), SCHED_OTHER);
+}
+
+TEST(ThreadPriority, AThreadTakesOnAndLeavesAScheduling) {
+  const ThreadScheduling ordinary = this_thread_scheduling();
+  ASSERT_EQ(ordinary.policy, SCHED_OTHER);
+  EXPECT_EQ(ordinary.priority, 0);
+  std::atomic<bool> took = false, left = false;
+  ThreadScheduling seen;
+  std::thread([&] {
+    if (!set_this_thread_scheduling({SCHED_FIFO, 1})) return;
+    took = true;
+    seen = this_thread_scheduling();
+    left = set_this_thread_scheduling(ordinary) && this_thread_scheduling() == ordinary;
+  }).join();
+  if (!took) GTEST_SKIP() << "no real-time priority here";
+  EXPECT_EQ(seen, (ThreadScheduling{SCHED_FIFO, 1}));
+  EXPECT_TRUE(left);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sculpt/base/memory_reuse.h"
+#include "sculpt/base/thread_priority.h"
 #include "sculpt/base/thread_times.h"
 
 namespace sculpt::core {
@@ -31,6 +32,14 @@ void drain(std::atomic<int64_t>& next, int64_t count, const std::function<void(i
   }
 }
 
+// A loop's helpers take on its caller's scheduling (thread_priority.h) while
+// they run it: a real-time thread's loop must not wait on helpers that the
+// drawing's threads keep off the cores, and an ordinary thread's loop must
+// not run ahead of them. The system call is made only when it changes.
+void adopt_scheduling(const ThreadScheduling& loop, ThreadScheduling& mine) {
+  if (loop != mine && set_this_thread_scheduling(loop)) mine = loop;
+}
+
 // Threads kept asleep between loops. Starting threads for every call cost
 // about as much as re-meshing a brick, and a dab's re-mesh is a few bricks;
 // waking a sleeping worker costs far less.
@@ -48,6 +57,7 @@ class WorkerPool {
       // A new thread must count this loop as unseen: it takes the lock only
       // after the generation below has moved on.
       start_locked(helpers);
+      scheduling_ = this_thread_scheduling();
       body_ = &body;
       count_ = count;
       next_.store(0, std::memory_order_relaxed);
@@ -94,6 +104,7 @@ class WorkerPool {
     if (const size_t bytes = g_pool_warm_bytes.load(std::memory_order_relaxed); bytes > 0)
       warm_this_threads_heap(bytes);
     t_loop_depth = 1;
+    ThreadScheduling mine = this_thread_scheduling();
     std::unique_lock lock(mutex_);
     for (;;) {
       wake_.wait(lock, [&] { return generation_ != seen && seats_ > 0; });
@@ -102,7 +113,9 @@ class WorkerPool {
       ++seated_;
       const std::function<void(int64_t)>& body = *body_;
       const int64_t count = count_;
+      const ThreadScheduling loop = scheduling_;
       lock.unlock();
+      adopt_scheduling(loop, mine);
       drain(next_, count, body);
       lock.lock();
       if (--seated_ == 0) finished_.notify_one();
@@ -117,6 +130,7 @@ class WorkerPool {
   std::vector<std::thread> threads_;
   const std::function<void(int64_t)>* body_ = nullptr;
   int64_t count_ = 0;
+  ThreadScheduling scheduling_;  // the current loop's caller's
   std::atomic<int64_t> next_{0};
   int seats_ = 0;   // workers that may still join the current loop
   int seated_ = 0;  // workers running the current loop
@@ -142,8 +156,11 @@ WorkerPool& worker_pool(int crew) {
 void run_on_fresh_threads(int64_t count, const std::function<void(int64_t)>& body,
                           int64_t workers) {
   std::atomic<int64_t> next{0};
+  const ThreadScheduling loop = this_thread_scheduling();
   auto work = [&] {
     name_this_thread("pool-extra");
+    ThreadScheduling mine = this_thread_scheduling();
+    adopt_scheduling(loop, mine);
     t_loop_depth = 1;
     drain(next, count, body);
   };

@@ -65,9 +65,14 @@ void HapticThread::start() {
     threads_[i] = std::thread([this, i, cpu] { run(i, cpu); });
   }
   // Wait until the threads have said whether they are real-time, so
-  // realtime_note() is safe to read once start() returns.
-  while (started_.load(std::memory_order_acquire) < thread_count_)
-    std::this_thread::yield();
+  // realtime_note() is safe to read once start() returns. Asleep, not
+  // yielding: the caller may be real-time itself (the window's sculpting
+  // thread restarts the loop for a new tool), and a real-time thread that
+  // yields keeps an ordinary one, as the new threads are until they make
+  // themselves real-time, off its core (a restart then took up to a second).
+  for (int n = started_.load(std::memory_order_acquire); n < thread_count_;
+       n = started_.load(std::memory_order_acquire))
+    started_.wait(n, std::memory_order_acquire);
 }
 
 void HapticThread::stop() {
@@ -109,6 +114,7 @@ void HapticThread::run(int which, int cpu) {
     realtime_.store(realtime, std::memory_order_release);
   }
   started_.fetch_add(1, std::memory_order_acq_rel);
+  started_.notify_all();
 
   int64_t deadline_ns = 0;
   {

@@ -1,5 +1,8 @@
 #include "sculpt/hal/input/device_reader.h"
 
+#include <chrono>
+#include <thread>
+
 #include "sculpt/base/thread_times.h"
 #include "sculpt/hal/types/clock.h"
 
@@ -36,11 +39,15 @@ void DeviceReader::stop() {
 }
 
 void DeviceReader::push_blocking(const InputEvent& e) {
-  // Events that must not be lost wait for room; the main loop drains every
-  // frame, so the wait is short. stop() ends it so shutdown never hangs.
+  // Events that must not be lost wait for room; the sculpting thread
+  // drains the ring at each poll, so the wait is short. It sleeps rather
+  // than yields: a real-time reader (the window makes it one) that yields
+  // gives its core to no thread of lower priority, the sculpting thread
+  // that would make the room included. stop() ends it so shutdown never
+  // hangs.
   while (!ring_.try_push(e)) {
     if (stop_.load(std::memory_order_relaxed)) return;
-    std::this_thread::yield();
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
   }
 }
 

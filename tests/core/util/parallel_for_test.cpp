@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <pthread.h>
+#include <sched.h>
 #include <sys/resource.h>
 
 #include <atomic>
@@ -10,6 +11,7 @@
 #include <cstdlib>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -18,6 +20,7 @@
 
 #include "sanitized.h"
 #include "sculpt/base/memory_reuse.h"
+#include "sculpt/base/thread_priority.h"
 
 namespace sculpt::core {
 namespace {
@@ -70,6 +73,43 @@ TEST(ParallelFor, UsesMoreThanTheCallingThread) {
       },
       2);
   EXPECT_EQ(ids.size(), 2u);
+}
+
+// The scheduling a pool thread runs one index of a two-index loop with: the
+// caller holds its own index until the other has been run elsewhere.
+ThreadScheduling a_helpers_scheduling() {
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<bool> seen{false};
+  ThreadScheduling helper{-1, -1};
+  parallel_for(
+      2,
+      [&](int64_t) {
+        if (std::this_thread::get_id() != caller) {
+          helper = this_thread_scheduling();
+          seen.store(true);
+          return;
+        }
+        while (!seen.load() && std::chrono::steady_clock::now() < give_up)
+          std::this_thread::yield();
+      },
+      2);
+  return helper;
+}
+
+// A loop's helpers run it with its caller's scheduling: a real-time thread's
+// loop (the mesher's) on real-time helpers, not on threads the drawing keeps
+// off the cores; an ordinary thread's loop next on ordinary ones again.
+TEST(ParallelFor, HelpersRunALoopWithItsCallersScheduling) {
+  const ThreadScheduling ordinary = this_thread_scheduling();
+  std::optional<ThreadScheduling> realtime_helper;
+  std::thread([&] {
+    if (!set_this_thread_scheduling({SCHED_FIFO, 1})) return;
+    realtime_helper = a_helpers_scheduling();
+  }).join();
+  if (!realtime_helper) GTEST_SKIP() << "no real-time priority here";
+  EXPECT_EQ(*realtime_helper, (ThreadScheduling{SCHED_FIFO, 1}));
+  EXPECT_EQ(a_helpers_scheduling(), ordinary);
 }
 
 // In a process of its own (the pool is process-wide and its threads start
