@@ -3,6 +3,7 @@
 #include <chrono>
 #include <thread>
 
+#include "sculpt/base/thread_priority.h"
 #include "sculpt/base/thread_times.h"
 #include "sculpt/hal/types/clock.h"
 
@@ -25,6 +26,10 @@ void DeviceReader::start() {
   if (thread_.joinable()) return;
   thread_ = std::thread([this] {
     name_this_thread("reader");
+    if (options_.realtime_priority > 0) {
+      const int self[] = {this_thread_id()};
+      (void)make_threads_realtime(self, options_.realtime_priority);  // else ordinary
+    }
     run();
   });
 }

@@ -78,11 +78,12 @@ constexpr int kReaderRealtime = 4;
 constexpr int kSculptingRealtime = 3;
 constexpr int kMeshingRealtime = 2;
 
-// Makes the device readers, the sculpting thread and the mesher real-time
-// (thread_priority.h); returns "" or why one could not be.
+// Makes the sculpting thread and the mesher real-time (thread_priority.h);
+// returns "" or why one could not be. (The device readers make themselves
+// real-time as they start, ReaderOptions: a device plugged in later too.)
 std::string make_dab_path_realtime() {
-  const std::pair<const char*, int> threads[] = {
-      {"reader", kReaderRealtime}, {"sculpting", kSculptingRealtime}, {"mesher", kMeshingRealtime}};
+  const std::pair<const char*, int> threads[] = {{"sculpting", kSculptingRealtime},
+                                                 {"mesher", kMeshingRealtime}};
   for (const auto& [name, priority] : threads)
     if (std::string why_not = make_threads_realtime(threads_named(name), priority);
         !why_not.empty())
@@ -363,6 +364,7 @@ int run_window(const WindowOptions& o) {
   if (!config) return fail(config.error());
   hal::ReaderOptions reader_options;
   reader_options.on_raw = [&controller](const hal::RawEvent& e) { controller.raw_report(e); };
+  reader_options.realtime_priority = kReaderRealtime;
   auto registry = std::make_unique<hal::DeviceRegistry>(hal::DeviceRegistry::default_backends(),
                                                         *config, reader_options);
   sim::SimBackend* sim_backend = nullptr;

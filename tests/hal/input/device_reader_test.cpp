@@ -7,7 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <sched.h>
+
 #include "../parsers/report_bytes.h"
+#include "sculpt/base/thread_priority.h"
 #include "sculpt/hal/backends/feed_backend.h"
 #include "sculpt/hal/parsers/spacemouse_parser.h"
 #include "sculpt/hal/types/quirks.h"
@@ -64,6 +67,49 @@ TEST(DeviceReader, CountsDroppedMotionButNeverDropsButtonsOrDisconnect) {
   EXPECT_EQ(others[1].kind, InputKind::kButton);
   EXPECT_EQ(others[2].kind, InputKind::kDisconnected);
   EXPECT_EQ(others[2].device_id, 7u);
+}
+
+// A reader asked for real-time priority takes it as it starts (the window's
+// readers, a device plugged in later included), and an unasked one does not.
+TEST(DeviceReader, TakesTheRealtimePriorityAskedFor) {
+  for (const int priority : {0, 1}) {
+    auto backend = std::make_unique<FeedBackend>();
+    DeviceInfo info;
+    info.path = "hidraw0";
+    info.vendor_id = 0x046d;
+    info.product_id = 0xc626;
+    auto feed = backend->attach(info);
+    auto device = backend->open(feed->info());
+    ASSERT_TRUE(device.ok());
+    ReaderOptions o;
+    o.realtime_priority = priority;
+    DeviceReader reader(
+        1, std::move(device).value(),
+        MotionPipeline(std::make_unique<SpaceMouseParser>(*find_quirks(0x046d, 0xc626)), {}), o);
+    reader.start();
+    // Its first event (connected) comes after it took its priority.
+    InputFrame frame;
+    for (int i = 0; i < 5000 && frame.events.empty(); ++i) {
+      reader.poll(frame, 0);
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    ASSERT_FALSE(frame.events.empty());
+    const std::vector<int> readers = threads_named("reader");
+    ASSERT_EQ(readers.size(), 1u);
+    const int policy = sched_getscheduler(readers[0]) & ~SCHED_RESET_ON_FORK;
+    if (priority == 0) {
+      EXPECT_EQ(policy, SCHED_OTHER);
+      continue;
+    }
+    const int self[] = {this_thread_id()};
+    if (policy != SCHED_FIFO && !make_threads_realtime(self, 1).empty())
+      GTEST_SKIP() << "no real-time priority here";
+    set_this_thread_scheduling({SCHED_OTHER, 0});
+    EXPECT_EQ(policy, SCHED_FIFO);
+    sched_param param{};
+    ASSERT_EQ(sched_getparam(readers[0], &param), 0);
+    EXPECT_EQ(param.sched_priority, 1);
+  }
 }
 
 }  // namespace

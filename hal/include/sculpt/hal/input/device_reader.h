@@ -32,6 +32,11 @@ struct ReaderOptions {
   /// before it is parsed: the session recorder's tap. Must be quick and
   /// thread-safe; empty for none.
   std::function<void(const RawEvent&)> on_raw;
+  /// The SCHED_FIFO priority the reader thread takes when the system grants
+  /// it (sculpt/base/thread_priority.h), 0 for none. The window's readers
+  /// run ahead of its sculpting and meshing: a report is then timed when it
+  /// came, not when a busy core let its reader run.
+  int realtime_priority = 0;
 };
 
 struct ReaderCounters {
