@@ -1,7 +1,8 @@
 #pragma once
-// Internal to the mesh module: marching cubes over float samples with a
-// caller-chosen welding key, for surfaces whose samples are not plain level
-// voxels (mixed levels, mixed_level_mesh.cpp).
+// Internal to the mesh module: marching cubes with a caller-chosen welding
+// key, for the mixed-level meshes (mixed_level_mesh.cpp): over floats where
+// a brick's boundary samples are interpolated from a coarser neighbour's,
+// over bytes where they are all plain level voxels.
 
 #include <cstdint>
 #include <functional>
@@ -21,5 +22,11 @@ namespace sculpt::core::detail {
 void march_float_cells(const float* samples, glm::ivec3 cells, glm::ivec3 origin, int level,
                        float iso, const std::function<uint64_t(glm::ivec3, int)>& seam_key,
                        BrickMesh& out);
+
+/// The same over byte samples (plain level voxels): the same mesh as their
+/// values given as floats.
+void march_byte_cells(const uint8_t* samples, glm::ivec3 cells, glm::ivec3 origin, int level,
+                      float iso, const std::function<uint64_t(glm::ivec3, int)>& seam_key,
+                      BrickMesh& out);
 
 }  // namespace sculpt::core::detail

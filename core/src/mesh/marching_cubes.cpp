@@ -451,5 +451,11 @@ void march_float_cells(const float* samples, glm::ivec3 cells, glm::ivec3 origin
   march_cells(samples, cells, origin, level, iso, seam_key, out);
 }
 
+void march_byte_cells(const uint8_t* samples, glm::ivec3 cells, glm::ivec3 origin, int level,
+                      float iso, const std::function<uint64_t(glm::ivec3, int)>& seam_key,
+                      BrickMesh& out) {
+  march_cells(samples, cells, origin, level, iso, seam_key, out);
+}
+
 }  // namespace detail
 }  // namespace sculpt::core

@@ -255,7 +255,20 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<
   const glm::ivec3 origin = b * m;
   const glm::ivec3 ld = level_dims_[static_cast<size_t>(k)];
   const int side = m + 3;
-  block.assign(static_cast<size_t>(side) * side * side, 0.0f);
+  // With every brick around at this level (the common case: levels change
+  // only far from the camera) the samples are the plain voxels, bytes,
+  // marched as bytes: a quarter of the block to fill and scan, and the same
+  // mesh to the bit (a byte's value is exact as a float, its differences
+  // exact as integers). Otherwise boundary samples are interpolated: floats.
+  const bool same_level_around =
+      std::all_of(cb.levels.begin(), cb.levels.end(), [k](int8_t l) { return l < 0 || l == k; });
+  const bool as_bytes = same_level_around && reach(k) == 1;
+  thread_local std::vector<uint8_t> bytes;
+  const size_t samples = static_cast<size_t>(side) * side * side;
+  if (as_bytes)
+    bytes.assign(samples, 0);
+  else
+    block.assign(samples, 0.0f);
   // The decoded voxels of the brick and its neighbours, looked up once (a
   // lookup per row was a tenth of the update).
   // Bricks of fewer than two voxels a side read two bricks away: those
@@ -281,24 +294,30 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<
     int d, from, to;  // neighbour offset, block coordinates [from, to)
   };
   const Run runs[3] = {{-1, -1, 0}, {0, 0, m}, {1, m, m + 2}};
-  for (const Run& rz : runs)
-    for (int z = rz.from; z < rz.to && near; ++z) {
-      if (origin.z + z < 0 || origin.z + z >= ld.z) continue;
-      for (const Run& ry : runs)
-        for (int y = ry.from; y < ry.to; ++y) {
-          if (origin.y + y < 0 || origin.y + y >= ld.y) continue;
-          float* row = &block[(static_cast<size_t>(z + 1) * side + (y + 1)) * side + 1];
-          const size_t local_row = static_cast<size_t>(z - rz.d * m) * m + (y - ry.d * m);
-          for (const Run& rx : runs) {
-            const uint8_t* src = around[rz.d + 1][ry.d + 1][rx.d + 1];
-            if (src == nullptr) continue;
-            const int x0 = std::max(rx.from, -origin.x), x1 = std::min(rx.to, ld.x - origin.x);
-            const uint8_t* src_row = src + local_row * m - rx.d * m;
-            for (int x = x0; x < x1; ++x)
-              row[x] = src_row[x];
+  auto fill_from_around = [&](auto* samples_out) {
+    for (const Run& rz : runs)
+      for (int z = rz.from; z < rz.to; ++z) {
+        if (origin.z + z < 0 || origin.z + z >= ld.z) continue;
+        for (const Run& ry : runs)
+          for (int y = ry.from; y < ry.to; ++y) {
+            if (origin.y + y < 0 || origin.y + y >= ld.y) continue;
+            auto* row = samples_out + (static_cast<size_t>(z + 1) * side + (y + 1)) * side + 1;
+            const size_t local_row = static_cast<size_t>(z - rz.d * m) * m + (y - ry.d * m);
+            for (const Run& rx : runs) {
+              const uint8_t* src = around[rz.d + 1][ry.d + 1][rx.d + 1];
+              if (src == nullptr) continue;
+              const int x0 = std::max(rx.from, -origin.x), x1 = std::min(rx.to, ld.x - origin.x);
+              const uint8_t* src_row = src + local_row * m - rx.d * m;
+              for (int x = x0; x < x1; ++x)
+                row[x] = src_row[x];
+            }
           }
-        }
-    }
+      }
+  };
+  if (as_bytes)
+    fill_from_around(bytes.data());
+  else if (near)
+    fill_from_around(block.data());
   // Bricks of fewer than two voxels a side: any brick around, looked up.
   for (int z = -1; z <= m + 1 && !near; ++z)
     for (int y = -1; y <= m + 1; ++y) {
@@ -316,10 +335,8 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<
     }
   // Face, edge and corner points: the coarsest sharing level's values. With
   // every brick around at this level they are the plain voxels already
-  // read (the common case: levels change only far from the camera), and
-  // the sampling that finds the sharing levels was most of the time.
-  const bool same_level_around =
-      std::all_of(cb.levels.begin(), cb.levels.end(), [k](int8_t l) { return l < 0 || l == k; });
+  // read, and the sampling that finds the sharing levels was most of the
+  // time.
   // The levels of the bricks sharing a boundary point come from the
   // neighbourhood's, kept in cb.levels (outside the grid: -1, not counted).
   const int r = reach(k), width = 2 * r + 1;
@@ -377,7 +394,10 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<
     if (lambda > k && on_line) return pack_edge(lambda, x / big, axis);
     return pack_edge(k, x / s, axis);
   };
-  detail::march_float_cells(block.data(), glm::ivec3(m), origin, k, options_.iso, key, cb.mesh);
+  if (as_bytes)
+    detail::march_byte_cells(bytes.data(), glm::ivec3(m), origin, k, options_.iso, key, cb.mesh);
+  else
+    detail::march_float_cells(block.data(), glm::ivec3(m), origin, k, options_.iso, key, cb.mesh);
   // No crossing among the corners (the march finds that first, row by
   // row): nothing to stitch either.
   if (cb.mesh.empty()) return;
