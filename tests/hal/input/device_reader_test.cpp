@@ -20,14 +20,25 @@ namespace {
 
 using test::axes_report;
 
+// A SpaceNavigator on the fake transport: its feed and the opened device.
+struct FakeSpaceMouse {
+  FeedBackend backend;
+  std::shared_ptr<DeviceFeed> feed;
+  Result<std::unique_ptr<Device>> device;
+  FakeSpaceMouse() : feed(backend.attach(info())), device(backend.open(feed->info())) {}
+  static DeviceInfo info() {
+    DeviceInfo i;
+    i.path = "hidraw0";
+    i.vendor_id = 0x046d;
+    i.product_id = 0xc626;
+    return i;
+  }
+};
+
 TEST(DeviceReader, CountsDroppedMotionButNeverDropsButtonsOrDisconnect) {
-  auto backend = std::make_unique<FeedBackend>();
-  DeviceInfo info;
-  info.path = "hidraw0";
-  info.vendor_id = 0x046d;
-  info.product_id = 0xc626;
-  auto feed = backend->attach(info);
-  auto device = backend->open(feed->info());
+  FakeSpaceMouse mouse;
+  auto& feed = mouse.feed;
+  auto& device = mouse.device;
   ASSERT_TRUE(device.ok());
   auto parser = std::make_unique<SpaceMouseParser>(*find_quirks(0x046d, 0xc626));
   ReaderOptions o;
@@ -73,18 +84,12 @@ TEST(DeviceReader, CountsDroppedMotionButNeverDropsButtonsOrDisconnect) {
 // readers, a device plugged in later included), and an unasked one does not.
 TEST(DeviceReader, TakesTheRealtimePriorityAskedFor) {
   for (const int priority : {0, 1}) {
-    auto backend = std::make_unique<FeedBackend>();
-    DeviceInfo info;
-    info.path = "hidraw0";
-    info.vendor_id = 0x046d;
-    info.product_id = 0xc626;
-    auto feed = backend->attach(info);
-    auto device = backend->open(feed->info());
-    ASSERT_TRUE(device.ok());
+    FakeSpaceMouse mouse;
+    ASSERT_TRUE(mouse.device.ok());
     ReaderOptions o;
     o.realtime_priority = priority;
     DeviceReader reader(
-        1, std::move(device).value(),
+        1, std::move(mouse.device).value(),
         MotionPipeline(std::make_unique<SpaceMouseParser>(*find_quirks(0x046d, 0xc626)), {}), o);
     reader.start();
     // Its first event (connected) comes after it took its priority.
