@@ -524,10 +524,11 @@ int run_window(const WindowOptions& o) {
   }
   hub.start();
   // The dab's path goes first, and the OpenGL driver's and the frame's
-  // threads go after it (below). Measured on the demo (two runs each, with
-  // drawing at niceness 5 either way): the first ball's report to mesh
-  // 11.4, 11.8 against 17.9, 22.0 ms; dab latency p99 6.9, 7.0 against
-  // 10-13 ms, frames p99 17.1, 21.5 against 16-21 ms.
+  // threads go after it (below). Measured on the demo, six pairs against
+  // the same build without it (drawing at niceness 5 in both): dab latency
+  // p99 7.1-10.1 against 8.7-14.2 ms, max 13.3-19.8 against 15.1-26.2 ms;
+  // frames p99 about 1.5 ms longer, as a big dab now holds both cores
+  // while it is meshed.
   figures.realtime_note = make_dab_path_realtime();
   if (!figures.realtime_note.empty())
     std::printf(
