@@ -79,12 +79,16 @@ std::string make_threads_realtime(std::span<const int> ids, int priority) {
   return why_not;
 }
 
-ThreadScheduling this_thread_scheduling() {
+ThreadScheduling thread_scheduling(int id) {
   ThreadScheduling s;
-  s.policy = sched_getscheduler(0) & ~SCHED_RESET_ON_FORK;
+  s.policy = sched_getscheduler(id) & ~SCHED_RESET_ON_FORK;
   sched_param param{};
-  if (sched_getparam(0, &param) == 0) s.priority = param.sched_priority;
+  if (sched_getparam(id, &param) == 0) s.priority = param.sched_priority;
   return s;
+}
+
+ThreadScheduling this_thread_scheduling() {
+  return thread_scheduling(0);
 }
 
 bool set_this_thread_scheduling(const ThreadScheduling& s) {

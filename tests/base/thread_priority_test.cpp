@@ -49,11 +49,6 @@ class ParkedThread {
   std::thread thread_;
 };
 
-// The policy of thread `id` of this process, without SCHED_RESET_ON_FORK.
-int policy_of(int id) {
-  return sched_getscheduler(id) & ~SCHED_RESET_ON_FORK;
-}
-
 TEST(ThreadPriority, FindsTheThreadsStartedInBetween) {
   const std::vector<int> before = process_thread_ids();
   ASSERT_TRUE(std::is_sorted(before.begin(), before.end()));
@@ -102,13 +97,14 @@ TEST(ThreadPriority, MakesThreadsRealtimeButNotTheThreadsTheyStart) {
     const int ids[] = {sculpting.id()};
     if (const std::string why_not = make_threads_realtime(ids, 1); !why_not.empty())
       GTEST_SKIP() << "no real-time priority here: " << why_not;
-    EXPECT_EQ(policy_of(sculpting.id()), SCHED_FIFO);
-    EXPECT_EQ(policy_of(drawing.id()), SCHED_OTHER);  // only the threads named
-    EXPECT_EQ(policy_of(this_thread_id()), SCHED_OTHER);
+    EXPECT_EQ(thread_scheduling(sculpting.id()), (ThreadScheduling{SCHED_FIFO, 1}));
+    const ThreadScheduling ordinary{SCHED_OTHER, 0};
+    EXPECT_EQ(thread_scheduling(drawing.id()), ordinary);  // only the threads named
+    EXPECT_EQ(this_thread_scheduling(), ordinary);
     // A thread the real-time one starts is ordinary: a long job started
     // from the sculpting thread must not keep the frames off the cores.
     sculpting.on_release(
-        [&] { std::thread([&] { child_policy.store(policy_of(this_thread_id())); }).join(); });
+        [&] { std::thread([&] { child_policy.store(this_thread_scheduling().policy); }).join(); });
   }  // released: the child is started and joined
   EXPECT_EQ(child_policy.load(), SCHED_OTHER);
 }

@@ -249,7 +249,7 @@ int16_t MixedLevelMeshCache::uniform_value_of(const Brick& brick) {
   return brick.is_uniform() ? static_cast<int16_t>(brick.uniform_value()) : kNotUniform;
 }
 
-void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<float>& block) {
+void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb) {
   const int k = cb.level;
   const int m = edge_ >> k, s = 1 << k;
   const glm::ivec3 origin = b * m;
@@ -263,7 +263,9 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<
   const bool same_level_around =
       std::all_of(cb.levels.begin(), cb.levels.end(), [k](int8_t l) { return l < 0 || l == k; });
   const bool as_bytes = same_level_around && reach(k) == 1;
+  // This thread's blocks, kept between bricks.
   thread_local std::vector<uint8_t> bytes;
+  thread_local std::vector<float> block;
   const size_t samples = static_cast<size_t>(side) * side * side;
   if (as_bytes)
     bytes.assign(samples, 0);
@@ -786,10 +788,9 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
       static_cast<int64_t>(stale_bricks.size()),
       [&](int64_t i) {
         if (cancelled_ && cancelled_()) return;
-        thread_local std::vector<float> block;
         const glm::ivec3 b = stale_bricks[static_cast<size_t>(i)];
         CachedBrick& cb = bricks_[index(b)];
-        mesh_brick(b, cb, block);
+        mesh_brick(b, cb);
         ++cb.mesh_version;
       },
       options_.threads);

@@ -64,6 +64,8 @@ struct ThreadScheduling {
   bool operator==(const ThreadScheduling&) const = default;
 };
 
+/// The scheduling of thread `id` of this process (0: the calling thread).
+ThreadScheduling thread_scheduling(int id);
 /// The calling thread's scheduling.
 ThreadScheduling this_thread_scheduling();
 /// Gives the calling thread `s`, the threads it starts afterwards ordinary

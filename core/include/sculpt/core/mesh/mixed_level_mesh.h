@@ -176,8 +176,8 @@ class MixedLevelMeshCache {
   // A brick's uniform value, or kNotUniform.
   static constexpr int16_t kNotUniform = -1;
   static int16_t uniform_value_of(const Brick& brick);
-  // Meshes brick b at cb.level into cb; `block` is the caller's scratch.
-  void mesh_brick(glm::ivec3 b, CachedBrick& cb, std::vector<float>& block);
+  // Meshes brick b at cb.level into cb.
+  void mesh_brick(glm::ivec3 b, CachedBrick& cb);
   void stitch(glm::ivec3 b, int k, BrickMesh& out, MixedLevelStats& st) const;
   // Moves cb's current mesh into its kept ones / gives it back the kept mesh
   // for its (new) level and levels around, if there is one / drops them all.
