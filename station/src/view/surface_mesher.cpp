@@ -357,8 +357,10 @@ void SurfaceMesher::run() {
     // the refiner's copy, so the first dabs on it wait for a coarse re-mesh
     // of their bricks, not for the full detail. (A big dab's bricks are not
     // shown coarse first: their unchanged neighbours must re-stitch against
-    // the coarse level at their own, and that pass measured as long as the
-    // full one: 116 against 129 ms for the demo's 102-brick change.)
+    // the coarse level at their own, and that pass costs more than the full
+    // one: 14.6-31 ms against 3.7-10.1 for the demo's head balls, the 208
+    // bricks around the first one's 92 taking most of it; docs/performance.md,
+    // twenty-ninth session.)
     const int coarse = std::min(kCoarseLevel, mirror->levels());
     if (reset) {
       refining =
