@@ -25,6 +25,32 @@ uint64_t pack_edge(int level, glm::ivec3 lower, int axis) {
          static_cast<uint64_t>(lower.x + 1);
 }
 
+// The interpolant at level-0 point x of the values at the level-`lambda`
+// grid's points around it (value_at(i), i a level-lambda point): bilinear on
+// a face of that grid, linear on an edge, the point's own value on a point.
+// One function for every caller, so a sample interpolated anywhere is the
+// same float to the bit.
+template <class ValueAt>
+float interpolate(glm::ivec3 x, int lambda, const ValueAt& value_at) {
+  const int big = 1 << lambda;
+  glm::ivec3 i0;
+  glm::vec3 w;
+  for (int a = 0; a < 3; ++a) {
+    i0[a] = x[a] / big;
+    w[a] = static_cast<float>(x[a] - i0[a] * big) / static_cast<float>(big);
+  }
+  float value = 0.0f;
+  for (int c = 0; c < 8; ++c) {
+    const glm::ivec3 o = corner_offset(c);
+    float weight = 1.0f;
+    for (int a = 0; a < 3; ++a)
+      weight *= o[a] ? w[a] : 1.0f - w[a];
+    if (weight == 0.0f) continue;
+    value += weight * value_at(i0 + o);
+  }
+  return value;
+}
+
 }  // namespace
 
 // An open-addressing table: a brick's face needs a few hundred agreed
@@ -148,8 +174,7 @@ float MixedLevelMeshCache::shared(int k, glm::ivec3 p, SharedMemo& memo) {
   // could end on an edge the coarser side does not have (the symmetric
   // density ramp makes interpolated ties common). Every brick reads this
   // same value, so moving ties just below the level keeps them agreeing.
-  const float v = shared_value(k, p, memo);
-  const float agreed = v == options_.iso ? options_.iso - 1.0f / 1024.0f : v;
+  const float agreed = tie_moved(shared_value(k, p, memo));
   memo.insert(key, agreed);
   return agreed;
 }
@@ -172,23 +197,7 @@ float MixedLevelMeshCache::shared_value(int k, glm::ivec3 p, SharedMemo& memo) {
     return raw(f, x >> f, memo);
   }
   const int lambda = range.y;
-  const int big = 1 << lambda;
-  glm::ivec3 i0;
-  glm::vec3 w;
-  for (int a = 0; a < 3; ++a) {
-    i0[a] = x[a] / big;
-    w[a] = static_cast<float>(x[a] - i0[a] * big) / static_cast<float>(big);
-  }
-  float value = 0.0f;
-  for (int c = 0; c < 8; ++c) {
-    const glm::ivec3 o = corner_offset(c);
-    float weight = 1.0f;
-    for (int a = 0; a < 3; ++a)
-      weight *= o[a] ? w[a] : 1.0f - w[a];
-    if (weight == 0.0f) continue;
-    value += weight * shared(lambda, i0 + o, memo);
-  }
-  return value;
+  return interpolate(x, lambda, [&](glm::ivec3 i) { return shared(lambda, i, memo); });
 }
 
 glm::ivec2 MixedLevelMeshCache::levels_at(glm::ivec3 x2) const {
@@ -345,35 +354,54 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb) {
   auto neighbour_level = [&](int dx, int dy, int dz) {
     return cb.levels[static_cast<size_t>(((dz + r) * width + (dy + r)) * width + (dx + r))];
   };
-  auto sides = [m](int c, int(&out)[2]) {
-    out[0] = 0;
-    if (c == 0)
-      out[1] = -1;
-    else if (c == m)
-      out[1] = 1;
-    else
-      return 1;
-    return 2;
-  };
-  SharedMemo memo;
-  for (int z = 0; z <= m && !same_level_around; ++z)
-    for (int y = 0; y <= m; ++y) {
-      const bool yz_face = z == 0 || y == 0 || z == m || y == m;
-      for (int x = 0; x <= m; x += (yz_face ? 1 : m)) {
-        int sx[2], sy[2], sz[2];
-        const int nx = sides(x, sx), ny = sides(y, sy), nz = sides(z, sz);
+  // The brick's boundary in regions, by where each coordinate lies (0: on
+  // the low face, 1: inside, 2: on the high face): every point of a region
+  // (a face's inside, an edge's, a corner) is shared by the same bricks, so
+  // whether its samples are agreed ones is decided once a region, not once
+  // a point.
+  auto region_of = [m](int c) { return c == 0 ? 0 : (c == m ? 2 : 1); };
+  bool agreed[3][3][3] = {};
+  int coarser_inside[3][3][3] = {};  // a face inside's coarser level, or -1
+  for (int rz = 0; rz < 3 && !same_level_around; ++rz)
+    for (int ry = 0; ry < 3; ++ry)
+      for (int rx = 0; rx < 3; ++rx) {
+        // The bricks sharing the region: offset 0 and, on a face, -1 or +1.
         int finest = k, coarsest = k;
-        for (int iz = 0; iz < nz; ++iz)
-          for (int iy = 0; iy < ny; ++iy)
-            for (int ix = 0; ix < nx; ++ix) {
-              const int l = neighbour_level(sx[ix], sy[iy], sz[iz]);
+        for (int dz = rz == 0 ? -1 : 0; dz <= (rz == 2 ? 1 : 0); ++dz)
+          for (int dy = ry == 0 ? -1 : 0; dy <= (ry == 2 ? 1 : 0); ++dy)
+            for (int dx = rx == 0 ? -1 : 0; dx <= (rx == 2 ? 1 : 0); ++dx) {
+              const int l = neighbour_level(dx, dy, dz);
               if (l < 0) continue;
               finest = std::min(finest, l);
               coarsest = std::max(coarsest, l);
             }
-        if (finest < k || coarsest > k)
-          block[(static_cast<size_t>(z + 1) * side + (y + 1)) * side + (x + 1)] =
-              shared(k, origin + glm::ivec3(x, y, z), memo);
+        agreed[rz][ry][rx] = finest < k || coarsest > k;
+        // A face's inside, shared with one coarser brick: its samples are
+        // the coarser grid's interpolated, which shared() would find out
+        // point by point (levels_at(), the memo) to the same float.
+        const bool face_inside = (rz != 1) + (ry != 1) + (rx != 1) == 1;
+        coarser_inside[rz][ry][rx] = face_inside && coarsest > k ? coarsest : -1;
+      }
+  SharedMemo memo;
+  const glm::ivec3 level_dims = level_dims_[static_cast<size_t>(k)];
+  for (int z = 0; z <= m && !same_level_around; ++z)
+    for (int y = 0; y <= m; ++y) {
+      const bool yz_face = z == 0 || y == 0 || z == m || y == m;
+      const int rz = region_of(z), ry = region_of(y);
+      for (int x = 0; x <= m; x += (yz_face ? 1 : m)) {
+        const int rx = region_of(x);
+        if (!agreed[rz][ry][rx]) continue;
+        const glm::ivec3 p = origin + glm::ivec3(x, y, z);
+        float& sample = block[(static_cast<size_t>(z + 1) * side + (y + 1)) * side + (x + 1)];
+        if (const int lambda = coarser_inside[rz][ry][rx]; lambda >= 0) {
+          const bool inside = glm::all(glm::lessThan(p, level_dims));  // p >= 0 here
+          sample =
+              tie_moved(inside ? interpolate(p * s, lambda,
+                                             [&](glm::ivec3 i) { return shared(lambda, i, memo); })
+                               : 0.0f);
+        } else {
+          sample = shared(k, p, memo);
+        }
       }
     }
   cb.stats = {};

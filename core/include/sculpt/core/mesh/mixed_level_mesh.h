@@ -163,6 +163,9 @@ class MixedLevelMeshCache {
   // The sample all bricks sharing level-k point p agree on.
   float shared(int k, glm::ivec3 p, SharedMemo& memo);
   float shared_value(int k, glm::ivec3 p, SharedMemo& memo);
+  // An agreed sample as every brick reads it: one exactly at the iso-level
+  // moved just below it (shared()).
+  float tie_moved(float v) const { return v == options_.iso ? options_.iso - 1.0f / 1024.0f : v; }
   // Finest and coarsest level among the bricks whose closed box holds
   // level-0 point x2 / 2 (doubled so edge midpoints are integers).
   glm::ivec2 levels_at(glm::ivec3 x2) const;
