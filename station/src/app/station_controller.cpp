@@ -130,14 +130,7 @@ void StationController::redo(int64_t now_ns) {
 }
 
 void StationController::frame_sculpture() {
-  // The material, not the block around it (a clay slab or a head fills a
-  // fifth of a 256^3 block's view); an empty block is framed whole.
-  const std::optional<core::Box> bounds = core::material_bounds(loop_.volume());
-  if (bounds) {
-    camera_.frame(glm::vec3(bounds->lo), glm::vec3(bounds->hi));
-  } else {
-    camera_.frame(glm::vec3(0.0f), glm::vec3(loop_.volume().dims()));
-  }
+  camera_.frame_material(loop_.volume());
 }
 
 bool StationController::use_sculpture_as_tool(int64_t now_ns) {

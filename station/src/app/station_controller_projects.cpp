@@ -17,13 +17,7 @@
 namespace sculpt::station {
 
 ProjectView StationController::view() const {
-  ProjectView v;
-  v.camera_target = camera_.target();
-  v.camera_yaw = camera_.yaw();
-  v.camera_pitch = camera_.pitch();
-  v.camera_distance = camera_.distance();
-  v.lod = lod_.policy();
-  return v;
+  return project_view(camera_, lod_.policy());
 }
 
 Status StationController::save(const std::filesystem::path& path) {

@@ -225,7 +225,16 @@ int replay_to_outputs(const ReplayCliOptions& o) {
     const bool gl = o.renderer == "gl" || (o.renderer == "auto" && display_available());
     RgbImage image;
     if (gl) {
-      auto picture = render_mesh_gl(mesh, glm::vec3(volume.dims()), kPictureSize, kPictureSize);
+      // Framed on the sculpture, as the window and the software picture
+      // frame it (the block's edges and grid drawn around it).
+      GlPictureView view{glm::vec3(volume.dims()), glm::vec3(0.0f), glm::vec3(volume.dims()),
+                         kPictureSize, kPictureSize};
+      if (!mesh.positions.empty()) {
+        const core::MeshBounds bounds = core::mesh_bounds(mesh);
+        view.framed_lo = bounds.lo;
+        view.framed_hi = bounds.hi;
+      }
+      auto picture = render_mesh_gl(mesh, view);
       if (!picture) return report(Error("--png " + o.png + ": " + picture.error().message()));
       image = std::move(picture).value();
     } else {
@@ -236,8 +245,13 @@ int replay_to_outputs(const ReplayCliOptions& o) {
   }
   if (!o.project.empty()) {
     const StationSettings& settings = loop.settings();
-    if (Status st = save_project(outputs.stage(o.project), volume, settings,
-                                 settings.custom_tool ? &loop.tool() : nullptr, {});
+    // Opened, the project shows its sculpture framed, as a session's start
+    // does (the default view looks at a 256^3 block's centre).
+    OrbitCamera camera;
+    camera.frame_material(volume);
+    if (Status st =
+            save_project(outputs.stage(o.project), volume, settings,
+                         settings.custom_tool ? &loop.tool() : nullptr, project_view(camera));
         !st) {
       return failed(st);
     }

@@ -135,6 +135,16 @@ ProjectView view_of(const json& j);
 
 }  // namespace
 
+ProjectView project_view(const OrbitCamera& camera, const LodPolicy& lod) {
+  ProjectView v;
+  v.camera_target = camera.target();
+  v.camera_yaw = camera.yaw();
+  v.camera_pitch = camera.pitch();
+  v.camera_distance = camera.distance();
+  v.lod = lod;
+  return v;
+}
+
 Status save_project(const std::filesystem::path& path, const core::Volume& volume,
                     const StationSettings& settings, const core::Tool* custom_tool,
                     const ProjectView& view, const core::nurbs::NurbsSurface* sheet) {

@@ -6,6 +6,8 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "sculpt/core/volume/material_bounds.h"
+
 namespace sculpt::station {
 namespace {
 
@@ -22,6 +24,14 @@ void OrbitCamera::frame(glm::vec3 lo, glm::vec3 hi) {
   pitch_ = 0.35f;
   // The bounding sphere fits the vertical field of view, with a margin.
   distance_ = std::clamp(1.15f * radius / std::sin(0.5f * kFovY), kMinDistance, kMaxDistance);
+}
+
+void OrbitCamera::frame_material(const core::Volume& volume) {
+  if (const std::optional<core::Box> bounds = core::material_bounds(volume)) {
+    frame(glm::vec3(bounds->lo), glm::vec3(bounds->hi));
+  } else {
+    frame(glm::vec3(0.0f), glm::vec3(volume.dims()));
+  }
 }
 
 float OrbitCamera::focal_length_px(float viewport_height) {

@@ -14,12 +14,14 @@ bool display_available() {
   return (x11 != nullptr && *x11 != '\0') || (wayland != nullptr && *wayland != '\0');
 }
 
-Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block, int width, int height) {
-  return render_mesh_gl(mesh, block, width, height, core::Tool{}, {});
+Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, const GlPictureView& picture) {
+  return render_mesh_gl(mesh, picture, core::Tool{}, {});
 }
 
-Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block, int width, int height,
+Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, const GlPictureView& picture,
                                 const core::Tool& tool, std::span<const DabStandIn> stand_ins) {
+  const int width = picture.width;
+  const int height = picture.height;
   if (!display_available()) return Error("no display (DISPLAY is not set)");
   auto window = GlWindow::open(64, 64, "sculpt snapshot", /*visible=*/false);
   if (!window) return window.error();
@@ -29,7 +31,7 @@ Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block, int wid
   const OffscreenTarget target(width, height);
   if (!target.complete()) return Error("the OpenGL driver cannot render off screen");
   OrbitCamera camera;
-  camera.frame(glm::vec3(0.0f), block);
+  camera.frame(picture.framed_lo, picture.framed_hi);
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
   gl::SceneView view{camera.view(), camera.projection(aspect), camera.eye(), width, height};
   (*renderer)->show_mesh(mesh);
@@ -38,7 +40,7 @@ Result<RgbImage> render_mesh_gl(const core::Mesh& mesh, glm::vec3 block, int wid
   }
   gl::ToolDraw no_tool;
   no_tool.visible = false;
-  (*renderer)->draw(view, no_tool, block, stand_ins);
+  (*renderer)->draw(view, no_tool, picture.block_dims, stand_ins);
   glFinish();
   RgbImage image;
   image.width = width;

@@ -9,7 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "run_sculpt.h"
+#include "sculpt/core/volume/material_bounds.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
+#include "sculpt/station/project/project_file.h"
 
 namespace sculpt::station::test {
 namespace {
@@ -37,6 +39,26 @@ TEST_F(ReplayCommandTest, ADamagedStartProjectIsOneClearError) {
   EXPECT_NE(r.err.find("s.scs.start.sculpt: not a sculpt project file"), std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "s.json"));
+}
+
+TEST_F(ReplayCommandTest, AProjectOpensOnItsSculptureFramed) {
+  // The bust's block is 512^3: a view of a 256^3 block's centre (the
+  // default) would show the sculpture's lower half from close by.
+  const CommandResult r = run_sculpt("replay " + sculpt::sim::bundled_session_path("bust") +
+                                     " --fast --project " + path("p.sculpt"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto project = load_project(path("p.sculpt"));
+  ASSERT_TRUE(project.ok()) << project.error().message();
+  const auto bounds = core::material_bounds(*project->volume);
+  ASSERT_TRUE(bounds.has_value());
+  OrbitCamera framed;
+  framed.frame(glm::vec3(bounds->lo), glm::vec3(bounds->hi));
+  const ProjectView& v = project->view;
+  for (int a = 0; a < 3; ++a)
+    EXPECT_FLOAT_EQ(v.camera_target[a], framed.target()[a]) << a;
+  EXPECT_FLOAT_EQ(v.camera_distance, framed.distance());
+  EXPECT_FLOAT_EQ(v.camera_yaw, framed.yaw());
+  EXPECT_FLOAT_EQ(v.camera_pitch, framed.pitch());
 }
 
 TEST_F(ReplayCommandTest, AForceSessionWritesItsTicksRunAgainAndItsHapticFigures) {

@@ -68,10 +68,11 @@ Dabbed stroke(core::SculptMode mode, float size, const std::vector<glm::vec3>& p
 }
 
 void expect_stand_ins_look_sculpted(const Dabbed& d, const char* what) {
-  const glm::vec3 block(kBlock);
-  auto shown = render_mesh_gl(d.before, block, kPixels, kPixels, d.tool, d.stand_ins);
-  auto sculpted = render_mesh_gl(d.after, block, kPixels, kPixels);
-  auto old = render_mesh_gl(d.before, block, kPixels, kPixels);
+  // One framing for the three: the block.
+  const GlPictureView view{glm::vec3(kBlock), glm::vec3(0.0f), glm::vec3(kBlock), kPixels, kPixels};
+  auto shown = render_mesh_gl(d.before, view, d.tool, d.stand_ins);
+  auto sculpted = render_mesh_gl(d.after, view);
+  auto old = render_mesh_gl(d.before, view);
   ASSERT_TRUE(shown.ok()) << shown.error().message();
   ASSERT_TRUE(sculpted.ok() && old.ok());
   const sculpt::test::PictureDifference d_shown =

@@ -19,11 +19,13 @@
 #include "picture_difference.h"
 #include "scratch_dir.h"
 #include "sculpt/core/files/volume_file.h"
+#include "sculpt/core/mesh/mesh.h"
 #include "sculpt/sim/session/session_file.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
 #include "sculpt/station/app/session_loading.h"
 #include "sculpt/station/app/session_replay.h"
 #include "sculpt/station/haptics/haptic_replay.h"
+#include "sculpt/station/project/project_file.h"
 #include "sculpt/station/settings/command_codec.h"
 #include "sculpt/station/view/orbit_camera.h"
 #include "sculpt/station/window/gl_snapshot.h"
@@ -117,8 +119,10 @@ TEST(StationWindow, ReplayRendersTheDemoThroughAnInvisibleGlWindow) {
   StationLoop loop(StationLoop::Options{});
   ASSERT_TRUE(replay_session(*session, "demo", loop).ok());
   const core::Mesh mesh = loop.mesh().welded_mesh();
+  // Framed on the sculpture, not its block.
   OrbitCamera camera;
-  camera.frame(glm::vec3(0.0f), glm::vec3(loop.volume().dims()));
+  const core::MeshBounds bounds = core::mesh_bounds(mesh);
+  camera.frame(bounds.lo, bounds.hi);
   const glm::mat4 vp = camera.projection(1.0f) * camera.view();
   PixelBox expected;
   for (const glm::vec3& v : mesh.positions) {
@@ -338,13 +342,29 @@ std::optional<Shot> shoot(const sculpt::test::ScratchDir& dir, const std::string
               nlohmann::json::parse(read_text(dir.file("s.json")))["triangles"].get<int64_t>()};
 }
 
+// The demo project seen zoomed out to its whole block (the project opens
+// on its sculpture framed).
+std::string zoomed_out_demo_project(const sculpt::test::ScratchDir& dir) {
+  auto project = load_project(demo_project(dir));
+  EXPECT_TRUE(project.ok());
+  OrbitCamera whole_block;
+  whole_block.frame(glm::vec3(0.0f), glm::vec3(project->volume->dims()));
+  const std::string path = dir.file("demo_zoomed_out.sculpt");
+  EXPECT_TRUE(save_project(path, *project->volume, project->settings,
+                           project->custom_tool ? &*project->custom_tool : nullptr,
+                           project_view(whole_block))
+                  .ok());
+  return path;
+}
+
 // What the sculptor sees at automatic level of detail is the full-detail
 // picture to within a pixel's error, whichever normals shade it: a small
-// window makes the demo's far bricks coarse (a quarter of the triangles),
-// and the picture must not show it (no facet, seam or shading step).
+// window, zoomed out, makes the demo's far bricks coarse (a quarter of the
+// triangles), and the picture must not show it (no facet, seam or shading
+// step).
 TEST(StationWindow, AutomaticLevelOfDetailLooksLikeFullDetail) {
   sculpt::test::ScratchDir dir;
-  const std::string project = demo_project(dir);
+  const std::string project = zoomed_out_demo_project(dir);
   for (const char* normals : {"distance", "density"}) {
     const std::string options = std::string("--size 256x160 --normals ") + normals;
     const auto automatic = shoot(dir, project, options);

@@ -33,6 +33,7 @@
 #include "sculpt/core/volume/volume.h"
 #include "sculpt/station/settings/station_settings.h"
 #include "sculpt/station/view/lod_selector.h"
+#include "sculpt/station/view/orbit_camera.h"
 
 namespace sculpt::station {
 
@@ -44,6 +45,9 @@ struct ProjectView {
   float camera_distance = 600.0f;
   LodPolicy lod;
 };
+
+/// The view through `camera` at level-of-detail policy `lod`.
+ProjectView project_view(const OrbitCamera& camera, const LodPolicy& lod = {});
 
 struct Project {
   std::unique_ptr<core::Volume> volume;

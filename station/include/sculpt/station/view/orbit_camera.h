@@ -11,6 +11,10 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+namespace sculpt::core {
+class Volume;
+}
+
 namespace sculpt::station {
 
 struct Ray {
@@ -23,6 +27,10 @@ class OrbitCamera {
   /// Looks at the centre of the box lo..hi from the front and a little above,
   /// far enough for the whole box to fit the view.
   void frame(glm::vec3 lo, glm::vec3 hi);
+  /// frame() around the volume's material ("frame selected"), or around the
+  /// whole block when it is empty: a head fills a fifth of its 256^3
+  /// block's view, a 512^3 bust a tenth.
+  void frame_material(const core::Volume& volume);
 
   /// Turns the view about the target by the given angles.
   void orbit(float yaw_rad, float pitch_rad);
