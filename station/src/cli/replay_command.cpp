@@ -224,21 +224,16 @@ int replay_to_outputs(const ReplayCliOptions& o) {
     // display; the CPU rasteriser otherwise.
     const bool gl = o.renderer == "gl" || (o.renderer == "auto" && display_available());
     RgbImage image;
+    // Either way framed on the sculpture (the whole block when it is
+    // empty); the GL picture draws the block's edges and grid around it.
+    const SoftwareView framed = view_of(mesh, glm::vec3(0.0f), glm::vec3(volume.dims()));
     if (gl) {
-      // Framed on the sculpture, as the window and the software picture
-      // frame it (the block's edges and grid drawn around it).
-      GlPictureView view{glm::vec3(volume.dims()), glm::vec3(0.0f), glm::vec3(volume.dims()),
-                         kPictureSize, kPictureSize};
-      if (!mesh.positions.empty()) {
-        const core::MeshBounds bounds = core::mesh_bounds(mesh);
-        view.framed_lo = bounds.lo;
-        view.framed_hi = bounds.hi;
-      }
-      auto picture = render_mesh_gl(mesh, view);
+      auto picture = render_mesh_gl(mesh, GlPictureView{glm::vec3(volume.dims()), framed.box_lo,
+                                                        framed.box_hi, kPictureSize, kPictureSize});
       if (!picture) return report(Error("--png " + o.png + ": " + picture.error().message()));
       image = std::move(picture).value();
     } else {
-      image = render_mesh(mesh, view_of(mesh, glm::vec3(0.0f), glm::vec3(volume.dims())));
+      image = render_mesh(mesh, framed);
     }
     stats["renderer"] = gl ? "gl" : "software";
     if (Status st = write_png(outputs.stage(o.png), image); !st) return failed(st);

@@ -346,7 +346,10 @@ std::optional<Shot> shoot(const sculpt::test::ScratchDir& dir, const std::string
 // on its sculpture framed).
 std::string zoomed_out_demo_project(const sculpt::test::ScratchDir& dir) {
   auto project = load_project(demo_project(dir));
-  EXPECT_TRUE(project.ok());
+  if (!project.ok()) {
+    ADD_FAILURE() << project.error().message();
+    return {};
+  }
   OrbitCamera whole_block;
   whole_block.frame(glm::vec3(0.0f), glm::vec3(project->volume->dims()));
   const std::string path = dir.file("demo_zoomed_out.sculpt");
@@ -365,6 +368,7 @@ std::string zoomed_out_demo_project(const sculpt::test::ScratchDir& dir) {
 TEST(StationWindow, AutomaticLevelOfDetailLooksLikeFullDetail) {
   sculpt::test::ScratchDir dir;
   const std::string project = zoomed_out_demo_project(dir);
+  ASSERT_FALSE(project.empty());
   for (const char* normals : {"distance", "density"}) {
     const std::string options = std::string("--size 256x160 --normals ") + normals;
     const auto automatic = shoot(dir, project, options);
