@@ -275,6 +275,49 @@ BENCHMARK(BM_MeshMixedLevelAfterBigDab)
     ->Iterations(20)
     ->Unit(benchmark::kMillisecond);
 
+// The head ball's interim meshes (MixedLevelMeshCache::interim_meshes():
+// the change's bricks at level 2 inside, at level 0 in rims along the
+// unchanged bricks with a surface), which the window shows before the full
+// update. Timed: the interim; then_full_ms is the update after it.
+void BM_MeshInterimAfterBigDab(benchmark::State& state) {
+  Volume volume = sphere_volume(256);
+  const std::vector<int> levels(static_cast<size_t>(volume.brick_count()), 0);
+  MarchingCubesOptions options;
+  options.threads = static_cast<int>(state.range(0));
+  MixedLevelMeshCache cache(options);
+  cache.update(volume, levels);
+  Uniform next;
+  double interim_s = 0, full_s = 0, bricks = 0, triangles = 0;
+  bool carve = false;
+  for (auto _ : state) {
+    dab_on_surface(volume, next, carve, 66.0f);
+    carve = !carve;
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto interim = cache.interim_meshes(volume, levels);
+    const auto t1 = std::chrono::steady_clock::now();
+    cache.update(volume, levels);
+    const auto t2 = std::chrono::steady_clock::now();
+    interim_s += std::chrono::duration<double>(t1 - t0).count();
+    full_s += std::chrono::duration<double>(t2 - t1).count();
+    state.SetIterationTime(std::chrono::duration<double>(t1 - t0).count());
+    bricks += static_cast<double>(interim.size());
+    for (const auto& m : interim)
+      triangles += static_cast<double>(m.mesh.mesh.triangles.size());
+  }
+  const auto n = static_cast<double>(state.iterations());
+  state.counters["interim_ms"] = interim_s / n * 1e3;
+  state.counters["then_full_ms"] = full_s / n * 1e3;
+  state.counters["bricks"] = bricks / n;
+  state.counters["triangles"] = triangles / n;
+}
+BENCHMARK(BM_MeshInterimAfterBigDab)
+    ->Arg(1)
+    ->Arg(2)
+    ->ArgName("threads")
+    ->UseManualTime()
+    ->Iterations(20)
+    ->Unit(benchmark::kMillisecond);
+
 // Coarse first for a sculpting change, measured: the head ball's changed
 // bricks shown at `level` first (their unchanged neighbours re-stitch
 // against them), then at full detail. Timed: the coarse pass. The window

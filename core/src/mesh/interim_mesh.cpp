@@ -54,6 +54,12 @@ constexpr std::array<glm::ivec3, 26> neighbour_offsets() {
   return out;
 }
 
+// A brick's sub-blocks in 27 regions, by where they lie along each axis
+// (the low side's layer, between, the high side's): e in {-1, 0, 1}^3.
+constexpr int region_bit(glm::ivec3 e) {
+  return ((e.z + 1) * 3 + (e.y + 1)) * 3 + (e.x + 1);
+}
+
 // A box a brick's interim mesh is marched in: level-0 voxels [lo, hi], at
 // level `level`.
 struct MarchBox {
@@ -71,12 +77,12 @@ class MixedLevelMeshCache::InterimSampler {
  public:
   InterimSampler(const MixedLevelMeshCache& cache, const Volume& volume,
                  std::vector<uint8_t> in_change, std::vector<uint8_t> moved,
-                 std::vector<uint8_t> rims)
+                 std::vector<uint32_t> fine_regions)
       : cache_(cache),
         volume_(volume),
         in_change_(std::move(in_change)),
         moved_(std::move(moved)),
-        rims_(std::move(rims)),
+        fine_regions_(std::move(fine_regions)),
         subs_(cache.edge_ / kSub),
         sub_shift_(std::countr_zero(static_cast<unsigned>(cache.edge_ / kSub))),
         edge_shift_(std::countr_zero(static_cast<unsigned>(cache.edge_))) {
@@ -84,6 +90,24 @@ class MixedLevelMeshCache::InterimSampler {
     for (int l = 0; l < 2; ++l) {
       decoded_[l] = std::vector<std::vector<uint8_t>>(n);
       once_[l] = std::make_unique<std::once_flag[]>(n);
+    }
+    // The cache's level-0 voxels of the bricks around the change that did
+    // not move, looked up once (a map lookup a sample was most of the time).
+    kept_.assign(n, nullptr);
+    for (size_t i = 0; i < n; ++i) {
+      if (!in_change_[i]) continue;
+      const glm::ivec3 b = grid_position(static_cast<int64_t>(i), cache.grid_);
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const glm::ivec3 nb = b + glm::ivec3(dx, dy, dz);
+            if (!cache.in_grid(nb)) continue;
+            const size_t j = cache.index(nb);
+            if (moved_[j] || kept_[j] != nullptr) continue;
+            const auto it = cache.decoded_.find(static_cast<uint64_t>(j) * 8);
+            if (it != cache.decoded_.end() && it->second.version == volume.brick_version(nb))
+              kept_[j] = it->second.voxels.data();
+          }
     }
   }
 
@@ -94,43 +118,17 @@ class MixedLevelMeshCache::InterimSampler {
     if (!cache_.in_grid(b)) return -1;
     const size_t i = cache_.index(b);
     if (!in_change_[i]) return 0;
-    const unsigned rims = rims_[i];
     const glm::ivec3 l = s & (subs_ - 1);
-    for (int a = 0; a < 3; ++a) {
-      if ((rims >> (2 * a) & 1u) && l[a] == 0) return 0;
-      if ((rims >> (2 * a + 1) & 1u) && l[a] == subs_ - 1) return 0;
-    }
+    const glm::ivec3 e(region_side(l.x), region_side(l.y), region_side(l.z));
+    if (fine_regions_[i] >> region_bit(e) & 1u) return 0;
     return kCoarse;
-  }
-
-  // Finest and coarsest level of the sub-blocks whose closed box holds
-  // level-0 point x.
-  glm::ivec2 levels_at(glm::ivec3 x) const {
-    glm::ivec3 lo, hi;
-    for (int a = 0; a < 3; ++a) {
-      hi[a] = x[a] >> kCoarse;
-      lo[a] = (x[a] & (kSub - 1)) == 0 ? hi[a] - 1 : hi[a];
-    }
-    glm::ivec2 range(100, -1);
-    for (int z = lo.z; z <= hi.z; ++z)
-      for (int y = lo.y; y <= hi.y; ++y)
-        for (int x0 = lo.x; x0 <= hi.x; ++x0) {
-          const int l = sub_level({x0, y, z});
-          if (l < 0) continue;
-          range = glm::ivec2(std::min(range.x, l), std::max(range.y, l));
-        }
-    return range;
   }
 
   // Brick b's level-k voxels (k 0 or kCoarse): the cache's own decode when
   // the brick did not move, else decoded here once.
   const uint8_t* voxels(glm::ivec3 b, int k) const {
     const size_t i = cache_.index(b);
-    if (k == 0 && !moved_[i]) {
-      const auto kept = cache_.decoded_.find(static_cast<uint64_t>(i) * 8);
-      if (kept != cache_.decoded_.end() && kept->second.version == volume_.brick_version(b))
-        return kept->second.voxels.data();
-    }
+    if (k == 0 && kept_[i] != nullptr) return kept_[i];
     const int l = k == 0 ? 0 : 1;
     std::call_once(once_[l][i], [&] {
       const int m = cache_.edge_ >> k;
@@ -152,62 +150,142 @@ class MixedLevelMeshCache::InterimSampler {
     return voxels(p >> shift, k)[(static_cast<size_t>(l.z) * m + l.y) * m + l.x];
   }
 
-  // The sample a box at level k takes at its boundary point p (level-k
-  // coordinates): the coarsest sharing level's, as between bricks
-  // (MixedLevelMeshCache::shared_value()).
-  float agreed(int k, glm::ivec3 p) const {
-    const glm::ivec3 x = p << k;
-    const glm::ivec2 range = levels_at(x);
-    if (range.x == k && range.y == k) return raw(k, p);
-    if (range.y <= k) return cache_.tie_moved(raw(range.x, x >> range.x));
-    return cache_.tie_moved(detail::interpolate(x, range.y, [&](glm::ivec3 i) {
-      const glm::ivec3 xi = i << range.y;
-      const int finest = levels_at(xi).x;
-      return cache_.tie_moved(raw(finest, xi >> finest));
-    }));
-  }
-
+  float tie_moved(float v) const { return cache_.tie_moved(v); }
   bool in_change(glm::ivec3 b) const { return in_change_[cache_.index(b)] != 0; }
-  unsigned rims(glm::ivec3 b) const { return rims_[cache_.index(b)]; }
+  uint32_t fine_regions(glm::ivec3 b) const { return fine_regions_[cache_.index(b)]; }
+  // Which third of a brick, along one axis, sub-block l lies in: -1 the
+  // low side's layer, 1 the high side's, 0 between.
+  int region_side(int l) const { return l == 0 ? -1 : (l == subs_ - 1 ? 1 : 0); }
   int subs() const { return subs_; }
 
  private:
   const MixedLevelMeshCache& cache_;
   const Volume& volume_;
-  const std::vector<uint8_t> in_change_, moved_, rims_;  // per brick
+  const std::vector<uint8_t> in_change_, moved_;  // per brick
+  const std::vector<uint32_t> fine_regions_;       // per brick, region_bit()s
   const int subs_, sub_shift_, edge_shift_;
   // Per brick, its voxels at level 0 ([0]) and kCoarse ([1]) decoded here.
   mutable std::vector<std::vector<uint8_t>> decoded_[2];
   std::unique_ptr<std::once_flag[]> once_[2];
+  std::vector<const uint8_t*> kept_;  // per brick, the cache's level-0 voxels
+};
+
+// The levels of the sub-blocks touching one face of a box (both sides,
+// one beyond its edges), and the agreed samples at the level-2 points of
+// its closed rectangle, each computed once.
+class MixedLevelMeshCache::FaceLevels {
+ public:
+  FaceLevels(const InterimSampler& sampler, const MarchBox& box, int face)
+      : sampler_(sampler), a_(face / 2), u_((a_ + 1) % 3), v_((a_ + 2) % 3) {
+    plane_ = (face & 1) ? box.hi[a_] : box.lo[a_];
+    lo_ = box.lo;
+    size_u_ = box.hi[u_] - box.lo[u_];
+    size_v_ = box.hi[v_] - box.lo[v_];
+    nu_ = size_u_ / kSub + 2;
+    nv_ = size_v_ / kSub + 2;
+    levels_.resize(static_cast<size_t>(2 * nu_ * nv_));
+    const int across_layer = (face & 1) ? 1 : 0;
+    for (int layer = 0; layer < 2; ++layer)
+      for (int su = 0; su < nu_; ++su)
+        for (int sv = 0; sv < nv_; ++sv) {
+          glm::ivec3 sb;
+          sb[a_] = (plane_ >> kCoarse) - 1 + layer;
+          sb[u_] = (lo_[u_] >> kCoarse) - 1 + su;
+          sb[v_] = (lo_[v_] >> kCoarse) - 1 + sv;
+          const int l = sampler.sub_level(sb);
+          level_at(layer, su, sv) = static_cast<int8_t>(l);
+          if (l < 0) continue;
+          levels_used_ |= 1u << l;
+          const bool inside_u = su >= 1 && su < nu_ - 1, inside_v = sv >= 1 && sv < nv_ - 1;
+          if (layer == across_layer && inside_u && inside_v && l > 0) coarser_across_ = true;
+        }
+  }
+  // Whether sub-blocks of another level than k touch the face.
+  bool mixed(int k) const { return (levels_used_ & ~(1u << k)) != 0; }
+  // Whether the face's inside has coarse sub-blocks across it.
+  bool coarser_across() const { return coarser_across_; }
+  int plane() const { return plane_; }
+  int size_u() const { return size_u_; }
+  int size_v() const { return size_v_; }
+
+  // Finest and coarsest level sharing the face's point (cu, cv), level-0
+  // voxels from the rectangle's low corner.
+  glm::ivec2 levels_at(int cu, int cv) const {
+    const int su1 = cu / kSub + 1, sv1 = cv / kSub + 1;
+    const int su0 = cu % kSub == 0 ? su1 - 1 : su1, sv0 = cv % kSub == 0 ? sv1 - 1 : sv1;
+    glm::ivec2 range(100, -1);
+    for (int layer = 0; layer < 2; ++layer)
+      for (int su = su0; su <= su1; ++su)
+        for (int sv = sv0; sv <= sv1; ++sv) {
+          const int l = level_at(layer, su, sv);
+          if (l < 0) continue;
+          range = glm::ivec2(std::min(range.x, l), std::max(range.y, l));
+        }
+    return range;
+  }
+  // The agreed sample at the rectangle's level-2 point (iu, iv): the finest
+  // sharing level's voxel, a tie moved below the iso-level.
+  float lattice(int iu, int iv) {
+    if (lattice_.empty())
+      lattice_.assign(static_cast<size_t>(nu_ - 1) * (nv_ - 1), kUnknown);
+    float& value = lattice_[static_cast<size_t>(iu) * (nv_ - 1) + iv];
+    if (value == kUnknown) {
+      glm::ivec3 x;
+      x[a_] = plane_;
+      x[u_] = lo_[u_] + iu * kSub;
+      x[v_] = lo_[v_] + iv * kSub;
+      const int finest = levels_at(iu * kSub, iv * kSub).x;
+      value = sampler_.tie_moved(sampler_.raw(finest, x >> finest));
+    }
+    return value;
+  }
+
+ private:
+  static constexpr float kUnknown = -1.0f;
+  int8_t& level_at(int layer, int su, int sv) {
+    return levels_[static_cast<size_t>((layer * nu_ + su) * nv_ + sv)];
+  }
+  int level_at(int layer, int su, int sv) const {
+    return levels_[static_cast<size_t>((layer * nu_ + su) * nv_ + sv)];
+  }
+  const InterimSampler& sampler_;
+  const int a_, u_, v_;
+  int plane_ = 0, size_u_ = 0, size_v_ = 0, nu_ = 0, nv_ = 0;
+  glm::ivec3 lo_{0};
+  std::vector<int8_t> levels_;
+  unsigned levels_used_ = 0;
+  bool coarser_across_ = false;
+  std::vector<float> lattice_;
 };
 
 void MixedLevelMeshCache::interim_brick(const InterimSampler& sampler, glm::ivec3 b,
                                         BrickMesh& out) const {
   out.clear();
   if (uniform_around(b, 1)) return;
-  // The core and the slabs along the sides with a rim, without overlap:
-  // x slabs whole, y slabs within the core's x, z slabs within its x and y.
-  const unsigned rims = sampler.rims(b);
-  const glm::ivec3 lo = b * edge_, hi = (b + 1) * edge_;
-  glm::ivec3 core_lo = lo, core_hi = hi;
-  for (int a = 0; a < 3; ++a) {
-    if (rims >> (2 * a) & 1u) core_lo[a] += kSub;
-    if (rims >> (2 * a + 1) & 1u) core_hi[a] -= kSub;
-  }
+  // The brick's 27 regions (per axis: the low side's layer of sub-blocks,
+  // those between, the high side's), each fine or coarse, marched as boxes:
+  // runs of one kind along x together. A brick with no fine region is one
+  // coarse box.
+  const uint32_t fine = sampler.fine_regions(b);
+  const glm::ivec3 lo = b * edge_;
+  const int cut[4] = {0, kSub, edge_ - kSub, edge_};
   std::vector<MarchBox> boxes;
-  boxes.push_back({kCoarse, core_lo, core_hi});
-  for (int a = 0; a < 3; ++a)
-    for (int high = 0; high < 2; ++high) {
-      if (!(rims >> (2 * a + high) & 1u)) continue;
-      MarchBox slab{0, lo, hi};
-      for (int before = 0; before < a; ++before) {
-        slab.lo[before] = core_lo[before];
-        slab.hi[before] = core_hi[before];
-      }
-      slab.lo[a] = high ? core_hi[a] : lo[a];
-      slab.hi[a] = high ? hi[a] : core_lo[a];
-      boxes.push_back(slab);
-    }
+  if (fine == 0) {
+    boxes.push_back({kCoarse, lo, lo + edge_});
+  } else {
+    for (int ez = -1; ez <= 1; ++ez)
+      for (int ey = -1; ey <= 1; ++ey)
+        for (int ex = -1; ex <= 1;) {
+          const bool is_fine = fine >> region_bit({ex, ey, ez}) & 1u;
+          int end = ex + 1;
+          while (end <= 1 && (fine >> region_bit({end, ey, ez}) & 1u) == is_fine)
+            ++end;
+          boxes.push_back({is_fine ? 0 : kCoarse,
+                           lo + glm::ivec3(cut[ex + 1], cut[ey + 1], cut[ez + 1]),
+                           lo + glm::ivec3(cut[end + 1], cut[ey + 2], cut[ez + 2])});
+          ex = end;
+        }
+  }
 
   thread_local std::vector<float> block;
   BrickMesh part;
@@ -235,38 +313,32 @@ void MixedLevelMeshCache::interim_brick(const InterimSampler& sampler, glm::ivec
       }
     // The box's faces: where sub-blocks of another level touch one, its
     // samples follow the rule of mixed levels. Faces where all are of the
-    // box's level keep their plain voxels, as do the faces' insides.
+    // box's level keep their plain voxels.
     unsigned coarser_faces = 0;
     for (int face = 0; face < 6; ++face) {
+      FaceLevels f(sampler, box, face);
+      if (f.coarser_across()) coarser_faces |= 1u << face;
+      if (!f.mixed(k)) continue;
       const int a = face / 2, u = (a + 1) % 3, v = (a + 2) % 3;
-      const int plane = (face & 1) ? box.hi[a] : box.lo[a];
-      // The sub-blocks touching the face's closed rectangle, both sides.
-      bool mixed = false, coarser = false;
-      for (int sa = (plane >> kCoarse) - 1; sa <= (plane >> kCoarse); ++sa)
-        for (int su = (box.lo[u] >> kCoarse) - 1; su <= (box.hi[u] >> kCoarse); ++su)
-          for (int sv = (box.lo[v] >> kCoarse) - 1; sv <= (box.hi[v] >> kCoarse); ++sv) {
-            glm::ivec3 sb;
-            sb[a] = sa;
-            sb[u] = su;
-            sb[v] = sv;
-            const int l = sampler.sub_level(sb);
-            if (l < 0 || l == k) continue;
-            mixed = true;
-            // Across the face's inside: what a gap there would face.
-            const bool across = sa == ((face & 1) ? (plane >> kCoarse) : (plane >> kCoarse) - 1);
-            if (l > k && across) coarser = true;
-          }
-      if (coarser) coarser_faces |= 1u << face;
-      if (!mixed) continue;
-      const int p_plane = plane >> k;
-      for (int pu = box.lo[u] >> k; pu <= box.hi[u] >> k; ++pu)
-        for (int pv = box.lo[v] >> k; pv <= box.hi[v] >> k; ++pv) {
-          glm::ivec3 p;
-          p[a] = p_plane;
-          p[u] = pu;
-          p[v] = pv;
-          const glm::ivec3 q = p - origin + 1;
-          block[(static_cast<size_t>(q.z) * side.y + q.y) * side.x + q.x] = sampler.agreed(k, p);
+      const int step = 1 << k;
+      for (int cu = 0; cu <= f.size_u(); cu += step)
+        for (int cv = 0; cv <= f.size_v(); cv += step) {
+          const glm::ivec2 range = f.levels_at(cu, cv);
+          if (range.x == k && range.y == k) continue;  // the plain voxel
+          glm::ivec3 x;
+          x[a] = f.plane();
+          x[u] = box.lo[u] + cu;
+          x[v] = box.lo[v] + cv;
+          // A coarse point takes the finest sharing level's voxel; a fine
+          // one between coarse points their interpolant (shared_value()).
+          const float value = range.y <= k ? f.lattice(cu >> kCoarse, cv >> kCoarse)
+                                           : tie_moved(detail::interpolate(
+                                                 x, kCoarse, [&](glm::ivec3 i) {
+                                                   return f.lattice(i[u] - (box.lo[u] >> kCoarse),
+                                                                    i[v] - (box.lo[v] >> kCoarse));
+                                                 }));
+          const glm::ivec3 q = (x >> k) - origin + 1;
+          block[(static_cast<size_t>(q.z) * side.y + q.y) * side.x + q.x] = value;
         }
     }
     detail::march_float_cells(
@@ -323,30 +395,76 @@ std::vector<MixedLevelMeshCache::InterimMesh> MixedLevelMeshCache::interim_meshe
   }
   if (change.empty() || change.size() < min_bricks) return {};
   constexpr std::array<glm::ivec3, 26> kAround = neighbour_offsets();
-  std::vector<uint8_t> rims(n, 0);
+  // An unchanged brick around the change keeps its mesh, marched from the
+  // plain voxels of its box. Where its surface reaches a face or edge of
+  // its box (a vertex lies on it), every point there must keep its plain
+  // voxel in the changed bricks too, or the crossings on the edges beside
+  // it would move: the changed bricks' sub-blocks touching that face or
+  // edge are fine. Elsewhere the points it shares with changed bricks keep
+  // their samples' side of the iso-level (coarse points take the finest
+  // voxel, the points between interpolate them), so neither side has a
+  // crossing there. Which parts of its boundary a mesh reaches: bit
+  // region_bit(direction) for each of the 26 its vertices lie on.
+  auto boundary_reached = [&](glm::ivec3 u) {
+    const glm::vec3 lo(u * edge_), hi((u + 1) * edge_);
+    uint32_t bits = 0;
+    for (const glm::vec3& p : bricks_[index(u)].mesh.mesh.positions) {
+      glm::ivec3 on(0);
+      for (int a = 0; a < 3; ++a)
+        on[a] = p[a] == lo[a] ? -1 : (p[a] == hi[a] ? 1 : 0);
+      if (on == glm::ivec3(0)) continue;
+      for (int m = 1; m < 8; ++m) {  // every region whose closed part holds it
+        glm::ivec3 e(0);
+        bool valid = true;
+        for (int a = 0; a < 3; ++a)
+          if (m >> a & 1) {
+            valid = valid && on[a] != 0;
+            e[a] = on[a];
+          }
+        if (valid) bits |= 1u << region_bit(e);
+      }
+    }
+    return bits;
+  };
+  std::vector<uint32_t> fine(n, 0);
+  std::vector<uint8_t> kept_around(n, 0);
   for (glm::ivec3 b : change) {
     if (level_of(b) != 0) return {};
-    unsigned r = 0;
     for (glm::ivec3 d : kAround) {
-      const glm::ivec3 nb = b + d;
-      if (!in_grid(nb)) continue;
-      if (level_of(nb) != 0) return {};
-      if (in_change[index(nb)] || bricks_[index(nb)].mesh.empty()) continue;
-      // A slab along one side it touches holds every sub-block touching
-      // it: a side already in a rim if there is one.
-      int side = -1;
-      for (int a = 0; a < 3; ++a) {
-        if (d[a] == 0) continue;
-        const int s = 2 * a + (d[a] > 0 ? 1 : 0);
-        if (side < 0 || (r >> s & 1u)) side = s;
-        if (r >> s & 1u) break;
+      const glm::ivec3 u = b + d;
+      if (!in_grid(u)) continue;
+      if (level_of(u) != 0) return {};
+      if (in_change[index(u)] || kept_around[index(u)] || bricks_[index(u)].mesh.empty()) continue;
+      kept_around[index(u)] = 1;
+      const uint32_t reached = boundary_reached(u);
+      for (glm::ivec3 r : kAround) {
+        // A corner is one point, which keeps its plain voxel anyway.
+        if (!(reached >> region_bit(r) & 1u) || glm::all(glm::notEqual(r, glm::ivec3(0))))
+          continue;
+        for (glm::ivec3 d2 : kAround) {
+          const glm::ivec3 c = u + d2;
+          if (!in_grid(c) || !in_change[index(c)]) continue;
+          // Along each axis, the layers of c that touch the face or edge
+          // (bit e + 1 for layer e).
+          unsigned sides[3];
+          for (int a = 0; a < 3; ++a) {
+            if (r[a] == 0)
+              sides[a] = d2[a] == 0 ? 7u : (d2[a] < 0 ? 4u : 1u);
+            else
+              sides[a] = d2[a] == 0 ? (r[a] < 0 ? 1u : 4u) : (d2[a] == r[a] ? (r[a] < 0 ? 4u : 1u) : 0u);
+          }
+          for (int ez = -1; ez <= 1; ++ez)
+            for (int ey = -1; ey <= 1; ++ey)
+              for (int ex = -1; ex <= 1; ++ex)
+                if ((sides[0] >> (ex + 1) & 1u) && (sides[1] >> (ey + 1) & 1u) &&
+                    (sides[2] >> (ez + 1) & 1u))
+                  fine[index(c)] |= 1u << region_bit({ex, ey, ez});
+        }
       }
-      r |= 1u << side;
     }
-    rims[index(b)] = static_cast<uint8_t>(r);
   }
   const InterimSampler sampler(*this, volume, std::move(in_change), std::move(moved),
-                               std::move(rims));
+                               std::move(fine));
   std::vector<InterimMesh> out(change.size());
   parallel_for(
       static_cast<int64_t>(change.size()),

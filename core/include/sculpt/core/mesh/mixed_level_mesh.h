@@ -212,6 +212,8 @@ class MixedLevelMeshCache {
   void mesh_brick(glm::ivec3 b, CachedBrick& cb);
   // The sub-blocks of a change and their samples (interim_mesh.cpp).
   class InterimSampler;
+  // One face of a part of an interim mesh: the levels around it.
+  class FaceLevels;
   // Changed brick b's interim mesh into `out`.
   void interim_brick(const InterimSampler& sampler, glm::ivec3 b, BrickMesh& out) const;
   void stitch(glm::ivec3 b, int k, BrickMesh& out, MixedLevelStats& st) const;
