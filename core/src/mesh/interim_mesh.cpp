@@ -25,6 +25,7 @@
 // them, so no crossing lies on the faces they share.
 
 #include <algorithm>
+#include <atomic>
 #include <array>
 #include <bit>
 #include <memory>
@@ -90,6 +91,7 @@ class MixedLevelMeshCache::InterimSampler {
     for (int l = 0; l < 2; ++l) {
       decoded_[l] = std::vector<std::vector<uint8_t>>(n);
       once_[l] = std::make_unique<std::once_flag[]>(n);
+      ready_[l] = std::make_unique<std::atomic<uint8_t>[]>(n);
     }
     // The cache's level-0 voxels of the bricks around the change that did
     // not move, looked up once (a map lookup a sample was most of the time).
@@ -126,15 +128,18 @@ class MixedLevelMeshCache::InterimSampler {
 
   // Brick b's level-k voxels (k 0 or kCoarse): the cache's own decode when
   // the brick did not move, else decoded here once.
+  // A uniform brick has none: null (its value is uniform_value()).
   const uint8_t* voxels(glm::ivec3 b, int k) const {
     const size_t i = cache_.index(b);
     if (k == 0 && kept_[i] != nullptr) return kept_[i];
+    if (volume_.brick(b).is_uniform()) return nullptr;
     const int l = k == 0 ? 0 : 1;
     std::call_once(once_[l][i], [&] {
       const int m = cache_.edge_ >> k;
       std::vector<uint8_t>& out = decoded_[l][i];
       out.resize(static_cast<size_t>(m) * m * m);
       volume_.decode_brick(b, out, k);
+      ready_[l][i].store(1, std::memory_order_release);
     });
     return decoded_[l][i].data();
   }
@@ -147,8 +152,18 @@ class MixedLevelMeshCache::InterimSampler {
     const int shift = edge_shift_ - k;
     const int m = 1 << shift;
     const glm::ivec3 l = p & (m - 1);
-    return voxels(p >> shift, k)[(static_cast<size_t>(l.z) * m + l.y) * m + l.x];
+    const glm::ivec3 b = p >> shift;
+    const size_t i = cache_.index(b);
+    const size_t at = (static_cast<size_t>(l.z) * m + l.y) * m + l.x;
+    if (k == 0 && kept_[i] != nullptr) return kept_[i][at];
+    if (ready_[k == 0 ? 0 : 1][i].load(std::memory_order_acquire)) return decoded_[k == 0 ? 0 : 1][i][at];
+    // Not decoded (yet): a few voxels of a brick (the coarse points on a
+    // face) cost less read one by one from its pyramid than decoded whole.
+    if (k == 0) return volume_.brick(b).voxel(l.x, l.y, l.z);
+    const uint8_t* v = voxels(b, k);
+    return v != nullptr ? v[at] : volume_.brick(b).uniform_value();
   }
+  uint8_t uniform_value(glm::ivec3 b) const { return volume_.brick(b).uniform_value(); }
 
   float tie_moved(float v) const { return cache_.tie_moved(v); }
   bool in_change(glm::ivec3 b) const { return in_change_[cache_.index(b)] != 0; }
@@ -167,7 +182,35 @@ class MixedLevelMeshCache::InterimSampler {
   // Per brick, its voxels at level 0 ([0]) and kCoarse ([1]) decoded here.
   mutable std::vector<std::vector<uint8_t>> decoded_[2];
   std::unique_ptr<std::once_flag[]> once_[2];
+  std::unique_ptr<std::atomic<uint8_t>[]> ready_[2];  // decoded_ filled
   std::vector<const uint8_t*> kept_;  // per brick, the cache's level-0 voxels
+};
+
+// The levels of the sub-blocks of a brick and of the ring of sub-blocks
+// around it (InterimSampler::sub_level()), looked up once a brick: a
+// face's levels are read many times.
+class SubLevels {
+ public:
+  template <class Sampler>
+  SubLevels(const Sampler& sampler, glm::ivec3 brick) : n_(sampler.subs() + 2) {
+    origin_ = brick * sampler.subs() - 1;
+    levels_.resize(static_cast<size_t>(n_) * n_ * n_);
+    for (int z = 0; z < n_; ++z)
+      for (int y = 0; y < n_; ++y)
+        for (int x = 0; x < n_; ++x)
+          levels_[(static_cast<size_t>(z) * n_ + y) * n_ + x] =
+              static_cast<int8_t>(sampler.sub_level(origin_ + glm::ivec3(x, y, z)));
+  }
+  // Sub-block s (global sub-block coordinates, within the ring).
+  int at(glm::ivec3 s) const {
+    const glm::ivec3 l = s - origin_;
+    return levels_[(static_cast<size_t>(l.z) * n_ + l.y) * n_ + l.x];
+  }
+
+ private:
+  int n_;
+  glm::ivec3 origin_{0};
+  std::vector<int8_t> levels_;
 };
 
 // The levels of the sub-blocks touching one face of a box (both sides,
@@ -175,7 +218,8 @@ class MixedLevelMeshCache::InterimSampler {
 // its closed rectangle, each computed once.
 class MixedLevelMeshCache::FaceLevels {
  public:
-  FaceLevels(const InterimSampler& sampler, const MarchBox& box, int face)
+  FaceLevels(const InterimSampler& sampler, const SubLevels& sub_levels, const MarchBox& box,
+             int face)
       : sampler_(sampler), a_(face / 2), u_((a_ + 1) % 3), v_((a_ + 2) % 3) {
     plane_ = (face & 1) ? box.hi[a_] : box.lo[a_];
     lo_ = box.lo;
@@ -192,12 +236,23 @@ class MixedLevelMeshCache::FaceLevels {
           sb[a_] = (plane_ >> kCoarse) - 1 + layer;
           sb[u_] = (lo_[u_] >> kCoarse) - 1 + su;
           sb[v_] = (lo_[v_] >> kCoarse) - 1 + sv;
-          const int l = sampler.sub_level(sb);
+          const int l = sub_levels.at(sb);
           level_at(layer, su, sv) = static_cast<int8_t>(l);
           if (l < 0) continue;
           levels_used_ |= 1u << l;
           const bool inside_u = su >= 1 && su < nu_ - 1, inside_v = sv >= 1 && sv < nv_ - 1;
           if (layer == across_layer && inside_u && inside_v && l > 0) coarser_across_ = true;
+        }
+    column_min_.assign(static_cast<size_t>(nu_ * nv_), 100);
+    column_max_.assign(static_cast<size_t>(nu_ * nv_), -1);
+    for (int layer = 0; layer < 2; ++layer)
+      for (int su = 0; su < nu_; ++su)
+        for (int sv = 0; sv < nv_; ++sv) {
+          const int l = level_at(layer, su, sv);
+          if (l < 0) continue;
+          const size_t c = static_cast<size_t>(su * nv_ + sv);
+          column_min_[c] = static_cast<int8_t>(std::min<int>(column_min_[c], l));
+          column_max_[c] = static_cast<int8_t>(std::max<int>(column_max_[c], l));
         }
   }
   // Whether sub-blocks of another level than k touch the face.
@@ -209,35 +264,38 @@ class MixedLevelMeshCache::FaceLevels {
   int size_v() const { return size_v_; }
 
   // Finest and coarsest level sharing the face's point (cu, cv), level-0
-  // voxels from the rectangle's low corner.
+  // voxels from the rectangle's low corner: the sub-blocks of the one, two
+  // or four columns (both layers) around it.
   glm::ivec2 levels_at(int cu, int cv) const {
     const int su1 = cu / kSub + 1, sv1 = cv / kSub + 1;
     const int su0 = cu % kSub == 0 ? su1 - 1 : su1, sv0 = cv % kSub == 0 ? sv1 - 1 : sv1;
     glm::ivec2 range(100, -1);
-    for (int layer = 0; layer < 2; ++layer)
-      for (int su = su0; su <= su1; ++su)
-        for (int sv = sv0; sv <= sv1; ++sv) {
-          const int l = level_at(layer, su, sv);
-          if (l < 0) continue;
-          range = glm::ivec2(std::min(range.x, l), std::max(range.y, l));
-        }
+    for (int su = su0; su <= su1; ++su)
+      for (int sv = sv0; sv <= sv1; ++sv) {
+        const size_t c = static_cast<size_t>(su * nv_ + sv);
+        range = glm::ivec2(std::min<int>(range.x, column_min_[c]),
+                           std::max<int>(range.y, column_max_[c]));
+      }
     return range;
   }
   // The agreed sample at the rectangle's level-2 point (iu, iv): the finest
   // sharing level's voxel, a tie moved below the iso-level.
-  float lattice(int iu, int iv) {
-    if (lattice_.empty())
-      lattice_.assign(static_cast<size_t>(nu_ - 1) * (nv_ - 1), kUnknown);
-    float& value = lattice_[static_cast<size_t>(iu) * (nv_ - 1) + iv];
-    if (value == kUnknown) {
-      glm::ivec3 x;
-      x[a_] = plane_;
-      x[u_] = lo_[u_] + iu * kSub;
-      x[v_] = lo_[v_] + iv * kSub;
-      const int finest = levels_at(iu * kSub, iv * kSub).x;
-      value = sampler_.tie_moved(sampler_.raw(finest, x >> finest));
-    }
-    return value;
+  float lattice(int iu, int iv) const {
+    return lattice_[static_cast<size_t>(iu) * (nv_ - 1) + iv];
+  }
+  // Computes the lattice's samples (once the face is known to be mixed).
+  void read_lattice() {
+    lattice_.resize(static_cast<size_t>(nu_ - 1) * (nv_ - 1));
+    for (int iu = 0; iu < nu_ - 1; ++iu)
+      for (int iv = 0; iv < nv_ - 1; ++iv) {
+        glm::ivec3 x;
+        x[a_] = plane_;
+        x[u_] = lo_[u_] + iu * kSub;
+        x[v_] = lo_[v_] + iv * kSub;
+        const int finest = levels_at(iu * kSub, iv * kSub).x;
+        lattice_[static_cast<size_t>(iu) * (nv_ - 1) + iv] =
+            sampler_.tie_moved(sampler_.raw(finest, x >> finest));
+      }
   }
 
  private:
@@ -253,6 +311,7 @@ class MixedLevelMeshCache::FaceLevels {
   int plane_ = 0, size_u_ = 0, size_v_ = 0, nu_ = 0, nv_ = 0;
   glm::ivec3 lo_{0};
   std::vector<int8_t> levels_;
+  std::vector<int8_t> column_min_, column_max_;  // per column (su, sv), both layers
   unsigned levels_used_ = 0;
   bool coarser_across_ = false;
   std::vector<float> lattice_;
@@ -264,29 +323,53 @@ void MixedLevelMeshCache::interim_brick(const InterimSampler& sampler, glm::ivec
   if (uniform_around(b, 1)) return;
   // The brick's 27 regions (per axis: the low side's layer of sub-blocks,
   // those between, the high side's), each fine or coarse, marched as boxes:
-  // runs of one kind along x together. A brick with no fine region is one
-  // coarse box.
+  // runs of one kind along x, rows of the same runs together, then layers
+  // of the same rows (a rim along one face is two boxes, not eighteen). A
+  // brick with no fine region is one coarse box.
   const uint32_t fine = sampler.fine_regions(b);
   const glm::ivec3 lo = b * edge_;
   const int cut[4] = {0, kSub, edge_ - kSub, edge_};
+  auto is_fine = [&](int ex, int ey, int ez) { return (fine >> region_bit({ex, ey, ez}) & 1u) != 0; };
+  // A row's runs as a bit pattern: bit x + 1 set where a run starts, bit
+  // 4 + x + 1 where it is fine.
+  auto row_runs = [&](int ey, int ez) {
+    unsigned pattern = 0;
+    for (int ex = -1; ex <= 1; ++ex) {
+      if (ex == -1 || is_fine(ex, ey, ez) != is_fine(ex - 1, ey, ez)) pattern |= 1u << (ex + 1);
+      if (is_fine(ex, ey, ez)) pattern |= 1u << (4 + ex + 1);
+    }
+    return pattern;
+  };
+  auto layer_rows = [&](int ez) {
+    unsigned rows = 0;
+    for (int ey = -1; ey <= 1; ++ey)
+      rows |= row_runs(ey, ez) << (8 * (ey + 1));
+    return rows;
+  };
   std::vector<MarchBox> boxes;
-  if (fine == 0) {
-    boxes.push_back({kCoarse, lo, lo + edge_});
-  } else {
-    for (int ez = -1; ez <= 1; ++ez)
-      for (int ey = -1; ey <= 1; ++ey)
-        for (int ex = -1; ex <= 1;) {
-          const bool is_fine = fine >> region_bit({ex, ey, ez}) & 1u;
-          int end = ex + 1;
-          while (end <= 1 && (fine >> region_bit({end, ey, ez}) & 1u) == is_fine)
-            ++end;
-          boxes.push_back({is_fine ? 0 : kCoarse,
-                           lo + glm::ivec3(cut[ex + 1], cut[ey + 1], cut[ez + 1]),
-                           lo + glm::ivec3(cut[end + 1], cut[ey + 2], cut[ez + 2])});
-          ex = end;
-        }
+  for (int ez = -1; ez <= 1;) {
+    int ez_end = ez + 1;
+    while (ez_end <= 1 && layer_rows(ez_end) == layer_rows(ez))
+      ++ez_end;
+    for (int ey = -1; ey <= 1;) {
+      int ey_end = ey + 1;
+      while (ey_end <= 1 && row_runs(ey_end, ez) == row_runs(ey, ez))
+        ++ey_end;
+      for (int ex = -1; ex <= 1;) {
+        int ex_end = ex + 1;
+        while (ex_end <= 1 && is_fine(ex_end, ey, ez) == is_fine(ex, ey, ez))
+          ++ex_end;
+        boxes.push_back({is_fine(ex, ey, ez) ? 0 : kCoarse,
+                         lo + glm::ivec3(cut[ex + 1], cut[ey + 1], cut[ez + 1]),
+                         lo + glm::ivec3(cut[ex_end + 1], cut[ey_end + 1], cut[ez_end + 1])});
+        ex = ex_end;
+      }
+      ey = ey_end;
+    }
+    ez = ez_end;
   }
 
+  const SubLevels sub_levels(sampler, b);
   thread_local std::vector<float> block;
   BrickMesh part;
   MixedLevelStats stats;
@@ -305,8 +388,15 @@ void MixedLevelMeshCache::interim_brick(const InterimSampler& sampler, glm::ivec
         for (int x = std::max(0, p0.x); x < std::min(ld.x, p0.x + side.x);) {
           const glm::ivec3 nb(x / m, p0.y / m, p0.z / m);
           const int run_end = std::min({ld.x, p0.x + side.x, (nb.x + 1) * m});
-          const uint8_t* src = sampler.voxels(nb, k) +
-                               (static_cast<size_t>(p0.z - nb.z * m) * m + (p0.y - nb.y * m)) * m;
+          const uint8_t* voxels = sampler.voxels(nb, k);
+          if (voxels == nullptr) {
+            std::fill(row + (x - p0.x), row + (run_end - p0.x),
+                      static_cast<float>(sampler.uniform_value(nb)));
+            x = run_end;
+            continue;
+          }
+          const uint8_t* src =
+              voxels + (static_cast<size_t>(p0.z - nb.z * m) * m + (p0.y - nb.y * m)) * m;
           for (; x < run_end; ++x)
             row[x - p0.x] = src[x - nb.x * m];
         }
@@ -316,9 +406,10 @@ void MixedLevelMeshCache::interim_brick(const InterimSampler& sampler, glm::ivec
     // box's level keep their plain voxels.
     unsigned coarser_faces = 0;
     for (int face = 0; face < 6; ++face) {
-      FaceLevels f(sampler, box, face);
+      FaceLevels f(sampler, sub_levels, box, face);
       if (f.coarser_across()) coarser_faces |= 1u << face;
       if (!f.mixed(k)) continue;
+      f.read_lattice();
       const int a = face / 2, u = (a + 1) % 3, v = (a + 2) % 3;
       const int step = 1 << k;
       for (int cu = 0; cu <= f.size_u(); cu += step)
