@@ -107,35 +107,6 @@ class MixedLevelMeshCache {
   /// (brick, level) decodes, bricks_meshed the non-empty meshes rebuilt.
   MeshUpdate update(const Volume& volume, std::span<const int> brick_levels);
 
-  /// A brick's interim mesh (interim_meshes()).
-  struct InterimMesh {
-    glm::ivec3 brick{0};
-    BrickMesh mesh;  ///< no seams: drawn, not welded
-  };
-  /// The level an interim mesh's core is marched at.
-  static constexpr int kInterimLevel = 2;
-  /// The first meshes of what changed in `volume` since the last update()
-  /// (the bricks whose Volume::brick_version moved), at a fraction of
-  /// update()'s cost, so that a big dab is shown before update() has meshed
-  /// it at full detail. Every brick whose marched box holds a voxel of a
-  /// moved brick is meshed at kInterimLevel inside and at level 0 in a rim
-  /// one coarse voxel thick along each side it shares with a brick outside
-  /// the change that has a surface. Those bricks keep their meshes: the
-  /// rim's samples on the side they share are the ones they were meshed
-  /// from, and between rim and core the rule of mixed levels applies inside
-  /// the brick (the rim's samples there interpolated from the core's, its
-  /// gaps stitched), so the surface drawn stays closed (docs/design.md,
-  /// "A big change shown coarse first"). Nothing is re-decoded or compared
-  /// (update() does that next), and the cache does not change: update()
-  /// then meshes the change as it would have without.
-  ///
-  /// Empty (and nothing to show) when fewer than `min_bricks` bricks would
-  /// be meshed, on a new volume or other levels than the last update()'s,
-  /// or when a brick at or next to the change is at a level other than 0
-  /// (zoomed out, a change is small on the screen and cheap to mesh).
-  std::vector<InterimMesh> interim_meshes(const Volume& volume, std::span<const int> brick_levels,
-                                          size_t min_bricks = 1) const;
-
   float iso() const { return options_.iso; }
   glm::ivec3 brick_grid() const { return grid_; }
   /// Level of brick b as of the last update().
@@ -210,12 +181,6 @@ class MixedLevelMeshCache {
   static int16_t uniform_value_of(const Brick& brick);
   // Meshes brick b at cb.level into cb.
   void mesh_brick(glm::ivec3 b, CachedBrick& cb);
-  // The sub-blocks of a change and their samples (interim_mesh.cpp).
-  class InterimSampler;
-  // One face of a part of an interim mesh: the levels around it.
-  class FaceLevels;
-  // Changed brick b's interim mesh into `out`.
-  void interim_brick(const InterimSampler& sampler, glm::ivec3 b, BrickMesh& out) const;
   void stitch(glm::ivec3 b, int k, BrickMesh& out, MixedLevelStats& st) const;
   // Moves cb's current mesh into its kept ones / gives it back the kept mesh
   // for its (new) level and levels around, if there is one / drops them all.
