@@ -27,10 +27,22 @@ constexpr unsigned kVertexCacheSize = 16;
 // and the flat fans that close gaps on a face fold. Keeping the band keeps
 // every vertex next to a face, so nothing can reach across one.
 // `on_border`: the mesh's border vertices (check_topology).
-std::vector<bool> face_band(const BrickMesh& brick, std::vector<bool> on_border) {
+// With only_covered, the band is that of the seam vertices off the open
+// border alone: where the flat fans close gaps against a coarser neighbour
+// (mixed levels), which the simplifier must not fold; the open border's
+// vertices are locked all the same.
+std::vector<bool> face_band(const BrickMesh& brick, std::vector<bool> on_border,
+                            bool only_covered = false) {
   const Mesh& m = brick.mesh;
-  for (const BrickMesh::Seam& seam : brick.seams)
-    on_border[seam.vertex] = true;
+  if (only_covered) {
+    std::vector<bool> covered(on_border.size(), false);
+    for (const BrickMesh::Seam& seam : brick.seams)
+      covered[seam.vertex] = !on_border[seam.vertex];
+    on_border = std::move(covered);
+  } else {
+    for (const BrickMesh::Seam& seam : brick.seams)
+      on_border[seam.vertex] = true;
+  }
   std::vector<bool> band(m.triangles.size(), false);
   for (size_t t = 0; t < m.triangles.size(); ++t) {
     const glm::uvec3& tri = m.triangles[t];
@@ -74,7 +86,7 @@ bool same_topology(const MeshTopology& marched, const Mesh& simplified) {
 
 }  // namespace
 
-SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error) {
+SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error, BorderHold hold) {
   const Mesh& in = brick.mesh;
   if (in.triangles.empty() || !(max_error > 0.0f)) return {brick, 0.0f};
   static_assert(sizeof(glm::vec3) == 3 * sizeof(float) &&
@@ -84,7 +96,10 @@ SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error) {
   // The march's topology, which simplifying must keep, and its border.
   std::vector<bool> border;
   const MeshTopology marched = check_topology(in, &border);
-  const std::vector<bool> band = face_band(brick, std::move(border));
+  // Held, as marched: the band, or (the border's vertices locked below)
+  // the band of the gaps' fans alone.
+  const std::vector<bool> band =
+      face_band(brick, std::move(border), /*only_covered=*/hold == BorderHold::kVertices);
   std::vector<unsigned> kept, inner;
   for (size_t t = 0; t < in.triangles.size(); ++t) {
     std::vector<unsigned>& to = band[t] ? kept : inner;

@@ -511,8 +511,9 @@ void SurfaceMesher::simplify_refined(
 
 SurfaceMesher::Simplified SurfaceMesher::simplify_brick(const core::BrickMesh& mesh,
                                                         int level) const {
-  core::SimplifiedBrick s =
-      core::simplify_brick_mesh(mesh, simplify_error_ * static_cast<float>(1 << level));
+  // Drawn brick by brick, never welded: only the border's vertices stay.
+  core::SimplifiedBrick s = core::simplify_brick_mesh(
+      mesh, simplify_error_ * static_cast<float>(1 << level), core::BorderHold::kVertices);
   Simplified out;
   out.marched = static_cast<int64_t>(mesh.mesh.triangles.size());
   out.kept = static_cast<int64_t>(s.brick.mesh.triangles.size());

@@ -52,8 +52,8 @@ void expect_same_surface(const SurfaceSnapshot& snapshot, const core::Volume& vo
     ASSERT_TRUE(it != snapshot.bricks().end()) << "brick " << i;
     EXPECT_EQ(it->second.level, levels[static_cast<size_t>(i)]);
     const int level = levels[static_cast<size_t>(i)];
-    const core::SimplifiedBrick simplified =
-        core::simplify_brick_mesh(want, simplify_error * static_cast<float>(1 << level));
+    const core::SimplifiedBrick simplified = core::simplify_brick_mesh(
+        want, simplify_error * static_cast<float>(1 << level), core::BorderHold::kVertices);
     EXPECT_EQ(it->second.mesh->mesh, simplified.brick.mesh) << "brick " << i;
   }
   EXPECT_GT(non_empty, 8);
@@ -336,14 +336,15 @@ TEST(SurfaceMesher, ThePlayedDemoEndsOnTheSurfaceMeshedFromScratch) {
   EXPECT_EQ(c.refinements, 1);
   EXPECT_LE(c.refine_passes, c.coarse_first);
   // Simplified brick by brick, at the levels the camera gave, the bricks
-  // still meet without a crack: welded, the surface is closed.
+  // still meet without a crack: welded, no edge is open. (Only their border
+  // vertices are held, so two bricks may share an edge between two of them:
+  // four triangles, which a renderer drawing them one by one never sees.)
   std::vector<const core::BrickMesh*> parts;
   for (const auto& [index, brick] : snapshot.bricks())
     parts.push_back(brick.mesh.get());
   const core::MeshTopology t = core::check_topology(core::weld_brick_meshes(parts));
-  EXPECT_TRUE(t.closed()) << t.boundary_edges << " boundary, " << t.nonmanifold_edges
-                          << " non-manifold edges";
-  EXPECT_EQ(t.nonmanifold_vertices, 0);
+  EXPECT_EQ(t.boundary_edges, 0);
+  EXPECT_EQ(t.misoriented_edges, 0);
 }
 
 TEST(SurfaceMesher, NothingChangedIsNoChange) {

@@ -387,9 +387,9 @@ TEST(StationWindow, AutomaticLevelOfDetailLooksLikeFullDetail) {
   }
 }
 
-// The drawn surface is simplified (a quarter of the triangles or fewer); at
-// full detail, where a voxel spans more than a pixel, the picture must not
-// show it.
+// The drawn surface is simplified (a sixth of the triangles or fewer: only
+// the vertices on the bricks' borders are held); at full detail, where a
+// voxel spans more than a pixel, the picture must not show it.
 TEST(StationWindow, TheSimplifiedSurfaceLooksLikeTheMarchedOne) {
   sculpt::test::ScratchDir dir;
   const std::string project = demo_project(dir);
@@ -397,9 +397,10 @@ TEST(StationWindow, TheSimplifiedSurfaceLooksLikeTheMarchedOne) {
   const auto marched = shoot(dir, project, "--size 640x400 --lod 0 --simplify-error 0");
   if (!simplified || !marched) GTEST_SKIP() << "no display and no xvfb-run";
   ASSERT_EQ(simplified->picture.rgb.size(), marched->picture.rgb.size());
-  EXPECT_LT(4 * simplified->triangles, marched->triangles);
+  EXPECT_LT(6 * simplified->triangles, marched->triangles);
   const PictureDifference d = difference(simplified->picture, marched->picture);
-  // Measured: 59k triangles against 238k, a mean of 0.1, 0.03% above 24.
+  // Measured: 31k triangles against 234k, a mean of 0.21, 0.06% above 24
+  // (with the triangles around the borders held too: 59k, 0.1, 0.03%).
   std::printf("simplified (%lld triangles) vs marched (%lld): mean %.2f, %.2f%% above 24\n",
               static_cast<long long>(simplified->triangles),
               static_cast<long long>(marched->triangles), d.mean, 100.0 * d.visible_share);

@@ -36,9 +36,9 @@
 //
 // A brick's first mesh is the march's, published at once. Another thread,
 // the simplifier, at a lower priority, then simplifies each published mesh
-// (core/mesh/brick_simplify.h) and publishes it again with about a seventh
-// of the triangles, which are what a software renderer spends its frame
-// on; the mesher never waits for it, and a mesh the mesher remade meanwhile
+// (core/mesh/brick_simplify.h, only its border's vertices held: it is drawn
+// on its own, never welded) and publishes it again with about a tenth of
+// the triangles, which are what a software renderer spends its frame on; the mesher never waits for it, and a mesh the mesher remade meanwhile
 // is not replaced by an older one simplified.
 //
 // Thread safety: submit() from one thread (the one that owns the volume),
