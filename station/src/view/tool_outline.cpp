@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "sculpt/core/grid/dense_grid.h"
+#include "sculpt/core/mesh/brick_simplify.h"
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/volume/volume.h"
 
@@ -112,14 +113,22 @@ core::Mesh ball_outline(const core::Tool& ball, bool coarse) {
   return uv_sphere(ball.pivot, radius, std::sqrt(4.0f * radius * error));
 }
 
+core::Mesh drawn_outline(const core::Tool& tool, int max_cells) {
+  // Closed, so simplifying keeps it closed (its topology is checked).
+  core::BrickMesh marched;
+  marched.mesh = tool_outline(tool, max_cells);
+  return core::simplify_brick_mesh(marched, kDrawnOutlineErrorVox, core::BorderHold::kVertices)
+      .brick.mesh;
+}
+
 core::Mesh window_tool_outline(const core::Tool& tool) {
-  if (!(tool.sphere_radius_vox > 0.0f)) return tool_outline(tool);
+  if (!(tool.sphere_radius_vox > 0.0f)) return drawn_outline(tool);
   return ball_outline(tool);
 }
 
 core::Mesh stand_in_outline(const core::Tool& tool, bool coarse) {
   if (tool.sphere_radius_vox > 0.0f) return ball_outline(tool, coarse);
-  return tool_outline(tool, coarse ? kToolOutlineCells : kStandInCells);
+  return drawn_outline(tool, coarse ? kToolOutlineCells : kStandInCells);
 }
 
 }  // namespace sculpt::station
