@@ -21,16 +21,14 @@ constexpr unsigned kVertexCacheSize = 16;
 // (keyed, on cell edges shared with a neighbour, whether still open or
 // covered by the triangles that close the gaps against a coarser
 // neighbour) and any other vertex of its open border. They are kept as
-// marched. Locking the border vertices alone is not enough: an inner vertex
-// that collapses onto one face vertex can join it to another, and the
-// neighbour may join the same two (an edge of four triangles once welded),
-// and the flat fans that close gaps on a face fold. Keeping the band keeps
-// every vertex next to a face, so nothing can reach across one.
-// `on_border`: the mesh's border vertices (check_topology).
-// With only_covered, the band is that of the seam vertices off the open
-// border alone: where the flat fans close gaps against a coarser neighbour
-// (mixed levels), which the simplifier must not fold; the open border's
-// vertices are locked all the same.
+// marched (BorderHold::kBand). With the border's vertices alone locked, an
+// inner vertex that collapses onto one face vertex can join it to another,
+// and the neighbour may join the same two (an edge of four triangles once
+// welded); keeping the band keeps every vertex next to a face, so nothing
+// can reach across one. `on_border`: the mesh's border vertices
+// (check_topology). With only_covered (BorderHold::kVertices), the band of
+// the covered seam vertices alone: the flat fans that close gaps against a
+// coarser neighbour, which the simplifier would fold.
 std::vector<bool> face_band(const BrickMesh& brick, std::vector<bool> on_border,
                             bool only_covered = false) {
   const Mesh& m = brick.mesh;

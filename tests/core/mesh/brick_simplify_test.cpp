@@ -126,7 +126,7 @@ TEST(BrickSimplify, HoldingTheBorderVerticesAloneTheBricksStillMeetWithHalfTheTr
       // bricks the fans that close gaps keep theirs.
       const size_t with_band = weld(band.simplified).triangles.size();
       if (!every_other) {
-        EXPECT_LT(after.triangles.size(), levels[1] == 0 ? with_band * 3 / 4 : with_band);
+        EXPECT_LT(after.triangles.size(), levels[1] == 0 ? with_band / 2 : with_band);
       }
       EXPECT_NEAR(enclosed_volume(after), enclosed_volume(before), 5e-3 * enclosed_volume(before));
       for (size_t b = 0; b < vertices.marched.size(); ++b) {

@@ -38,8 +38,9 @@
 // the simplifier, at a lower priority, then simplifies each published mesh
 // (core/mesh/brick_simplify.h, only its border's vertices held: it is drawn
 // on its own, never welded) and publishes it again with about a tenth of
-// the triangles, which are what a software renderer spends its frame on; the mesher never waits for it, and a mesh the mesher remade meanwhile
-// is not replaced by an older one simplified.
+// the triangles, which are what a software renderer spends its frame on;
+// the mesher never waits for it, and a mesh the mesher remade meanwhile is
+// not replaced by an older one simplified.
 //
 // Thread safety: submit() from one thread (the one that owns the volume),
 // take() from one thread (the renderer's); both may run while the mesher

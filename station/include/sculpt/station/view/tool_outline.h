@@ -41,7 +41,7 @@ constexpr float kCoarseBallErrorVox = 4.0f * kWindowBallErrorVox;
 /// tool_outline() simplified within kDrawnOutlineErrorVox, as the clay's
 /// drawn meshes are (a closed mesh stays closed): a tool's flat faces and
 /// gentle curves keep few of the march's triangles (the bust's 20-voxel
-/// cube 10,088 -> 342 triangles; drawn twice a frame, ghost and tool, it
+/// cube 10,088 -> 44 triangles; drawn twice a frame, ghost and tool, it
 /// was 2.7 ms of a 16.7 ms llvmpipe frame).
 core::Mesh drawn_outline(const core::Tool& tool, int max_cells = kToolOutlineCells);
 constexpr float kDrawnOutlineErrorVox = 0.2f;
