@@ -26,13 +26,12 @@ constexpr unsigned kVertexCacheSize = 16;
 // and the neighbour may join the same two (an edge of four triangles once
 // welded); keeping the band keeps every vertex next to a face, so nothing
 // can reach across one. `on_border`: the mesh's border vertices
-// (check_topology). With only_covered (BorderHold::kVertices), the band of
-// the covered seam vertices alone: the flat fans that close gaps against a
+// (check_topology). With BorderHold::kVertices, the band of the covered
+// seam vertices alone: the flat fans that close gaps against a
 // coarser neighbour, which the simplifier would fold.
-std::vector<bool> face_band(const BrickMesh& brick, std::vector<bool> on_border,
-                            bool only_covered = false) {
+std::vector<bool> face_band(const BrickMesh& brick, std::vector<bool> on_border, BorderHold hold) {
   const Mesh& m = brick.mesh;
-  if (only_covered) {
+  if (hold == BorderHold::kVertices) {
     std::vector<bool> covered(on_border.size(), false);
     for (const BrickMesh::Seam& seam : brick.seams)
       covered[seam.vertex] = !on_border[seam.vertex];
@@ -96,8 +95,7 @@ SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error, Bor
   const MeshTopology marched = check_topology(in, &border);
   // Held, as marched: the band, or (the border's vertices locked below)
   // the band of the gaps' fans alone.
-  const std::vector<bool> band =
-      face_band(brick, std::move(border), /*only_covered=*/hold == BorderHold::kVertices);
+  const std::vector<bool> band = face_band(brick, std::move(border), hold);
   std::vector<unsigned> kept, inner;
   for (size_t t = 0; t < in.triangles.size(); ++t) {
     std::vector<unsigned>& to = band[t] ? kept : inner;

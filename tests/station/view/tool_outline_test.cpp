@@ -125,7 +125,6 @@ TEST(ToolOutline, TheWindowDrawsABallAsASphereOfFewTriangles) {
     EXPECT_LT(worst_dip(coarse), 1.05f * kCoarseBallErrorVox) << radius;
     EXPECT_LT(coarse.triangles.size(), drawn.triangles.size() / 2) << radius;
   }
-  // Any other tool: its outline, simplified (TheDrawnOutlineIsTheMarchSimplified).
 }
 
 }  // namespace
