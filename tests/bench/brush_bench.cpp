@@ -3,10 +3,13 @@
 // applied again to the whole path (range(1) = 0, what every preview did
 // before) against brushing only what the path's newest segment reaches,
 // reading the material before the stroke from a kept copy (range(1) = 1,
-// *_stroke_part()). range(0): the path's samples so far, 2 voxels apart
-// along a circle on the surface of the 256^3 peers.py sphere; the ball of
-// radius 8 with each brush's default hardness, strength (smoothing: 4 blur
-// passes; inflating: 1 voxel). Timed by hand around the brush call only
+// *_stroke_part()). range(0): the path's samples so far, along a circle on
+// the surface of the 256^3 peers.py sphere; range(2): the ball's radius, 8
+// with samples 2 voxels apart (a small brush moved slowly) or 16 with
+// samples 15 voxels apart (the bundled bust's nose smoothing, whose previews
+// set its first-picture latency; 8 and 32 samples, a quarter turn and less
+// than a whole one); each brush's default hardness, strength
+// (smoothing: 4 blur passes; inflating: 1 voxel). Timed by hand around the brush call only
 // (the volume's copy is set-up), one thread.
 
 #include <benchmark/benchmark.h>
@@ -33,18 +36,20 @@ void brush_preview(benchmark::State& state,
                                       const Options&, const Box&, const Volume&)) {
   const auto samples = static_cast<size_t>(state.range(0));
   const bool extend = state.range(1) != 0;
+  const auto ball_radius = static_cast<float>(state.range(2));
+  const float spacing = ball_radius < 16.0f ? 2.0f : 15.0f;
   static const Volume* material = new Volume(sphere_volume(256, 0.35f));
   set_default_threads(1);
   const glm::vec3 centre(127.5f);
   const float radius = 0.35f * 256.0f;
   std::vector<StrokeSample> path;
   for (size_t k = 0; k < samples; ++k) {
-    const float a = 2.0f * static_cast<float>(k) / radius;
+    const float a = spacing * static_cast<float>(k) / radius;
     path.push_back({centre + radius * glm::vec3(std::cos(a), std::sin(a), 0.0f),
                     glm::quat(1.0f, 0.0f, 0.0f, 0.0f)});
   }
   Options o;
-  o.radius_vox = 8.0f;
+  o.radius_vox = ball_radius;
   // The last preview, of the path but its newest sample.
   Volume shown = *material;
   {
@@ -77,19 +82,27 @@ void BM_InflatePreview(benchmark::State& state) {
 void BM_PinchPreview(benchmark::State& state) {
   brush_preview<PinchBrushOptions>(state, pinch_stroke, pinch_stroke_part);
 }
+void preview_args(benchmark::internal::Benchmark* b) {
+  for (int extend : {0, 1}) {
+    for (int samples : {8, 32, 128})
+      b->Args({samples, extend, 8});
+    for (int samples : {8, 32})
+      b->Args({samples, extend, 16});
+  }
+}
 BENCHMARK(BM_SmoothPreview)
-    ->ArgsProduct({{8, 32, 128}, {0, 1}})
-    ->ArgNames({"samples", "extend"})
+    ->Apply(preview_args)
+    ->ArgNames({"samples", "extend", "radius"})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_InflatePreview)
-    ->ArgsProduct({{8, 32, 128}, {0, 1}})
-    ->ArgNames({"samples", "extend"})
+    ->Apply(preview_args)
+    ->ArgNames({"samples", "extend", "radius"})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PinchPreview)
-    ->ArgsProduct({{8, 32, 128}, {0, 1}})
-    ->ArgNames({"samples", "extend"})
+    ->Apply(preview_args)
+    ->ArgNames({"samples", "extend", "radius"})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 

@@ -15,6 +15,7 @@
 #include <glm/geometric.hpp>
 
 #include "sculpt/core/distance/distance_normals.h"
+#include "sculpt/core/sculpt/capsule_row.h"
 #include "sculpt/core/tool/tool.h"
 
 namespace sculpt::core::brush {
@@ -76,6 +77,16 @@ void blur_axis(DenseGrid<float>& g, int axis, std::vector<float>& a, std::vector
   }
 }
 
+// std::round(value) clamped to 0..255, as a byte: the same byte for every
+// float (clamping first rounds the same way for any value it moves, and
+// within 0..255 a float's fraction is exact), without the library call
+// std::round() is on plain x86-64.
+uint8_t round_to_byte(float value) {
+  const float c = std::clamp(value, 0.0f, 255.0f);
+  const int whole = static_cast<int>(c);
+  return static_cast<uint8_t>(whole + (c - static_cast<float>(whole) >= 0.5f ? 1 : 0));
+}
+
 }  // namespace
 
 float Ball::weight(float distance_vox) const {
@@ -109,17 +120,36 @@ PathDistance::PathDistance(std::span<const StrokeSample> path, const Box& box, f
       distance_(box.size(), std::numeric_limits<float>::infinity()),
       segment_(box.size(), 0) {
   assert(!path.empty());
+  const float reach2 = reach * reach;
+  std::vector<float> row_lo, row_hi;
   // The first point, then each segment, a voxel taking a segment only when
   // strictly nearer: the nearest point is the first of the path's nearest.
+  // Each measures only the rows' stretches its capsule reaches (widened by
+  // a voxel against rounding), not its whole box: a diagonal segment as
+  // long as the ball is wide reaches under half its box's voxels.
   for (size_t i = 0; i < path.size(); ++i) {
     const glm::vec3 a = path[i == 0 ? 0 : i - 1].position_vox;
     const glm::vec3 b = path[i].position_vox;
     const Box reached = intersect(Box{glm::ivec3(glm::floor(glm::min(a, b) - reach)),
                                       glm::ivec3(glm::ceil(glm::max(a, b) + reach)) + 1},
                                   box_);
-    for (int z = reached.lo.z; z < reached.hi.z; ++z)
-      for (int y = reached.lo.y; y < reached.hi.y; ++y)
-        for (int x = reached.lo.x; x < reached.hi.x; ++x) {
+    if (reached.empty()) continue;
+    const glm::vec3 ab = b - a;
+    const float ab2 = glm::dot(ab, ab);
+    const int ny = reached.hi.y - reached.lo.y;
+    row_lo.resize(static_cast<size_t>(ny));
+    row_hi.resize(static_cast<size_t>(ny));
+    const auto x_lo = static_cast<float>(reached.lo.x), x_hi = static_cast<float>(reached.hi.x);
+    for (int z = reached.lo.z; z < reached.hi.z; ++z) {
+      capsule_rows(a, ab, ab2, reached.lo.y, ny, static_cast<float>(z), reach2, true, row_lo.data(),
+                   row_hi.data());
+      for (int y = reached.lo.y; y < reached.hi.y; ++y) {
+        const float lo = row_lo[static_cast<size_t>(y - reached.lo.y)];
+        const float hi = row_hi[static_cast<size_t>(y - reached.lo.y)];
+        if (lo > hi) continue;
+        const int x0 = std::max(reached.lo.x, floor_int(std::max(lo, x_lo - 1.0f)) - 1);
+        const int x1 = std::min(reached.hi.x, ceil_int(std::min(hi, x_hi + 1.0f)) + 2);
+        for (int x = x0; x < x1; ++x) {
           const glm::vec3 p(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
           const float d = glm::length(p - segment_closest(p, a, b));
           if (d >= reach) continue;
@@ -130,7 +160,13 @@ PathDistance::PathDistance(std::span<const StrokeSample> path, const Box& box, f
             segment_[k] = static_cast<int32_t>(i);
           }
         }
+      }
+    }
   }
+}
+
+const float* PathDistance::row(int y, int z) const {
+  return &distance_.values()[distance_.index(0, y, z)];
 }
 
 float PathDistance::at(glm::ivec3 v) const {
@@ -224,35 +260,37 @@ bool fit_plane(const Field& field, std::span<const StrokeSample> path, const Bal
 
 int64_t write(Volume& volume, Sculptor& sculptor, const Field& before, const Box& region,
               std::span<const StrokeSample> path, const Ball& ball,
-              const std::function<float(glm::ivec3 v, float w, glm::vec3 c)>& value) {
+              const std::function<float(glm::ivec3 v, float w, const PathDistance& path)>& value) {
   assert(&sculptor.volume() == &volume);
   if (region.empty()) return 0;
   const PathDistance distance(path, region, ball.reach());
   // The result starts from `before`, not from the volume: a preview that
-  // re-brushes part of a longer path finds its last result there.
-  DenseGrid<uint8_t> out(region.hi - region.lo);
-  for (int z = region.lo.z; z < region.hi.z; ++z)
-    for (int y = region.lo.y; y < region.hi.y; ++y)
-      for (int x = region.lo.x; x < region.hi.x; ++x)
-        out.at(x - region.lo.x, y - region.lo.y, z - region.lo.z) =
-            static_cast<uint8_t>(before.at({x, y, z}));
+  // re-brushes part of a longer path finds its last result there. Row by
+  // row through pointers: the voxels' index arithmetic was most of this loop.
+  const glm::ivec3 n = region.hi - region.lo;
+  DenseGrid<uint8_t> out(n);
+  const DenseGrid<float>& material = before.grid();
+  const glm::ivec3 at_before = region.lo - before.box().lo;
+  const float reach = ball.reach();
   int64_t changed = 0;
-  for (int z = region.lo.z; z < region.hi.z; ++z)
-    for (int y = region.lo.y; y < region.hi.y; ++y)
-      for (int x = region.lo.x; x < region.hi.x; ++x) {
-        const glm::ivec3 v(x, y, z);
-        const float d = distance.at(v);
-        if (d >= ball.reach()) continue;
-        const float w = ball.weight(d);
+  for (int z = 0; z < n.z; ++z)
+    for (int y = 0; y < n.y; ++y) {
+      const float* m =
+          &material.values()[material.index(at_before.x, at_before.y + y, at_before.z + z)];
+      const float* d = distance.row(y, z);
+      uint8_t* o = &out.values()[out.index(0, y, z)];
+      for (int x = 0; x < n.x; ++x) {
+        const auto was = static_cast<uint8_t>(m[x]);
+        o[x] = was;
+        if (d[x] >= reach) continue;
+        const float w = ball.weight(d[x]);
         if (w <= 0.0f) continue;
-        const float m = before.at(v);
-        const auto r = static_cast<uint8_t>(
-            std::clamp(std::round(value(v, w, distance.closest(v))), 0.0f, 255.0f));
-        if (r == static_cast<uint8_t>(m)) continue;
+        const uint8_t r = round_to_byte(value(region.lo + glm::ivec3(x, y, z), w, distance));
+        if (r == was) continue;
         ++changed;
-        const glm::ivec3 q = v - region.lo;
-        out.at(q.x, q.y, q.z) = r;
+        o[x] = r;
       }
+    }
   if (changed == 0) return 0;
   sculptor.external_edit(region, [&] { volume.write(region.lo, out); });
   return changed;

@@ -54,6 +54,9 @@ class PathDistance {
   /// Distance from voxel v of the box to the path; infinity where no part
   /// of the path comes within reach.
   float at(glm::ivec3 v) const;
+  /// Row (y, z) of the box's distances (relative to its corner): box().size().x
+  /// floats, as at() gives them.
+  const float* row(int y, int z) const;
   /// The path's nearest point to v (v within reach).
   glm::vec3 closest(glm::ivec3 v) const;
 
@@ -114,7 +117,8 @@ bool fit_plane(const Field& field, std::span<const StrokeSample> path, const Bal
                Plane& plane);
 
 /// Writes, for every voxel of `region` the ball swept through `path` weighs
-/// (weight w > 0; c the path's nearest point), round(value(v, w, c))
+/// (weight w > 0; `path`: its distances, whose closest() is the path's
+/// nearest point), round(value(v, w, path))
 /// clamped to 0..255, as one undo step of `sculptor` (its volume is
 /// `volume`, asserted). `before` holds region's material before the stroke;
 /// the voxels not weighed are written back from it, whatever `volume` holds
@@ -122,6 +126,6 @@ bool fit_plane(const Field& field, std::span<const StrokeSample> path, const Bal
 /// undo step).
 int64_t write(Volume& volume, Sculptor& sculptor, const Field& before, const Box& region,
               std::span<const StrokeSample> path, const Ball& ball,
-              const std::function<float(glm::ivec3 v, float w, glm::vec3 c)>& value);
+              const std::function<float(glm::ivec3 v, float w, const PathDistance& path)>& value);
 
 }  // namespace sculpt::core::brush

@@ -30,7 +30,7 @@ int64_t clay_stroke(Volume& volume, Sculptor& sculptor, std::span<const StrokeSa
   if (!brush::fit_plane(before, path.first(1), ball, plane)) return 0;
   plane.point += plane.normal * (o.layer * o.radius_vox);
   return brush::write(volume, sculptor, before, region, path, ball,
-                      [&](glm::ivec3 v, float w, glm::vec3) {
+                      [&](glm::ivec3 v, float w, const brush::PathDistance&) {
                         const float m = before.at(v);
                         const float p = plane.density(v);
                         return m + w * std::max(0.0f, p - m);

@@ -25,7 +25,7 @@ int64_t flatten_stroke(Volume& volume, Sculptor& sculptor, std::span<const Strok
   brush::Plane plane;
   if (!brush::fit_plane(before, path, ball, plane)) return 0;
   return brush::write(volume, sculptor, before, region, path, ball,
-                      [&](glm::ivec3 v, float w, glm::vec3) {
+                      [&](glm::ivec3 v, float w, const brush::PathDistance&) {
                         const float m = before.at(v);
                         const float p = plane.density(v);
                         return m + w * (p - m);

@@ -55,7 +55,7 @@ int64_t grab_stroke(Volume& volume, Sculptor& sculptor, std::span<const StrokeSa
       std::clamp(static_cast<int>(std::ceil(std::min(length * slope / 0.5f, 1e6f))), 1, kMaxSteps);
   const glm::vec3 step = displacement / static_cast<float>(steps);
   return brush::write(volume, sculptor, before, region, ends, ball,
-                      [&](glm::ivec3 v, float, glm::vec3) {
+                      [&](glm::ivec3 v, float, const brush::PathDistance&) {
                         // Undo the steps from the last: y_k = x - w(|y_k - c_k|) step.
                         glm::vec3 x(v);
                         for (int k = steps - 1; k >= 0; --k) {

@@ -51,7 +51,7 @@ int64_t inflate_stroke_part(Volume& volume, Sculptor& sculptor, std::span<const 
   brush::Field blurred = material;
   brush::blur(blurred.grid(), blur_passes(o));
   return brush::write(volume, sculptor, material, region, path, ball,
-                      [&](glm::ivec3 v, float w, glm::vec3) {
+                      [&](glm::ivec3 v, float w, const brush::PathDistance&) {
                         const glm::vec3 p(v);
                         const glm::vec3 g = blurred.gradient(p);
                         const float len = glm::length(g);

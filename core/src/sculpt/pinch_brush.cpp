@@ -34,7 +34,8 @@ int64_t pinch_stroke_part(Volume& volume, Sculptor& sculptor, std::span<const St
   if (region.empty()) return 0;
   const brush::Field material(before, region, pinch_read_margin(o));
   return brush::write(volume, sculptor, material, region, path, ball,
-                      [&](glm::ivec3 v, float w, glm::vec3 c) {
+                      [&](glm::ivec3 v, float w, const brush::PathDistance& distance) {
+                        const glm::vec3 c = distance.closest(v);
                         return material.sample(c + (1.0f + w) * (glm::vec3(v) - c));
                       });
 }

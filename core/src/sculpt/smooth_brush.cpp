@@ -38,7 +38,7 @@ int64_t smooth_stroke_part(Volume& volume, Sculptor& sculptor, std::span<const S
   brush::Field blurred = material;
   brush::blur(blurred.grid(), o.passes);
   return brush::write(volume, sculptor, material, region, path, ball,
-                      [&](glm::ivec3 v, float w, glm::vec3) {
+                      [&](glm::ivec3 v, float w, const brush::PathDistance&) {
                         const float m = material.at(v);
                         return m + w * (blurred.at(v) - m);
                       });

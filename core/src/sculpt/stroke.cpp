@@ -88,113 +88,12 @@ constexpr size_t kParallelPlacements = 8;
 // (the 12.8-voxel ball's 100-sample stroke 8-10% slower at radius 8).
 constexpr float kLeanInsideRadius = 24.0f;
 
-// std::floor() and std::ceil() to int, for |x| < 2^31: without SSE4.1 (the
-// build targets plain x86-64) those are library calls, four a row of spans.
-inline int floor_int(float x) {
-  const int i = static_cast<int>(x);
-  return i - (static_cast<float>(i) > x);
-}
-inline int ceil_int(float x) {
-  const int i = static_cast<int>(x);
-  return i + (static_cast<float>(i) < x);
-}
-
 // Distance from p to the segment a + t ab, t in [0, 1]; ab2 = |ab|^2.
 inline float segment_distance(glm::vec3 p, glm::vec3 a, glm::vec3 ab, float ab2) {
   const glm::vec3 ap = p - a;
   const float t = ab2 > 0.0f ? std::clamp(glm::dot(ap, ab) / ab2, 0.0f, 1.0f) : 0.0f;
   const glm::vec3 d = ap - t * ab;
   return std::sqrt(glm::dot(d, d));
-}
-
-// capsule_rows()'s cylinder part, one loop per case with no branch in it
-// (GCC vectorizes no loop with one): a miss is an empty [c0, c1]. The
-// segment's start a, its vector ab, ab2 = |ab|^2.
-template <bool kAcrossX, bool kSolvable>
-void cylinder_rows(glm::vec3 a, glm::vec3 ab, float ab2, int y0, int n, float z, float rho2,
-                   float* __restrict lo, float* __restrict hi) {
-  constexpr float kFar = 1e30f;
-  const float aa = 1.0f - ab.x * ab.x / ab2;
-  const float m2abx = -2.0f * ab.x, aa4 = 4.0f * aa, aa2 = 2.0f * aa;
-  const float wz = z - a.z;
-  for (int i = 0; i < n; ++i) {
-    const float wy = static_cast<float>(y0 + i) - a.y;
-    const float k = wy * ab.y + wz * ab.z;
-    float t0 = -kFar, t1 = kFar;
-    if constexpr (kAcrossX) {
-      const float p = -k / ab.x, q = (ab2 - k) / ab.x;
-      t0 = std::min(p, q);
-      t1 = std::max(p, q);
-    } else {
-      const bool within = (k >= 0.0f) & (k <= ab2);
-      t0 = within ? t0 : kFar;
-      t1 = within ? t1 : -kFar;
-    }
-    float p0 = -kFar, p1 = kFar;
-    if constexpr (kSolvable) {
-      const float bb = m2abx * k / ab2;
-      const float cc = wy * wy + wz * wz - k * k / ab2 - rho2;
-      const float disc = bb * bb - aa4 * cc;
-      const float r = std::sqrt(std::max(disc, 0.0f));
-      p0 = (-bb - r) / aa2;
-      p1 = (-bb + r) / aa2;
-      p0 = disc >= 0.0f ? p0 : kFar;
-    }
-    const float c0 = std::max(t0, p0), c1 = std::min(t1, p1);
-    // A miss moves the stretch out of reach of the hull (adding 0 changes
-    // no float); a select of the results instead keeps GCC from vectorizing.
-    const float miss = c0 <= c1 ? 0.0f : kFar;
-    lo[i] = std::min(lo[i], a.x + c0 + miss);
-    hi[i] = std::max(hi[i], a.x + c1 - miss);
-  }
-}
-
-// The stretch [lo, hi] of the row line (x, y, z), x real, within sqrt(rho2)
-// of the segment a -> a + ab (ab2 = |ab|^2). The
-// capsule is convex, so this is the hull of its end balls' stretches and its
-// cylinder's (perpendicular distance, a quadratic in x, with the projection
-// inside the segment, linear in x). Where the quadratic is too flat to solve
-// in float (the segment nearly along x), `outer` takes the whole line (more
-// voxels measured one by one), else none (the ends alone): an outer stretch
-// never misses a voxel, an inner one never takes too many.
-//
-// Rows y0, y0 + 1, ... y0 + n - 1 of the plane z at once, row i missing where
-// lo[i] > hi[i]: the segment's cases are decided once and none per row, so
-// that the loops run a vector at a time. (Solved a row at a time, with early
-// returns, the spans took 2 of the 11 ms of BM_StrokeVsDabs's stroke at
-// spacing 8; these are the same floats, checked row by row against that
-// solver on the benchmark and the bundled sessions when it was replaced.)
-void capsule_rows(glm::vec3 a, glm::vec3 ab, float ab2, int y0, int n, float z, float rho2,
-                  bool outer, float* __restrict lo, float* __restrict hi) {
-  constexpr float kFar = 1e30f;
-  const glm::vec3 b = a + ab;
-  const float dza2 = (z - a.z) * (z - a.z), dzb2 = (z - b.z) * (z - b.z);
-  // The end balls' hull.
-  for (int i = 0; i < n; ++i) {
-    const float y = static_cast<float>(y0 + i);
-    const float r2a = rho2 - (y - a.y) * (y - a.y) - dza2;
-    const float r2b = rho2 - (y - b.y) * (y - b.y) - dzb2;
-    const float sa = std::sqrt(std::max(r2a, 0.0f)), sb = std::sqrt(std::max(r2b, 0.0f));
-    float l = r2a >= 0.0f ? a.x - sa : kFar;
-    float h = r2a >= 0.0f ? a.x + sa : -kFar;
-    l = r2b >= 0.0f ? std::min(l, b.x - sb) : l;
-    h = r2b >= 0.0f ? std::max(h, b.x + sb) : h;
-    lo[i] = l;
-    hi[i] = h;
-  }
-  if (ab2 <= 0.0f) return;
-  // The cylinder's stretch, where the projection lies within the segment.
-  const bool across_x = std::abs(ab.x) > 1e-6f * std::sqrt(ab2);
-  const float aa = 1.0f - ab.x * ab.x / ab2;
-  const bool solvable = aa > 1e-3f;
-  if (!solvable && !outer) return;
-  if (across_x) {
-    solvable ? cylinder_rows<true, true>(a, ab, ab2, y0, n, z, rho2, lo, hi)
-             : cylinder_rows<true, false>(a, ab, ab2, y0, n, z, rho2, lo, hi);
-  } else {
-    solvable ? cylinder_rows<false, true>(a, ab, ab2, y0, n, z, rho2, lo, hi)
-             : cylinder_rows<false, false>(a, ab, ab2, y0, n, z, rho2, lo, hi);
-  }
 }
 
 Box box_around(glm::vec3 lo, glm::vec3 hi, float margin) {

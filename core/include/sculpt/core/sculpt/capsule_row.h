@@ -1,6 +1,7 @@
 #pragma once
-// A ball swept along a segment (a capsule), across one row of voxels: what a
-// swept stroke (stroke.h) fills there. The row kernels of the ball's stroke.
+// A ball swept along a segment (a capsule), across one row of voxels: which
+// stretch of the row it reaches, and what a swept stroke (stroke.h) fills
+// there. The row kernels of the ball's stroke and of the ball brushes' path.
 
 #include <algorithm>
 #include <cmath>
@@ -60,6 +61,28 @@ inline uint8_t capsule_filling(const CapsuleRow& c, float apx, float hardness) {
   if (d2 >= c.reach2) return 0;
   return tool_density(std::sqrt(d2) - c.radius, c.radius, hardness);
 }
+
+// std::floor() and std::ceil() to int, for |x| < 2^31: without SSE4.1 (the
+// build targets plain x86-64) those are library calls, four a row of spans.
+inline int floor_int(float x) {
+  const int i = static_cast<int>(x);
+  return i - (static_cast<float>(i) > x);
+}
+inline int ceil_int(float x) {
+  const int i = static_cast<int>(x);
+  return i + (static_cast<float>(i) < x);
+}
+
+/// The stretch [lo, hi] of the row line (x, y, z), x real, within sqrt(rho2)
+/// of the segment a -> a + ab (ab2 = |ab|^2; 0: the ball around a alone),
+/// for rows y0 .. y0 + n - 1 of the plane z, row i missing where lo[i] >
+/// hi[i]. `outer`: where the cylinder's quadratic is too flat to solve in
+/// float (the segment nearly along x) the whole line is taken, so an outer
+/// stretch never misses a point; else none is (the ends alone), so an inner
+/// one never takes too many. Widen it by a voxel against rounding before
+/// measuring voxels one by one.
+void capsule_rows(glm::vec3 a, glm::vec3 ab, float ab2, int y0, int n, float z, float rho2,
+                  bool outer, float* __restrict lo, float* __restrict hi);
 
 /// Where a row's coverage grew: [begin, end), empty when begin >= end.
 struct GrownStretch {
