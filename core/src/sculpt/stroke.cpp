@@ -861,6 +861,18 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
   return stats;
 }
 
+void keep_stroke_buffers(int brick_edge, size_t bricks) {
+  const size_t size = static_cast<size_t>(brick_edge) * brick_edge * brick_edge + kCombineRowSlack;
+  const size_t count = std::min(kPooledBuffers, 3 * bricks);
+  buffer_pool.reserve(kPooledBuffers);
+  while (buffer_pool.size() < count)
+    buffer_pool.emplace_back(size);
+}
+
+size_t stroke_buffers_kept() {
+  return buffer_pool.size();
+}
+
 DabStats sweep_stroke(Sculptor& sculptor, std::span<const StrokeSample> path,
                       const StrokeOptions& options) {
   assert(!path.empty());

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include "sculpt/core/shapes/analytic_shapes.h"
@@ -533,6 +535,41 @@ TEST(SweptStroke, ABigBallOnEveryCoreEqualsOneCore) {
     return v.content_hash();
   };
   EXPECT_EQ(run(1), run(4));
+}
+
+// A thread's kept buffers (keep_stroke_buffers(), which the sculpting thread
+// calls when it starts) serve its strokes and come back when they end; what
+// an earlier stroke left in them changes nothing: the same volume as a
+// stroke on a thread that allocates every buffer anew.
+TEST(SweptStroke, KeptBuffersServeStrokesAndComeBackUnread) {
+  auto carve = [] {
+    Volume v = sphere_volume(160, 0.3f);
+    Sculptor s(v);
+    s.set_tool(make_sphere_tool(30.0f, 0.8f));
+    const auto path = straight_path({40.0f, 80.0f, 110.0f}, {120.0f, 70.0f, 100.0f}, 7.0f);
+    const DabStats st = sweep_stroke(s, path, {SculptMode::kSubtract, 1.0f, false});
+    return std::make_pair(v.content_hash(), st.bricks_decoded);
+  };
+  uint64_t fresh = 0, kept = 0;
+  std::thread([&] { fresh = carve().first; }).join();
+  std::thread([&] {
+    keep_stroke_buffers(32, 40);
+    EXPECT_EQ(stroke_buffers_kept(), 120u);
+    // Served from the pool (none discarded, none allocated) and given back.
+    const auto [first_hash, decoded] = carve();
+    EXPECT_EQ(first_hash, fresh);
+    EXPECT_GT(decoded, 4);
+    EXPECT_LT(decoded, 40);
+    EXPECT_EQ(stroke_buffers_kept(), 120u);
+    // Another stroke, leaving its voxels in the buffers, then the carve again.
+    Volume other = sphere_volume(160, 0.45f);
+    Sculptor s(other);
+    s.set_tool(make_sphere_tool(50.0f));
+    (void)sweep_stroke(s, straight_path({20.0f, 20.0f, 20.0f}, {140.0f, 140.0f, 140.0f}, 9.0f),
+                       {SculptMode::kAdd, 1.0f, false});
+    kept = carve().first;
+  }).join();
+  EXPECT_EQ(kept, fresh);
 }
 
 // A turning ring's segments rotate a placement every half voxel, mirrored;

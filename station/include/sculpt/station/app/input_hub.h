@@ -75,7 +75,9 @@ class InputHub {
 
   /// Starts the sculpting thread without letting it poll: it touches
   /// `warm_heap_bytes` of its heap (warm_this_threads_heap(): worth it only
-  /// once freed memory is kept, keep_freed_memory()) and waits for start().
+  /// once freed memory is kept, keep_freed_memory()), when that is not 0
+  /// fills its pool of stroke buffers (core::keep_stroke_buffers()), and
+  /// waits for start().
   /// Returns once the heap is warm: tens of milliseconds that must pass
   /// before the devices and a force device's loop start, not after.
   void prepare(size_t warm_heap_bytes);
