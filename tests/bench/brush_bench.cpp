@@ -10,7 +10,8 @@
 // set its first-picture latency; 8 and 32 samples, a quarter turn and less
 // than a whole one); each brush's default hardness, strength
 // (smoothing: 4 blur passes; inflating: 1 voxel). Timed by hand around the brush call only
-// (the volume's copy is set-up), one thread.
+// (the volume's copy is set-up), on range(3) threads (1, and 2 for the
+// bust's case: the material and the path's distances side by side).
 
 #include <benchmark/benchmark.h>
 
@@ -39,7 +40,7 @@ void brush_preview(benchmark::State& state,
   const auto ball_radius = static_cast<float>(state.range(2));
   const float spacing = ball_radius < 16.0f ? 2.0f : 15.0f;
   static const Volume* material = new Volume(sphere_volume(256, 0.35f));
-  set_default_threads(1);
+  set_default_threads(static_cast<int>(state.range(3)));
   const glm::vec3 centre(127.5f);
   const float radius = 0.35f * 256.0f;
   std::vector<StrokeSample> path;
@@ -71,6 +72,7 @@ void brush_preview(benchmark::State& state,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   state.counters["voxels_changed"] = static_cast<double>(changed);
+  set_default_threads(0);
 }
 
 void BM_SmoothPreview(benchmark::State& state) {
@@ -85,24 +87,27 @@ void BM_PinchPreview(benchmark::State& state) {
 void preview_args(benchmark::internal::Benchmark* b) {
   for (int extend : {0, 1}) {
     for (int samples : {8, 32, 128})
-      b->Args({samples, extend, 8});
+      b->Args({samples, extend, 8, 1});
     for (int samples : {8, 32})
-      b->Args({samples, extend, 16});
+      b->Args({samples, extend, 16, 1});
   }
+  // The bust's preview as the station makes it: its material and path
+  // distances side by side on two threads.
+  b->Args({8, 1, 16, 2});
 }
 BENCHMARK(BM_SmoothPreview)
     ->Apply(preview_args)
-    ->ArgNames({"samples", "extend", "radius"})
+    ->ArgNames({"samples", "extend", "radius", "threads"})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_InflatePreview)
     ->Apply(preview_args)
-    ->ArgNames({"samples", "extend", "radius"})
+    ->ArgNames({"samples", "extend", "radius", "threads"})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PinchPreview)
     ->Apply(preview_args)
-    ->ArgNames({"samples", "extend", "radius"})
+    ->ArgNames({"samples", "extend", "radius", "threads"})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 

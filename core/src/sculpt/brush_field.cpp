@@ -9,6 +9,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <sstream>
 
 #include <glm/common.hpp>
@@ -17,6 +18,7 @@
 #include "sculpt/core/distance/distance_normals.h"
 #include "sculpt/core/sculpt/capsule_row.h"
 #include "sculpt/core/tool/tool.h"
+#include "sculpt/core/util/parallel_for.h"
 
 namespace sculpt::core::brush {
 namespace {
@@ -258,12 +260,23 @@ bool fit_plane(const Field& field, std::span<const StrokeSample> path, const Bal
   return true;
 }
 
+void side_by_side(const std::function<void()>& a, const std::function<void()>& b) {
+  parallel_for(2, [&](int64_t i) { i == 0 ? a() : b(); });
+}
+
 int64_t write(Volume& volume, Sculptor& sculptor, const Field& before, const Box& region,
               std::span<const StrokeSample> path, const Ball& ball,
               const std::function<float(glm::ivec3 v, float w, const PathDistance& path)>& value) {
+  if (region.empty()) return 0;
+  return write(volume, sculptor, before, region, PathDistance(path, region, ball.reach()), ball,
+               value);
+}
+
+int64_t write(Volume& volume, Sculptor& sculptor, const Field& before, const Box& region,
+              const PathDistance& distance, const Ball& ball,
+              const std::function<float(glm::ivec3 v, float w, const PathDistance& path)>& value) {
   assert(&sculptor.volume() == &volume);
   if (region.empty()) return 0;
-  const PathDistance distance(path, region, ball.reach());
   // The result starts from `before`, not from the volume: a preview that
   // re-brushes part of a longer path finds its last result there. Row by
   // row through pointers: the voxels' index arithmetic was most of this loop.
@@ -272,8 +285,12 @@ int64_t write(Volume& volume, Sculptor& sculptor, const Field& before, const Box
   const DenseGrid<float>& material = before.grid();
   const glm::ivec3 at_before = region.lo - before.box().lo;
   const float reach = ball.reach();
-  int64_t changed = 0;
-  for (int z = 0; z < n.z; ++z)
+  // Slices of the box on every core (value() only reads): each writes its
+  // own rows of `out` and counts its own changes.
+  std::vector<int64_t> changed_in(static_cast<size_t>(n.z), 0);
+  parallel_for(n.z, [&](int64_t slice) {
+    const auto z = static_cast<int>(slice);
+    int64_t changed = 0;
     for (int y = 0; y < n.y; ++y) {
       const float* m =
           &material.values()[material.index(at_before.x, at_before.y + y, at_before.z + z)];
@@ -291,6 +308,9 @@ int64_t write(Volume& volume, Sculptor& sculptor, const Field& before, const Box
         o[x] = r;
       }
     }
+    changed_in[static_cast<size_t>(slice)] = changed;
+  });
+  const int64_t changed = std::accumulate(changed_in.begin(), changed_in.end(), int64_t{0});
   if (changed == 0) return 0;
   sculptor.external_edit(region, [&] { volume.write(region.lo, out); });
   return changed;

@@ -127,5 +127,15 @@ bool fit_plane(const Field& field, std::span<const StrokeSample> path, const Bal
 int64_t write(Volume& volume, Sculptor& sculptor, const Field& before, const Box& region,
               std::span<const StrokeSample> path, const Ball& ball,
               const std::function<float(glm::ivec3 v, float w, const PathDistance& path)>& value);
+/// The same with the path's distances over `region` (to the ball's reach)
+/// given.
+int64_t write(Volume& volume, Sculptor& sculptor, const Field& before, const Box& region,
+              const PathDistance& distance, const Ball& ball,
+              const std::function<float(glm::ivec3 v, float w, const PathDistance& path)>& value);
+
+/// Runs `a` and `b`, side by side when default_threads() allows (the calling
+/// thread and one of the pool's), else one after the other: for a brush's
+/// material and its path's distances, which do not depend on each other.
+void side_by_side(const std::function<void()>& a, const std::function<void()>& b);
 
 }  // namespace sculpt::core::brush

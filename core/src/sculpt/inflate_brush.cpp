@@ -9,6 +9,7 @@
 
 #include <cassert>
 #include <cmath>
+#include <optional>
 
 #include <glm/geometric.hpp>
 
@@ -47,17 +48,24 @@ int64_t inflate_stroke_part(Volume& volume, Sculptor& sculptor, std::span<const 
   const brush::Ball ball{o.radius_vox, o.hardness, o.strength};
   const Box region = intersect(brush::reach_box(volume, path, ball), part);
   if (region.empty()) return 0;
-  const brush::Field material(before, region, inflate_read_margin(o));
-  brush::Field blurred = material;
-  brush::blur(blurred.grid(), blur_passes(o));
-  return brush::write(volume, sculptor, material, region, path, ball,
+  // The blurred material and the path's distances, independent, side by side.
+  std::optional<brush::Field> material, blurred;
+  std::optional<brush::PathDistance> distance;
+  brush::side_by_side(
+      [&] {
+        material.emplace(before, region, inflate_read_margin(o));
+        blurred.emplace(*material);
+        brush::blur(blurred->grid(), blur_passes(o));
+      },
+      [&] { distance.emplace(path, region, ball.reach()); });
+  return brush::write(volume, sculptor, *material, region, *distance, ball,
                       [&](glm::ivec3 v, float w, const brush::PathDistance&) {
                         const glm::vec3 p(v);
-                        const glm::vec3 g = blurred.gradient(p);
+                        const glm::vec3 g = blurred->gradient(p);
                         const float len = glm::length(g);
-                        if (len <= 1e-3f) return material.at(v);
+                        if (len <= 1e-3f) return material->at(v);
                         // The gradient points inward: the sample lies inward.
-                        return material.sample(p + g / len * (w * o.distance_vox));
+                        return material->sample(p + g / len * (w * o.distance_vox));
                       });
 }
 

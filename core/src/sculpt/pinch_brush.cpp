@@ -6,6 +6,7 @@
 
 #include <cassert>
 #include <cmath>
+#include <optional>
 
 #include "brush_field.h"
 
@@ -32,11 +33,15 @@ int64_t pinch_stroke_part(Volume& volume, Sculptor& sculptor, std::span<const St
   const brush::Ball ball{o.radius_vox, o.hardness, o.strength};
   const Box region = intersect(brush::reach_box(volume, path, ball), part);
   if (region.empty()) return 0;
-  const brush::Field material(before, region, pinch_read_margin(o));
-  return brush::write(volume, sculptor, material, region, path, ball,
-                      [&](glm::ivec3 v, float w, const brush::PathDistance& distance) {
-                        const glm::vec3 c = distance.closest(v);
-                        return material.sample(c + (1.0f + w) * (glm::vec3(v) - c));
+  // The material and the path's distances, independent, side by side.
+  std::optional<brush::Field> material;
+  std::optional<brush::PathDistance> distance;
+  brush::side_by_side([&] { material.emplace(before, region, pinch_read_margin(o)); },
+                      [&] { distance.emplace(path, region, ball.reach()); });
+  return brush::write(volume, sculptor, *material, region, *distance, ball,
+                      [&](glm::ivec3 v, float w, const brush::PathDistance& path_distance) {
+                        const glm::vec3 c = path_distance.closest(v);
+                        return material->sample(c + (1.0f + w) * (glm::vec3(v) - c));
                       });
 }
 

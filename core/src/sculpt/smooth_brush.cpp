@@ -8,6 +8,7 @@
 #include "sculpt/core/sculpt/smooth_brush.h"
 
 #include <cassert>
+#include <optional>
 
 #include "brush_field.h"
 
@@ -34,13 +35,20 @@ int64_t smooth_stroke_part(Volume& volume, Sculptor& sculptor, std::span<const S
   if (region.empty()) return 0;
   // The blur reads `passes` voxels around each voxel it writes: the same
   // values, with the same rounding, however far the field reaches beyond.
-  const brush::Field material(before, region, o.passes);
-  brush::Field blurred = material;
-  brush::blur(blurred.grid(), o.passes);
-  return brush::write(volume, sculptor, material, region, path, ball,
+  // It and the path's distances, independent, are made side by side.
+  std::optional<brush::Field> material, blurred;
+  std::optional<brush::PathDistance> distance;
+  brush::side_by_side(
+      [&] {
+        material.emplace(before, region, o.passes);
+        blurred.emplace(*material);
+        brush::blur(blurred->grid(), o.passes);
+      },
+      [&] { distance.emplace(path, region, ball.reach()); });
+  return brush::write(volume, sculptor, *material, region, *distance, ball,
                       [&](glm::ivec3 v, float w, const brush::PathDistance&) {
-                        const float m = material.at(v);
-                        return m + w * (blurred.at(v) - m);
+                        const float m = material->at(v);
+                        return m + w * (blurred->at(v) - m);
                       });
 }
 
