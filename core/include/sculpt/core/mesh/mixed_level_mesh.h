@@ -202,6 +202,9 @@ class MixedLevelMeshCache {
   std::vector<uint64_t> seen_versions_;            // brick versions as of the last update
   std::vector<int16_t> seen_uniform_;              // their uniform values then (or kNotUniform)
   std::unordered_map<uint64_t, Decoded> decoded_;  // key: brick index * 8 + level
+  // Keys added to decoded_ since update() last forgot unused ones: with the
+  // levels as they were, only these can have become unused.
+  std::vector<uint64_t> decoded_added_;
   int64_t decodes_ = 0;
   // While stale bricks are meshed in parallel: decoded_ is read only.
   bool frozen_ = false;
