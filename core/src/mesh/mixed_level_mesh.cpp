@@ -105,11 +105,22 @@ bool MixedLevelMeshCache::in_grid(glm::ivec3 b) const {
   return glm::all(glm::greaterThanEqual(b, glm::ivec3(0))) && glm::all(glm::lessThan(b, grid_));
 }
 
-const MixedLevelMeshCache::Decoded& MixedLevelMeshCache::decoded(glm::ivec3 b, int k) {
-  const uint64_t key = static_cast<uint64_t>(index(b)) * 8 + static_cast<uint64_t>(k);
-  const uint64_t version = volume_->brick_version(b);
+const MixedLevelMeshCache::Decoded& MixedLevelMeshCache::decoded(glm::ivec3 b, int k,
+                                                                 bool* scratch_used) {
   const int m = edge_ >> k;
   const size_t n = static_cast<size_t>(m) * m * m;
+  if (const Brick& brick = volume_->brick(b); brick.is_uniform()) {
+    const int key = int{brick.uniform_value()} * 8 + k;
+    if (!frozen_) {
+      Decoded& u = uniform_[key];
+      if (u.voxels.size() != n) u.voxels.assign(n, brick.uniform_value());
+      return u;
+    }
+    if (const auto it = uniform_.find(key); it != uniform_.end() && it->second.voxels.size() == n)
+      return it->second;
+  }
+  const uint64_t key = static_cast<uint64_t>(index(b)) * 8 + static_cast<uint64_t>(k);
+  const uint64_t version = volume_->brick_version(b);
   if (frozen_) {
     // Bricks meshed in parallel read what update() decoded for them; the
     // map is not changed while they run. A read that was not foreseen is
@@ -122,6 +133,7 @@ const MixedLevelMeshCache::Decoded& MixedLevelMeshCache::decoded(glm::ivec3 b, i
     volume_->decode_brick(b, scratch.voxels, k);
     scratch.version = version;
     unforeseen_decodes_.add();
+    if (scratch_used != nullptr) *scratch_used = true;
     return scratch;
   }
   const auto [entry, added] = decoded_.try_emplace(key);
@@ -138,9 +150,9 @@ const MixedLevelMeshCache::Decoded& MixedLevelMeshCache::decoded(glm::ivec3 b, i
 
 const uint8_t* MixedLevelMeshCache::decoded_voxels(glm::ivec3 b, int k,
                                                    std::vector<uint8_t>& spare) {
-  const Decoded& d = decoded(b, k);
-  const auto kept = decoded_.find(static_cast<uint64_t>(index(b)) * 8 + static_cast<uint64_t>(k));
-  if (!frozen_ || (kept != decoded_.end() && &kept->second == &d)) return d.voxels.data();
+  bool scratch = false;
+  const Decoded& d = decoded(b, k, &scratch);
+  if (!scratch) return d.voxels.data();
   spare = d.voxels;  // the thread's scratch: the next decode would overwrite it
   return spare.data();
 }
@@ -796,7 +808,16 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
   // found in it), then mesh them in parallel: each writes only its own
   // cached brick and reads the decoded voxels, which stay as they are. A
   // reused mesh's reads are decoded too: the next edit finds what changed
-  // under it by comparing them.
+  // under it by comparing them. A uniform brick is read from its value's
+  // one buffer. The decodes share the cores: each writes only its own
+  // entry, made (and marked current) here first, and the map's entries stay
+  // where they are as it grows.
+  struct Decode {
+    glm::ivec3 brick;
+    int level;
+    Decoded* entry;
+  };
+  std::vector<Decode> neighbourhood_decodes;
   std::vector<glm::ivec3> to_decode = stale_bricks;
   to_decode.insert(to_decode.end(), reused_bricks.begin(), reused_bricks.end());
   for (glm::ivec3 b : to_decode) {
@@ -813,10 +834,32 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         for (int dx = -r; dx <= r; ++dx) {
           const glm::ivec3 nb = b + glm::ivec3(dx, dy, dz);
           if (!in_grid(nb)) continue;
-          for (int l = 0; l <= volume.levels(); ++l)
-            if (used & (1u << l)) decoded(nb, l);
+          for (int l = 0; l <= volume.levels(); ++l) {
+            if (!(used & (1u << l))) continue;
+            if (volume.brick(nb).is_uniform()) {
+              (void)decoded(nb, l);  // its value's one buffer, made once
+              continue;
+            }
+            const uint64_t key = static_cast<uint64_t>(index(nb)) * 8 + static_cast<uint64_t>(l);
+            const auto [entry, added] = decoded_.try_emplace(key);
+            if (added) decoded_added_.push_back(key);
+            Decoded& d = entry->second;
+            const auto m = static_cast<size_t>(edge_ >> l);
+            if (d.voxels.size() == m * m * m && d.version == volume.brick_version(nb)) continue;
+            d.voxels.resize(m * m * m);
+            d.version = volume.brick_version(nb);
+            neighbourhood_decodes.push_back({nb, l, &d});
+          }
         }
   }
+  parallel_for(
+      static_cast<int64_t>(neighbourhood_decodes.size()),
+      [&](int64_t i) {
+        const Decode& d = neighbourhood_decodes[static_cast<size_t>(i)];
+        volume.decode_brick(d.brick, d.entry->voxels, d.level);
+      },
+      options_.threads);
+  decodes_ += static_cast<int64_t>(neighbourhood_decodes.size());
   frozen_ = true;
   parallel_for(
       static_cast<int64_t>(stale_bricks.size()),

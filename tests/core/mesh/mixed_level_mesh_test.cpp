@@ -103,6 +103,53 @@ TEST(MixedLevelMesh, UniformLevelsNeedNoStitching) {
   }
 }
 
+TEST(MixedLevelMesh, UniformBricksBesideTheSurfaceAreReadAsTheirValue) {
+  // A small ball in a big block: most bricks the surface's bricks read are
+  // uniform (air around, solid inside), read from one shared buffer per
+  // value. The same surface as the whole-level extraction, to the bit, also
+  // after edits that make bricks uniform and others not.
+  Volume v =
+      Volume::from_dense(sphere_density(128, 0.2f), VolumeOptions{.brick_edge = 16, .levels = 4});
+  int uniform = 0;
+  for (int64_t i = 0; i < v.brick_count(); ++i)
+    uniform += v.brick(grid_position(i, v.brick_grid())).is_uniform() ? 1 : 0;
+  ASSERT_GT(uniform, v.brick_count() / 2);
+  // And a block whose top lies a third of a voxel above a brick face (and
+  // whose sides stay off the volume's): the solid bricks below the top are
+  // uniform, and the normals at the face's crossings read their voxels.
+  DenseGrid<uint8_t> slab(glm::ivec3(64));
+  for (int z = 0; z < 64; ++z)
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; ++x) {
+        const float top = 32.3f + 0.05f * static_cast<float>(x + y % 7);
+        slab.at(x, y, z) = density_from_distance(
+            std::max({static_cast<float>(z) - top, 8.0f - static_cast<float>(z),
+                      std::abs(static_cast<float>(x) - 32.0f) - 20.0f,
+                      std::abs(static_cast<float>(y) - 32.0f) - 20.0f}));
+      }
+  const Volume slab_volume = Volume::from_dense(slab, VolumeOptions{.brick_edge = 16, .levels = 4});
+  ASSERT_TRUE(slab_volume.brick({1, 1, 1}).is_uniform());
+  for (const Volume* shape : {static_cast<const Volume*>(&v), &slab_volume})
+    for (int level = 0; level <= 1; ++level) {
+      const std::vector<int> levels(static_cast<size_t>(shape->brick_count()), level);
+      MixedLevelMeshCache cache;
+      cache.update(*shape, levels);
+      EXPECT_TRUE(triangle_corners(cache.welded_mesh()) ==
+                  triangle_corners(marching_cubes(*shape, level)))
+          << "level " << level;
+    }
+  const std::vector<int> full(static_cast<size_t>(v.brick_count()), 0);
+  MixedLevelMeshCache cache;
+  cache.update(v, full);
+  for (int i = 0; i < 3; ++i) {
+    v.write(glm::ivec3(36 + 4 * i, 40, 44), DenseGrid<uint8_t>(glm::ivec3(8), i % 2 ? 0 : 255));
+    cache.update(v, full);
+    EXPECT_TRUE(triangle_corners(cache.welded_mesh()) == triangle_corners(marching_cubes(v, 0)))
+        << "edit " << i;
+  }
+  EXPECT_EQ(cache.unforeseen_decodes(), 0);
+}
+
 TEST(MixedLevelMesh, TorusAcrossLevelsKeepsItsGenus) {
   const Volume v =
       Volume::from_dense(torus_density(glm::ivec3(128), glm::vec3(63.5f), 36.0f, 14.0f));

@@ -156,7 +156,10 @@ class MixedLevelMeshCache {
   class SharedMemo;
   // Level-k voxel p (level coordinates), 0 outside the volume.
   float raw(int k, glm::ivec3 p, SharedMemo& memo);
-  const Decoded& decoded(glm::ivec3 b, int k);
+  // Brick b's level-k voxels: kept in decoded_, or for a uniform brick the
+  // one buffer of its value (uniform_), or while frozen, when neither was
+  // made beforehand, this thread's scratch (*scratch set).
+  const Decoded& decoded(glm::ivec3 b, int k, bool* scratch = nullptr);
   // decoded(b, k)'s voxels, kept valid across further calls: an unforeseen
   // decode while frozen goes to `spare`, not to the thread's one scratch.
   const uint8_t* decoded_voxels(glm::ivec3 b, int k, std::vector<uint8_t>& spare);
@@ -202,6 +205,13 @@ class MixedLevelMeshCache {
   std::vector<uint64_t> seen_versions_;            // brick versions as of the last update
   std::vector<int16_t> seen_uniform_;              // their uniform values then (or kNotUniform)
   std::unordered_map<uint64_t, Decoded> decoded_;  // key: brick index * 8 + level
+  // A uniform brick's voxels, one buffer per value and level (key: value *
+  // 8 + level) shared by every uniform brick: the air and the solid around a
+  // sculpture are most of the bricks a change's meshes read (the demo's
+  // first ball: 290 of 382), and kept one 32 KiB buffer each they cost more
+  // to fill than the ball's own bricks did to decode. Made outside the
+  // parallel meshing only.
+  std::unordered_map<int, Decoded> uniform_;
   // Keys added to decoded_ since update() last forgot unused ones: with the
   // levels as they were, only these can have become unused.
   std::vector<uint64_t> decoded_added_;
