@@ -136,16 +136,25 @@ const MixedLevelMeshCache::Decoded& MixedLevelMeshCache::decoded(glm::ivec3 b, i
     if (scratch_used != nullptr) *scratch_used = true;
     return scratch;
   }
+  const auto [d, stale] = entry_for(b, k);
+  if (stale) {
+    volume_->decode_brick(b, d->voxels, k);
+    ++decodes_;
+  }
+  return *d;
+}
+
+std::pair<MixedLevelMeshCache::Decoded*, bool> MixedLevelMeshCache::entry_for(glm::ivec3 b, int k) {
+  const uint64_t key = static_cast<uint64_t>(index(b)) * 8 + static_cast<uint64_t>(k);
   const auto [entry, added] = decoded_.try_emplace(key);
   if (added) decoded_added_.push_back(key);
   Decoded& d = entry->second;
-  if (d.voxels.size() != n || d.version != version) {
-    d.voxels.resize(n);
-    volume_->decode_brick(b, d.voxels, k);
-    d.version = version;
-    ++decodes_;
-  }
-  return d;
+  const auto m = static_cast<size_t>(edge_ >> k);
+  const uint64_t version = volume_->brick_version(b);
+  if (d.voxels.size() == m * m * m && d.version == version) return {&d, false};
+  d.voxels.resize(m * m * m);
+  d.version = version;
+  return {&d, true};
 }
 
 const uint8_t* MixedLevelMeshCache::decoded_voxels(glm::ivec3 b, int k,
@@ -840,15 +849,8 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
               (void)decoded(nb, l);  // its value's one buffer, made once
               continue;
             }
-            const uint64_t key = static_cast<uint64_t>(index(nb)) * 8 + static_cast<uint64_t>(l);
-            const auto [entry, added] = decoded_.try_emplace(key);
-            if (added) decoded_added_.push_back(key);
-            Decoded& d = entry->second;
-            const auto m = static_cast<size_t>(edge_ >> l);
-            if (d.voxels.size() == m * m * m && d.version == volume.brick_version(nb)) continue;
-            d.voxels.resize(m * m * m);
-            d.version = volume.brick_version(nb);
-            neighbourhood_decodes.push_back({nb, l, &d});
+            if (const auto [d, stale] = entry_for(nb, l); stale)
+              neighbourhood_decodes.push_back({nb, l, d});
           }
         }
   }

@@ -122,8 +122,9 @@ bool fit_plane(const Field& field, std::span<const StrokeSample> path, const Bal
 /// clamped to 0..255, as one undo step of `sculptor` (its volume is
 /// `volume`, asserted). `before` holds region's material before the stroke;
 /// the voxels not weighed are written back from it, whatever `volume` holds
-/// there. Returns the voxels changed from `before` (0: nothing written, no
-/// undo step).
+/// there. `value` is called for slices of the region on every core at
+/// once: it must only read. Returns the voxels changed from `before` (0:
+/// nothing written, no undo step).
 int64_t write(Volume& volume, Sculptor& sculptor, const Field& before, const Box& region,
               std::span<const StrokeSample> path, const Ball& ball,
               const std::function<float(glm::ivec3 v, float w, const PathDistance& path)>& value);

@@ -160,6 +160,10 @@ class MixedLevelMeshCache {
   // one buffer of its value (uniform_), or while frozen, when neither was
   // made beforehand, this thread's scratch (*scratch set).
   const Decoded& decoded(glm::ivec3 b, int k, bool* scratch = nullptr);
+  // Brick b's level-k entry in decoded_ (made if missing) and whether its
+  // voxels must be decoded: when they are not current it is sized and
+  // marked current, and the caller decodes into it before anything reads.
+  std::pair<Decoded*, bool> entry_for(glm::ivec3 b, int k);
   // decoded(b, k)'s voxels, kept valid across further calls: an unforeseen
   // decode while frozen goes to `spare`, not to the thread's one scratch.
   const uint8_t* decoded_voxels(glm::ivec3 b, int k, std::vector<uint8_t>& spare);
