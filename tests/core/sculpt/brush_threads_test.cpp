@@ -51,7 +51,9 @@ TEST(BrushThreads, EveryBallBrushIsTheSameOnOneCoreAndOnThree) {
   for (float t = 0.0f; t <= 1.0f; t += 0.0625f)
     path.push_back({{14.0f + 36.0f * t, 24.0f + 16.0f * t * t, test::kSlabTop + 1.5f}, {}});
   const Volume material = test::bumpy_slab(3.0f);
-  for (const auto& [name, brush] : kBrushes) {
+  for (const auto& entry : kBrushes) {
+    const std::string& name = entry.first;
+    const Brush& brush = entry.second;
     auto run = [&](int threads) {
       set_default_threads(threads);
       Volume v = material;
