@@ -159,7 +159,8 @@ void SurfaceMesher::wait_until_warm() {
 }
 
 bool SurfaceMesher::all_meshed_locked() const {
-  return !has_pending_ && !busy_ && !refinement_ && simplify_order_.empty() && !simplifying_;
+  return !has_pending_ && !busy_ && !refinement_ && simplify_order_.empty() &&
+         polish_order_.empty() && !simplifying_;
 }
 
 void SurfaceMesher::wait_until_meshed() {
@@ -199,6 +200,8 @@ void SurfaceMesher::publish(SurfaceDelta delta) {
     newest_version_.clear();
     simplify_jobs_.clear();
     simplify_order_.clear();
+    polish_jobs_.clear();
+    polish_order_.clear();
   }
   for (BrickSurface& b : delta.bricks) {
     // Versions count across volumes (a fresh cache restarts at 1): a
@@ -210,6 +213,15 @@ void SurfaceMesher::publish(SurfaceDelta delta) {
       simplify_jobs_[b.index] = b;  // a newer mesh replaces one not yet simplified
     } else {
       simplify_jobs_.erase(b.index);
+    }
+    polish_jobs_.erase(b.index);  // for an older mesh
+    if (b.marched) {
+      BrickSurface again = b;
+      again.mesh = std::move(again.marched);
+      again.simplified = false;
+      b.marched = nullptr;  // the renderer draws `mesh` alone
+      if (!polish_jobs_.contains(b.index)) polish_order_.push_back(b.index);
+      polish_jobs_[b.index] = std::move(again);
     }
   }
   counters_.simplify_queue_max =
@@ -273,12 +285,13 @@ void SurfaceMesher::run() {
       const core::BrickMesh& mesh = cache->brick_mesh(b);
       if (all && mesh.empty()) continue;
       if (refined != nullptr && refined->simplified[static_cast<size_t>(i)]) {
-        delta.bricks.push_back(
-            {i, cache->brick_level(b), 0, refined->simplified[static_cast<size_t>(i)], true});
+        delta.bricks.push_back({i, cache->brick_level(b), 0,
+                                refined->simplified[static_cast<size_t>(i)], true,
+                                refined->marched[static_cast<size_t>(i)]});
         continue;
       }
       delta.bricks.push_back(
-          {i, cache->brick_level(b), 0, std::make_shared<const core::BrickMesh>(mesh)});
+          {i, cache->brick_level(b), 0, std::make_shared<const core::BrickMesh>(mesh), false, {}});
     }
     delta.readiness.push_back({delta.change, delta.full_detail_change, hal::monotonic_ns()});
     publish(std::move(delta));
@@ -405,6 +418,7 @@ void SurfaceMesher::run() {
         refinement_->volume = std::move(copy);
         refinement_->cache = std::move(refined_cache);
         refinement_->simplified.assign(static_cast<size_t>(mirror->brick_count()), nullptr);
+        refinement_->marched.assign(static_cast<size_t>(mirror->brick_count()), nullptr);
         refinement_->simplified_versions.assign(static_cast<size_t>(mirror->brick_count()), 0);
       }
       refine_wake_.notify_one();
@@ -444,6 +458,7 @@ void SurfaceMesher::refine() {
     std::unordered_map<int64_t, core::Brick> bricks = std::move(r.bricks);
     r.bricks.clear();
     std::vector<std::shared_ptr<const core::BrickMesh>> simplified = std::move(r.simplified);
+    std::vector<std::shared_ptr<const core::BrickMesh>> marched = std::move(r.marched);
     std::vector<uint64_t> simplified_versions = std::move(r.simplified_versions);
     const std::vector<int> levels = r.levels;
     lock.unlock();
@@ -459,7 +474,7 @@ void SurfaceMesher::refine() {
     (void)cache->update(*volume, levels);
     cache->set_cancel(nullptr);
     if (simplify_error_ > 0 && !replaced())
-      simplify_refined(*cache, simplified, simplified_versions);
+      simplify_refined(*cache, simplified, marched, simplified_versions);
     const int64_t end = hal::monotonic_ns();
     lock.lock();
     ++counters_.refine_passes;
@@ -475,6 +490,7 @@ void SurfaceMesher::refine() {
     refinement_->volume = std::move(volume);
     refinement_->cache = std::move(cache);
     refinement_->simplified = std::move(simplified);
+    refinement_->marched = std::move(marched);
     refinement_->simplified_versions = std::move(simplified_versions);
     refinement_->refined_change = change;
     wake_.notify_one();
@@ -484,7 +500,7 @@ void SurfaceMesher::refine() {
 void SurfaceMesher::simplify_refined(
     const core::MixedLevelMeshCache& cache,
     std::vector<std::shared_ptr<const core::BrickMesh>>& simplified,
-    std::vector<uint64_t>& versions) {
+    std::vector<std::shared_ptr<const core::BrickMesh>>& marched, std::vector<uint64_t>& versions) {
   const glm::ivec3 grid = cache.brick_grid();
   std::vector<int64_t> remade;
   for (int64_t i = 0; i < static_cast<int64_t>(versions.size()); ++i) {
@@ -492,6 +508,7 @@ void SurfaceMesher::simplify_refined(
     if (versions[static_cast<size_t>(i)] == cache.brick_mesh_version(b)) continue;
     versions[static_cast<size_t>(i)] = cache.brick_mesh_version(b);
     simplified[static_cast<size_t>(i)] = nullptr;
+    marched[static_cast<size_t>(i)] = nullptr;
     if (!cache.brick_mesh(b).empty()) remade.push_back(i);
   }
   std::vector<Simplified> done(remade.size());
@@ -500,8 +517,11 @@ void SurfaceMesher::simplify_refined(
       [&](int64_t k) {
         const int64_t i = remade[static_cast<size_t>(k)];
         const glm::ivec3 b = core::grid_position(i, grid);
-        done[static_cast<size_t>(k)] = simplify_brick(cache.brick_mesh(b), cache.brick_level(b));
+        done[static_cast<size_t>(k)] =
+            simplify_brick(cache.brick_mesh(b), cache.brick_level(b), /*quick=*/true);
         simplified[static_cast<size_t>(i)] = done[static_cast<size_t>(k)].mesh;
+        marched[static_cast<size_t>(i)] =
+            std::make_shared<const core::BrickMesh>(cache.brick_mesh(b));
       },
       threads_);
   std::lock_guard lock(mutex_);
@@ -509,11 +529,12 @@ void SurfaceMesher::simplify_refined(
     count_simplified(d);
 }
 
-SurfaceMesher::Simplified SurfaceMesher::simplify_brick(const core::BrickMesh& mesh,
-                                                        int level) const {
+SurfaceMesher::Simplified SurfaceMesher::simplify_brick(const core::BrickMesh& mesh, int level,
+                                                        bool quick) const {
   // Drawn brick by brick, never welded: only the border's vertices stay.
-  core::SimplifiedBrick s = core::simplify_brick_mesh(
-      mesh, simplify_error_ * static_cast<float>(1 << level), core::BorderHold::kVertices);
+  core::SimplifiedBrick s =
+      core::simplify_brick_mesh(mesh, simplify_error_ * static_cast<float>(1 << level),
+                                core::BorderHold::kVertices, quick ? 180.0f : kMaxNormalTurnDeg);
   Simplified out;
   out.marched = static_cast<int64_t>(mesh.mesh.triangles.size());
   out.kept = static_cast<int64_t>(s.brick.mesh.triangles.size());
@@ -533,20 +554,27 @@ void SurfaceMesher::count_simplified(const Simplified& s) {
 void SurfaceMesher::simplify() {
   std::unique_lock lock(mutex_);
   for (;;) {
-    if (simplify_order_.empty()) meshed_.notify_all();
-    simplify_wake_.wait(lock, [&] { return stop_ || !simplify_order_.empty(); });
+    if (simplify_order_.empty() && polish_order_.empty()) meshed_.notify_all();
+    simplify_wake_.wait(
+        lock, [&] { return stop_ || !simplify_order_.empty() || !polish_order_.empty(); });
     if (stop_) return;
-    const int64_t index = simplify_order_.front();
-    simplify_order_.pop_front();
-    const auto it = simplify_jobs_.find(index);
-    if (it == simplify_jobs_.end()) continue;  // its mesh went empty meanwhile
+    // A fresh mesh first; the refiner's quick ones when there is none.
+    const bool polish = simplify_order_.empty();
+    std::deque<int64_t>& order = polish ? polish_order_ : simplify_order_;
+    std::unordered_map<int64_t, BrickSurface>& jobs = polish ? polish_jobs_ : simplify_jobs_;
+    const int64_t index = order.front();
+    order.pop_front();
+    const auto it = jobs.find(index);
+    if (it == jobs.end()) continue;  // its mesh went empty, or was remade, meanwhile
     BrickSurface job = std::move(it->second);
-    simplify_jobs_.erase(it);
+    jobs.erase(it);
+    if (polish) ++counters_.bricks_polished;
     simplifying_ = true;
     lock.unlock();
     const int64_t start = hal::monotonic_ns();
     const Simplified simplified = simplify_brick(*job.mesh, job.level);
     job.mesh = simplified.mesh;
+    job.simplified = true;
     const int64_t end = hal::monotonic_ns();
     lock.lock();
     simplifying_ = false;

@@ -262,6 +262,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
         {"update_ms_p99", f.mesher.update_us.quantile_us(0.99) * 1e-3},
         {"update_ms_max", f.mesher.update_us.max_us() * 1e-3},
         {"bricks_simplified", f.mesher.bricks_simplified},
+        {"bricks_polished", f.mesher.bricks_polished},
         {"simplify_queue_max", f.mesher.simplify_queue_max},
         {"triangles_marched", f.mesher.triangles_marched},
         {"triangles_kept", f.mesher.triangles_kept},

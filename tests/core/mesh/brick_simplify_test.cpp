@@ -5,12 +5,17 @@
 #include "sculpt/core/mesh/brick_simplify.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <set>
+#include <span>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "sculpt/core/mesh/mixed_level_mesh.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
@@ -194,6 +199,90 @@ TEST(BrickSimplify, NothingToDoComesBackAsItWas) {
   for (size_t b = 0; b < m.marched.size(); ++b)
     EXPECT_EQ(m.simplified[b], m.marched[b]);
   EXPECT_EQ(simplify_brick_mesh(BrickMesh{}, 0.1f).brick, BrickMesh{});
+}
+
+// A sphere with a dimple pressed into its top, like an eye socket: where
+// the dimple's rim meets the sphere the normals turn fast.
+Volume dimpled_sphere(int n) {
+  const glm::vec3 centre(static_cast<float>(n - 1) / 2.0f);
+  const float radius = 0.35f * static_cast<float>(n), dimple_radius = 0.15f * static_cast<float>(n);
+  const glm::vec3 dimple = centre + glm::vec3(0.0f, radius + 0.4f * dimple_radius, 0.0f);
+  return Volume::from_bricks(glm::ivec3(n), {}, [&](const Box& box, std::span<uint8_t> out) {
+    size_t i = 0;
+    for (int z = box.lo.z; z < box.hi.z; ++z)
+      for (int y = box.lo.y; y < box.hi.y; ++y)
+        for (int x = box.lo.x; x < box.hi.x; ++x) {
+          const glm::vec3 p(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
+          const float outside_sphere = glm::length(p - centre) - radius;
+          const float inside_dimple = dimple_radius - glm::length(p - dimple);
+          out[i++] = density_from_distance(std::max(outside_sphere, inside_dimple));
+        }
+  });
+}
+
+// Made by the simplifier, not kept as marched, and with two corners whose
+// normals are more than `max_deg` apart: such a triangle shows as a streak.
+int64_t made_triangles_turning(const Mesh& marched, const Mesh& simplified, float max_deg) {
+  using Corners = std::array<float, 9>;
+  auto corners = [](const Mesh& m, const glm::uvec3& t, int first) {
+    Corners c{};
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a)
+        c[static_cast<size_t>(3 * k + a)] = m.positions[t[(first + k) % 3]][a];
+    return c;
+  };
+  std::set<Corners> kept;
+  for (const glm::uvec3& t : marched.triangles)
+    for (int first = 0; first < 3; ++first)
+      kept.insert(corners(marched, t, first));
+  const float min_cos = std::cos(glm::radians(max_deg));
+  int64_t turning = 0;
+  for (const glm::uvec3& t : simplified.triangles) {
+    const glm::vec3 a = simplified.normals[t.x], b = simplified.normals[t.y],
+                    c = simplified.normals[t.z];
+    const bool turns =
+        glm::dot(a, b) < min_cos || glm::dot(b, c) < min_cos || glm::dot(a, c) < min_cos;
+    turning += turns && !kept.contains(corners(simplified, t, 0));
+  }
+  return turning;
+}
+
+// Where the normals turn fast a simplified triangle stays short: none that
+// the simplifier made has normals further apart than asked, while the
+// bricks still meet, stay within the error and lose most of their
+// triangles. Without the limit the dimple's rim has many.
+TEST(BrickSimplify, NoTriangleMadeTurnsItsNormalsFurtherThanAsked) {
+  const Volume v = dimpled_sphere(96);
+  MixedLevelMeshCache cache;
+  cache.update(v, std::vector<int>(static_cast<size_t>(v.brick_count()), 0));
+  constexpr float kMaxDeg = 37.0f;
+  int64_t turning_free = 0, turning_limited = 0, marched_triangles = 0, limited_triangles = 0;
+  std::vector<BrickMesh> limited;
+  for (int64_t i = 0; i < v.brick_count(); ++i) {
+    const BrickMesh& m = cache.brick_mesh(grid_position(i, v.brick_grid()));
+    if (m.empty()) continue;
+    const SimplifiedBrick free = simplify_brick_mesh(m, 0.2f, BorderHold::kVertices);
+    const SimplifiedBrick held = simplify_brick_mesh(m, 0.2f, BorderHold::kVertices, kMaxDeg);
+    turning_free += made_triangles_turning(m.mesh, free.brick.mesh, kMaxDeg);
+    turning_limited += made_triangles_turning(m.mesh, held.brick.mesh, kMaxDeg);
+    marched_triangles += static_cast<int64_t>(m.mesh.triangles.size());
+    limited_triangles += static_cast<int64_t>(held.brick.mesh.triangles.size());
+    EXPECT_LE(held.error, 0.2f);
+    for (const glm::vec3& p : m.mesh.positions)
+      ASSERT_LE(distance_to_mesh(p, held.brick.mesh), 0.2f);
+    limited.push_back(held.brick);
+  }
+  std::printf(
+      "made triangles turning over %.0f degrees: %lld without the limit, %lld with it; "
+      "%lld of %lld triangles kept\n",
+      kMaxDeg, static_cast<long long>(turning_free), static_cast<long long>(turning_limited),
+      static_cast<long long>(limited_triangles), static_cast<long long>(marched_triangles));
+  EXPECT_GT(turning_free, 20);
+  EXPECT_EQ(turning_limited, 0);
+  EXPECT_LT(4 * limited_triangles, marched_triangles);
+  const MeshTopology t = check_topology(weld(limited));
+  EXPECT_EQ(t.boundary_edges, 0);
+  EXPECT_EQ(t.euler_characteristic(), 2);
 }
 
 // Vertex cache misses per triangle of a FIFO cache of `size` vertices.

@@ -52,8 +52,9 @@ void expect_same_surface(const SurfaceSnapshot& snapshot, const core::Volume& vo
     ASSERT_TRUE(it != snapshot.bricks().end()) << "brick " << i;
     EXPECT_EQ(it->second.level, levels[static_cast<size_t>(i)]);
     const int level = levels[static_cast<size_t>(i)];
-    const core::SimplifiedBrick simplified = core::simplify_brick_mesh(
-        want, simplify_error * static_cast<float>(1 << level), core::BorderHold::kVertices);
+    const core::SimplifiedBrick simplified =
+        core::simplify_brick_mesh(want, simplify_error * static_cast<float>(1 << level),
+                                  core::BorderHold::kVertices, SurfaceMesher::kMaxNormalTurnDeg);
     EXPECT_EQ(it->second.mesh->mesh, simplified.brick.mesh) << "brick " << i;
   }
   EXPECT_GT(non_empty, 8);
@@ -230,13 +231,16 @@ TEST(SurfaceMesher, DabsOnANewVolumeAreShownCoarseWhileItIsRefined) {
   EXPECT_TRUE(last->reset);
   EXPECT_EQ(last->full_detail_change, last->change);
   for (const BrickSurface& b : last->bricks)
-    EXPECT_TRUE(b.simplified) << "brick " << b.index;  // by the refiner, before handing over
+    EXPECT_TRUE(b.simplified) << "brick " << b.index;  // by the refiner, then the simplifier
   snapshot.apply(*last);
   expect_same_surface(snapshot, s.volume(), full);
   const MesherCounters c = mesher.counters();
   EXPECT_EQ(c.refinements, 1);
   EXPECT_GE(c.refine_passes, 1);
   EXPECT_EQ(c.refine_us.count(), c.refine_passes);
+  // The refiner's quick simplifications, simplified again from the march
+  // with the limit on turning normals (expect_same_surface checks them).
+  EXPECT_GT(c.bricks_polished, 8);
 }
 
 // The refiner makes one pass over a new volume, however many dabs come

@@ -376,10 +376,13 @@ TEST(StationWindow, AutomaticLevelOfDetailLooksLikeFullDetail) {
     if (!automatic || !full) GTEST_SKIP() << "no display and no xvfb-run";
     ASSERT_EQ(automatic->picture.rgb.size(), full->picture.rgb.size());
     ASSERT_EQ(automatic->picture.width, 256);
-    EXPECT_LT(2 * automatic->triangles, full->triangles) << "the far bricks were drawn coarser";
+    // Measured: 20.5k triangles against 36.8k (the simplified coarse
+    // bricks keep more of theirs where the normals turn fast: 15k before).
+    EXPECT_LT(5 * automatic->triangles, 3 * full->triangles) << "the far bricks were drawn coarser";
     const PictureDifference d = difference(automatic->picture, full->picture);
-    // Measured: a mean of 0.3 levels, 0.2% of the pixels above 24 (edges
-    // of the silhouette moved by a fraction of a pixel).
+    // Measured: a mean of 0.16 (distance normals) and 0.25 levels
+    // (density), 0.11-0.12% of the pixels above 24 (edges of the silhouette
+    // moved by a fraction of a pixel).
     std::printf("automatic vs full detail, %s normals: mean %.2f, %.2f%% above 24\n", normals,
                 d.mean, 100.0 * d.visible_share);
     EXPECT_LT(d.mean, 1.0) << normals;
@@ -389,7 +392,11 @@ TEST(StationWindow, AutomaticLevelOfDetailLooksLikeFullDetail) {
 
 // The drawn surface is simplified (a sixth of the triangles or fewer: only
 // the vertices on the bricks' borders are held); at full detail, where a
-// voxel spans more than a pixel, the picture must not show it.
+// voxel spans more than a pixel, the picture must not show it: no facet,
+// and no streak where a long triangle joins a crease to the smooth clay
+// around it (the stars the demo's face showed around its eyes and mouth
+// when the normals could turn without limit across a triangle: 0.063% of
+// the pixels above 24, 0.395% above 8).
 TEST(StationWindow, TheSimplifiedSurfaceLooksLikeTheMarchedOne) {
   sculpt::test::ScratchDir dir;
   const std::string project = demo_project(dir);
@@ -399,13 +406,16 @@ TEST(StationWindow, TheSimplifiedSurfaceLooksLikeTheMarchedOne) {
   ASSERT_EQ(simplified->picture.rgb.size(), marched->picture.rgb.size());
   EXPECT_LT(6 * simplified->triangles, marched->triangles);
   const PictureDifference d = difference(simplified->picture, marched->picture);
-  // Measured: 31k triangles against 234k, a mean of 0.21, 0.06% above 24
-  // (with the triangles around the borders held too: 59k, 0.1, 0.03%).
-  std::printf("simplified (%lld triangles) vs marched (%lld): mean %.2f, %.2f%% above 24\n",
-              static_cast<long long>(simplified->triangles),
-              static_cast<long long>(marched->triangles), d.mean, 100.0 * d.visible_share);
+  // Measured: 36.8k triangles against 234k, a mean of 0.15, 0.020% above
+  // 24, 0.134% above 8.
+  std::printf(
+      "simplified (%lld triangles) vs marched (%lld): mean %.2f, %.3f%% above 24, %.3f%% above "
+      "8\n",
+      static_cast<long long>(simplified->triangles), static_cast<long long>(marched->triangles),
+      d.mean, 100.0 * d.visible_share, 100.0 * d.faint_share);
   EXPECT_LT(d.mean, 1.0);
-  EXPECT_LT(d.visible_share, 0.005);
+  EXPECT_LT(d.visible_share, 0.0004);
+  EXPECT_LT(d.faint_share, 0.0025);
 }
 
 TEST(StationWindow, BadInputGetsOneClearError) {

@@ -48,7 +48,16 @@ enum class BorderHold {
 /// triangles around them), normals and seam keys follow their vertices,
 /// vertices no triangle uses are dropped. An empty mesh, or `max_error` <=
 /// 0, comes back as it was.
+///
+/// With normals, no triangle the simplifier made has two corners whose
+/// normals are more than `max_normal_turn_deg` apart (180: no limit): the
+/// marched triangles around it are kept instead. Where the shading turns
+/// fast (an eye socket's rim, a mouth's corner), a long triangle from there
+/// into the smooth part around is flat enough for any error bound, but the
+/// normal swings across it: drawn, it shows a streak, a fan of them a star.
+/// meshoptimizer 0.18 (Debian's) weighs positions only.
 SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error,
-                                    BorderHold hold = BorderHold::kBand);
+                                    BorderHold hold = BorderHold::kBand,
+                                    float max_normal_turn_deg = 180.0f);
 
 }  // namespace sculpt::core
