@@ -116,11 +116,12 @@ Status check_ball(const Ball& ball) {
   return check_range("strength", ball.strength, 0.0, 1.0);
 }
 
-PathDistance::PathDistance(std::span<const StrokeSample> path, const Box& box, float reach)
+PathDistance::PathDistance(std::span<const StrokeSample> path, const Box& box, float reach,
+                           bool nearest_points)
     : path_(path),
       box_(box),
       distance_(box.size(), std::numeric_limits<float>::infinity()),
-      segment_(box.size(), 0) {
+      segment_(nearest_points ? box.size() : glm::ivec3(0), 0) {
   assert(!path.empty());
   const float reach2 = reach * reach;
   std::vector<float> row_lo, row_hi;
@@ -159,7 +160,7 @@ PathDistance::PathDistance(std::span<const StrokeSample> path, const Box& box, f
           const size_t k = distance_.index(q.x, q.y, q.z);
           if (d < distance_[k]) {
             distance_[k] = d;
-            segment_[k] = static_cast<int32_t>(i);
+            if (nearest_points) segment_[k] = static_cast<int32_t>(i);
           }
         }
       }
@@ -177,6 +178,7 @@ float PathDistance::at(glm::ivec3 v) const {
 }
 
 glm::vec3 PathDistance::closest(glm::ivec3 v) const {
+  assert(segment_.dims() == distance_.dims());  // nearest_points asked
   const glm::ivec3 q = v - box_.lo;
   const auto i = static_cast<size_t>(segment_.at(q.x, q.y, q.z));
   return segment_closest(glm::vec3(v), path_[i == 0 ? 0 : i - 1].position_vox,

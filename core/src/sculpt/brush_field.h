@@ -43,28 +43,33 @@ Status check_range(const char* key, double value, double lo, double hi);
 Status check_positive(const char* key, double value, double hi);
 
 /// The distance from each voxel of a box to the polyline of the path's
-/// positions (a single sample: its point), where it is below `reach`, and
-/// the nearest point of the path. Each segment measures only the voxels
-/// within reach of it, so a long path costs its length, not the box's
-/// voxels times its segments.
+/// positions (a single sample: its point), where it is below `reach`, and,
+/// when asked for, the nearest point of the path. Each segment measures only
+/// the voxels within reach of it, so a long path costs its length, not the
+/// box's voxels times its segments.
 class PathDistance {
  public:
-  /// The path (at least one sample) is kept by reference.
-  PathDistance(std::span<const StrokeSample> path, const Box& box, float reach);
+  /// The path (at least one sample) is kept by reference. `nearest_points`:
+  /// closest() will be asked (the pinch), so each voxel's nearest segment is
+  /// kept too (four bytes a voxel the other brushes do not fill).
+  PathDistance(std::span<const StrokeSample> path, const Box& box, float reach,
+               bool nearest_points = false);
   /// Distance from voxel v of the box to the path; infinity where no part
   /// of the path comes within reach.
   float at(glm::ivec3 v) const;
   /// Row (y, z) of the box's distances (relative to its corner): box().size().x
   /// floats, as at() gives them.
   const float* row(int y, int z) const;
-  /// The path's nearest point to v (v within reach).
+  /// The path's nearest point to v (v within reach; nearest_points asked).
   glm::vec3 closest(glm::ivec3 v) const;
 
  private:
   std::span<const StrokeSample> path_;
   Box box_;
   DenseGrid<float> distance_;
-  DenseGrid<int32_t> segment_;  // the nearest segment, ending at that sample; 0: the first point
+  // The nearest segment, ending at that sample (0: the first point); empty
+  // unless nearest_points.
+  DenseGrid<int32_t> segment_;
 };
 
 /// A box holding every voxel within `reach` of the path's positions (not

@@ -36,8 +36,9 @@ int64_t pinch_stroke_part(Volume& volume, Sculptor& sculptor, std::span<const St
   // The material and the path's distances, independent, side by side.
   std::optional<brush::Field> material;
   std::optional<brush::PathDistance> distance;
-  brush::side_by_side([&] { material.emplace(before, region, pinch_read_margin(o)); },
-                      [&] { distance.emplace(path, region, ball.reach()); });
+  brush::side_by_side(
+      [&] { material.emplace(before, region, pinch_read_margin(o)); },
+      [&] { distance.emplace(path, region, ball.reach(), /*nearest_points=*/true); });
   return brush::write(volume, sculptor, *material, region, *distance, ball,
                       [&](glm::ivec3 v, float w, const brush::PathDistance& path_distance) {
                         const glm::vec3 c = path_distance.closest(v);

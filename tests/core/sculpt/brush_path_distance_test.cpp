@@ -6,6 +6,7 @@
 // comparison is exact, over paths in every direction, along the axes
 // (where the capsule's quadratic is flat) and with repeated samples.
 
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -43,7 +44,9 @@ Nearest nearest_by_definition(glm::vec3 p, const std::vector<StrokeSample>& path
 
 // Returns the voxels within reach.
 int64_t expect_definition(const std::vector<StrokeSample>& path, const Box& box, float reach) {
-  const brush::PathDistance distance(path, box, reach);
+  const brush::PathDistance distance(path, box, reach, /*nearest_points=*/true);
+  // The brushes that never ask for the nearest point get the same distances.
+  const brush::PathDistance distance_only(path, box, reach);
   int64_t within = 0, wrong = 0;
   std::string first_wrong;
   auto check = [&](bool right, glm::ivec3 v) {
@@ -57,6 +60,7 @@ int64_t expect_definition(const std::vector<StrokeSample>& path, const Box& box,
         const glm::ivec3 v(x, y, z);
         const Nearest expected = nearest_by_definition(glm::vec3(v), path, reach);
         const float got = distance.at(v);
+        check(std::bit_cast<uint32_t>(distance_only.at(v)) == std::bit_cast<uint32_t>(got), v);
         if (std::isinf(expected.distance)) {
           check(std::isinf(got), v);
           continue;
