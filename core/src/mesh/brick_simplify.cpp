@@ -247,7 +247,7 @@ SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error, Bor
     std::vector<bool> held_then(held_first.size());
     for (size_t t = 0; t < held_then.size(); ++t)
       held_then[t] = !held_first[t] || band[t];
-    const std::vector<unsigned> turning = simplify_part(
+    const std::vector<unsigned> creases = simplify_part(
         in, marched_triangles, held_then, relative_target, min_turn_cos, relative_error);
     // Marched: what both held.
     std::vector<unsigned> indices;
@@ -255,7 +255,7 @@ SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error, Bor
       if (held_first[t] && held_then[t])
         indices.insert(indices.end(), {in.triangles[t].x, in.triangles[t].y, in.triangles[t].z});
     indices.insert(indices.end(), smooth.begin(), smooth.end());
-    indices.insert(indices.end(), turning.begin(), turning.end());
+    indices.insert(indices.end(), creases.begin(), creases.end());
     BrickMesh out = compact(brick, indices);
     if (same_topology(marched, out.mesh)) {
       // The triangles in an order that uses recently used vertices again:
