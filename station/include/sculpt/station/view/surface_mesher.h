@@ -76,7 +76,7 @@ struct BrickSurface {
   int level = 0;
   uint64_t version = 0;                         ///< moves on each time the brick's mesh is remade
   std::shared_ptr<const core::BrickMesh> mesh;  ///< never null
-  bool simplified = false;                      ///< already simplified (by the refiner)
+  bool simplified = false;                      ///< already simplified (refiner or simplifier)
   /// Set when `mesh` is the refiner's quick simplification: the march's
   /// mesh, for the simplifier to simplify again when it is idle.
   std::shared_ptr<const core::BrickMesh> marched;
