@@ -159,8 +159,8 @@ void SurfaceMesher::wait_until_warm() {
 }
 
 bool SurfaceMesher::all_meshed_locked() const {
-  return !has_pending_ && !busy_ && !refinement_ && simplify_order_.empty() &&
-         polish_order_.empty() && !simplifying_;
+  return !has_pending_ && !busy_ && !refinement_ && fresh_.empty() && polish_.empty() &&
+         !simplifying_;
 }
 
 void SurfaceMesher::wait_until_meshed() {
@@ -198,10 +198,8 @@ void SurfaceMesher::publish(SurfaceDelta delta) {
   std::lock_guard lock(mutex_);
   if (delta.reset) {
     newest_version_.clear();
-    simplify_jobs_.clear();
-    simplify_order_.clear();
-    polish_jobs_.clear();
-    polish_order_.clear();
+    fresh_.clear();
+    polish_.clear();
   }
   for (BrickSurface& b : delta.bricks) {
     // Versions count across volumes (a fresh cache restarts at 1): a
@@ -209,23 +207,21 @@ void SurfaceMesher::publish(SurfaceDelta delta) {
     b.version = ++versions_;
     newest_version_[b.index] = b.version;
     if (simplify_error_ > 0 && !b.mesh->empty() && !b.simplified) {
-      if (!simplify_jobs_.contains(b.index)) simplify_order_.push_back(b.index);
-      simplify_jobs_[b.index] = b;  // a newer mesh replaces one not yet simplified
+      fresh_.put(b);
     } else {
-      simplify_jobs_.erase(b.index);
+      fresh_.drop(b.index);
     }
-    polish_jobs_.erase(b.index);  // for an older mesh
+    polish_.drop(b.index);  // for an older mesh
     if (b.marched) {
       BrickSurface again = b;
       again.mesh = std::move(again.marched);
       again.simplified = false;
       b.marched = nullptr;  // the renderer draws `mesh` alone
-      if (!polish_jobs_.contains(b.index)) polish_order_.push_back(b.index);
-      polish_jobs_[b.index] = std::move(again);
+      polish_.put(std::move(again));
     }
   }
   counters_.simplify_queue_max =
-      std::max(counters_.simplify_queue_max, static_cast<int64_t>(simplify_jobs_.size()));
+      std::max(counters_.simplify_queue_max, static_cast<int64_t>(fresh_.size()));
   last_change_ = delta.change;
   last_full_detail_change_ = std::max(last_full_detail_change_, delta.full_detail_change);
   merge_ready(std::move(delta));
@@ -551,23 +547,45 @@ void SurfaceMesher::count_simplified(const Simplified& s) {
       std::max(counters_.simplify_error_max, static_cast<double>(s.error));
 }
 
+void SurfaceMesher::SimplifyQueue::put(BrickSurface job) {
+  const int64_t index = job.index;
+  if (!jobs_.contains(index)) order_.push_back(index);
+  jobs_[index] = std::move(job);
+}
+
+void SurfaceMesher::SimplifyQueue::drop(int64_t index) {
+  jobs_.erase(index);
+  if (jobs_.empty()) order_.clear();
+}
+
+std::optional<BrickSurface> SurfaceMesher::SimplifyQueue::take() {
+  while (!order_.empty()) {
+    const int64_t index = order_.front();
+    order_.pop_front();
+    const auto it = jobs_.find(index);
+    if (it == jobs_.end()) continue;  // dropped since
+    BrickSurface job = std::move(it->second);
+    jobs_.erase(it);
+    return job;
+  }
+  return std::nullopt;
+}
+
+void SurfaceMesher::SimplifyQueue::clear() {
+  order_.clear();
+  jobs_.clear();
+}
+
 void SurfaceMesher::simplify() {
   std::unique_lock lock(mutex_);
   for (;;) {
-    if (simplify_order_.empty() && polish_order_.empty()) meshed_.notify_all();
-    simplify_wake_.wait(
-        lock, [&] { return stop_ || !simplify_order_.empty() || !polish_order_.empty(); });
+    if (fresh_.empty() && polish_.empty()) meshed_.notify_all();
+    simplify_wake_.wait(lock, [&] { return stop_ || !fresh_.empty() || !polish_.empty(); });
     if (stop_) return;
     // A fresh mesh first; the refiner's quick ones when there is none.
-    const bool polish = simplify_order_.empty();
-    std::deque<int64_t>& order = polish ? polish_order_ : simplify_order_;
-    std::unordered_map<int64_t, BrickSurface>& jobs = polish ? polish_jobs_ : simplify_jobs_;
-    const int64_t index = order.front();
-    order.pop_front();
-    const auto it = jobs.find(index);
-    if (it == jobs.end()) continue;  // its mesh went empty, or was remade, meanwhile
-    BrickSurface job = std::move(it->second);
-    jobs.erase(it);
+    const bool polish = fresh_.empty();
+    BrickSurface job = *(polish ? polish_ : fresh_).take();
+    const int64_t index = job.index;
     if (polish) ++counters_.bricks_polished;
     simplifying_ = true;
     lock.unlock();

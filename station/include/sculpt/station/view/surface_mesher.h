@@ -288,12 +288,23 @@ class SurfaceMesher {
   std::atomic<uint64_t> current_epoch_{0};
   bool hold_refinement_ = false;
   bool hold_take_over_ = false;
-  // Published meshes waiting to be simplified, oldest first, one per brick.
-  std::deque<int64_t> simplify_order_;
-  std::unordered_map<int64_t, BrickSurface> simplify_jobs_;
-  // The refiner's quick ones, to simplify again when the above are done.
-  std::deque<int64_t> polish_order_;
-  std::unordered_map<int64_t, BrickSurface> polish_jobs_;
+  // Meshes waiting for the simplifier, oldest first, one per brick (a newer
+  // mesh of a brick replaces the one waiting, in its place).
+  class SimplifyQueue {
+   public:
+    void put(BrickSurface job);
+    void drop(int64_t index);
+    std::optional<BrickSurface> take();  // the oldest, if any
+    bool empty() const { return jobs_.empty(); }
+    size_t size() const { return jobs_.size(); }
+    void clear();
+
+   private:
+    std::deque<int64_t> order_;  // may name bricks dropped since: take() skips them
+    std::unordered_map<int64_t, BrickSurface> jobs_;
+  };
+  SimplifyQueue fresh_;   // published meshes as marched
+  SimplifyQueue polish_;  // the refiner's quick ones, done when no fresh one waits
   bool simplifying_ = false;
   std::unordered_map<int64_t, uint64_t> newest_version_;  // per brick, as published
   uint64_t versions_ = 0;                                 // handed out, across volumes
