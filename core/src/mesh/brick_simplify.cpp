@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <unordered_set>
 #include <utility>
 #include <vector>
@@ -13,6 +14,7 @@
 
 #include <meshoptimizer.h>
 
+#include "mesh/by_vertex.h"
 #include "sculpt/core/mesh/mesh.h"
 
 namespace sculpt::core {
@@ -115,13 +117,18 @@ class MarchedTriangles {
   // Holds the triangles within `rings` rings of triangles around
   // `vertices`; whether any was not held before.
   bool hold(std::vector<uint32_t> vertices, int rings, std::vector<bool>& held) {
-    if (first_.empty()) index_corners();
+    if (!around_) {
+      around_.emplace(m_.positions.size(), [&](auto put) {
+        for (size_t t = 0; t < m_.triangles.size(); ++t)
+          for (int k = 0; k < 3; ++k)
+            put(m_.triangles[t][k], static_cast<uint32_t>(t));
+      });
+    }
     bool more = false;
     for (int ring = 0; ring < rings; ++ring) {
       std::vector<uint32_t> next;
       for (uint32_t v : vertices)
-        for (uint32_t i = first_[v]; i < first_[v + 1]; ++i) {
-          const uint32_t t = around_[i];
+        for (const uint32_t t : around_->of(v)) {
           if (held[t]) continue;
           held[t] = more = true;
           next.insert(next.end(), {m_.triangles[t].x, m_.triangles[t].y, m_.triangles[t].z});
@@ -141,24 +148,9 @@ class MarchedTriangles {
     return a | (b << 21) | (c << 42);
   }
 
-  void index_corners() {
-    const size_t n = m_.positions.size();
-    first_.assign(n + 1, 0);
-    for (const glm::uvec3& t : m_.triangles)
-      for (int k = 0; k < 3; ++k)
-        ++first_[t[k] + 1];
-    for (size_t v = 0; v < n; ++v)
-      first_[v + 1] += first_[v];
-    around_.resize(first_[n]);
-    std::vector<uint32_t> next(first_.begin(), first_.end() - 1);
-    for (size_t t = 0; t < m_.triangles.size(); ++t)
-      for (int k = 0; k < 3; ++k)
-        around_[next[m_.triangles[t][k]]++] = static_cast<uint32_t>(t);
-  }
-
   const Mesh& m_;
   std::unordered_set<uint64_t> keys_;
-  std::vector<uint32_t> first_, around_;  // vertex v's triangles: around_[first_[v], first_[v + 1])
+  std::optional<detail::ByVertex<uint32_t>> around_;  // each vertex's triangles
 };
 
 // The marched triangles not `held`, simplified with their part's border
