@@ -158,10 +158,13 @@ class MarchedTriangles {
 // one of the marched) whose corners' normals are further apart than
 // `min_turn_cos` holds the marched triangles around its corners, and the
 // part is simplified again, up to kHoldRounds times; `held` grows by them.
-// `relative_error` becomes at least the simplifier's estimate.
+// With TurnLimit::kCount nothing is held: the turning triangles are only
+// counted. `relative_error` becomes at least the simplifier's estimate,
+// `turning` grows by the turning triangles left.
 std::vector<unsigned> simplify_part(const Mesh& in, MarchedTriangles& marched,
                                     std::vector<bool>& held, float relative_target,
-                                    float min_turn_cos, float& relative_error) {
+                                    float min_turn_cos, TurnLimit limit, float& relative_error,
+                                    int64_t& turning_left) {
   const bool turns_checked = min_turn_cos > -1.0f && in.normals.size() == in.positions.size() &&
                              in.positions.size() < (size_t{1} << 21);
   auto turns_too_far = [&](unsigned a, unsigned b, unsigned c) {
@@ -187,9 +190,11 @@ std::vector<unsigned> simplify_part(const Mesh& in, MarchedTriangles& marched,
         if (turns_too_far(out[i], out[i + 1], out[i + 2]) &&
             !marched.contains(out[i], out[i + 1], out[i + 2]))
           turning.insert(turning.end(), {out[i], out[i + 1], out[i + 2]});
-    if (turning.empty() || round == kHoldRounds ||
+    const size_t turning_count = turning.size() / 3;
+    if (turning.empty() || limit == TurnLimit::kCount || round == kHoldRounds ||
         !marched.hold(std::move(turning), kHeldRings, held)) {
       relative_error = std::max(relative_error, error);
+      turning_left += static_cast<int64_t>(turning_count);
       return out;
     }
   }
@@ -198,7 +203,7 @@ std::vector<unsigned> simplify_part(const Mesh& in, MarchedTriangles& marched,
 }  // namespace
 
 SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error, BorderHold hold,
-                                    float max_normal_turn_deg) {
+                                    float max_normal_turn_deg, TurnLimit limit) {
   const Mesh& in = brick.mesh;
   if (in.triangles.empty() || !(max_error > 0.0f)) return {brick, 0.0f};
   static_assert(sizeof(glm::vec3) == 3 * sizeof(float) &&
@@ -230,17 +235,18 @@ SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error, Bor
     // for half the bound.
     const float relative_target = kEstimateShare * target / scale;
     float relative_error = 0.0f;
+    int64_t turning = 0;
     // The brick inside its band first, then what that held where the
     // shading turns: there only collapses that keep the turn across short
     // triangles stay (mostly along a crease, not across it).
     std::vector<bool> held_first = band;
     const std::vector<unsigned> smooth = simplify_part(
-        in, marched_triangles, held_first, relative_target, min_turn_cos, relative_error);
+        in, marched_triangles, held_first, relative_target, min_turn_cos, limit, relative_error, turning);
     std::vector<bool> held_then(held_first.size());
     for (size_t t = 0; t < held_then.size(); ++t)
       held_then[t] = !held_first[t] || band[t];
     const std::vector<unsigned> creases = simplify_part(
-        in, marched_triangles, held_then, relative_target, min_turn_cos, relative_error);
+        in, marched_triangles, held_then, relative_target, min_turn_cos, limit, relative_error, turning);
     // Marched: what both held.
     std::vector<unsigned> indices;
     for (size_t t = 0; t < in.triangles.size(); ++t)
@@ -260,7 +266,7 @@ SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error, Bor
         meshopt_optimizeVertexCacheFifo(corners, corners, 3 * out.mesh.triangles.size(),
                                         out.mesh.positions.size(), kVertexCacheSize);
       }
-      return {std::move(out), relative_error * scale / kEstimateShare};
+      return {std::move(out), relative_error * scale / kEstimateShare, turning};
     }
   }
   return {brick, 0.0f};

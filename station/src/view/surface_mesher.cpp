@@ -280,10 +280,9 @@ void SurfaceMesher::run() {
       published[static_cast<size_t>(i)] = version;
       const core::BrickMesh& mesh = cache->brick_mesh(b);
       if (all && mesh.empty()) continue;
-      if (refined != nullptr && refined->simplified[static_cast<size_t>(i)]) {
-        delta.bricks.push_back({i, cache->brick_level(b), 0,
-                                refined->simplified[static_cast<size_t>(i)], true,
-                                refined->marched[static_cast<size_t>(i)]});
+      if (refined != nullptr && refined->meshes[static_cast<size_t>(i)].simplified) {
+        const RefinedBrick& r = refined->meshes[static_cast<size_t>(i)];
+        delta.bricks.push_back({i, cache->brick_level(b), 0, r.simplified, true, r.marched});
         continue;
       }
       delta.bricks.push_back(
@@ -322,10 +321,11 @@ void SurfaceMesher::run() {
       for (auto& [i, brick] : refined->bricks)
         mirror->replace_brick(core::grid_position(i, grid), std::move(brick));
       const core::MeshUpdate update = cache->update(*mirror, refined->levels);
-      for (int64_t i = 0; i < mirror->brick_count(); ++i)
-        if (refined->simplified_versions[static_cast<size_t>(i)] !=
-            cache->brick_mesh_version(core::grid_position(i, grid)))
-          refined->simplified[static_cast<size_t>(i)] = nullptr;  // remade since: not simplified
+      for (int64_t i = 0; i < mirror->brick_count(); ++i) {
+        RefinedBrick& r = refined->meshes[static_cast<size_t>(i)];
+        if (r.version != cache->brick_mesh_version(core::grid_position(i, grid)))
+          r = {};  // remade since: not simplified
+      }
       published.assign(static_cast<size_t>(mirror->brick_count()), 0);
       publish_cache(refined->change, true, true, refined.get());
       refining = false;
@@ -413,9 +413,7 @@ void SurfaceMesher::run() {
         std::lock_guard lock(mutex_);
         refinement_->volume = std::move(copy);
         refinement_->cache = std::move(refined_cache);
-        refinement_->simplified.assign(static_cast<size_t>(mirror->brick_count()), nullptr);
-        refinement_->marched.assign(static_cast<size_t>(mirror->brick_count()), nullptr);
-        refinement_->simplified_versions.assign(static_cast<size_t>(mirror->brick_count()), 0);
+        refinement_->meshes.assign(static_cast<size_t>(mirror->brick_count()), {});
       }
       refine_wake_.notify_one();
     }
@@ -453,9 +451,7 @@ void SurfaceMesher::refine() {
     std::unique_ptr<core::MixedLevelMeshCache> cache = std::move(r.cache);
     std::unordered_map<int64_t, core::Brick> bricks = std::move(r.bricks);
     r.bricks.clear();
-    std::vector<std::shared_ptr<const core::BrickMesh>> simplified = std::move(r.simplified);
-    std::vector<std::shared_ptr<const core::BrickMesh>> marched = std::move(r.marched);
-    std::vector<uint64_t> simplified_versions = std::move(r.simplified_versions);
+    std::vector<RefinedBrick> meshes = std::move(r.meshes);
     const std::vector<int> levels = r.levels;
     lock.unlock();
     const int64_t start = hal::monotonic_ns();
@@ -470,7 +466,7 @@ void SurfaceMesher::refine() {
     (void)cache->update(*volume, levels);
     cache->set_cancel(nullptr);
     if (simplify_error_ > 0 && !replaced())
-      simplify_refined(*cache, simplified, marched, simplified_versions);
+      simplify_refined(*cache, meshes);
     const int64_t end = hal::monotonic_ns();
     lock.lock();
     ++counters_.refine_passes;
@@ -485,26 +481,21 @@ void SurfaceMesher::refine() {
     }
     refinement_->volume = std::move(volume);
     refinement_->cache = std::move(cache);
-    refinement_->simplified = std::move(simplified);
-    refinement_->marched = std::move(marched);
-    refinement_->simplified_versions = std::move(simplified_versions);
+    refinement_->meshes = std::move(meshes);
     refinement_->refined_change = change;
     wake_.notify_one();
   }
 }
 
-void SurfaceMesher::simplify_refined(
-    const core::MixedLevelMeshCache& cache,
-    std::vector<std::shared_ptr<const core::BrickMesh>>& simplified,
-    std::vector<std::shared_ptr<const core::BrickMesh>>& marched, std::vector<uint64_t>& versions) {
+void SurfaceMesher::simplify_refined(const core::MixedLevelMeshCache& cache,
+                                     std::vector<RefinedBrick>& refined) {
   const glm::ivec3 grid = cache.brick_grid();
   std::vector<int64_t> remade;
-  for (int64_t i = 0; i < static_cast<int64_t>(versions.size()); ++i) {
+  for (int64_t i = 0; i < static_cast<int64_t>(refined.size()); ++i) {
     const glm::ivec3 b = core::grid_position(i, grid);
-    if (versions[static_cast<size_t>(i)] == cache.brick_mesh_version(b)) continue;
-    versions[static_cast<size_t>(i)] = cache.brick_mesh_version(b);
-    simplified[static_cast<size_t>(i)] = nullptr;
-    marched[static_cast<size_t>(i)] = nullptr;
+    RefinedBrick& r = refined[static_cast<size_t>(i)];
+    if (r.version == cache.brick_mesh_version(b)) continue;
+    r = {nullptr, nullptr, cache.brick_mesh_version(b)};
     if (!cache.brick_mesh(b).empty()) remade.push_back(i);
   }
   std::vector<Simplified> done(remade.size());
@@ -513,11 +504,11 @@ void SurfaceMesher::simplify_refined(
       [&](int64_t k) {
         const int64_t i = remade[static_cast<size_t>(k)];
         const glm::ivec3 b = core::grid_position(i, grid);
-        done[static_cast<size_t>(k)] =
+        const Simplified& s = done[static_cast<size_t>(k)] =
             simplify_brick(cache.brick_mesh(b), cache.brick_level(b), /*quick=*/true);
-        simplified[static_cast<size_t>(i)] = done[static_cast<size_t>(k)].mesh;
-        marched[static_cast<size_t>(i)] =
-            std::make_shared<const core::BrickMesh>(cache.brick_mesh(b));
+        RefinedBrick& r = refined[static_cast<size_t>(i)];
+        r.simplified = s.mesh;
+        if (s.turning > 0) r.marched = std::make_shared<const core::BrickMesh>(cache.brick_mesh(b));
       },
       threads_);
   std::lock_guard lock(mutex_);
@@ -528,13 +519,14 @@ void SurfaceMesher::simplify_refined(
 SurfaceMesher::Simplified SurfaceMesher::simplify_brick(const core::BrickMesh& mesh, int level,
                                                         bool quick) const {
   // Drawn brick by brick, never welded: only the border's vertices stay.
-  core::SimplifiedBrick s =
-      core::simplify_brick_mesh(mesh, simplify_error_ * static_cast<float>(1 << level),
-                                core::BorderHold::kVertices, quick ? 180.0f : kMaxNormalTurnDeg);
+  core::SimplifiedBrick s = core::simplify_brick_mesh(
+      mesh, simplify_error_ * static_cast<float>(1 << level), core::BorderHold::kVertices,
+      kMaxNormalTurnDeg, quick ? core::TurnLimit::kCount : core::TurnLimit::kHold);
   Simplified out;
   out.marched = static_cast<int64_t>(mesh.mesh.triangles.size());
   out.kept = static_cast<int64_t>(s.brick.mesh.triangles.size());
   out.error = s.error;
+  out.turning = s.turning;
   out.mesh = std::make_shared<const core::BrickMesh>(std::move(s.brick));
   return out;
 }

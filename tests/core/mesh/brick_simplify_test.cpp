@@ -263,8 +263,16 @@ TEST(BrickSimplify, NoTriangleMadeTurnsItsNormalsFurtherThanAsked) {
     if (m.empty()) continue;
     const SimplifiedBrick free = simplify_brick_mesh(m, 0.2f, BorderHold::kVertices);
     const SimplifiedBrick held = simplify_brick_mesh(m, 0.2f, BorderHold::kVertices, kMaxDeg);
-    turning_free += made_triangles_turning(m.mesh, free.brick.mesh, kMaxDeg);
+    const int64_t free_turning = made_triangles_turning(m.mesh, free.brick.mesh, kMaxDeg);
+    turning_free += free_turning;
     turning_limited += made_triangles_turning(m.mesh, held.brick.mesh, kMaxDeg);
+    // Counted, not held: the same mesh as without the limit, and what
+    // turns in it.
+    const SimplifiedBrick counted =
+        simplify_brick_mesh(m, 0.2f, BorderHold::kVertices, kMaxDeg, TurnLimit::kCount);
+    EXPECT_EQ(counted.brick.mesh, free.brick.mesh);
+    EXPECT_EQ(counted.turning, free_turning);
+    EXPECT_EQ(held.turning, 0);
     marched_triangles += static_cast<int64_t>(m.mesh.triangles.size());
     limited_triangles += static_cast<int64_t>(held.brick.mesh.triangles.size());
     EXPECT_LE(held.error, 0.2f);

@@ -14,6 +14,8 @@
 // triangles around them stay too). Uses meshoptimizer's
 // quadric-error simplifier (Debian's libmeshoptimizer-dev).
 
+#include <cstdint>
+
 #include "sculpt/core/mesh/brick_mesh.h"
 
 namespace sculpt::core {
@@ -24,6 +26,10 @@ struct SimplifiedBrick {
   /// simplifier's estimate with the margin that makes it one (tested: no
   /// marched vertex lies farther than `max_error` from the result).
   float error = 0.0f;
+  /// Triangles the simplifier made (not kept as marched) whose corners'
+  /// normals are further apart than the limit asked, left in `brick`: those
+  /// TurnLimit::kCount counts, and those kHold could not avoid (none seen).
+  int64_t turning = 0;
 };
 
 /// What stays of a brick's border as it was marched.
@@ -42,6 +48,17 @@ enum class BorderHold {
   kVertices,
 };
 
+/// What the limit on turning normals does with a triangle the simplifier
+/// made that would turn further.
+enum class TurnLimit {
+  /// The marched triangles around its corners are kept instead.
+  kHold,
+  /// It stays, counted (SimplifiedBrick::turning): a quick simplification
+  /// that says whether the held one is needed, as it is for about one
+  /// brick in ten of a played sculpture.
+  kCount,
+};
+
 /// `brick` with edges collapsed while the surface moves by at most
 /// `max_error` (the positions' units: level-0 voxels for the station's
 /// meshes); border vertices stay (and, with BorderHold::kBand, the
@@ -51,13 +68,15 @@ enum class BorderHold {
 ///
 /// With normals, no triangle the simplifier made has two corners whose
 /// normals are more than `max_normal_turn_deg` apart (180: no limit): the
-/// marched triangles around it are kept instead. Where the shading turns
+/// marched triangles around it are kept instead (or, with TurnLimit::kCount,
+/// it is only counted). Where the shading turns
 /// fast (an eye socket's rim, a mouth's corner), a long triangle from there
 /// into the smooth part around is flat enough for any error bound, but the
 /// normal swings across it: drawn, it shows a streak, a fan of them a star.
 /// meshoptimizer 0.18 (Debian's) weighs positions only.
 SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error,
                                     BorderHold hold = BorderHold::kBand,
-                                    float max_normal_turn_deg = 180.0f);
+                                    float max_normal_turn_deg = 180.0f,
+                                    TurnLimit limit = TurnLimit::kHold);
 
 }  // namespace sculpt::core

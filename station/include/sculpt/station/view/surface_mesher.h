@@ -44,7 +44,8 @@
 // the quick one (no limit on how far normals turn across a triangle, which
 // costs a whole new volume's refinement twice the time: 62 against 132 ms
 // on the bust); when the simplifier has nothing else to do, it simplifies
-// those bricks again from their marched meshes, as it does any other.
+// again, from their marched meshes, the bricks where the quick one made a
+// triangle that turns further than the limit.
 //
 // Thread safety: submit() from one thread (the one that owns the volume),
 // take() from one thread (the renderer's); both may run while the mesher
@@ -218,6 +219,13 @@ class SurfaceMesher {
     std::vector<int> levels;
     uint64_t change = 0;
   };
+  // A brick's mesh in the refiner's cache simplified (quickly), the marched
+  // one when a triangle the simplifier made turns too far (to simplify
+  // again with the limit), and the cache's mesh version they are of.
+  struct RefinedBrick {
+    std::shared_ptr<const core::BrickMesh> simplified, marched;
+    uint64_t version = 0;
+  };
   // A new volume's full-detail meshes, made on the refiner's copy.
   struct Refinement {
     uint64_t epoch = 0;                    // which volume: a newer one abandons it
@@ -227,10 +235,7 @@ class SurfaceMesher {
     std::vector<int> levels;                          // the full-detail levels
     uint64_t change = 0;                              // the newest change handed over
     uint64_t refined_change = 0;                      // the change its one pass meshed (0: not yet)
-    // Per brick, the cache's meshes simplified (quickly), the marched ones
-    // they were simplified from, and the mesh version each is of.
-    std::vector<std::shared_ptr<const core::BrickMesh>> simplified, marched;
-    std::vector<uint64_t> simplified_versions;
+    std::vector<RefinedBrick> meshes;  // per brick
     bool ready() const { return volume && refined_change != 0; }
   };
   void run();
@@ -240,11 +245,9 @@ class SurfaceMesher {
   // Touches `bytes` of this thread's heap, then counts it warm.
   void warm_this_thread(size_t bytes);
   /// Simplifies the bricks the refinement's cache remade (in parallel,
-  /// quickly), keeping copies of their marched meshes.
+  /// quickly), keeping copies of the marched meshes that need the limit.
   void simplify_refined(const core::MixedLevelMeshCache& cache,
-                        std::vector<std::shared_ptr<const core::BrickMesh>>& simplified,
-                        std::vector<std::shared_ptr<const core::BrickMesh>>& marched,
-                        std::vector<uint64_t>& versions);
+                        std::vector<RefinedBrick>& refined);
   void simplify();
   // One brick's mesh simplified within simplify_error_ voxels of its level,
   // and what it counts for (count_simplified(), mutex_ held).
@@ -252,8 +255,10 @@ class SurfaceMesher {
     std::shared_ptr<const core::BrickMesh> mesh;
     int64_t marched = 0, kept = 0;  // triangles before and after
     float error = 0.0f;
+    int64_t turning = 0;  // made triangles left turning further than kMaxNormalTurnDeg
   };
-  // `quick`: without the limit on turning normals (kMaxNormalTurnDeg).
+  // `quick`: the triangles turning further than kMaxNormalTurnDeg only
+  // counted, not avoided (core::TurnLimit::kCount).
   Simplified simplify_brick(const core::BrickMesh& mesh, int level, bool quick = false) const;
   void count_simplified(const Simplified& s);
   /// Stamps the bricks' versions, queues them to simplify and hands them
