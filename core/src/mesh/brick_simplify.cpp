@@ -240,13 +240,15 @@ SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error, Bor
     // shading turns: there only collapses that keep the turn across short
     // triangles stay (mostly along a crease, not across it).
     std::vector<bool> held_first = band;
-    const std::vector<unsigned> smooth = simplify_part(
-        in, marched_triangles, held_first, relative_target, min_turn_cos, limit, relative_error, turning);
+    const std::vector<unsigned> smooth =
+        simplify_part(in, marched_triangles, held_first, relative_target, min_turn_cos, limit,
+                      relative_error, turning);
     std::vector<bool> held_then(held_first.size());
     for (size_t t = 0; t < held_then.size(); ++t)
       held_then[t] = !held_first[t] || band[t];
-    const std::vector<unsigned> creases = simplify_part(
-        in, marched_triangles, held_then, relative_target, min_turn_cos, limit, relative_error, turning);
+    const std::vector<unsigned> creases =
+        simplify_part(in, marched_triangles, held_then, relative_target, min_turn_cos, limit,
+                      relative_error, turning);
     // Marched: what both held.
     std::vector<unsigned> indices;
     for (size_t t = 0; t < in.triangles.size(); ++t)

@@ -52,7 +52,9 @@ int run_headless(const RunOptions& o) {
   r.volume = (dir / "volume.nrrd").string();
   r.stats = (dir / "stats.json").string();
   r.renderer = "software";  // no display here, or none wanted
-  r.normals = "distance";   // the smoothest shading for a still picture (~1 s on the demo)
+  // The density gradient's normals (the default): at full detail the
+  // truest (0.1 degrees off a sphere's on average, against 0.25 for the
+  // distance field's), and no second spent on them.
   const int code = replay_to_outputs(r);
   if (code == 0) {
     std::printf("wrote %s/sculpture.png, sculpture.ply, volume.nrrd and stats.json\n",

@@ -465,8 +465,7 @@ void SurfaceMesher::refine() {
     cache->set_cancel(replaced);
     (void)cache->update(*volume, levels);
     cache->set_cancel(nullptr);
-    if (simplify_error_ > 0 && !replaced())
-      simplify_refined(*cache, meshes);
+    if (simplify_error_ > 0 && !replaced()) simplify_refined(*cache, meshes);
     const int64_t end = hal::monotonic_ns();
     lock.lock();
     ++counters_.refine_passes;

@@ -226,7 +226,9 @@ void StationPanel::draw(const FrameFigures& f, int64_t now) {
     if (ImGui::Checkbox("normals from the distance field", &smooth))
       c_.set_distance_normals(smooth);
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("the gradient of the distance to the sub-voxel surface: smoother shading");
+      ImGui::SetTooltip(
+          "the gradient of the distance to the sub-voxel surface: truer shading on bricks drawn at "
+          "a coarse level");
     if (ImGui::Button("Frame the sculpture")) c_.perform(Action::kFrameView, now);
     tip(Action::kFrameView);
   }

@@ -33,15 +33,29 @@ TEST(SurfaceNormals, DistanceGradientNormalsOfASphereAreTrueToAFractionOfADegree
   Mesh mesh = marching_cubes(volume);
   ASSERT_GT(mesh.positions.size(), 1000u);
   const glm::vec3 centre(0.5f * (n - 1));
-  const auto density = sphere_normal_error(mesh, centre);
   set_normals_from_surface_distance(volume, mesh);
   const auto distance = sphere_normal_error(mesh, centre);
   EXPECT_LT(distance.first, 0.5) << "mean";
   EXPECT_LT(distance.second, 3.0) << "worst";
-  // Five times truer than the density gradient's (the renderer's default):
-  // 0.25 against 1.2 degrees on average, 1.8 against 5.1 at worst.
-  EXPECT_LT(distance.first, 0.5 * density.first) << density.first;
-  EXPECT_LT(distance.second, density.second) << density.second;
+}
+
+// At a coarse level the density is a mean over 2^3 voxels, whose ramp
+// across the surface bends where the density gradient reads it: its normals
+// are degrees off (4.0 on average, 11.8 at worst, at level 1 on a sphere
+// of radius 38), the distance field's four times truer (1.1 and 2.0). At
+// level 0 the density gradient's are the truer (0.11 and 0.35 degrees:
+// marching_cubes_test.cpp).
+TEST(SurfaceNormals, AtACoarseLevelDistanceGradientNormalsAreTruerThanTheDensitys) {
+  const int n = 128, level = 1;
+  const Volume volume = sphere_volume(n, 0.3f);
+  Mesh mesh = marching_cubes(volume, level);
+  // A level-k surface sits (2^k - 1) / 2 voxels toward -x, -y, -z.
+  const glm::vec3 centre(0.5f * (n - 1) - 0.5f * ((1 << level) - 1));
+  const auto density = sphere_normal_error(mesh, centre);
+  set_normals_from_surface_distance(volume, mesh);
+  const auto distance = sphere_normal_error(mesh, centre);
+  EXPECT_LT(distance.first, 0.5 * density.first) << distance.first << " " << density.first;
+  EXPECT_LT(distance.second, 0.5 * density.second) << distance.second << " " << density.second;
 }
 
 TEST(SurfaceNormals, APieceOfTheMeshGetsTheSameNormalsAsTheWhole) {

@@ -248,10 +248,10 @@ TEST(SurfaceMesher, DabsOnANewVolumeAreShownCoarseWhileItIsRefined) {
     const core::BrickMesh& m = scratch.brick_mesh(core::grid_position(i, s.volume().brick_grid()));
     if (m.empty()) continue;
     ++non_empty;
-    turning += core::simplify_brick_mesh(m, SurfaceMesher::kSimplifyError,
-                                         core::BorderHold::kVertices,
-                                         SurfaceMesher::kMaxNormalTurnDeg, core::TurnLimit::kCount)
-                   .turning > 0;
+    turning +=
+        core::simplify_brick_mesh(m, SurfaceMesher::kSimplifyError, core::BorderHold::kVertices,
+                                  SurfaceMesher::kMaxNormalTurnDeg, core::TurnLimit::kCount)
+            .turning > 0;
   }
   EXPECT_GT(turning, 0);
   EXPECT_LT(turning, non_empty);

@@ -235,7 +235,7 @@ class SurfaceMesher {
     std::vector<int> levels;                          // the full-detail levels
     uint64_t change = 0;                              // the newest change handed over
     uint64_t refined_change = 0;                      // the change its one pass meshed (0: not yet)
-    std::vector<RefinedBrick> meshes;  // per brick
+    std::vector<RefinedBrick> meshes;                 // per brick
     bool ready() const { return volume && refined_change != 0; }
   };
   void run();
@@ -246,8 +246,7 @@ class SurfaceMesher {
   void warm_this_thread(size_t bytes);
   /// Simplifies the bricks the refinement's cache remade (in parallel,
   /// quickly), keeping copies of the marched meshes that need the limit.
-  void simplify_refined(const core::MixedLevelMeshCache& cache,
-                        std::vector<RefinedBrick>& refined);
+  void simplify_refined(const core::MixedLevelMeshCache& cache, std::vector<RefinedBrick>& refined);
   void simplify();
   // One brick's mesh simplified within simplify_error_ voxels of its level,
   // and what it counts for (count_simplified(), mutex_ held).
