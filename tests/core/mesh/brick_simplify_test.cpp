@@ -221,8 +221,11 @@ Volume dimpled_sphere(int n) {
 }
 
 // Made by the simplifier, not kept as marched, and with two corners whose
-// normals are more than `max_deg` apart: such a triangle shows as a streak.
-int64_t made_triangles_turning(const Mesh& marched, const Mesh& simplified, float max_deg) {
+// normals are more than `max_deg` apart, or, along an edge longer than
+// `full_turn_length`, `max_deg` times full_turn_length over its length: such
+// a triangle shows as a streak or a wedge.
+int64_t made_triangles_turning(const Mesh& marched, const Mesh& simplified, float max_deg,
+                               float full_turn_length) {
   using Corners = std::array<float, 9>;
   auto corners = [](const Mesh& m, const glm::uvec3& t, int first) {
     Corners c{};
@@ -235,13 +238,17 @@ int64_t made_triangles_turning(const Mesh& marched, const Mesh& simplified, floa
   for (const glm::uvec3& t : marched.triangles)
     for (int first = 0; first < 3; ++first)
       kept.insert(corners(marched, t, first));
-  const float min_cos = std::cos(glm::radians(max_deg));
+  auto edge_turns = [&](uint32_t a, uint32_t b) {
+    const double deg = glm::degrees(std::acos(std::clamp(
+        static_cast<double>(glm::dot(simplified.normals[a], simplified.normals[b])), -1.0, 1.0)));
+    const double length = glm::distance(simplified.positions[a], simplified.positions[b]);
+    // A thousandth of a degree for float rounding near the bound.
+    return deg > max_deg + 1e-3 ||
+           (length > full_turn_length && deg * length > (max_deg + 1e-3) * full_turn_length);
+  };
   int64_t turning = 0;
   for (const glm::uvec3& t : simplified.triangles) {
-    const glm::vec3 a = simplified.normals[t.x], b = simplified.normals[t.y],
-                    c = simplified.normals[t.z];
-    const bool turns =
-        glm::dot(a, b) < min_cos || glm::dot(b, c) < min_cos || glm::dot(a, c) < min_cos;
+    const bool turns = edge_turns(t.x, t.y) || edge_turns(t.y, t.z) || edge_turns(t.x, t.z);
     turning += turns && !kept.contains(corners(simplified, t, 0));
   }
   return turning;
@@ -255,7 +262,7 @@ TEST(BrickSimplify, NoTriangleMadeTurnsItsNormalsFurtherThanAsked) {
   const Volume v = dimpled_sphere(96);
   MixedLevelMeshCache cache;
   cache.update(v, std::vector<int>(static_cast<size_t>(v.brick_count()), 0));
-  constexpr float kMaxDeg = 37.0f;
+  constexpr float kMaxDeg = 37.0f, kFullTurnLength = 20.0f * 0.2f;
   int64_t turning_free = 0, turning_limited = 0, marched_triangles = 0, limited_triangles = 0;
   std::vector<BrickMesh> limited;
   for (int64_t i = 0; i < v.brick_count(); ++i) {
@@ -263,9 +270,10 @@ TEST(BrickSimplify, NoTriangleMadeTurnsItsNormalsFurtherThanAsked) {
     if (m.empty()) continue;
     const SimplifiedBrick free = simplify_brick_mesh(m, 0.2f, BorderHold::kVertices);
     const SimplifiedBrick held = simplify_brick_mesh(m, 0.2f, BorderHold::kVertices, kMaxDeg);
-    const int64_t free_turning = made_triangles_turning(m.mesh, free.brick.mesh, kMaxDeg);
+    const int64_t free_turning =
+        made_triangles_turning(m.mesh, free.brick.mesh, kMaxDeg, kFullTurnLength);
     turning_free += free_turning;
-    turning_limited += made_triangles_turning(m.mesh, held.brick.mesh, kMaxDeg);
+    turning_limited += made_triangles_turning(m.mesh, held.brick.mesh, kMaxDeg, kFullTurnLength);
     // Counted, not held: the same mesh as without the limit, and what
     // turns in it.
     const SimplifiedBrick counted =

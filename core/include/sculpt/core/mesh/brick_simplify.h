@@ -67,7 +67,9 @@ enum class TurnLimit {
 /// 0, comes back as it was.
 ///
 /// With normals, no triangle the simplifier made has two corners whose
-/// normals are more than `max_normal_turn_deg` apart (180: no limit): the
+/// normals are more than `max_normal_turn_deg` apart (180: no limit; along
+/// an edge longer than 20 `max_error`, that angle times 20 `max_error` over
+/// the edge's length): the
 /// marched triangles around it are kept instead (or, with TurnLimit::kCount,
 /// it is only counted). Where the shading turns
 /// fast (an eye socket's rim, a mouth's corner), a long triangle from there
