@@ -357,12 +357,15 @@ std::vector<const BrickMesh*> non_empty_bricks(const MeshCache& cache) {
 void BM_SimplifyBricks(benchmark::State& state) {
   const std::vector<const BrickMesh*> bricks = non_empty_bricks(sphere_bricks(256));
   const BorderHold hold = state.range(0) == 0 ? BorderHold::kBand : BorderHold::kVertices;
-  const float max_turn_deg = state.range(0) == 2 ? 37.0f : 180.0f;
+  // The window's limit: 37 degrees, in proportion less along edges longer
+  // than 4 voxels.
+  const NormalTurnLimit turn =
+      state.range(0) == 2 ? NormalTurnLimit{37.0f, 4.0f} : NormalTurnLimit{};
   int64_t kept = 0, marched = 0;
   for (auto _ : state) {
     kept = marched = 0;
     for (const BrickMesh* b : bricks) {
-      const SimplifiedBrick s = simplify_brick_mesh(*b, 0.2f, hold, max_turn_deg);
+      const SimplifiedBrick s = simplify_brick_mesh(*b, 0.2f, hold, turn);
       kept += static_cast<int64_t>(s.brick.mesh.triangles.size());
       marched += static_cast<int64_t>(b->mesh.triangles.size());
     }

@@ -91,21 +91,12 @@ bool same_topology(const MeshTopology& marched, const Mesh& simplified) {
 }
 
 // Marched triangles held around each corner of a simplified triangle whose
-// normals turn too far (simplify_brick_mesh's max_normal_turn_deg), in rings
+// normals turn too far (NormalTurnLimit), in rings
 // of triangles, and how many times a part is simplified again for them. On
 // the played demo at 37 degrees: one ring a round left streaks after eight
 // rounds; two rings none, nine parts in ten done within two rounds.
 constexpr int kHeldRings = 2;
 constexpr int kHoldRounds = 4;
-// Along an edge longer than this many times the error bound (4 voxels at
-// the window's 0.2), the normals may turn only in proportion less: a long
-// triangle from a crease's rim into the flat clay around, its normals well
-// within the limit, spreads the rim's shading over its length, a dark
-// wedge beside an eye socket. The played demo (640x400, pixels more than 8
-// levels off the marched picture; triangles): 0.075% and 36.8k without
-// it, 0.054% and 39.7k at 20 (a few faint wedges left), 0.034% and 42.5k
-// at 15; the bust 87k -> 96k triangles at 20.
-constexpr float kFullTurnErrors = 20.0f;
 
 // The marched triangles: which lie around each vertex, and whether a
 // triangle is one of them. Made when first asked for: most parts simplify
@@ -181,7 +172,7 @@ std::vector<unsigned> simplify_part(const Mesh& in, MarchedTriangles& marched,
     const float cos = glm::dot(in.normals[a], in.normals[b]);
     if (cos < min_turn_cos) return true;
     const float length = glm::distance(in.positions[a], in.positions[b]);
-    return length > full_turn_length &&
+    return full_turn_length > 0.0f && length > full_turn_length &&
            std::acos(std::min(cos, 1.0f)) * length > max_turn_rad * full_turn_length;
   };
   auto turns_too_far = [&](unsigned a, unsigned b, unsigned c) {
@@ -218,7 +209,7 @@ std::vector<unsigned> simplify_part(const Mesh& in, MarchedTriangles& marched,
 }  // namespace
 
 SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error, BorderHold hold,
-                                    float max_normal_turn_deg, TurnLimit limit) {
+                                    const NormalTurnLimit& turn) {
   const Mesh& in = brick.mesh;
   if (in.triangles.empty() || !(max_error > 0.0f)) return {brick, 0.0f};
   static_assert(sizeof(glm::vec3) == 3 * sizeof(float) &&
@@ -236,9 +227,7 @@ SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error, Bor
   if (!(scale > 0.0f) || std::all_of(band.begin(), band.end(), [](bool b) { return b; }))
     return {brick, 0.0f};
   MarchedTriangles marched_triangles(in);
-  const float full_turn_length = kFullTurnErrors * max_error;
-  const float min_turn_cos =
-      max_normal_turn_deg >= 180.0f ? -2.0f : std::cos(glm::radians(max_normal_turn_deg));
+  const float min_turn_cos = turn.max_deg >= 180.0f ? -2.0f : std::cos(glm::radians(turn.max_deg));
   // meshoptimizer does not check every collapse against folding the
   // surface onto itself: now and then (one brick of the played demo's
   // thousand) a collapse makes an edge of four triangles. Such a result is
@@ -258,13 +247,13 @@ SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error, Bor
     std::vector<bool> held_first = band;
     const std::vector<unsigned> smooth =
         simplify_part(in, marched_triangles, held_first, relative_target, min_turn_cos,
-                      full_turn_length, limit, relative_error, turning);
+                      turn.full_turn_length, turn.action, relative_error, turning);
     std::vector<bool> held_then(held_first.size());
     for (size_t t = 0; t < held_then.size(); ++t)
       held_then[t] = !held_first[t] || band[t];
     const std::vector<unsigned> creases =
         simplify_part(in, marched_triangles, held_then, relative_target, min_turn_cos,
-                      full_turn_length, limit, relative_error, turning);
+                      turn.full_turn_length, turn.action, relative_error, turning);
     // Marched: what both held.
     std::vector<unsigned> indices;
     for (size_t t = 0; t < in.triangles.size(); ++t)

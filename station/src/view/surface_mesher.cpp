@@ -518,9 +518,10 @@ void SurfaceMesher::simplify_refined(const core::MixedLevelMeshCache& cache,
 SurfaceMesher::Simplified SurfaceMesher::simplify_brick(const core::BrickMesh& mesh, int level,
                                                         bool quick) const {
   // Drawn brick by brick, never welded: only the border's vertices stay.
+  core::NormalTurnLimit turn = turn_limit(level);
+  if (quick) turn.action = core::TurnLimit::kCount;
   core::SimplifiedBrick s = core::simplify_brick_mesh(
-      mesh, simplify_error_ * static_cast<float>(1 << level), core::BorderHold::kVertices,
-      kMaxNormalTurnDeg, quick ? core::TurnLimit::kCount : core::TurnLimit::kHold);
+      mesh, simplify_error_ * static_cast<float>(1 << level), core::BorderHold::kVertices, turn);
   Simplified out;
   out.marched = static_cast<int64_t>(mesh.mesh.triangles.size());
   out.kept = static_cast<int64_t>(s.brick.mesh.triangles.size());

@@ -5,10 +5,8 @@
 #include "sculpt/core/mesh/brick_simplify.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
-#include <set>
 #include <span>
 #include <vector>
 
@@ -17,6 +15,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "made_triangles_turning.h"
 #include "sculpt/core/mesh/mixed_level_mesh.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 
@@ -220,40 +219,6 @@ Volume dimpled_sphere(int n) {
   });
 }
 
-// Made by the simplifier, not kept as marched, and with two corners whose
-// normals are more than `max_deg` apart, or, along an edge longer than
-// `full_turn_length`, `max_deg` times full_turn_length over its length: such
-// a triangle shows as a streak or a wedge.
-int64_t made_triangles_turning(const Mesh& marched, const Mesh& simplified, float max_deg,
-                               float full_turn_length) {
-  using Corners = std::array<float, 9>;
-  auto corners = [](const Mesh& m, const glm::uvec3& t, int first) {
-    Corners c{};
-    for (int k = 0; k < 3; ++k)
-      for (int a = 0; a < 3; ++a)
-        c[static_cast<size_t>(3 * k + a)] = m.positions[t[(first + k) % 3]][a];
-    return c;
-  };
-  std::set<Corners> kept;
-  for (const glm::uvec3& t : marched.triangles)
-    for (int first = 0; first < 3; ++first)
-      kept.insert(corners(marched, t, first));
-  auto edge_turns = [&](uint32_t a, uint32_t b) {
-    const double deg = glm::degrees(std::acos(std::clamp(
-        static_cast<double>(glm::dot(simplified.normals[a], simplified.normals[b])), -1.0, 1.0)));
-    const double length = glm::distance(simplified.positions[a], simplified.positions[b]);
-    // A thousandth of a degree for float rounding near the bound.
-    return deg > max_deg + 1e-3 ||
-           (length > full_turn_length && deg * length > (max_deg + 1e-3) * full_turn_length);
-  };
-  int64_t turning = 0;
-  for (const glm::uvec3& t : simplified.triangles) {
-    const bool turns = edge_turns(t.x, t.y) || edge_turns(t.y, t.z) || edge_turns(t.x, t.z);
-    turning += turns && !kept.contains(corners(simplified, t, 0));
-  }
-  return turning;
-}
-
 // Where the normals turn fast a simplified triangle stays short: none that
 // the simplifier made has normals further apart than asked, while the
 // bricks still meet, stay within the error and lose most of their
@@ -262,22 +227,24 @@ TEST(BrickSimplify, NoTriangleMadeTurnsItsNormalsFurtherThanAsked) {
   const Volume v = dimpled_sphere(96);
   MixedLevelMeshCache cache;
   cache.update(v, std::vector<int>(static_cast<size_t>(v.brick_count()), 0));
-  constexpr float kMaxDeg = 37.0f, kFullTurnLength = 20.0f * 0.2f;
+  constexpr float kMaxDeg = 37.0f, kFullTurnLength = 4.0f;
   int64_t turning_free = 0, turning_limited = 0, marched_triangles = 0, limited_triangles = 0;
   std::vector<BrickMesh> limited;
   for (int64_t i = 0; i < v.brick_count(); ++i) {
     const BrickMesh& m = cache.brick_mesh(grid_position(i, v.brick_grid()));
     if (m.empty()) continue;
     const SimplifiedBrick free = simplify_brick_mesh(m, 0.2f, BorderHold::kVertices);
-    const SimplifiedBrick held = simplify_brick_mesh(m, 0.2f, BorderHold::kVertices, kMaxDeg);
+    const SimplifiedBrick held =
+        simplify_brick_mesh(m, 0.2f, BorderHold::kVertices, {kMaxDeg, kFullTurnLength});
     const int64_t free_turning =
-        made_triangles_turning(m.mesh, free.brick.mesh, kMaxDeg, kFullTurnLength);
+        test::made_triangles_turning(m.mesh, free.brick.mesh, kMaxDeg, kFullTurnLength);
     turning_free += free_turning;
-    turning_limited += made_triangles_turning(m.mesh, held.brick.mesh, kMaxDeg, kFullTurnLength);
+    turning_limited +=
+        test::made_triangles_turning(m.mesh, held.brick.mesh, kMaxDeg, kFullTurnLength);
     // Counted, not held: the same mesh as without the limit, and what
     // turns in it.
-    const SimplifiedBrick counted =
-        simplify_brick_mesh(m, 0.2f, BorderHold::kVertices, kMaxDeg, TurnLimit::kCount);
+    const SimplifiedBrick counted = simplify_brick_mesh(
+        m, 0.2f, BorderHold::kVertices, {kMaxDeg, kFullTurnLength, TurnLimit::kCount});
     EXPECT_EQ(counted.brick.mesh, free.brick.mesh);
     EXPECT_EQ(counted.turning, free_turning);
     EXPECT_EQ(held.turning, 0);

@@ -54,7 +54,7 @@ void expect_same_surface(const SurfaceSnapshot& snapshot, const core::Volume& vo
     const int level = levels[static_cast<size_t>(i)];
     const core::SimplifiedBrick simplified =
         core::simplify_brick_mesh(want, simplify_error * static_cast<float>(1 << level),
-                                  core::BorderHold::kVertices, SurfaceMesher::kMaxNormalTurnDeg);
+                                  core::BorderHold::kVertices, SurfaceMesher::turn_limit(level));
     EXPECT_EQ(it->second.mesh->mesh, simplified.brick.mesh) << "brick " << i;
   }
   EXPECT_GT(non_empty, 8);
@@ -248,10 +248,11 @@ TEST(SurfaceMesher, DabsOnANewVolumeAreShownCoarseWhileItIsRefined) {
     const core::BrickMesh& m = scratch.brick_mesh(core::grid_position(i, s.volume().brick_grid()));
     if (m.empty()) continue;
     ++non_empty;
-    turning +=
-        core::simplify_brick_mesh(m, SurfaceMesher::kSimplifyError, core::BorderHold::kVertices,
-                                  SurfaceMesher::kMaxNormalTurnDeg, core::TurnLimit::kCount)
-            .turning > 0;
+    core::NormalTurnLimit quick = SurfaceMesher::turn_limit(0);
+    quick.action = core::TurnLimit::kCount;
+    turning += core::simplify_brick_mesh(m, SurfaceMesher::kSimplifyError,
+                                         core::BorderHold::kVertices, quick)
+                   .turning > 0;
   }
   EXPECT_GT(turning, 0);
   EXPECT_LT(turning, non_empty);

@@ -54,9 +54,25 @@ enum class TurnLimit {
   /// The marched triangles around its corners are kept instead.
   kHold,
   /// It stays, counted (SimplifiedBrick::turning): a quick simplification
-  /// that says whether the held one is needed, as it is for about one
-  /// brick in ten of a played sculpture.
+  /// that says whether the held one is needed (for a few bricks of a
+  /// sculpture, where its clay turns fast).
   kCount,
+};
+
+/// How far normals may turn across a triangle the simplifier made. Where
+/// the shading turns fast (an eye socket's rim, a mouth's corner), a long
+/// triangle from there into the smooth part around is flat enough for any
+/// error bound, but the normal swings across it: drawn, it shows a streak,
+/// a fan of them a star; within the angle but long, it spreads the rim's
+/// turn over its length, a wedge. meshoptimizer 0.18 (Debian's) weighs
+/// positions only.
+struct NormalTurnLimit {
+  /// Between any two corners, degrees (180: no limit).
+  float max_deg = 180.0f;
+  /// Along an edge longer than this (the positions' units; 0: no such
+  /// rule), only `max_deg` times this over the edge's length.
+  float full_turn_length = 0.0f;
+  TurnLimit action = TurnLimit::kHold;
 };
 
 /// `brick` with edges collapsed while the surface moves by at most
@@ -64,21 +80,11 @@ enum class TurnLimit {
 /// meshes); border vertices stay (and, with BorderHold::kBand, the
 /// triangles around them), normals and seam keys follow their vertices,
 /// vertices no triangle uses are dropped. An empty mesh, or `max_error` <=
-/// 0, comes back as it was.
-///
-/// With normals, no triangle the simplifier made has two corners whose
-/// normals are more than `max_normal_turn_deg` apart (180: no limit; along
-/// an edge longer than 20 `max_error`, that angle times 20 `max_error` over
-/// the edge's length): the
-/// marched triangles around it are kept instead (or, with TurnLimit::kCount,
-/// it is only counted). Where the shading turns
-/// fast (an eye socket's rim, a mouth's corner), a long triangle from there
-/// into the smooth part around is flat enough for any error bound, but the
-/// normal swings across it: drawn, it shows a streak, a fan of them a star.
-/// meshoptimizer 0.18 (Debian's) weighs positions only.
+/// 0, comes back as it was. With normals, no triangle the simplifier made
+/// turns them further than `turn` allows: the marched triangles around it
+/// are kept instead (or, with TurnLimit::kCount, it is only counted).
 SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error,
                                     BorderHold hold = BorderHold::kBand,
-                                    float max_normal_turn_deg = 180.0f,
-                                    TurnLimit limit = TurnLimit::kHold);
+                                    const NormalTurnLimit& turn = {});
 
 }  // namespace sculpt::core

@@ -66,6 +66,7 @@
 
 #include "sculpt/base/latency_histogram.h"
 #include "sculpt/core/mesh/brick_mesh.h"
+#include "sculpt/core/mesh/brick_simplify.h"
 #include "sculpt/core/mesh/mixed_level_mesh.h"
 #include "sculpt/core/volume/volume.h"
 
@@ -156,10 +157,21 @@ class SurfaceMesher {
   /// demo's eyes and mouth). The demo at 37 degrees: 37k triangles drawn
   /// against 31k with no limit, pixels more than 8 levels off the marched
   /// picture 0.20% against 0.61% (1280x800); at 26 degrees 49k and 0.16%.
-  /// With the density normals that keep to the ramp and the limit shrinking
-  /// along long edges (dark wedges beside the eye sockets): 39.7k triangles,
-  /// 0.054% (640x400, the window test).
   static constexpr float kMaxNormalTurnDeg = 37.0f;
+  /// Along a simplified edge longer than this (level-0 voxels, at level 0),
+  /// the normals may turn only kMaxNormalTurnDeg times this over its length:
+  /// a long triangle from a crease's rim into the flat clay around, its
+  /// normals well within the limit, spreads the rim's turn over its length,
+  /// a dark wedge beside an eye socket. The played demo project at 640x400
+  /// (pixels more than 8 levels off the marched picture; triangles): 0.075%
+  /// and 36.8k with no such rule, 0.054% and 39.7k at 4 voxels (a faint
+  /// trace left on the nose), 0.034% and 42.5k at 3; the bust 86k -> 96k
+  /// triangles at 4.
+  static constexpr float kFullTurnLengthVox = 4.0f;
+  /// The limit for a brick at `level` (its voxels 2^level level-0 voxels).
+  static core::NormalTurnLimit turn_limit(int level) {
+    return {kMaxNormalTurnDeg, kFullTurnLengthVox * static_cast<float>(1 << level)};
+  }
 
   /// `threads` mesh the changed bricks of one update in parallel (0: all
   /// cores); the meshes do not depend on it. `simplify_error`: in voxels of
