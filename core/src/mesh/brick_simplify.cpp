@@ -91,8 +91,8 @@ bool same_topology(const MeshTopology& marched, const Mesh& simplified) {
 }
 
 // Marched triangles held around each corner of a simplified triangle whose
-// normals turn too far (NormalTurnLimit), in rings
-// of triangles, and how many times a part is simplified again for them. On
+// normals turn too far (NormalTurnLimit), in rings of triangles, and how
+// many times a part is simplified again for them. On
 // the played demo at 37 degrees: one ring a round left streaks after eight
 // rounds; two rings none, nine parts in ten done within two rounds.
 constexpr int kHeldRings = 2;
@@ -157,10 +157,12 @@ class MarchedTriangles {
 // locked, as indices into the marched vertices. A simplified triangle (not
 // one of the marched) whose corners' normals are further apart than
 // `min_turn_cos` (or, along an edge longer than `full_turn_length`, than
-// that angle times full_turn_length / the edge's length) holds the marched triangles around its
-// corners, and the part is simplified again, up to kHoldRounds times; `held` grows by them. With
-// TurnLimit::kCount nothing is held: the turning triangles are only counted. `relative_error`
-// becomes at least the simplifier's estimate, `turning` grows by the turning triangles left.
+// that angle times full_turn_length over the edge's length) holds the
+// marched triangles around its corners, and the part is simplified again,
+// up to kHoldRounds times; `held` grows by them. With TurnLimit::kCount
+// nothing is held: the turning triangles are only counted.
+// `relative_error` becomes at least the simplifier's estimate,
+// `turning_left` grows by the turning triangles left.
 std::vector<unsigned> simplify_part(const Mesh& in, MarchedTriangles& marched,
                                     std::vector<bool>& held, float relative_target,
                                     float min_turn_cos, float full_turn_length, TurnLimit limit,

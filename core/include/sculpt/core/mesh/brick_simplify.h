@@ -26,9 +26,10 @@ struct SimplifiedBrick {
   /// simplifier's estimate with the margin that makes it one (tested: no
   /// marched vertex lies farther than `max_error` from the result).
   float error = 0.0f;
-  /// Triangles the simplifier made (not kept as marched) whose corners'
-  /// normals are further apart than the limit asked, left in `brick`: those
-  /// TurnLimit::kCount counts, and those kHold could not avoid (none seen).
+  /// Triangles the simplifier made (not kept as marched) whose normals turn
+  /// further than the limit asked, left in `brick`: those TurnLimit::kCount
+  /// counts, and those kHold could not avoid within its rounds (none on the
+  /// played sculptures; a box's hard edges keep some).
   int64_t turning = 0;
 };
 
