@@ -10,22 +10,12 @@
 #include "sculpt/core/mesh/marching_cubes.h"
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
+#include "sphere_normal_error.h"
 
 namespace sculpt::core {
 namespace {
 
-// Mean and worst angle (degrees) between the mesh's normals and a sphere's.
-std::pair<double, double> sphere_normal_error(const Mesh& mesh, glm::vec3 centre) {
-  double sum = 0, worst = 0;
-  for (size_t i = 0; i < mesh.positions.size(); ++i) {
-    const glm::vec3 truth = glm::normalize(mesh.positions[i] - centre);
-    const double c = std::clamp<double>(glm::dot(glm::normalize(mesh.normals[i]), truth), -1, 1);
-    const double deg = std::acos(c) * 180.0 / 3.14159265358979;
-    sum += deg;
-    worst = std::max(worst, deg);
-  }
-  return {sum / static_cast<double>(mesh.positions.size()), worst};
-}
+using test::sphere_normal_error;
 
 TEST(SurfaceNormals, DistanceGradientNormalsOfASphereAreTrueToAFractionOfADegree) {
   const int n = 64;
@@ -35,8 +25,8 @@ TEST(SurfaceNormals, DistanceGradientNormalsOfASphereAreTrueToAFractionOfADegree
   const glm::vec3 centre(0.5f * (n - 1));
   set_normals_from_surface_distance(volume, mesh);
   const auto distance = sphere_normal_error(mesh, centre);
-  EXPECT_LT(distance.first, 0.5) << "mean";
-  EXPECT_LT(distance.second, 3.0) << "worst";
+  EXPECT_LT(distance.mean_deg, 0.5) << "mean";
+  EXPECT_LT(distance.max_deg, 3.0) << "worst";
 }
 
 // At a coarse level the density is a mean over 2^3 voxels, whose ramp
@@ -54,8 +44,9 @@ TEST(SurfaceNormals, AtACoarseLevelDistanceGradientNormalsAreTruerThanTheDensity
   const auto density = sphere_normal_error(mesh, centre);
   set_normals_from_surface_distance(volume, mesh);
   const auto distance = sphere_normal_error(mesh, centre);
-  EXPECT_LT(distance.first, 0.5 * density.first) << distance.first << " " << density.first;
-  EXPECT_LT(distance.second, 0.5 * density.second) << distance.second << " " << density.second;
+  EXPECT_LT(distance.mean_deg, 0.5 * density.mean_deg)
+      << distance.mean_deg << " " << density.mean_deg;
+  EXPECT_LT(distance.max_deg, 0.5 * density.max_deg) << distance.max_deg << " " << density.max_deg;
 }
 
 TEST(SurfaceNormals, APieceOfTheMeshGetsTheSameNormalsAsTheWhole) {

@@ -4,7 +4,6 @@
 #include "sculpt/core/mesh/marching_cubes.h"
 #include "sculpt/core/mesh/mesh_cache.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -13,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "sculpt/core/shapes/analytic_shapes.h"
+#include "sphere_normal_error.h"
 
 namespace sculpt::core {
 namespace {
@@ -67,25 +67,6 @@ TEST(MarchingCubes, SphereIsClosedRoundAndOutward) {
   EXPECT_EQ(outward_normal_share(mesh), 1.0);
 }
 
-// Angles in degrees between each vertex normal and the sphere's own
-// normal there: their mean and largest.
-struct NormalError {
-  double mean_deg = 0.0, max_deg = 0.0;
-};
-
-NormalError sphere_normal_error(const Mesh& mesh, glm::vec3 centre) {
-  NormalError e;
-  for (size_t i = 0; i < mesh.positions.size(); ++i) {
-    const glm::dvec3 radial = glm::normalize(glm::dvec3(mesh.positions[i] - centre));
-    const double cos = std::clamp(glm::dot(radial, glm::dvec3(mesh.normals[i])), -1.0, 1.0);
-    const double deg = std::acos(cos) * 180.0 / kPi;
-    e.mean_deg += deg;
-    e.max_deg = std::max(e.max_deg, deg);
-  }
-  e.mean_deg /= static_cast<double>(mesh.positions.size());
-  return e;
-}
-
 // The density ramps over two voxels across the surface and is clipped to 0
 // and 255 beyond: a central difference reaching past the ramp reads that
 // axis's slope short, and the normal tilts by how far the surface lies
@@ -96,8 +77,8 @@ TEST(MarchingCubes, DensityNormalsFollowTheSurface) {
   for (const float r_frac : {0.1f, 0.35f, 0.45f}) {
     const int n = 224;
     const Volume v = sphere_volume(n, r_frac);
-    const NormalError e =
-        sphere_normal_error(marching_cubes(v), glm::vec3(static_cast<float>(n - 1) / 2.0f));
+    const test::NormalError e =
+        test::sphere_normal_error(marching_cubes(v), glm::vec3(static_cast<float>(n - 1) / 2.0f));
     std::printf("radius %.1f: normals off the sphere's by %.3f degrees on average, %.3f at most\n",
                 static_cast<double>(r_frac) * n, e.mean_deg, e.max_deg);
     EXPECT_LT(e.mean_deg, 0.5);
