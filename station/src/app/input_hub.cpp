@@ -52,11 +52,14 @@ void InputHub::prepare(size_t warm_heap_bytes) {
     warmed_ = false;
     go_ = false;
   }
-  thread_ = std::thread([this, warm_heap_bytes] {
+  // The volume's own bricks (a project may use another edge than the
+  // default): read here, before the thread owns the controller.
+  const int brick_edge = controller_.loop().volume().brick_edge();
+  thread_ = std::thread([this, warm_heap_bytes, brick_edge] {
     name_this_thread("sculpting");
     if (warm_heap_bytes > 0) {
       warm_this_threads_heap(warm_heap_bytes);
-      core::keep_stroke_buffers(core::VolumeOptions{}.brick_edge, kWarmStrokeBricks);
+      core::keep_stroke_buffers(brick_edge, kWarmStrokeBricks);
     }
     std::unique_lock gate(gate_);
     warmed_ = true;
