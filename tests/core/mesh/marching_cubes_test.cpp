@@ -72,7 +72,7 @@ TEST(MarchingCubes, SphereIsClosedRoundAndOutward) {
 // axis's slope short, and the normal tilts by how far the surface lies
 // between grid points, which on a sphere is rings of shading. The
 // differences on the ramp's side keep the normals on the sphere's, at every
-// radius (the demo's head is 100 voxels across).
+// radius (22 to 101 voxels here; the demo's biggest ball is 66).
 TEST(MarchingCubes, DensityNormalsFollowTheSurface) {
   for (const float r_frac : {0.1f, 0.35f, 0.45f}) {
     const int n = 224;

@@ -269,9 +269,9 @@ class SurfaceMesher {
     std::shared_ptr<const core::BrickMesh> mesh;
     int64_t marched = 0, kept = 0;  // triangles before and after
     float error = 0.0f;
-    int64_t turning = 0;  // made triangles left turning further than kMaxNormalTurnDeg
+    int64_t turning = 0;  // made triangles left turning further than turn_limit() allows
   };
-  // `quick`: the triangles turning further than kMaxNormalTurnDeg only
+  // `quick`: the triangles turning further than turn_limit() allows only
   // counted, not avoided (core::TurnLimit::kCount).
   Simplified simplify_brick(const core::BrickMesh& mesh, int level, bool quick = false) const;
   void count_simplified(const Simplified& s);
