@@ -358,9 +358,10 @@ void BM_SimplifyBricks(benchmark::State& state) {
   const std::vector<const BrickMesh*> bricks = non_empty_bricks(sphere_bricks(256));
   const BorderHold hold = state.range(0) == 0 ? BorderHold::kBand : BorderHold::kVertices;
   // The window's limit: 37 degrees, in proportion less along edges longer
-  // than 4 voxels.
+  // than 4 voxels, and 8 degrees between a removed vertex and the surface
+  // made over it.
   const NormalTurnLimit turn =
-      state.range(0) == 2 ? NormalTurnLimit{37.0f, 4.0f} : NormalTurnLimit{};
+      state.range(0) == 2 ? NormalTurnLimit{37.0f, 4.0f, 8.0f} : NormalTurnLimit{};
   int64_t kept = 0, marched = 0;
   for (auto _ : state) {
     kept = marched = 0;

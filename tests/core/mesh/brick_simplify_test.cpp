@@ -16,6 +16,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "made_triangles_turning.h"
+#include "removed_vertices_turning.h"
 #include "sculpt/core/mesh/mixed_level_mesh.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 
@@ -244,7 +245,8 @@ TEST(BrickSimplify, NoTriangleMadeTurnsItsNormalsFurtherThanAsked) {
     // Counted, not held: the same mesh as without the limit, and what
     // turns in it.
     const SimplifiedBrick counted = simplify_brick_mesh(
-        m, 0.2f, BorderHold::kVertices, {kMaxDeg, kFullTurnLength, TurnLimit::kCount});
+        m, 0.2f, BorderHold::kVertices,
+        {.max_deg = kMaxDeg, .full_turn_length = kFullTurnLength, .action = TurnLimit::kCount});
     EXPECT_EQ(counted.brick.mesh, free.brick.mesh);
     EXPECT_EQ(counted.turning, free_turning);
     EXPECT_EQ(held.turning, 0);
@@ -263,6 +265,76 @@ TEST(BrickSimplify, NoTriangleMadeTurnsItsNormalsFurtherThanAsked) {
   EXPECT_GT(turning_free, 20);
   EXPECT_EQ(turning_limited, 0);
   EXPECT_LT(4 * limited_triangles, marched_triangles);
+  const MeshTopology t = check_topology(weld(limited));
+  EXPECT_EQ(t.boundary_edges, 0);
+  EXPECT_EQ(t.euler_characteristic(), 2);
+}
+
+// A ball with a ridge lying over its top, like an eyebrow on a head: where
+// the ridge meets the ball the clay turns one way and back across a
+// concave fillet.
+Volume ridged_sphere(int n) {
+  const glm::vec3 centre(static_cast<float>(n - 1) / 2.0f);
+  const float radius = 0.35f * static_cast<float>(n), ridge_radius = 0.05f * static_cast<float>(n);
+  const glm::vec3 ridge_a = centre + radius * glm::normalize(glm::vec3(-0.9f, 1.0f, 0.3f));
+  const glm::vec3 ridge_b = centre + radius * glm::normalize(glm::vec3(0.9f, 1.0f, 0.3f));
+  return Volume::from_bricks(glm::ivec3(n), {}, [&](const Box& box, std::span<uint8_t> out) {
+    size_t i = 0;
+    for (int z = box.lo.z; z < box.hi.z; ++z)
+      for (int y = box.lo.y; y < box.hi.y; ++y)
+        for (int x = box.lo.x; x < box.hi.x; ++x) {
+          const glm::vec3 p(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
+          const glm::vec3 ab = ridge_b - ridge_a;
+          const float t = std::clamp(glm::dot(p - ridge_a, ab) / glm::dot(ab, ab), 0.0f, 1.0f);
+          const float to_ridge = glm::length(p - (ridge_a + t * ab)) - ridge_radius;
+          out[i++] = density_from_distance(std::min(glm::length(p - centre) - radius, to_ridge));
+        }
+  });
+}
+
+// Where the clay turns one way and back between a made triangle's corners,
+// the triangles around the vertices it would remove stay as marched: no
+// removed vertex lies further from the normal the surface made over it
+// interpolates than asked. Without that rule the ridge's fillets have many.
+TEST(BrickSimplify, NoRemovedVertexTurnsFromTheSurfaceMadeOverIt) {
+  const Volume v = ridged_sphere(96);
+  MixedLevelMeshCache cache;
+  cache.update(v, std::vector<int>(static_cast<size_t>(v.brick_count()), 0));
+  constexpr NormalTurnLimit kWithout{37.0f, 4.0f}, kWith{37.0f, 4.0f, 8.0f};
+  int64_t turning_without = 0, turning_with = 0, triangles_without = 0, triangles_with = 0;
+  std::vector<BrickMesh> limited;
+  for (int64_t i = 0; i < v.brick_count(); ++i) {
+    const BrickMesh& m = cache.brick_mesh(grid_position(i, v.brick_grid()));
+    if (m.empty()) continue;
+    const SimplifiedBrick without = simplify_brick_mesh(m, 0.2f, BorderHold::kVertices, kWithout);
+    const SimplifiedBrick with = simplify_brick_mesh(m, 0.2f, BorderHold::kVertices, kWith);
+    turning_without += test::removed_vertices_turning(m.mesh, without.brick.mesh, 8.0f);
+    turning_with += test::removed_vertices_turning(m.mesh, with.brick.mesh, 8.0f);
+    triangles_without += static_cast<int64_t>(without.brick.mesh.triangles.size());
+    triangles_with += static_cast<int64_t>(with.brick.mesh.triangles.size());
+    EXPECT_EQ(with.turning, 0);
+    EXPECT_EQ(test::made_triangles_turning(m.mesh, with.brick.mesh, 37.0f, 4.0f), 0);
+    for (const glm::vec3& p : m.mesh.positions)
+      ASSERT_LE(distance_to_mesh(p, with.brick.mesh), 0.2f);
+    // Counted, not held: the same mesh as with no limit, and what turns
+    // in it counted.
+    NormalTurnLimit counting = kWith;
+    counting.action = TurnLimit::kCount;
+    const SimplifiedBrick counted = simplify_brick_mesh(m, 0.2f, BorderHold::kVertices, counting);
+    const SimplifiedBrick free = simplify_brick_mesh(m, 0.2f, BorderHold::kVertices);
+    EXPECT_EQ(counted.brick.mesh, free.brick.mesh);
+    if (test::removed_vertices_turning(m.mesh, free.brick.mesh, 8.0f) > 0)
+      EXPECT_GT(counted.turning, 0);
+    limited.push_back(with.brick);
+  }
+  std::printf(
+      "removed vertices turning over 8 degrees: %lld without the rule, %lld with it; "
+      "%lld -> %lld triangles\n",
+      static_cast<long long>(turning_without), static_cast<long long>(turning_with),
+      static_cast<long long>(triangles_without), static_cast<long long>(triangles_with));
+  EXPECT_GT(turning_without, 10);
+  EXPECT_EQ(turning_with, 0);
+  EXPECT_LT(triangles_with, 2 * triangles_without);
   const MeshTopology t = check_topology(weld(limited));
   EXPECT_EQ(t.boundary_edges, 0);
   EXPECT_EQ(t.euler_characteristic(), 2);

@@ -26,8 +26,9 @@ struct SimplifiedBrick {
   /// simplifier's estimate with the margin that makes it one (tested: no
   /// marched vertex lies farther than `max_error` from the result).
   float error = 0.0f;
-  /// Triangles the simplifier made (not kept as marched) whose normals turn
-  /// further than the limit asked, left in `brick`: those TurnLimit::kCount
+  /// Places where the normals turn further than the limit asked, left in
+  /// `brick`: triangles the simplifier made (not kept as marched) and
+  /// marched vertices it removed (NormalTurnLimit). Those TurnLimit::kCount
   /// counts, and those kHold could not avoid within its rounds (none on the
   /// played sculptures; a box's hard edges keep some).
   int64_t turning = 0;
@@ -73,6 +74,12 @@ struct NormalTurnLimit {
   /// Along an edge longer than this (the positions' units; 0: no such
   /// rule), only `max_deg` times this over the edge's length.
   float full_turn_length = 0.0f;
+  /// Between a vertex the simplifier removed and the normal the triangle
+  /// made over it interpolates at its nearest point, degrees (180: no such
+  /// rule): where the clay turns one way and back between a triangle's
+  /// corners (a concave fillet), the corners agree, and the turn between
+  /// them, dropped, shows as a light blob.
+  float max_removed_deg = 180.0f;
   TurnLimit action = TurnLimit::kHold;
 };
 
@@ -82,8 +89,9 @@ struct NormalTurnLimit {
 /// triangles around them), normals and seam keys follow their vertices,
 /// vertices no triangle uses are dropped. An empty mesh, or `max_error` <=
 /// 0, comes back as it was. With normals, no triangle the simplifier made
-/// turns them further than `turn` allows: the marched triangles around it
-/// are kept instead (or, with TurnLimit::kCount, it is only counted).
+/// turns them further than `turn` allows, nor drops a turn it allows no
+/// more of: the marched triangles around are kept instead (or, with
+/// TurnLimit::kCount, the places are only counted).
 SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error,
                                     BorderHold hold = BorderHold::kBand,
                                     const NormalTurnLimit& turn = {});
