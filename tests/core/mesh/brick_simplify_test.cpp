@@ -323,8 +323,9 @@ TEST(BrickSimplify, NoRemovedVertexTurnsFromTheSurfaceMadeOverIt) {
     const SimplifiedBrick counted = simplify_brick_mesh(m, 0.2f, BorderHold::kVertices, counting);
     const SimplifiedBrick free = simplify_brick_mesh(m, 0.2f, BorderHold::kVertices);
     EXPECT_EQ(counted.brick.mesh, free.brick.mesh);
-    if (test::removed_vertices_turning(m.mesh, free.brick.mesh, 8.0f) > 0)
+    if (test::removed_vertices_turning(m.mesh, free.brick.mesh, 8.0f) > 0) {
       EXPECT_GT(counted.turning, 0);
+    }
     limited.push_back(with.brick);
   }
   std::printf(
