@@ -353,15 +353,18 @@ std::vector<const BrickMesh*> non_empty_bricks(const MeshCache& cache) {
 // hold:0 holds the band of triangles around each brick's border (an
 // export's chunks), hold:1 its vertices alone, hold:2 that and the window's
 // limit on how far normals turn across a triangle (the drawn bricks; a
-// sphere has no crease, so this is what checking the limit costs).
+// sphere has no crease, so this is what checking the limit costs), hold:3
+// the limit's places only counted (the refiner's quick pass, on the path
+// to a new volume's full detail).
 void BM_SimplifyBricks(benchmark::State& state) {
   const std::vector<const BrickMesh*> bricks = non_empty_bricks(sphere_bricks(256));
   const BorderHold hold = state.range(0) == 0 ? BorderHold::kBand : BorderHold::kVertices;
   // The window's limit: 37 degrees, in proportion less along edges longer
   // than 4 voxels, and 8 degrees between a removed vertex and the surface
   // made over it.
-  const NormalTurnLimit turn =
-      state.range(0) == 2 ? NormalTurnLimit{37.0f, 4.0f, 8.0f} : NormalTurnLimit{};
+  NormalTurnLimit turn =
+      state.range(0) >= 2 ? NormalTurnLimit{37.0f, 4.0f, 8.0f} : NormalTurnLimit{};
+  if (state.range(0) == 3) turn.action = TurnLimit::kCount;
   int64_t kept = 0, marched = 0;
   for (auto _ : state) {
     kept = marched = 0;
@@ -379,6 +382,7 @@ BENCHMARK(BM_SimplifyBricks)
     ->Arg(0)
     ->Arg(1)
     ->Arg(2)
+    ->Arg(3)
     ->ArgName("hold")
     ->Unit(benchmark::kMillisecond);
 

@@ -296,7 +296,8 @@ std::vector<uint32_t> removed_turning(const Mesh& in, const std::vector<unsigned
 // further than turn.max_removed_deg from the surface made over it
 // (removed_turning). The part is then simplified again, up to kHoldRounds
 // times; `held` grows by them. With TurnLimit::kCount nothing is held:
-// those places are only counted. `relative_error` becomes at least the
+// the made triangles are only counted (removed vertices not looked at).
+// `relative_error` becomes at least the
 // simplifier's estimate, `turning_left` grows by the places left.
 std::vector<unsigned> simplify_part(const Mesh& in, MarchedTriangles& marched,
                                     std::vector<bool>& held, float relative_target, float scale,
@@ -308,7 +309,8 @@ std::vector<unsigned> simplify_part(const Mesh& in, MarchedTriangles& marched,
   const bool has_normals =
       in.normals.size() == in.positions.size() && in.positions.size() < (size_t{1} << 21);
   const bool turns_checked = min_turn_cos > -1.0f && has_normals;
-  const bool removed_checked = min_removed_cos > -1.0f && has_normals;
+  const bool removed_checked =
+      min_removed_cos > -1.0f && has_normals && turn.action == TurnLimit::kHold;
   const float max_turn_rad = std::acos(std::max(min_turn_cos, -1.0f));
   auto edge_turns = [&](unsigned a, unsigned b) {
     const float cos = glm::dot(in.normals[a], in.normals[b]);

@@ -27,10 +27,10 @@ struct SimplifiedBrick {
   /// marched vertex lies farther than `max_error` from the result).
   float error = 0.0f;
   /// Places where the normals turn further than the limit asked, left in
-  /// `brick`: triangles the simplifier made (not kept as marched) and
-  /// marched vertices it removed (NormalTurnLimit). Those TurnLimit::kCount
-  /// counts, and those kHold could not avoid within its rounds (none on the
-  /// played sculptures; a box's hard edges keep some).
+  /// `brick`: triangles the simplifier made (not kept as marched) and, with
+  /// TurnLimit::kHold, marched vertices it removed (NormalTurnLimit). Those
+  /// TurnLimit::kCount counts, and those kHold could not avoid within its
+  /// rounds (none on the played sculptures; a box's hard edges keep some).
   int64_t turning = 0;
 };
 
@@ -57,7 +57,11 @@ enum class TurnLimit {
   kHold,
   /// It stays, counted (SimplifiedBrick::turning): a quick simplification
   /// that says whether the held one is needed (for a few bricks of a
-  /// sculpture, where its clay turns fast).
+  /// sculpture, where its clay turns fast). Removed vertices are not
+  /// looked at (max_removed_deg): finding the surface over each costs a
+  /// quarter more simplifying, and the quick pass is on the path to a
+  /// new volume's full detail; where they turn, made triangles mostly
+  /// turn too.
   kCount,
 };
 

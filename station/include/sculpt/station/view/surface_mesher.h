@@ -173,9 +173,11 @@ class SurfaceMesher {
   /// back between a triangle's corners (a concave fillet), neither rule
   /// above sees the turn dropped, a light blob (the bust's eyebrow ends, a
   /// V on the demo's nose). 1280x800, pixels more than 8 levels off the
-  /// marched picture, and triangles: the demo 0.079% -> 0.038%, 39.7k ->
-  /// 42.2k; the bust 0.026% -> 0.011%, 95.9k -> 101.7k. At 10 and 12
-  /// degrees traces stay. At full detail only: a coarser level's voxels
+  /// marched picture, and triangles: the played demo 0.079% -> 0.038%,
+  /// 39.7k -> 42.2k; the bust 0.026% -> 0.011%, 95.9k -> 101.7k (its
+  /// frames about 0.7 ms longer). At 10 and 12 degrees traces stay. The
+  /// refiner's quick pass (TurnLimit::kCount) does not look at removed
+  /// vertices: the demo project opened shows 0.035%. At full detail only: a coarser level's voxels
   /// span at most a pixel (LodSelector), and its density normals are some
   /// 4 degrees off themselves, so the rule held that noise (the demo
   /// zoomed out, window_test.cpp: 21.3k -> 33.1k triangles).
