@@ -201,22 +201,28 @@ TEST(BrickSimplify, NothingToDoComesBackAsItWas) {
   EXPECT_EQ(simplify_brick_mesh(BrickMesh{}, 0.1f).brick, BrickMesh{});
 }
 
+// An n^3 volume whose density follows `distance` (signed, voxels; negative
+// inside) at each voxel centre.
+template <class Distance>
+Volume volume_of(int n, const Distance& distance) {
+  return Volume::from_bricks(glm::ivec3(n), {}, [&](const Box& box, std::span<uint8_t> out) {
+    size_t i = 0;
+    for (int z = box.lo.z; z < box.hi.z; ++z)
+      for (int y = box.lo.y; y < box.hi.y; ++y)
+        for (int x = box.lo.x; x < box.hi.x; ++x)
+          out[i++] = density_from_distance(distance(
+              glm::vec3(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z))));
+  });
+}
+
 // A sphere with a dimple pressed into its top, like an eye socket: where
 // the dimple's rim meets the sphere the normals turn fast.
 Volume dimpled_sphere(int n) {
   const glm::vec3 centre(static_cast<float>(n - 1) / 2.0f);
   const float radius = 0.35f * static_cast<float>(n), dimple_radius = 0.15f * static_cast<float>(n);
   const glm::vec3 dimple = centre + glm::vec3(0.0f, radius + 0.4f * dimple_radius, 0.0f);
-  return Volume::from_bricks(glm::ivec3(n), {}, [&](const Box& box, std::span<uint8_t> out) {
-    size_t i = 0;
-    for (int z = box.lo.z; z < box.hi.z; ++z)
-      for (int y = box.lo.y; y < box.hi.y; ++y)
-        for (int x = box.lo.x; x < box.hi.x; ++x) {
-          const glm::vec3 p(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
-          const float outside_sphere = glm::length(p - centre) - radius;
-          const float inside_dimple = dimple_radius - glm::length(p - dimple);
-          out[i++] = density_from_distance(std::max(outside_sphere, inside_dimple));
-        }
+  return volume_of(n, [&](glm::vec3 p) {
+    return std::max(glm::length(p - centre) - radius, dimple_radius - glm::length(p - dimple));
   });
 }
 
@@ -276,19 +282,12 @@ TEST(BrickSimplify, NoTriangleMadeTurnsItsNormalsFurtherThanAsked) {
 Volume ridged_sphere(int n) {
   const glm::vec3 centre(static_cast<float>(n - 1) / 2.0f);
   const float radius = 0.35f * static_cast<float>(n), ridge_radius = 0.05f * static_cast<float>(n);
-  const glm::vec3 ridge_a = centre + radius * glm::normalize(glm::vec3(-0.9f, 1.0f, 0.3f));
-  const glm::vec3 ridge_b = centre + radius * glm::normalize(glm::vec3(0.9f, 1.0f, 0.3f));
-  return Volume::from_bricks(glm::ivec3(n), {}, [&](const Box& box, std::span<uint8_t> out) {
-    size_t i = 0;
-    for (int z = box.lo.z; z < box.hi.z; ++z)
-      for (int y = box.lo.y; y < box.hi.y; ++y)
-        for (int x = box.lo.x; x < box.hi.x; ++x) {
-          const glm::vec3 p(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
-          const glm::vec3 ab = ridge_b - ridge_a;
-          const float t = std::clamp(glm::dot(p - ridge_a, ab) / glm::dot(ab, ab), 0.0f, 1.0f);
-          const float to_ridge = glm::length(p - (ridge_a + t * ab)) - ridge_radius;
-          out[i++] = density_from_distance(std::min(glm::length(p - centre) - radius, to_ridge));
-        }
+  const glm::vec3 a = centre + radius * glm::normalize(glm::vec3(-0.9f, 1.0f, 0.3f));
+  const glm::vec3 ab = centre + radius * glm::normalize(glm::vec3(0.9f, 1.0f, 0.3f)) - a;
+  return volume_of(n, [&](glm::vec3 p) {
+    const float t = std::clamp(glm::dot(p - a, ab) / glm::dot(ab, ab), 0.0f, 1.0f);
+    const float to_ridge = glm::length(p - (a + t * ab)) - ridge_radius;
+    return std::min(glm::length(p - centre) - radius, to_ridge);
   });
 }
 
