@@ -211,7 +211,6 @@ class MadeTriangles {
   // The made triangle nearest to p (not empty()).
   const Made& nearest(glm::vec3 p) const {
     const glm::ivec3 c = cell_of(p);
-    const size_t cell = static_cast<size_t>((c.z * dims_.y + c.y) * dims_.x + c.x);
     const Made* best = nullptr;
     float best_d2 = reach_ * reach_;
     auto consider = [&](const Made& t) {
@@ -221,9 +220,11 @@ class MadeTriangles {
         best = &t;
       }
     };
-    if (glm::all(glm::equal(c, glm::clamp(c, glm::ivec3(0), dims_ - 1))))
+    if (glm::all(glm::equal(c, glm::clamp(c, glm::ivec3(0), dims_ - 1)))) {
+      const size_t cell = static_cast<size_t>((c.z * dims_.y + c.y) * dims_.x + c.x);
       for (uint32_t i = first_[cell]; i < first_[cell + 1]; ++i)
         consider(triangles_[in_cell_[i]]);
+    }
     if (best != nullptr) return *best;
     // Further than the reach from every made triangle: all of them.
     best_d2 = std::numeric_limits<float>::max();
@@ -297,8 +298,8 @@ std::vector<uint32_t> removed_turning(const Mesh& in, const std::vector<unsigned
 // (removed_turning). The part is then simplified again, up to kHoldRounds
 // times; `held` grows by them. With TurnLimit::kCount nothing is held:
 // the made triangles are only counted (removed vertices not looked at).
-// `relative_error` becomes at least the
-// simplifier's estimate, `turning_left` grows by the places left.
+// `relative_error` becomes at least the simplifier's estimate,
+// `turning_left` grows by the places left.
 std::vector<unsigned> simplify_part(const Mesh& in, MarchedTriangles& marched,
                                     std::vector<bool>& held, float relative_target, float scale,
                                     const NormalTurnLimit& turn, float& relative_error,

@@ -177,10 +177,11 @@ class SurfaceMesher {
   /// 39.7k -> 42.2k; the bust 0.026% -> 0.011%, 95.9k -> 101.7k (its
   /// frames about 0.7 ms longer). At 10 and 12 degrees traces stay. The
   /// refiner's quick pass (TurnLimit::kCount) does not look at removed
-  /// vertices: the demo project opened shows 0.035%. At full detail only: a coarser level's voxels
-  /// span at most a pixel (LodSelector), and its density normals are some
-  /// 4 degrees off themselves, so the rule held that noise (the demo
-  /// zoomed out, window_test.cpp: 21.3k -> 33.1k triangles).
+  /// vertices: the demo project opened shows 0.035%. At full detail only:
+  /// a coarser level's voxels span at most a pixel (LodSelector), and its
+  /// density normals are some 4 degrees off themselves, so the rule held
+  /// that noise (the demo zoomed out, window_test.cpp: 21.3k -> 33.1k
+  /// triangles).
   static constexpr float kMaxRemovedTurnDeg = 8.0f;
   /// The limit for a brick at `level` (its voxels 2^level level-0 voxels).
   static core::NormalTurnLimit turn_limit(int level) {
