@@ -298,10 +298,11 @@ std::vector<uint32_t> removed_turning(const Mesh& in, const std::vector<unsigned
 // (removed_turning). The part is then simplified again, up to kHoldRounds
 // times; `held` grows by them. With TurnLimit::kCount nothing is held:
 // the made triangles are only counted (removed vertices not looked at).
-// `relative_error` becomes at least the simplifier's estimate,
-// `turning_left` grows by the places left.
+// `max_error`: the bound `relative_target` stands for, in the positions'
+// units (the reach of removed_turning's search). `relative_error` becomes at least the simplifier's
+// estimate, `turning_left` grows by the places left.
 std::vector<unsigned> simplify_part(const Mesh& in, MarchedTriangles& marched,
-                                    std::vector<bool>& held, float relative_target, float scale,
+                                    std::vector<bool>& held, float relative_target, float max_error,
                                     const NormalTurnLimit& turn, float& relative_error,
                                     int64_t& turning_left) {
   auto cos_of = [](float deg) { return deg >= 180.0f ? -2.0f : std::cos(glm::radians(deg)); };
@@ -342,9 +343,7 @@ std::vector<unsigned> simplify_part(const Mesh& in, MarchedTriangles& marched,
             !marched.contains(out[i], out[i + 1], out[i + 2]))
           turning.insert(turning.end(), {out[i], out[i + 1], out[i + 2]});
     std::vector<uint32_t> removed;
-    if (removed_checked)
-      removed =
-          removed_turning(in, part, out, min_removed_cos, relative_target * scale / kEstimateShare);
+    if (removed_checked) removed = removed_turning(in, part, out, min_removed_cos, max_error);
     const size_t turning_count = turning.size() / 3 + removed.size();
     auto hold_more = [&] {
       const bool around_made = marched.hold(std::move(turning), kHeldRings, held);
@@ -399,12 +398,12 @@ SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error, Bor
     // triangles stay (mostly along a crease, not across it).
     std::vector<bool> held_first = band;
     const std::vector<unsigned> smooth = simplify_part(
-        in, marched_triangles, held_first, relative_target, scale, turn, relative_error, turning);
+        in, marched_triangles, held_first, relative_target, target, turn, relative_error, turning);
     std::vector<bool> held_then(held_first.size());
     for (size_t t = 0; t < held_then.size(); ++t)
       held_then[t] = !held_first[t] || band[t];
     const std::vector<unsigned> creases = simplify_part(
-        in, marched_triangles, held_then, relative_target, scale, turn, relative_error, turning);
+        in, marched_triangles, held_then, relative_target, target, turn, relative_error, turning);
     // Marched: what both held.
     std::vector<unsigned> indices;
     for (size_t t = 0; t < in.triangles.size(); ++t)

@@ -518,8 +518,7 @@ void SurfaceMesher::simplify_refined(const core::MixedLevelMeshCache& cache,
 SurfaceMesher::Simplified SurfaceMesher::simplify_brick(const core::BrickMesh& mesh, int level,
                                                         bool quick) const {
   // Drawn brick by brick, never welded: only the border's vertices stay.
-  core::NormalTurnLimit turn = turn_limit(level);
-  if (quick) turn.action = core::TurnLimit::kCount;
+  const core::NormalTurnLimit turn = quick ? quick_turn_limit(level) : turn_limit(level);
   core::SimplifiedBrick s = core::simplify_brick_mesh(
       mesh, simplify_error_ * static_cast<float>(1 << level), core::BorderHold::kVertices, turn);
   Simplified out;

@@ -58,10 +58,8 @@ void expect_same_surface(const SurfaceSnapshot& snapshot, const core::Volume& vo
     const float error = simplify_error * static_cast<float>(1 << level);
     const core::SimplifiedBrick held = core::simplify_brick_mesh(
         want, error, core::BorderHold::kVertices, SurfaceMesher::turn_limit(level));
-    core::NormalTurnLimit counting = SurfaceMesher::turn_limit(level);
-    counting.action = core::TurnLimit::kCount;
-    const core::SimplifiedBrick quick =
-        core::simplify_brick_mesh(want, error, core::BorderHold::kVertices, counting);
+    const core::SimplifiedBrick quick = core::simplify_brick_mesh(
+        want, error, core::BorderHold::kVertices, SurfaceMesher::quick_turn_limit(level));
     const core::Mesh& shown = it->second.mesh->mesh;
     EXPECT_TRUE(shown == held.brick.mesh || (quick.turning == 0 && shown == quick.brick.mesh))
         << "brick " << i;
@@ -257,11 +255,10 @@ TEST(SurfaceMesher, DabsOnANewVolumeAreShownCoarseWhileItIsRefined) {
     const core::BrickMesh& m = scratch.brick_mesh(core::grid_position(i, s.volume().brick_grid()));
     if (m.empty()) continue;
     ++non_empty;
-    core::NormalTurnLimit quick = SurfaceMesher::turn_limit(0);
-    quick.action = core::TurnLimit::kCount;
-    turning += core::simplify_brick_mesh(m, SurfaceMesher::kSimplifyError,
-                                         core::BorderHold::kVertices, quick)
-                   .turning > 0;
+    turning +=
+        core::simplify_brick_mesh(m, SurfaceMesher::kSimplifyError, core::BorderHold::kVertices,
+                                  SurfaceMesher::quick_turn_limit(0))
+            .turning > 0;
   }
   EXPECT_GT(turning, 0);
   EXPECT_LT(turning, non_empty);

@@ -188,6 +188,13 @@ class SurfaceMesher {
     return {kMaxNormalTurnDeg, kFullTurnLengthVox * static_cast<float>(1 << level),
             level == 0 ? kMaxRemovedTurnDeg : 180.0f};
   }
+  /// The refiner's quick pass: turn_limit(level)'s places only counted
+  /// (core::TurnLimit::kCount), the bricks with any polished later.
+  static core::NormalTurnLimit quick_turn_limit(int level) {
+    core::NormalTurnLimit turn = turn_limit(level);
+    turn.action = core::TurnLimit::kCount;
+    return turn;
+  }
 
   /// `threads` mesh the changed bricks of one update in parallel (0: all
   /// cores); the meshes do not depend on it. `simplify_error`: in voxels of
