@@ -125,6 +125,11 @@ struct RunFigures {
   int64_t started_ns = 0;              // the first frame's start
   int64_t frames_drawn_unsteered = 0;  // the sculpting thread held the turn: drawn without it
   int64_t panel_rasters = 0;           // frames that drew the panel's triangles (PanelLayer)
+  // The last frame of --until-replayed waits for the sculpting thread's
+  // turn and for every mesh, so that its picture (and the run's hash and
+  // screenshot) holds the whole session: a wait for the run's report, not
+  // a frame a sculptor sees, so it is left out of the frame times.
+  double final_frame_wait_ms = 0;
   InputHubFigures hub;
   // CPU by thread as the session's frames ended, while the sculpting thread
   // still ran (stopped, it would count only under "ended"); none before.
@@ -241,6 +246,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
       {"frame_ms_p50", at(0.5)},
       {"frame_ms_p90", at(0.9)},
       {"frame_ms_p99", at(0.99)},
+      {"final_frame_wait_ms", f.final_frame_wait_ms},
       {"panel_drawn_anew", f.panel_rasters},
       {"brick_uploads", f.uploads},
       {"mesher",
@@ -567,7 +573,10 @@ int run_window(const WindowOptions& o) {
     // busy does not wait but draws what it has (the meshes made meanwhile
     // included), and the next frame that gets the turn steers (mouse, keys,
     // levels, panel). The last frame waits: it shows everything.
+    int64_t final_wait_ns = 0;
+    const int64_t t_turn = hal::monotonic_ns();
     std::unique_lock turn = hub.frame_turn(final_frame);
+    if (final_frame) final_wait_ns += hal::monotonic_ns() - t_turn;
     const bool steering = turn.owns_lock();
     if (!steering) ++figures.frames_drawn_unsteered;
     // From the window's events: asking the X server is a round trip, up to
@@ -652,6 +661,7 @@ int run_window(const WindowOptions& o) {
     if (final_frame) {
       hub.poll_now();
       mesher.wait_until_meshed();
+      final_wait_ns += hal::monotonic_ns() - t_mesh;
     }
     if (auto delta = mesher.take()) {
       // Latency: from each dab's report to its surface ready to draw (the
@@ -713,7 +723,9 @@ int run_window(const WindowOptions& o) {
     }
     // The panel reads and sets the controller: drawn with the turn, else
     // the last frame's panel is drawn again.
+    const int64_t t_panel_turn = hal::monotonic_ns();
     turn = hub.frame_turn(final_frame);
+    if (final_frame) final_wait_ns += hal::monotonic_ns() - t_panel_turn;
     const bool panel_turn = turn.owns_lock();
     if (panel_turn) {
       ImGui_ImplOpenGL3_NewFrame();
@@ -759,7 +771,8 @@ int run_window(const WindowOptions& o) {
     figures.draw_ms += static_cast<double>(hal::monotonic_ns() - t_draw) * 1e-6;
 
     const int64_t end = hal::monotonic_ns();
-    const double ms = static_cast<double>(end - now) * 1e-6;
+    const double ms = static_cast<double>(end - now - final_wait_ns) * 1e-6;
+    figures.final_frame_wait_ms += static_cast<double>(final_wait_ns) * 1e-6;
     figures.frame_us.add(ms * 1e3);
     figures.frames_total_ms += ms;
     figures.uploads += sync.uploaded;
