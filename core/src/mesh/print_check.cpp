@@ -7,6 +7,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "sculpt/core/util/parallel_for.h"
+
 namespace sculpt::core {
 namespace {
 
@@ -53,8 +55,14 @@ bool share_vertex(const glm::uvec3& a, const glm::uvec3& b) {
 }  // namespace
 
 int64_t count_self_intersections(const Mesh& mesh, int64_t limit) {
+  return static_cast<int64_t>(self_intersecting_pairs(mesh, limit).size());
+}
+
+std::vector<std::pair<uint32_t, uint32_t>> self_intersecting_pairs(const Mesh& mesh,
+                                                                   int64_t limit) {
+  std::vector<std::pair<uint32_t, uint32_t>> found;
   const size_t n = mesh.triangles.size();
-  if (n < 2) return 0;
+  if (n < 2 || limit <= 0) return found;
   // Cells about twice the mean edge: a triangle spans a few cells at most.
   double edge_sum = 0.0;
   for (const glm::uvec3& t : mesh.triangles)
@@ -86,31 +94,50 @@ int64_t count_self_intersections(const Mesh& mesh, int64_t limit) {
         for (int x = lo.x; x <= hi.x; ++x)
           grid[key({x, y, z})].push_back({{x, y, z}, static_cast<uint32_t>(i)});
   }
-  int64_t found = 0;
-  std::vector<uint32_t> candidates;
-  for (size_t i = 0; i < n && found < limit; ++i) {
-    const glm::uvec3& t = mesh.triangles[i];
-    const auto [lo, hi] = spans[i];
-    candidates.clear();
-    for (int z = lo.z; z <= hi.z; ++z)
-      for (int y = lo.y; y <= hi.y; ++y)
-        for (int x = lo.x; x <= hi.x; ++x) {
-          const auto it = grid.find(key({x, y, z}));
-          if (it == grid.end()) continue;
-          for (const Entry& e : it->second)
-            if (e.triangle > i && e.cell == glm::ivec3(x, y, z)) candidates.push_back(e.triangle);
-        }
-    std::sort(candidates.begin(), candidates.end());
-    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-    const glm::dvec3 x[3] = {glm::dvec3(mesh.positions[t[0]]), glm::dvec3(mesh.positions[t[1]]),
-                             glm::dvec3(mesh.positions[t[2]])};
-    for (const uint32_t j : candidates) {
-      const glm::uvec3& u = mesh.triangles[j];
-      if (share_vertex(t, u)) continue;
-      const glm::dvec3 y[3] = {glm::dvec3(mesh.positions[u[0]]), glm::dvec3(mesh.positions[u[1]]),
-                               glm::dvec3(mesh.positions[u[2]])};
-      if (triangles_intersect(x, y) && ++found >= limit) break;
+  // Tasks of triangles in order, each finding at most `most` of its own:
+  // the grid is read-only, and joined in order the first `most` pairs are
+  // the same on any number of threads.
+  const auto most = static_cast<size_t>(limit);
+  constexpr size_t kTrianglesPerTask = 4096;
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> per_task((n + kTrianglesPerTask - 1) /
+                                                                   kTrianglesPerTask);
+  parallel_for(static_cast<int64_t>(per_task.size()), [&](int64_t task) {
+    auto& mine = per_task[static_cast<size_t>(task)];
+    const size_t begin = static_cast<size_t>(task) * kTrianglesPerTask;
+    const size_t end = std::min(n, begin + kTrianglesPerTask);
+    std::vector<uint32_t> candidates;
+    for (size_t i = begin; i < end && mine.size() < most; ++i) {
+      const glm::uvec3& t = mesh.triangles[i];
+      const auto [lo, hi] = spans[i];
+      candidates.clear();
+      for (int z = lo.z; z <= hi.z; ++z)
+        for (int y = lo.y; y <= hi.y; ++y)
+          for (int x = lo.x; x <= hi.x; ++x) {
+            const auto it = grid.find(key({x, y, z}));
+            if (it == grid.end()) continue;
+            for (const Entry& e : it->second)
+              if (e.triangle > i && e.cell == glm::ivec3(x, y, z)) candidates.push_back(e.triangle);
+          }
+      std::sort(candidates.begin(), candidates.end());
+      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+      const glm::dvec3 x[3] = {glm::dvec3(mesh.positions[t[0]]), glm::dvec3(mesh.positions[t[1]]),
+                               glm::dvec3(mesh.positions[t[2]])};
+      for (const uint32_t j : candidates) {
+        const glm::uvec3& u = mesh.triangles[j];
+        if (share_vertex(t, u)) continue;
+        const glm::dvec3 y[3] = {glm::dvec3(mesh.positions[u[0]]), glm::dvec3(mesh.positions[u[1]]),
+                                 glm::dvec3(mesh.positions[u[2]])};
+        if (!triangles_intersect(x, y)) continue;
+        mine.emplace_back(static_cast<uint32_t>(i), j);
+        if (mine.size() >= most) break;
+      }
     }
+  });
+  for (const auto& mine : per_task) {
+    found.insert(
+        found.end(), mine.begin(),
+        mine.begin() + static_cast<std::ptrdiff_t>(std::min(mine.size(), most - found.size())));
+    if (found.size() >= most) break;
   }
   return found;
 }

@@ -49,6 +49,11 @@ core::Mesh simplify_for_export(core::Mesh mesh, const core::MeshSimplifyOptions&
       "every vertex of both)%s\n",
       before, s.mesh.triangles.size(), s.hausdorff,
       s.refused_attempts > 0 ? " (simplified again, less, to keep within the bound)" : "");
+  if (s.held_places > 0)
+    std::printf(
+        "            kept as it was in %d places where simplifying made the surface pass "
+        "through itself\n",
+        s.held_places);
   return std::move(s.mesh);
 }
 

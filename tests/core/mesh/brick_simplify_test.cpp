@@ -15,6 +15,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "distance_volume.h"
 #include "made_triangles_turning.h"
 #include "removed_vertices_turning.h"
 #include "sculpt/core/mesh/mixed_level_mesh.h"
@@ -201,19 +202,7 @@ TEST(BrickSimplify, NothingToDoComesBackAsItWas) {
   EXPECT_EQ(simplify_brick_mesh(BrickMesh{}, 0.1f).brick, BrickMesh{});
 }
 
-// An n^3 volume whose density follows `distance` (signed, voxels; negative
-// inside) at each voxel centre.
-template <class Distance>
-Volume volume_of(int n, const Distance& distance) {
-  return Volume::from_bricks(glm::ivec3(n), {}, [&](const Box& box, std::span<uint8_t> out) {
-    size_t i = 0;
-    for (int z = box.lo.z; z < box.hi.z; ++z)
-      for (int y = box.lo.y; y < box.hi.y; ++y)
-        for (int x = box.lo.x; x < box.hi.x; ++x)
-          out[i++] = density_from_distance(distance(
-              glm::vec3(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z))));
-  });
-}
+using test::volume_of;
 
 // A sphere with a dimple pressed into its top, like an eye socket: where
 // the dimple's rim meets the sphere the normals turn fast.

@@ -14,8 +14,11 @@
 // bisecting the error bound. The error is measured, not estimated: the
 // two-sided distance between the surfaces at every vertex of each
 // (hausdorff_distance); a result beyond the bound is made again with less.
-// Where two sheets of the input lie within the error of each other, the
-// result may pass through itself: `sculpt mesh --check` finds that.
+// Where two sheets of the input lie within the error of each other (a coil
+// lying on the clay), collapses on both may make them pass through each
+// other: a result that does where the input did not is made again with the
+// input held as it is around the crossings (count_self_intersections), so
+// a marched sculpture's simplified mesh passes the print check too.
 
 #include <cstdint>
 
@@ -38,8 +41,12 @@ struct SimplifiedMesh {
   /// The measured two-sided distance between input and result.
   double hausdorff = 0.0;
   /// Passes refused: the surface moved farther than the error bound
-  /// (measured); each is followed by one with less.
+  /// (measured), or it still passed through itself after the rounds of
+  /// holding; each is followed by one with less.
   int refused_attempts = 0;
+  /// Places (boxes around a crossing triangle) where the input was held as
+  /// it is because simplifying them made the surface pass through itself.
+  int held_places = 0;
 };
 
 /// `mesh` simplified (normals follow their vertices). With neither a ratio

@@ -12,6 +12,8 @@
 // marching cubes makes neither between non-neighbours.
 
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "sculpt/core/mesh/mesh.h"
 
@@ -38,5 +40,9 @@ PrintCheck check_print(const Mesh& mesh, double voxel_mm);
 /// Pairs of triangles of `mesh` that pass through each other (see above);
 /// stops counting at `limit`.
 int64_t count_self_intersections(const Mesh& mesh, int64_t limit = INT64_MAX);
+
+/// The same pairs, as triangle indices (i, j), i < j, at most `limit`.
+std::vector<std::pair<uint32_t, uint32_t>> self_intersecting_pairs(const Mesh& mesh,
+                                                                   int64_t limit = INT64_MAX);
 
 }  // namespace sculpt::core
