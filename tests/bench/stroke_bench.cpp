@@ -154,19 +154,19 @@ int64_t time_presses(benchmark::State& state, const std::function<DabStats(int64
   return i;
 }
 
-// The demo's head ball (radius 66: about a hundred bricks) pressed once, as
-// the station sculpts it (a stroke of one sample), at a new place on the
-// 256^3 sphere each time, alternately filled and cut, on range(0) threads:
-// the bricks are decoded, swept and re-encoded on every core. Wall time of
-// the press (a sculptor waits for all of it); the counters say where it
-// went (wall time of the decodes, the sweep and the stores).
-void BM_StrokeBigBall(benchmark::State& state) {
-  Volume v = sphere_to_sculpt();
-  Sculptor sculptor(v);
-  sculptor.set_tool(make_sphere_tool(66.0f));
+// A ball of radius `ball` pressed once, as the station sculpts it (a
+// stroke of one sample), at a new place on the surface of `material` (the
+// peers.py sphere, radius 0.35 of its edge) each time, alternately filled
+// and cut, on range(0) threads: the bricks are decoded, swept and
+// re-encoded on every core. Wall time of the press (a sculptor waits for
+// all of it); the counters say where it went (wall time of the decodes,
+// the sweep and the stores).
+void time_ball_presses(benchmark::State& state, Volume material, float ball) {
+  Sculptor sculptor(material);
+  sculptor.set_tool(make_sphere_tool(ball));
   set_default_threads(static_cast<int>(state.range(0)));
-  const glm::vec3 centre(127.5f);
-  const float radius = 0.35f * 256.0f;
+  const glm::vec3 centre(0.5f * static_cast<float>(material.dims().x - 1));
+  const float radius = 0.35f * static_cast<float>(material.dims().x);
   auto press = [&](int64_t i) {
     const float a = 0.7f * static_cast<float>(i);
     const StrokeSample at{centre + radius * glm::vec3(std::cos(a), std::sin(a), 0.0f),
@@ -175,6 +175,12 @@ void BM_StrokeBigBall(benchmark::State& state) {
                         {i % 2 ? SculptMode::kSubtract : SculptMode::kAdd, 1.0f, false});
   };
   time_presses(state, press);
+}
+
+// The demo's head ball (radius 66: about a hundred bricks) on the 256^3
+// sphere.
+void BM_StrokeBigBall(benchmark::State& state) {
+  time_ball_presses(state, sphere_to_sculpt(), 66.0f);
 }
 BENCHMARK(BM_StrokeBigBall)
     ->Arg(1)
@@ -217,26 +223,12 @@ BENCHMARK(BM_StrokeBigBallOnANewBlock)
     ->Unit(benchmark::kMillisecond);
 
 // The bust's biggest ball (radius 110, the tool its session changes to at
-// 2.4 s) pressed once on the 512^3 sphere, at a new place each time,
-// alternately filled and cut, on range(0) threads: the floor under that
-// dab's first mesh, which cannot be made before the dab is sculpted.
+// 2.4 s) on the 512^3 sphere: the floor under that dab's first mesh, which
+// cannot be made before the dab is sculpted.
 void BM_StrokeBustBall(benchmark::State& state) {
   static const Volume* material = new Volume(sphere_volume(512, 0.35f));
   (void)sphere_to_sculpt();  // the heap warmed as the station's
-  Volume v = *material;
-  Sculptor sculptor(v);
-  sculptor.set_tool(make_sphere_tool(110.0f));
-  set_default_threads(static_cast<int>(state.range(0)));
-  const glm::vec3 centre(255.5f);
-  const float radius = 0.35f * 512.0f;
-  auto press = [&](int64_t i) {
-    const float a = 0.7f * static_cast<float>(i);
-    const StrokeSample at{centre + radius * glm::vec3(std::cos(a), std::sin(a), 0.0f),
-                          glm::quat(1.0f, 0.0f, 0.0f, 0.0f)};
-    return sweep_stroke(sculptor, std::span(&at, 1),
-                        {i % 2 ? SculptMode::kSubtract : SculptMode::kAdd, 1.0f, false});
-  };
-  time_presses(state, press);
+  time_ball_presses(state, *material, 110.0f);
 }
 BENCHMARK(BM_StrokeBustBall)
     ->Arg(1)
