@@ -340,20 +340,35 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
       const int face_bits = (y == 0 ? 2 : 0) | (z == 0 ? 4 : 0);
       const size_t row_slot = static_cast<size_t>(y) * (n.x + 1);
       const uint8_t* in = s.inside.data() + row0;
-      // Column bits of the four rows around this row of cells: a cell's case
-      // interleaves the columns at its x and x + 1.
-      uint8_t* col = s.columns.data();
-      for (int x = 0; x <= n.x; ++x) {
-        col[x] = static_cast<uint8_t>(in[x] | (in[x + sx] << 1) | (in[x + sxy] << 2) |
-                                      (in[x + sx + sxy] << 3));
+      {
+        // The two byte loops below vectorise only over locals whose address
+        // never escapes: n, sx and sxy are captured by the lambdas above, so
+        // a byte store (which may alias anything) made the compiler reload
+        // them every byte and keep the loops scalar, a third of the march.
+        const int nx = n.x;
+        const int64_t dy = sx, dz = sxy;
+        {
+          // Column bits of the four rows around this row of cells: a cell's
+          // case interleaves the columns at its x and x + 1.
+          const uint8_t* __restrict flags = in;
+          uint8_t* __restrict columns = s.columns.data();
+          for (int x = 0; x <= nx; ++x) {
+            columns[x] = static_cast<uint8_t>(flags[x] | (flags[x + dy] << 1) |
+                                              (flags[x + dz] << 2) | (flags[x + dy + dz] << 3));
+          }
+        }
+        // Cells the surface crosses: their columns differ, or a column is
+        // neither all out (0) nor all in (15). Packed into bits below, then
+        // the set bits in turn: branching cell by cell mispredicted at every
+        // way in and out of the surface.
+        const uint8_t* __restrict column = s.columns.data();
+        uint8_t* __restrict cells_crossed = s.crossed.data();
+        for (int x = 0; x < nx; ++x)
+          cells_crossed[x] = static_cast<uint8_t>((column[x] != column[x + 1]) |
+                                                  ((column[x] != 0) & (column[x] != 15)));
       }
-      // Cells the surface crosses: their columns differ, or a column is
-      // neither all out (0) nor all in (15). A byte loop that vectorises,
-      // packed into bits, then the set bits in turn: branching cell by cell
-      // mispredicted at every way in and out of the surface.
+      const uint8_t* col = s.columns.data();
       uint8_t* crossed = s.crossed.data();
-      for (int x = 0; x < n.x; ++x)
-        crossed[x] = static_cast<uint8_t>((col[x] != col[x + 1]) | (col[x] != 0 && col[x] != 15));
       std::fill(crossed + n.x, crossed + round_up8(n.x), uint8_t{0});
       for (int word = 0; word < n.x; word += 64) {
         uint64_t cells = 0;

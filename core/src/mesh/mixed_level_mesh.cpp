@@ -4,6 +4,8 @@
 #include <bit>
 #include <cassert>
 #include <cmath>
+#include <cstring>
+#include <type_traits>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -342,8 +344,15 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb) {
               if (src == nullptr) continue;
               const int x0 = std::max(rx.from, -origin.x), x1 = std::min(rx.to, ld.x - origin.x);
               const uint8_t* src_row = src + local_row * m - rx.d * m;
-              for (int x = x0; x < x1; ++x)
-                row[x] = src_row[x];
+              if constexpr (std::is_same_v<std::remove_cvref_t<decltype(*row)>, uint8_t>) {
+                // Bytes to bytes: a copy (the loop's overlap check sent the
+                // compiler's vector copy to its byte loop, a third of this
+                // function's time).
+                if (x0 < x1) std::memcpy(row + x0, src_row + x0, static_cast<size_t>(x1 - x0));
+              } else {
+                for (int x = x0; x < x1; ++x)
+                  row[x] = src_row[x];
+              }
             }
           }
       }
@@ -720,11 +729,15 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
           for (int vy = 0; vy < m; ++vy) {
             const size_t row = (static_cast<size_t>(vz) * m + vy) * m;
             if (std::equal(&now[row], &now[row] + m, &old[row])) continue;
-            for (int vx = 0; vx < m; ++vx)
-              if (now[row + static_cast<size_t>(vx)] != old[row + static_cast<size_t>(vx)]) {
-                lo = glm::min(lo, glm::ivec3(vx, vy, vz));
-                hi = glm::max(hi, glm::ivec3(vx, vy, vz));
-              }
+            // The row's first and last voxel that moved bound it: a compare
+            // and a box update per voxel was a twentieth of the update.
+            int first = 0, last = m - 1;
+            while (now[row + static_cast<size_t>(first)] == old[row + static_cast<size_t>(first)])
+              ++first;
+            while (now[row + static_cast<size_t>(last)] == old[row + static_cast<size_t>(last)])
+              --last;
+            lo = glm::min(lo, glm::ivec3(first, vy, vz));
+            hi = glm::max(hi, glm::ivec3(last, vy, vz));
           }
         if (hi.x >= 0)
           r.moved = Box{(r.brick * m + lo) << r.level, (r.brick * m + hi + 1) << r.level};
