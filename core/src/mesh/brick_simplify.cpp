@@ -83,6 +83,36 @@ BrickMesh compact(const BrickMesh& brick, const std::vector<unsigned>& indices) 
   return out;
 }
 
+// The vertices renumbered in the order the triangles first use them (the
+// triangles, normals and seams follow). llvmpipe keeps the vertices it has
+// shaded by their number's low byte (256 slots): numbered as they are
+// drawn, a vertex used again soon is still in its slot, where numbered in
+// the march's order, two used together may take one slot in turn.
+void number_vertices_in_use_order(BrickMesh& brick) {
+  Mesh& m = brick.mesh;
+  constexpr uint32_t kUnset = std::numeric_limits<uint32_t>::max();
+  std::vector<uint32_t> remap(m.positions.size(), kUnset);
+  uint32_t next = 0;
+  for (glm::uvec3& t : m.triangles)
+    for (int k = 0; k < 3; ++k) {
+      if (remap[t[k]] == kUnset) remap[t[k]] = next++;
+      t[k] = remap[t[k]];
+    }
+  auto reorder = [&](std::vector<glm::vec3>& values) {
+    if (values.size() != remap.size()) return;
+    std::vector<glm::vec3> out(values.size());
+    for (size_t v = 0; v < values.size(); ++v)
+      out[remap[v]] = values[v];
+    values = std::move(out);
+  };
+  reorder(m.positions);
+  reorder(m.normals);
+  for (BrickMesh::Seam& seam : brick.seams)
+    seam.vertex = remap[seam.vertex];
+  std::sort(brick.seams.begin(), brick.seams.end(),
+            [](const BrickMesh::Seam& a, const BrickMesh::Seam& b) { return a.vertex < b.vertex; });
+}
+
 // Whether simplifying kept the brick's surface whole: the same open border,
 // and no edge or vertex where sheets meet that the march did not have.
 bool same_topology(const MeshTopology& marched, const Mesh& simplified) {
@@ -422,6 +452,7 @@ SimplifiedBrick simplify_brick_mesh(const BrickMesh& brick, float max_error, Bor
         unsigned* corners = &out.mesh.triangles[0].x;
         meshopt_optimizeVertexCacheFifo(corners, corners, 3 * out.mesh.triangles.size(),
                                         out.mesh.positions.size(), kVertexCacheSize);
+        number_vertices_in_use_order(out);
       }
       return {std::move(out), relative_error * scale / kEstimateShare, turning};
     }
