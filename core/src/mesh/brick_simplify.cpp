@@ -98,6 +98,8 @@ void number_vertices_in_use_order(BrickMesh& brick) {
       if (remap[t[k]] == kUnset) remap[t[k]] = next++;
       t[k] = remap[t[k]];
     }
+  for (uint32_t& r : remap)  // none left unused by compact(), but a number each all the same
+    if (r == kUnset) r = next++;
   auto reorder = [&](std::vector<glm::vec3>& values) {
     if (values.size() != remap.size()) return;
     std::vector<glm::vec3> out(values.size());

@@ -658,10 +658,12 @@ int run_window(const WindowOptions& o) {
     // The last frame (and so its picture) shows everything sculpted before
     // it, and every brick shaded as it asks.
     const bool picture_frame = !o.screenshot.empty() && final_frame;
+    int64_t mesher_wait_ns = 0;
     if (final_frame) {
       hub.poll_now();
       mesher.wait_until_meshed();
-      final_wait_ns += hal::monotonic_ns() - t_mesh;
+      mesher_wait_ns = hal::monotonic_ns() - t_mesh;
+      final_wait_ns += mesher_wait_ns;
     }
     if (auto delta = mesher.take()) {
       // Latency: from each dab's report to its surface ready to draw (the
@@ -674,7 +676,7 @@ int run_window(const WindowOptions& o) {
     const std::vector<DabStandIn> stand_ins = controller.stand_ins().showing(surface.change());
     (*renderer)->set_stand_in_tool(controller.stand_ins().tool());
     const int64_t t_upload = hal::monotonic_ns();
-    figures.mesh_ms += static_cast<double>(t_upload - t_mesh) * 1e-6;
+    figures.mesh_ms += static_cast<double>(t_upload - t_mesh - mesher_wait_ns) * 1e-6;
     if (steering) {
       controller.surface_ready(unreported);
       unreported.readiness.clear();
