@@ -83,28 +83,25 @@ BrickMesh compact(const BrickMesh& brick, const std::vector<unsigned>& indices) 
   return out;
 }
 
-// The vertices renumbered in the order the triangles first use them (the
-// triangles, normals and seams follow). llvmpipe keeps the vertices it has
-// shaded by their number's low byte (256 slots): numbered as they are
-// drawn, a vertex used again soon is still in its slot, where numbered in
-// the march's order, two used together may take one slot in turn.
+// The vertices renumbered in the order the triangles first use them
+// (meshoptimizer's vertex fetch order; normals and seams follow). llvmpipe
+// keeps the vertices it has shaded by their number's low byte (256 slots):
+// numbered as they are drawn, a vertex used again soon is still in its
+// slot, where numbered in the march's order, two used together may take
+// one slot in turn. compact() leaves no vertex unused.
 void number_vertices_in_use_order(BrickMesh& brick) {
   Mesh& m = brick.mesh;
-  constexpr uint32_t kUnset = std::numeric_limits<uint32_t>::max();
-  std::vector<uint32_t> remap(m.positions.size(), kUnset);
-  uint32_t next = 0;
-  for (glm::uvec3& t : m.triangles)
-    for (int k = 0; k < 3; ++k) {
-      if (remap[t[k]] == kUnset) remap[t[k]] = next++;
-      t[k] = remap[t[k]];
-    }
-  for (uint32_t& r : remap)  // none left unused by compact(), but a number each all the same
-    if (r == kUnset) r = next++;
+  unsigned* corners = &m.triangles[0].x;
+  const size_t corner_count = 3 * m.triangles.size();
+  std::vector<unsigned> remap(m.positions.size());
+  const size_t used =
+      meshopt_optimizeVertexFetchRemap(remap.data(), corners, corner_count, m.positions.size());
+  meshopt_remapIndexBuffer(corners, corners, corner_count, remap.data());
   auto reorder = [&](std::vector<glm::vec3>& values) {
     if (values.size() != remap.size()) return;
-    std::vector<glm::vec3> out(values.size());
-    for (size_t v = 0; v < values.size(); ++v)
-      out[remap[v]] = values[v];
+    std::vector<glm::vec3> out(used);
+    meshopt_remapVertexBuffer(out.data(), values.data(), values.size(), sizeof(glm::vec3),
+                              remap.data());
     values = std::move(out);
   };
   reorder(m.positions);
@@ -331,8 +328,9 @@ std::vector<uint32_t> removed_turning(const Mesh& in, const std::vector<unsigned
 // times; `held` grows by them. With TurnLimit::kCount nothing is held:
 // the made triangles are only counted (removed vertices not looked at).
 // `max_error`: the bound `relative_target` stands for, in the positions'
-// units (the reach of removed_turning's search). `relative_error` becomes at least the simplifier's
-// estimate, `turning_left` grows by the places left.
+// units (the reach of removed_turning's search). `relative_error` becomes
+// at least the simplifier's estimate, `turning_left` grows by the places
+// left.
 std::vector<unsigned> simplify_part(const Mesh& in, MarchedTriangles& marched,
                                     std::vector<bool>& held, float relative_target, float max_error,
                                     const NormalTurnLimit& turn, float& relative_error,

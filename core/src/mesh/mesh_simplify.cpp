@@ -32,19 +32,16 @@ constexpr int kCrossingRounds = 6;
 // where the same sheets meet, which the boxes around these already hold.
 constexpr int64_t kCrossingsPerRound = 256;
 
-// Places of the input kept as they are (boxes in its positions' units):
-// where a pass made two sheets pass through each other.
-struct HeldBox {
-  glm::vec3 lo, hi;
-  bool contains(glm::vec3 p) const {
-    return glm::all(glm::greaterThanEqual(p, lo)) && glm::all(glm::lessThanEqual(p, hi));
-  }
-};
+// Whether p lies in a held box (in the positions' units): a place where a
+// pass made two sheets pass through each other, kept as the input has it.
+bool inside(const MeshBounds& box, glm::vec3 p) {
+  return glm::all(glm::greaterThanEqual(p, box.lo)) && glm::all(glm::lessThanEqual(p, box.hi));
+}
 
 // Per vertex of `mesh`: inside a held box. The vertices by x, so a box
 // looks only at those within its x range (a few hundred boxes, each a few
 // voxels wide, on a sculpture's 234k vertices).
-std::vector<bool> held_vertices(const Mesh& mesh, const std::vector<HeldBox>& boxes) {
+std::vector<bool> held_vertices(const Mesh& mesh, const std::vector<MeshBounds>& boxes) {
   std::vector<bool> held(mesh.positions.size(), false);
   if (boxes.empty()) return held;
   std::vector<uint32_t> by_x(mesh.positions.size());
@@ -52,11 +49,11 @@ std::vector<bool> held_vertices(const Mesh& mesh, const std::vector<HeldBox>& bo
     by_x[v] = v;
   std::sort(by_x.begin(), by_x.end(),
             [&](uint32_t a, uint32_t b) { return mesh.positions[a].x < mesh.positions[b].x; });
-  for (const HeldBox& box : boxes) {
+  for (const MeshBounds& box : boxes) {
     auto v = std::lower_bound(by_x.begin(), by_x.end(), box.lo.x,
                               [&](uint32_t i, float x) { return mesh.positions[i].x < x; });
     for (; v != by_x.end() && mesh.positions[*v].x <= box.hi.x; ++v)
-      if (box.contains(mesh.positions[*v])) held[*v] = true;
+      if (inside(box, mesh.positions[*v])) held[*v] = true;
   }
   return held;
 }
@@ -124,7 +121,7 @@ std::vector<BrickMesh> cut_into_chunks(const Mesh& mesh, bool shifted,
 
 // Every chunk simplified within `error`, the held boxes kept, welded again.
 Mesh simplify_chunks(const Mesh& mesh, bool shifted, float error,
-                     const std::vector<HeldBox>& held) {
+                     const std::vector<MeshBounds>& held) {
   const bool normals = mesh.normals.size() == mesh.positions.size();
   const std::vector<BrickMesh> chunks = cut_into_chunks(mesh, shifted, held_vertices(mesh, held));
   // Each chunk alone: on every core, the same result in any order.
@@ -143,15 +140,15 @@ Mesh simplify_chunks(const Mesh& mesh, bool shifted, float error,
 
 // Two passes, the second with the cuts moved by half a chunk, so the bands
 // the first held are simplified too; each within half the error.
-Mesh simplify_twice(const Mesh& mesh, float error, const std::vector<HeldBox>& held) {
+Mesh simplify_twice(const Mesh& mesh, float error, const std::vector<MeshBounds>& held) {
   return simplify_chunks(simplify_chunks(mesh, false, 0.5f * error, held), true, 0.5f * error,
                          held);
 }
 
 // The boxes around the triangles of `mesh` that pass through another, each
 // grown by `margin` (the input's vertices inside are held next time).
-std::vector<HeldBox> around_crossings(const Mesh& mesh, float margin) {
-  std::vector<HeldBox> boxes;
+std::vector<MeshBounds> around_crossings(const Mesh& mesh, float margin) {
+  std::vector<MeshBounds> boxes;
   for (const auto& [i, j] : self_intersecting_pairs(mesh, kCrossingsPerRound))
     for (const uint32_t t : {i, j}) {
       const glm::uvec3& tri = mesh.triangles[t];
@@ -281,11 +278,11 @@ SimplifiedMesh simplify_mesh(const Mesh& mesh, const MeshSimplifyOptions& o) {
   // and the first to reach the share, or (not reaching it) fewer triangles.
   auto pass = [&](double e, bool& small) {
     const auto error = static_cast<float>(std::exp(e));
-    std::vector<HeldBox> held;
+    std::vector<MeshBounds> held;
     int places = 0;
     Mesh candidate = simplify_twice(mesh, error, held);
     for (int round = 0; guard; ++round) {
-      std::vector<HeldBox> more = around_crossings(candidate, margin);
+      std::vector<MeshBounds> more = around_crossings(candidate, margin);
       if (more.empty()) break;
       if (round == kCrossingRounds) return false;
       held.insert(held.end(), more.begin(), more.end());
