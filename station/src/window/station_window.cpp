@@ -131,6 +131,7 @@ struct RunFigures {
   // a frame a sculptor sees, so it is left out of the frame times.
   double final_frame_wait_ms = 0;
   InputHubFigures hub;
+  std::optional<InputHubFigures> hub_waits;  // taken as the last frame started
   // CPU by thread as the session's frames ended, while the sculpting thread
   // still ran (stopped, it would count only under "ended"); none before.
   struct ThreadsAtEnd {
@@ -278,6 +279,8 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
        {{"polls", f.hub.polls},
         {"sculpt_ms", f.hub.sculpt_ms},
         {"waiting_for_the_frame_ms", f.hub.lock_wait_ms},
+        {"waiting_for_the_frame_ms_max", f.hub.lock_wait_ms_max},
+        {"polls_waiting_over_1ms", f.hub.polls_waited_over_1ms},
         {"events_held_for_offset_or_closing", f.hub.held_events}}},
       {"mean_ms",
        {{"pointer_and_keys", f.input_ms / n},
@@ -578,6 +581,10 @@ int run_window(const WindowOptions& o) {
     std::unique_lock turn = hub.frame_turn(final_frame);
     if (final_frame) final_wait_ns += hal::monotonic_ns() - t_turn;
     const bool steering = turn.owns_lock();
+    // The sculpting thread's waits for the turn while the session played:
+    // the last frame holds it until everything is meshed, when no input is
+    // left to wait.
+    if (final_frame) figures.hub_waits = hub.figures();
     if (!steering) ++figures.frames_drawn_unsteered;
     // From the window's events: asking the X server is a round trip, up to
     // 12 ms under Xvfb beside llvmpipe, which the turn would make the
@@ -731,7 +738,7 @@ int run_window(const WindowOptions& o) {
     const bool panel_turn = turn.owns_lock();
     if (panel_turn) {
       ImGui_ImplOpenGL3_NewFrame();
-      begin_panel_frame(w, window_events);  // ImGui's GLFW backend asks the X server five times
+      begin_panel_frame(w, window_events);  // from the window's events: no round trip
       ImGui::NewFrame();
       frame_figures.triangles = sync.triangles;
       frame_figures.uploaded = sync.uploaded;
@@ -797,6 +804,11 @@ int run_window(const WindowOptions& o) {
   if (auto delta = mesher.take()) controller.surface_ready(*delta);
   figures.mesher = mesher.counters();
   figures.hub = hub.figures();
+  if (figures.hub_waits) {
+    figures.hub.lock_wait_ms = figures.hub_waits->lock_wait_ms;
+    figures.hub.lock_wait_ms_max = figures.hub_waits->lock_wait_ms_max;
+    figures.hub.polls_waited_over_1ms = figures.hub_waits->polls_waited_over_1ms;
+  }
 
   g_pointer = nullptr;
   ImGui_ImplOpenGL3_Shutdown();

@@ -182,6 +182,14 @@ TEST(StationWindow, RunsTheLiveLoopOnASimDeviceAndTakesAScreenshot) {
     }
   }
   EXPECT_GT(stats["triangles"].get<int>(), 1000);
+  // The sculpting thread's waits for the frame's turn: their sum, the
+  // longest, and how many polls waited over a millisecond.
+  const auto& sculpting = stats["sculpting"];
+  EXPECT_LE(sculpting["waiting_for_the_frame_ms_max"].get<double>(),
+            sculpting["waiting_for_the_frame_ms"].get<double>());
+  EXPECT_LE(sculpting["polls_waiting_over_1ms"].get<int64_t>(), sculpting["polls"].get<int64_t>());
+  EXPECT_GE(sculpting["waiting_for_the_frame_ms"].get<double>(),
+            1.0 * sculpting["polls_waiting_over_1ms"].get<double>());
   // Where each thread's time went, the sculpting thread's and the mesher's
   // included (taken as the frames end, while they still run).
   EXPECT_TRUE(stats["threads"]["cpu_s"].contains("sculpting")) << stats["threads"].dump();
