@@ -456,13 +456,24 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb) {
     if (lambda > k && on_line) return pack_edge(lambda, x / big, axis);
     return pack_edge(k, x / s, axis);
   };
+  // A new mesh, not the old one remade: the old one may be held by whoever
+  // it was handed to (shared_brick_mesh). Sized as the old one was, the
+  // march seldom grows it.
+  BrickMesh made;
+  if (cb.mesh) {
+    made.mesh.positions.reserve(cb.mesh->mesh.positions.size());
+    made.mesh.normals.reserve(cb.mesh->mesh.normals.size());
+    made.mesh.triangles.reserve(cb.mesh->mesh.triangles.size());
+    made.seams.reserve(cb.mesh->seams.size());
+  }
+  cb.mesh.reset();
   if (as_bytes)
-    detail::march_byte_cells(bytes.data(), glm::ivec3(m), origin, k, options_.iso, key, cb.mesh);
+    detail::march_byte_cells(bytes.data(), glm::ivec3(m), origin, k, options_.iso, key, made);
   else
-    detail::march_float_cells(block.data(), glm::ivec3(m), origin, k, options_.iso, key, cb.mesh);
+    detail::march_float_cells(block.data(), glm::ivec3(m), origin, k, options_.iso, key, made);
   // No crossing among the corners (the march finds that first, row by
   // row): nothing to stitch either.
-  if (cb.mesh.empty()) return;
+  if (made.empty()) return;
   // Only a coarser face neighbour leaves gaps for this brick to close.
   bool coarser_face = false;
   for (int a = 0; a < 3; ++a)
@@ -471,7 +482,8 @@ void MixedLevelMeshCache::mesh_brick(glm::ivec3 b, CachedBrick& cb) {
       nb[a] += side_sign;
       coarser_face = coarser_face || (in_grid(nb) && level_of(nb) > k);
     }
-  if (coarser_face) stitch(b, k, cb.mesh, cb.stats);
+  if (coarser_face) stitch(b, k, made, cb.stats);
+  cb.mesh = std::make_shared<const BrickMesh>(std::move(made));
 }
 
 void MixedLevelMeshCache::stitch(glm::ivec3 b, int k, BrickMesh& out, MixedLevelStats& st) const {
@@ -782,7 +794,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
       reads_changed = !intersect(changed[i], reads).empty();
     if (!levels_moved_here && !reads_changed) return;
     ++stats.bricks_changed;
-    const bool had_mesh = !cb.mesh.empty();
+    const bool had_mesh = cb.mesh != nullptr;
     // Only its level or its neighbours' moved: its mesh stays right for
     // the levels it was made at, so it is kept for when they come back.
     if (!reads_changed && cb.level >= 0) keep_mesh(cb);
@@ -791,7 +803,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
     if (uniform_around(b, r)) {
       // No crossing anywhere it reads: no surface, nothing to decode.
       if (had_mesh) ++cb.mesh_version;
-      cb.mesh.clear();
+      cb.mesh.reset();
       cb.stats = {};
       return;
     }
@@ -888,7 +900,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
       options_.threads);
   frozen_ = false;
   for (glm::ivec3 b : stale_bricks)
-    stats.bricks_meshed += bricks_[index(b)].mesh.empty() ? 0 : 1;
+    stats.bricks_meshed += bricks_[index(b)].mesh ? 1 : 0;
   // Forget decoded bricks at levels no brick around them uses any more.
   // Only a move of the levels can leave a kept entry unused; with the levels
   // as before, only the entries added since the last sweep are looked at
@@ -923,7 +935,9 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
 
 namespace {
 
-size_t mesh_bytes(const BrickMesh& m) {
+size_t mesh_bytes(const std::shared_ptr<const BrickMesh>& shared) {
+  if (!shared) return 0;
+  const BrickMesh& m = *shared;
   return m.mesh.positions.capacity() * sizeof(m.mesh.positions[0]) +
          m.mesh.normals.capacity() * sizeof(m.mesh.normals[0]) +
          m.mesh.triangles.capacity() * sizeof(m.mesh.triangles[0]) +
@@ -983,6 +997,17 @@ void MixedLevelMeshCache::trim_kept_meshes() {
   kept_bytes_ = left;
 }
 
+const BrickMesh& MixedLevelMeshCache::no_mesh() {
+  static const BrickMesh empty;
+  return empty;
+}
+
+std::shared_ptr<const BrickMesh> MixedLevelMeshCache::shared_brick_mesh(glm::ivec3 b) const {
+  static const auto empty = std::make_shared<const BrickMesh>();
+  const std::shared_ptr<const BrickMesh>& mesh = bricks_[index(b)].mesh;
+  return mesh ? mesh : empty;
+}
+
 MixedLevelStats MixedLevelMeshCache::stats() const {
   MixedLevelStats st;
   for (const CachedBrick& cb : bricks_)
@@ -993,7 +1018,7 @@ MixedLevelStats MixedLevelMeshCache::stats() const {
 int64_t MixedLevelMeshCache::triangle_count() const {
   int64_t n = 0;
   for (const CachedBrick& cb : bricks_)
-    n += static_cast<int64_t>(cb.mesh.mesh.triangles.size());
+    n += cb.mesh ? static_cast<int64_t>(cb.mesh->mesh.triangles.size()) : 0;
   return n;
 }
 
@@ -1001,7 +1026,7 @@ Mesh MixedLevelMeshCache::welded_mesh() const {
   std::vector<const BrickMesh*> meshes;
   meshes.reserve(bricks_.size());
   for (const CachedBrick& cb : bricks_)
-    if (!cb.mesh.empty()) meshes.push_back(&cb.mesh);
+    if (cb.mesh) meshes.push_back(cb.mesh.get());
   return weld_brick_meshes(meshes);
 }
 

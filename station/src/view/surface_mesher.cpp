@@ -278,15 +278,14 @@ void SurfaceMesher::run() {
       const uint64_t version = cache->brick_mesh_version(b);
       if (!all && published[static_cast<size_t>(i)] == version) continue;
       published[static_cast<size_t>(i)] = version;
-      const core::BrickMesh& mesh = cache->brick_mesh(b);
-      if (all && mesh.empty()) continue;
+      std::shared_ptr<const core::BrickMesh> mesh = cache->shared_brick_mesh(b);
+      if (all && mesh->empty()) continue;
       if (refined != nullptr && refined->meshes[static_cast<size_t>(i)].simplified) {
         const RefinedBrick& r = refined->meshes[static_cast<size_t>(i)];
         delta.bricks.push_back({i, cache->brick_level(b), 0, r.simplified, true, r.marched});
         continue;
       }
-      delta.bricks.push_back(
-          {i, cache->brick_level(b), 0, std::make_shared<const core::BrickMesh>(mesh), false, {}});
+      delta.bricks.push_back({i, cache->brick_level(b), 0, std::move(mesh), false, {}});
     }
     delta.readiness.push_back({delta.change, delta.full_detail_change, hal::monotonic_ns()});
     publish(std::move(delta));
@@ -507,7 +506,7 @@ void SurfaceMesher::simplify_refined(const core::MixedLevelMeshCache& cache,
             simplify_brick(cache.brick_mesh(b), cache.brick_level(b), /*quick=*/true);
         RefinedBrick& r = refined[static_cast<size_t>(i)];
         r.simplified = s.mesh;
-        if (s.turning > 0) r.marched = std::make_shared<const core::BrickMesh>(cache.brick_mesh(b));
+        if (s.turning > 0) r.marched = cache.shared_brick_mesh(b);
       },
       threads_);
   std::lock_guard lock(mutex_);

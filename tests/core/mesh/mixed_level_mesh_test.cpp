@@ -7,6 +7,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -371,6 +372,48 @@ TEST(MixedLevelMeshCache, ABallInAUniformBrickReMeshesOnlyTheBricksThatReadIt) {
     EXPECT_GE(across.bricks_changed, 2) << int{fill};
     EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, levels)) << int{fill};
   }
+}
+
+TEST(MixedLevelMeshCache, AHandedOutMeshIsNeverChangedByALaterUpdate) {
+  // The station hands the window each re-made mesh without a copy
+  // (shared_brick_mesh): a later update makes the brick's next mesh anew,
+  // so the one handed out stays as it was, and zooming out and back gives
+  // the very mesh kept, not a copy.
+  Volume v = sphere_volume(128);  // 4^3 bricks
+  const std::vector<int> near = levels_by(v, [](glm::ivec3 b) { return b.x < 2 ? 0 : 1; });
+  const std::vector<int> far = levels_by(v, [](glm::ivec3 b) { return b.x < 2 ? 2 : 3; });
+  MixedLevelMeshCache cache;
+  cache.update(v, near);
+  const glm::ivec3 b(2, 2, 3);  // on the sphere's surface
+  const std::shared_ptr<const BrickMesh> handed = cache.shared_brick_mesh(b);
+  ASSERT_FALSE(handed->empty());
+  EXPECT_EQ(handed.get(), &cache.brick_mesh(b));
+  const BrickMesh as_handed = *handed;
+  // A dent in it: re-meshed, into a new mesh.
+  const Box box{glm::ivec3(66, 66, 100), glm::ivec3(76, 76, 115)};
+  v.edit(box, [&](glm::ivec3 origin, std::span<uint8_t> voxels) {
+    const int e = v.brick_edge();
+    const Box local = intersect(box, Box{origin, origin + e});
+    for (int z = local.lo.z; z < local.hi.z; ++z)
+      for (int y = local.lo.y; y < local.hi.y; ++y)
+        for (int x = local.lo.x; x < local.hi.x; ++x)
+          voxels[(static_cast<size_t>(z - origin.z) * e + (y - origin.y)) * e + (x - origin.x)] = 0;
+  });
+  cache.update(v, near);
+  EXPECT_EQ(*handed, as_handed);
+  EXPECT_NE(cache.brick_mesh(b), as_handed);
+  EXPECT_NE(cache.shared_brick_mesh(b).get(), handed.get());
+  EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, near));
+  // Out and back: the kept mesh itself comes back.
+  const std::shared_ptr<const BrickMesh> dented = cache.shared_brick_mesh(b);
+  cache.update(v, far);
+  EXPECT_NE(cache.shared_brick_mesh(b).get(), dented.get());
+  cache.update(v, near);
+  EXPECT_EQ(cache.shared_brick_mesh(b).get(), dented.get());
+  // A brick with no surface hands out an empty mesh, not a null one.
+  const std::shared_ptr<const BrickMesh> air = cache.shared_brick_mesh({0, 0, 0});
+  ASSERT_NE(air, nullptr);
+  EXPECT_TRUE(air->empty());
 }
 
 TEST(MixedLevelMeshCache, ZoomingBackReMeshesNothing) {

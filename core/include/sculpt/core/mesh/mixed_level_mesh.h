@@ -32,6 +32,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <unordered_map>
 #include <vector>
@@ -113,7 +114,14 @@ class MixedLevelMeshCache {
   int brick_level(glm::ivec3 b) const { return bricks_[index(b)].level; }
   /// Brick b's mesh (level-0 voxel units), stitch included; empty before
   /// the first update().
-  const BrickMesh& brick_mesh(glm::ivec3 b) const { return bricks_[index(b)].mesh; }
+  const BrickMesh& brick_mesh(glm::ivec3 b) const {
+    const std::shared_ptr<const BrickMesh>& mesh = bricks_[index(b)].mesh;
+    return mesh ? *mesh : no_mesh();
+  }
+  /// The same mesh, shared: update() makes a brick's next mesh anew and
+  /// never changes one it made, so a holder (a renderer, the simplifier)
+  /// keeps this one as it is without a copy. An empty brick's is empty.
+  std::shared_ptr<const BrickMesh> shared_brick_mesh(glm::ivec3 b) const;
   /// Incremented each time update() rebuilds brick b's mesh (0 before the
   /// first): a renderer re-uploads exactly the bricks whose count moved.
   uint64_t brick_mesh_version(glm::ivec3 b) const { return bricks_[index(b)].mesh_version; }
@@ -133,7 +141,9 @@ class MixedLevelMeshCache {
     // Levels of the bricks around, in neighbourhood order; empty before the
     // first meshing.
     std::vector<int8_t> levels;
-    BrickMesh mesh;
+    // Null when it has no surface. Shared with those it was handed to
+    // (shared_brick_mesh): replaced by a new mesh, never changed.
+    std::shared_ptr<const BrickMesh> mesh;
     MixedLevelStats stats;
     uint64_t kept_order = 0;  // when it was kept (least recent dropped first)
   };
@@ -147,6 +157,7 @@ class MixedLevelMeshCache {
     std::vector<uint8_t> voxels;  // (edge >> level)^3
   };
   size_t index(glm::ivec3 b) const { return grid_index(b, grid_); }
+  static const BrickMesh& no_mesh();
   bool in_grid(glm::ivec3 b) const;
   int level_of(glm::ivec3 b) const { return levels_[index(b)]; }
   // The neighbourhood radius a brick at `level` reads (halo two voxels up).
