@@ -161,8 +161,12 @@ int64_t time_presses(benchmark::State& state, const std::function<DabStats(int64
 // re-encoded on every core. Wall time of the press (a sculptor waits for
 // all of it); the counters say where it went (wall time of the decodes,
 // the sweep and the stores).
-void time_ball_presses(benchmark::State& state, Volume material, float ball) {
-  Sculptor sculptor(material);
+// `hand_over`: the sculptor also copies what it stored for a mesher
+// (SculptorOptions::hand_over_voxels), taken after each press as the
+// station does.
+void time_ball_presses(benchmark::State& state, Volume material, float ball,
+                       bool hand_over = false) {
+  Sculptor sculptor(material, SculptorOptions{.hand_over_voxels = hand_over});
   sculptor.set_tool(make_sphere_tool(ball));
   set_default_threads(static_cast<int>(state.range(0)));
   const glm::vec3 centre(0.5f * static_cast<float>(material.dims().x - 1));
@@ -171,8 +175,11 @@ void time_ball_presses(benchmark::State& state, Volume material, float ball) {
     const float a = 0.7f * static_cast<float>(i);
     const StrokeSample at{centre + radius * glm::vec3(std::cos(a), std::sin(a), 0.0f),
                           glm::quat(1.0f, 0.0f, 0.0f, 0.0f)};
-    return sweep_stroke(sculptor, std::span(&at, 1),
-                        {i % 2 ? SculptMode::kSubtract : SculptMode::kAdd, 1.0f, false});
+    const DabStats stats =
+        sweep_stroke(sculptor, std::span(&at, 1),
+                     {i % 2 ? SculptMode::kSubtract : SculptMode::kAdd, 1.0f, false});
+    (void)sculptor.take_stored_voxels();
+    return stats;
   };
   time_presses(state, press);
 }
@@ -183,6 +190,19 @@ void BM_StrokeBigBall(benchmark::State& state) {
   time_ball_presses(state, sphere_to_sculpt(), 66.0f);
 }
 BENCHMARK(BM_StrokeBigBall)
+    ->Arg(1)
+    ->Arg(2)
+    ->ArgName("threads")
+    ->Iterations(30)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+// The same, the sculptor copying each brick it stores for the mesher (the
+// window's sculptor does): what that costs the press.
+void BM_StrokeBigBallHandingOver(benchmark::State& state) {
+  time_ball_presses(state, sphere_to_sculpt(), 66.0f, /*hand_over=*/true);
+}
+BENCHMARK(BM_StrokeBigBallHandingOver)
     ->Arg(1)
     ->Arg(2)
     ->ArgName("threads")

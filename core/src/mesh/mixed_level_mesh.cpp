@@ -626,7 +626,8 @@ void MixedLevelMeshCache::stitch(glm::ivec3 b, int k, BrickMesh& out, MixedLevel
   }
 }
 
-MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int> brick_levels) {
+MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int> brick_levels,
+                                       StoredVoxelsByBrick* stored) {
   assert(static_cast<int64_t>(brick_levels.size()) == volume.brick_count());
   const bool reset = volume_ != &volume || volume.dims() != dims_ || volume.brick_grid() != grid_ ||
                      volume.brick_edge() != edge_;
@@ -679,8 +680,17 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
     int level;
     Decoded* kept;
     Box moved{glm::ivec3(0), glm::ivec3(0)};  // empty: nothing differs
+    std::vector<uint8_t>* given = nullptr;    // its level-0 voxels, to take
   };
   std::vector<Redecode> redecodes;
+  // Brick n's level-0 voxels as given in `stored`, or null.
+  auto given_voxels = [&](glm::ivec3 n) -> std::vector<uint8_t>* {
+    if (stored == nullptr) return nullptr;
+    const auto it = stored->find(static_cast<int64_t>(index(n)));
+    if (it == stored->end() || it->second.version != volume.brick_version(n)) return nullptr;
+    if (it->second.voxels.size() != static_cast<size_t>(edge_) * edge_ * edge_) return nullptr;
+    return &it->second.voxels;
+  };
   for (int z = 0; z < grid_.z; ++z)
     for (int y = 0; y < grid_.y; ++y)
       for (int x = 0; x < grid_.x; ++x) {
@@ -696,7 +706,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
           auto it = decoded_.find(static_cast<uint64_t>(index(n)) * 8 + static_cast<uint64_t>(k));
           if (it == decoded_.end()) continue;
           kept = true;
-          redecodes.push_back({n, k, &it->second});
+          redecodes.push_back({n, k, &it->second, {}, k == 0 ? given_voxels(n) : nullptr});
         }
         if (kept) continue;
         // Nothing kept: it sat among uniform bricks, unmeshed. When it was
@@ -718,7 +728,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
           Decoded& old = entry->second;
           const size_t m = static_cast<size_t>(edge_ >> k);
           old.voxels.assign(m * m * m, static_cast<uint8_t>(was_uniform));
-          redecodes.push_back({n, k, &old});
+          redecodes.push_back({n, k, &old, {}, k == 0 ? given_voxels(n) : nullptr});
         }
       }
   parallel_for(
@@ -729,8 +739,12 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         thread_local std::vector<uint8_t> old;
         old.swap(r.kept->voxels);
         std::vector<uint8_t>& now = r.kept->voxels;
-        now.resize(static_cast<size_t>(m) * m * m);
-        volume.decode_brick(r.brick, now, r.level);
+        if (r.given != nullptr) {
+          now.swap(*r.given);  // what decoding would give, to the byte
+        } else {
+          now.resize(static_cast<size_t>(m) * m * m);
+          volume.decode_brick(r.brick, now, r.level);
+        }
         r.kept->version = volume.brick_version(r.brick);
         if (old.size() != now.size()) {
           r.moved = Box{r.brick * edge_, (r.brick + 1) * edge_};
@@ -756,6 +770,11 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
       },
       options_.threads);
   decodes_ += static_cast<int64_t>(redecodes.size());
+  for (const Redecode& r : redecodes) {
+    if (r.given == nullptr) continue;
+    ++stats.bricks_given;
+    stored->erase(static_cast<int64_t>(index(r.brick)));  // taken: what is left is not its voxels
+  }
   for (const Redecode& r : redecodes)
     if (!r.moved.empty()) changed.push_back(r.moved);
   // Meshes kept from other levels may read voxels of levels no longer
@@ -850,6 +869,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
     glm::ivec3 brick;
     int level;
     Decoded* entry;
+    std::vector<uint8_t>* given = nullptr;  // its level-0 voxels, to take
   };
   std::vector<Decode> neighbourhood_decodes;
   std::vector<glm::ivec3> to_decode = stale_bricks;
@@ -875,7 +895,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
               continue;
             }
             if (const auto [d, stale] = entry_for(nb, l); stale)
-              neighbourhood_decodes.push_back({nb, l, d});
+              neighbourhood_decodes.push_back({nb, l, d, l == 0 ? given_voxels(nb) : nullptr});
           }
         }
   }
@@ -883,10 +903,19 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
       static_cast<int64_t>(neighbourhood_decodes.size()),
       [&](int64_t i) {
         const Decode& d = neighbourhood_decodes[static_cast<size_t>(i)];
-        volume.decode_brick(d.brick, d.entry->voxels, d.level);
+        if (d.given != nullptr) {
+          d.entry->voxels.swap(*d.given);
+        } else {
+          volume.decode_brick(d.brick, d.entry->voxels, d.level);
+        }
       },
       options_.threads);
   decodes_ += static_cast<int64_t>(neighbourhood_decodes.size());
+  for (const Decode& d : neighbourhood_decodes) {
+    if (d.given == nullptr) continue;
+    ++stats.bricks_given;
+    stored->erase(static_cast<int64_t>(index(d.brick)));
+  }
   frozen_ = true;
   parallel_for(
       static_cast<int64_t>(stale_bricks.size()),

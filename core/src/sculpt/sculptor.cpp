@@ -125,6 +125,12 @@ const char* sculpt_mode_name(SculptMode mode) {
   return "?";
 }
 
+void Sculptor::hand_over(glm::ivec3 b, uint64_t version, std::vector<uint8_t> voxels) {
+  if (stored_voxels_.size() >= kMaxHandedBricks) stored_voxels_.clear();  // nobody takes them
+  const auto index = static_cast<int64_t>(grid_index(b, volume_.brick_grid()));
+  stored_voxels_.insert_or_assign(index, StoredVoxels{version, std::move(voxels)});
+}
+
 DabStats& DabStats::operator+=(const DabStats& o) {
   bricks_overlapped += o.bricks_overlapped;
   bricks_decoded += o.bricks_decoded;

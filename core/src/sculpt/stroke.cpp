@@ -381,6 +381,8 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
     int64_t changed = 0;
     Box touched{glm::ivec3(std::numeric_limits<int>::max()),
                 glm::ivec3(std::numeric_limits<int>::min())};
+    // Its voxels as stored, for the mesher (SculptorOptions::hand_over_voxels).
+    std::vector<uint8_t> handed = {};
   };
   std::vector<Job> jobs;
   std::unordered_map<int64_t, size_t> job_of;  // brick index -> jobs
@@ -808,12 +810,17 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
   // lazily in entries the bricks share, which threads may fill at once
   // (RotatedToolEntry): a turning tool's segment rotates dozens of
   // placements, the work of its bricks.
+  const bool hand_over = sculptor_.options_.hand_over_voxels;
   auto run_job = [&](Job& job, Scratch& scratch) {
     if (lean) {
       run_balls(job, scratch);
     } else {
       run(job, scratch);
     }
+    // Copied here, on every thread, not as the bricks are stored one by one.
+    if (hand_over && job.changed != 0)
+      job.handed.assign(job.held->current.begin(),
+                        job.held->current.begin() + static_cast<std::ptrdiff_t>(brick_bytes));
   };
   const size_t row_bytes = static_cast<size_t>(edge) + kCombineRowSlack;
   // A turning tool's segment is work enough on a few bricks: each of its
@@ -855,8 +862,11 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
     stats.voxels_changed += job.changed;
   }
   volume.store_bricks(stores);
-  for (Job& job : jobs)
-    if (job.changed != 0) job.held->version = volume.brick_version(job.b);
+  for (Job& job : jobs) {
+    if (job.changed == 0) continue;
+    job.held->version = volume.brick_version(job.b);
+    if (hand_over) sculptor_.hand_over(job.b, job.held->version, std::move(job.handed));
+  }
   stats.encode_ns += now_ns() - t_store;
   return stats;
 }

@@ -218,13 +218,14 @@ void InputHub::poll(int64_t now, bool land) {
   if (listener_ != nullptr) listener_->on_poll(controller_, now);
   // What was sculpted goes to the mesher at once; before the render thread
   // has said which levels it draws, there is nothing to mesh for.
+  core::StoredVoxelsByBrick stored = controller_.loop().take_stored_voxels();
   if (!levels_.empty()) {
     const core::Volume& volume = controller_.loop().volume();
     if (static_cast<int64_t>(levels_.size()) == volume.brick_count()) {
       // Handed over when queued, not when submit() returns (see there).
       int64_t queued_ns = -1;
-      const uint64_t change =
-          mesher_.submit(volume, controller_.loop().volume_generation(), levels_, &queued_ns);
+      const uint64_t change = mesher_.submit(volume, controller_.loop().volume_generation(),
+                                             levels_, &queued_ns, std::move(stored));
       controller_.surface_submitted(change, queued_ns >= 0 ? queued_ns : hal::monotonic_ns());
     }
   }

@@ -260,6 +260,7 @@ core::RotatedToolCacheStats StationLoop::rotation_cache_stats() const {
 core::SculptorOptions StationLoop::sculptor_options() const {
   core::SculptorOptions o;
   o.undo_max_bytes = options_.undo_max_bytes;
+  o.hand_over_voxels = options_.hand_over_voxels;
   return o;
 }
 

@@ -65,14 +65,20 @@ SurfaceMesher::~SurfaceMesher() {
 }
 
 uint64_t SurfaceMesher::submit(const core::Volume& volume, uint64_t generation,
-                               const std::vector<int>& levels, int64_t* queued_ns) {
+                               const std::vector<int>& levels, int64_t* queued_ns,
+                               core::StoredVoxelsByBrick stored) {
   const bool reset = generation != generation_;
   // Nothing stored since the previous call (most of the sculpting thread's
   // thousand calls a second): no brick to look at.
   if (!reset && volume.stores() == sent_stores_ && levels == sent_levels_) return change_;
   sent_stores_ = volume.stores();
   const glm::ivec3 grid = volume.brick_grid();
-  std::vector<std::pair<int64_t, const core::Brick*>> changed;
+  struct Changed {
+    int64_t index;
+    const core::Brick* brick;
+    uint64_t version;
+  };
+  std::vector<Changed> changed;
   if (reset) {
     generation_ = generation;
     sent_versions_.assign(static_cast<size_t>(volume.brick_count()), 0);
@@ -82,7 +88,7 @@ uint64_t SurfaceMesher::submit(const core::Volume& volume, uint64_t generation,
     uint64_t& sent = sent_versions_[static_cast<size_t>(i)];
     if (!reset && sent == volume.brick_version(b)) continue;
     sent = volume.brick_version(b);
-    if (!reset) changed.emplace_back(i, &volume.brick(b));
+    if (!reset) changed.push_back({i, &volume.brick(b), sent});
   }
   if (!reset && changed.empty() && levels == sent_levels_) return change_;
   sent_levels_ = levels;
@@ -91,18 +97,25 @@ uint64_t SurfaceMesher::submit(const core::Volume& volume, uint64_t generation,
   if (reset) whole = std::make_unique<core::Volume>(volume);
   std::vector<std::pair<int64_t, core::Brick>> copies;
   copies.reserve(changed.size());
-  for (const auto& [i, brick] : changed)
-    copies.emplace_back(i, *brick);
+  for (const Changed& c : changed)
+    copies.emplace_back(c.index, *c.brick);
   {
     std::lock_guard lock(mutex_);
     Pending& p = pending_;
     if (whole) {
       p.reset = std::move(whole);
       p.bricks.clear();  // the copy holds them
+      p.stored.clear();
     }
-    for (auto& [i, brick] : copies) {
-      auto [it, added] = p.bricks.insert_or_assign(i, std::move(brick));
+    for (size_t k = 0; k < copies.size(); ++k) {
+      auto& [i, brick] = copies[k];
+      const bool added = p.bricks.insert_or_assign(i, std::move(brick)).second;
       if (!added) ++counters_.bricks_coalesced;
+      // The stored voxels of this very version, or none (older ones go).
+      if (auto s = stored.find(i); s != stored.end() && s->second.version == changed[k].version)
+        p.stored.insert_or_assign(i, std::move(s->second));
+      else
+        p.stored.erase(i);
     }
     p.levels = levels;
     p.change = ++change_;
@@ -360,6 +373,16 @@ void SurfaceMesher::run() {
     if (refining && !reset) handed = work.bricks;
     for (auto& [i, brick] : work.bricks)
       mirror->replace_brick(core::grid_position(i, grid), std::move(brick));
+    // The sculptor's voxels of the bricks replaced, as of the mirror's
+    // versions of them (a brick found unchanged keeps its mesh: none).
+    for (auto it = work.stored.begin(); it != work.stored.end();) {
+      if (!work.bricks.contains(it->first)) {
+        it = work.stored.erase(it);
+        continue;
+      }
+      it->second.version = mirror->brick_version(core::grid_position(it->first, grid));
+      ++it;
+    }
     // A new volume is shown first at a coarse level (a sixteenth of the
     // work at level 2: 7 ms against 92 for the demo's head) and refined on
     // the refiner's copy, so the first dabs on it wait for a coarse re-mesh
@@ -401,7 +424,7 @@ void SurfaceMesher::run() {
       for (int& l : levels)
         l = std::max(l, coarse);
     const int64_t faults_before = minor_faults_of_this_thread();
-    const core::MeshUpdate update = cache->update(*mirror, levels);
+    const core::MeshUpdate update = cache->update(*mirror, levels, &work.stored);
     publish_cache(work.change, !refining, reset);
     if (reset && refining) {
       // Copied once the coarse meshes are out (they come first) and outside
@@ -424,6 +447,7 @@ void SurfaceMesher::run() {
       ++counters_.updates;
       counters_.bricks_meshed += update.bricks_meshed;
       counters_.bricks_reused += update.bricks_reused;
+      counters_.bricks_given += update.bricks_given;
       counters_.bricks_unchanged += unchanged;
       counters_.coarse_first += reset && refining ? 1 : 0;
       counters_.coarse_updates += !reset && refining ? 1 : 0;

@@ -265,6 +265,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
         {"updates", f.mesher.updates},
         {"bricks_meshed", f.mesher.bricks_meshed},
         {"bricks_reused", f.mesher.bricks_reused},
+        {"bricks_given_by_the_sculptor", f.mesher.bricks_given},
         {"update_ms_p50", f.mesher.update_us.quantile_us(0.5) * 1e-3},
         {"update_ms_p99", f.mesher.update_us.quantile_us(0.99) * 1e-3},
         {"update_ms_max", f.mesher.update_us.max_us() * 1e-3},
@@ -357,6 +358,7 @@ int run_window(const WindowOptions& o) {
   // Offset and closing take seconds on a big sculpture: computed on a
   // worker, the window draws and steers meanwhile (input_hub.cpp).
   co.loop.background_morphology = true;
+  co.loop.hand_over_voxels = true;  // the mesher takes them (InputHub::poll)
   // A dab that adds the tool is drawn at once (app/dab_stand_ins.h).
   co.stand_ins = o.stand_ins;
   co.loop.pose.tracker = o.tracker;

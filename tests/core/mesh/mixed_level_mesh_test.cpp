@@ -33,6 +33,18 @@ std::vector<int> levels_by(const Volume& v, int (*pick)(glm::ivec3)) {
   return levels;
 }
 
+// Empties every voxel of `box`: a dent where it meets the material.
+void carve_box(Volume& v, const Box& box) {
+  v.edit(box, [&](glm::ivec3 origin, std::span<uint8_t> voxels) {
+    const int e = v.brick_edge();
+    const Box local = intersect(box, Box{origin, origin + e});
+    for (int z = local.lo.z; z < local.hi.z; ++z)
+      for (int y = local.lo.y; y < local.hi.y; ++y)
+        for (int x = local.lo.x; x < local.hi.x; ++x)
+          voxels[(static_cast<size_t>(z - origin.z) * e + (y - origin.y)) * e + (x - origin.x)] = 0;
+  });
+}
+
 void expect_watertight(const Mesh& mesh, int64_t euler, const char* what) {
   const MeshTopology t = check_topology(mesh);
   EXPECT_EQ(t.boundary_edges, 0) << what;
@@ -212,14 +224,7 @@ TEST(MixedLevelMeshCache, KeepsWhatDidNotChange) {
   // A dent in the surface inside brick (2, 2, 3): it and its 26 neighbours
   // at most are re-meshed, and the result is what meshing from scratch gives.
   const Box box{glm::ivec3(66, 66, 100), glm::ivec3(76, 76, 115)};
-  v.edit(box, [&](glm::ivec3 origin, std::span<uint8_t> voxels) {
-    const int e = v.brick_edge();
-    const Box local = intersect(box, Box{origin, origin + e});
-    for (int z = local.lo.z; z < local.hi.z; ++z)
-      for (int y = local.lo.y; y < local.hi.y; ++y)
-        for (int x = local.lo.x; x < local.hi.x; ++x)
-          voxels[(static_cast<size_t>(z - origin.z) * e + (y - origin.y)) * e + (x - origin.x)] = 0;
-  });
+  carve_box(v, box);
   u = cache.update(v, levels);
   EXPECT_GT(u.bricks_changed, 0);
   EXPECT_LE(u.bricks_changed, 27);
@@ -391,14 +396,7 @@ TEST(MixedLevelMeshCache, AHandedOutMeshIsNeverChangedByALaterUpdate) {
   const BrickMesh as_handed = *handed;
   // A dent in it: re-meshed, into a new mesh.
   const Box box{glm::ivec3(66, 66, 100), glm::ivec3(76, 76, 115)};
-  v.edit(box, [&](glm::ivec3 origin, std::span<uint8_t> voxels) {
-    const int e = v.brick_edge();
-    const Box local = intersect(box, Box{origin, origin + e});
-    for (int z = local.lo.z; z < local.hi.z; ++z)
-      for (int y = local.lo.y; y < local.hi.y; ++y)
-        for (int x = local.lo.x; x < local.hi.x; ++x)
-          voxels[(static_cast<size_t>(z - origin.z) * e + (y - origin.y)) * e + (x - origin.x)] = 0;
-  });
+  carve_box(v, box);
   cache.update(v, near);
   EXPECT_EQ(*handed, as_handed);
   EXPECT_NE(cache.brick_mesh(b), as_handed);
@@ -414,6 +412,39 @@ TEST(MixedLevelMeshCache, AHandedOutMeshIsNeverChangedByALaterUpdate) {
   const std::shared_ptr<const BrickMesh> air = cache.shared_brick_mesh({0, 0, 0});
   ASSERT_NE(air, nullptr);
   EXPECT_TRUE(air->empty());
+}
+
+TEST(MixedLevelMeshCache, VoxelsGivenWithAChangeAreTakenInsteadOfDecoding) {
+  // The voxels a sculptor stored, given to update(): taken for the bricks
+  // whose version they are of (the meshes those of decoding), ignored for
+  // a brick stored again since (here deliberately wrong voxels).
+  Volume v = sphere_volume(128);  // 4^3 bricks
+  const std::vector<int> levels = levels_by(v, [](glm::ivec3 b) { return b.x < 2 ? 0 : 1; });
+  MixedLevelMeshCache cache;
+  cache.update(v, levels);
+  const Box box{glm::ivec3(50, 50, 98), glm::ivec3(80, 80, 115)};  // across bricks, on the surface
+  carve_box(v, box);
+  const int e = v.brick_edge();
+  StoredVoxelsByBrick stored;
+  const Box moved = v.bricks_overlapping(box);
+  for (int z = moved.lo.z; z < moved.hi.z; ++z)
+    for (int y = moved.lo.y; y < moved.hi.y; ++y)
+      for (int x = moved.lo.x; x < moved.hi.x; ++x) {
+        const glm::ivec3 b(x, y, z);
+        StoredVoxels& s = stored[static_cast<int64_t>(grid_index(b, v.brick_grid()))];
+        s.version = v.brick_version(b);
+        s.voxels.resize(static_cast<size_t>(e) * e * e);
+        v.decode_brick(b, s.voxels);
+      }
+  ASSERT_GE(stored.size(), 4u);
+  // One of them given for an older version, its voxels all wrong.
+  StoredVoxels& stale = stored.begin()->second;
+  stale.version -= 1;
+  std::fill(stale.voxels.begin(), stale.voxels.end(), uint8_t{255});
+  const MeshUpdate u = cache.update(v, levels, &stored);
+  EXPECT_EQ(u.bricks_given, static_cast<int64_t>(moved.voxel_count()) - 1);
+  EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, levels));
+  expect_watertight(cache.welded_mesh(), 2, "given voxels");
 }
 
 TEST(MixedLevelMeshCache, ZoomingBackReMeshesNothing) {

@@ -203,6 +203,39 @@ TEST(SweptStroke, StraightStrokeDoesNotDependOnSpacing) {
   EXPECT_LE(worst, 1);
 }
 
+// A sculptor asked to hands over the voxels of every brick its strokes
+// store, of the version stored, byte for byte what decoding gives; one not
+// asked keeps none.
+TEST(SweptStroke, HandsOverTheVoxelsItStoredWhenAsked) {
+  for (const bool asked : {false, true}) {
+    Volume v = sphere_volume(128, 0.3f);
+    SculptorOptions options;
+    options.hand_over_voxels = asked;
+    Sculptor sculptor(v, options);
+    sculptor.set_tool(make_sphere_tool(12.0f));
+    const std::vector<StrokeSample> path = {
+        {glm::vec3(64.0f, 64.0f, 64.0f + 38.0f), glm::quat(1, 0, 0, 0)},
+        {glm::vec3(80.0f, 64.0f, 64.0f + 34.0f), glm::quat(1, 0, 0, 0)}};
+    const DabStats stats = sweep_stroke(sculptor, path, {SculptMode::kSubtract, 1.0f, false});
+    ASSERT_GT(stats.bricks_changed, 0);
+    const StoredVoxelsByBrick handed = sculptor.take_stored_voxels();
+    if (!asked) {
+      EXPECT_TRUE(handed.empty());
+      continue;
+    }
+    EXPECT_EQ(static_cast<int>(handed.size()), stats.bricks_changed);
+    const int e = v.brick_edge();
+    std::vector<uint8_t> decoded(static_cast<size_t>(e) * e * e);
+    for (const auto& [index, stored] : handed) {
+      const glm::ivec3 b = grid_position(index, v.brick_grid());
+      EXPECT_EQ(stored.version, v.brick_version(b));
+      v.decode_brick(b, decoded);
+      EXPECT_EQ(stored.voxels, decoded) << index;
+    }
+    EXPECT_TRUE(sculptor.take_stored_voxels().empty());  // taken
+  }
+}
+
 // Trilinear density of g at p.
 float sample(const DenseGrid<uint8_t>& g, glm::vec3 p) {
   const glm::ivec3 i(glm::floor(p));

@@ -190,6 +190,10 @@ TEST(StationWindow, RunsTheLiveLoopOnASimDeviceAndTakesAScreenshot) {
   EXPECT_LE(sculpting["polls_waiting_over_1ms"].get<int64_t>(), sculpting["polls"].get<int64_t>());
   EXPECT_GE(sculpting["waiting_for_the_frame_ms"].get<double>(),
             1.0 * sculpting["polls_waiting_over_1ms"].get<double>());
+  // The strokes' bricks reach the mesher with their voxels: not decoded again.
+  EXPECT_GT(stats["mesher"]["bricks_given_by_the_sculptor"].get<int64_t>(), 0) << stats.dump();
+  EXPECT_LE(stats["mesher"]["bricks_given_by_the_sculptor"].get<int64_t>(),
+            stats["mesher"]["bricks_submitted"].get<int64_t>());
   // Where each thread's time went, the sculpting thread's and the mesher's
   // included (taken as the frames end, while they still run).
   EXPECT_TRUE(stats["threads"]["cpu_s"].contains("sculpting")) << stats["threads"].dump();

@@ -43,6 +43,9 @@ struct MeshUpdate {
   /// Bricks given back a mesh kept from an earlier level of detail instead
   /// of marched (MixedLevelMeshCache only: zooming back re-meshes nothing).
   int64_t bricks_reused = 0;
+  /// Of bricks_decoded, those whose voxels were given instead (the voxels a
+  /// sculptor stored: MixedLevelMeshCache::update's `stored`).
+  int64_t bricks_given = 0;
 };
 
 class MeshCache {

@@ -44,6 +44,7 @@
 #include "sculpt/core/mesh/marching_cubes.h"
 #include "sculpt/core/mesh/mesh.h"
 #include "sculpt/core/mesh/mesh_cache.h"
+#include "sculpt/core/volume/stored_voxels.h"
 #include "sculpt/core/volume/volume.h"
 
 namespace sculpt::core {
@@ -106,7 +107,10 @@ class MixedLevelMeshCache {
   /// than the previous call's is meshed from scratch. bricks_changed counts
   /// bricks whose inputs (versions, levels) changed, bricks_decoded the
   /// (brick, level) decodes, bricks_meshed the non-empty meshes rebuilt.
-  MeshUpdate update(const Volume& volume, std::span<const int> brick_levels);
+  /// `stored`: level-0 voxels of some bricks (stored_voxels.h), taken (moved
+  /// out) instead of decoding a brick whose version they are of.
+  MeshUpdate update(const Volume& volume, std::span<const int> brick_levels,
+                    StoredVoxelsByBrick* stored = nullptr);
 
   float iso() const { return options_.iso; }
   glm::ivec3 brick_grid() const { return grid_; }

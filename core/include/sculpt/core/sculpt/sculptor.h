@@ -24,6 +24,7 @@
 #include <optional>
 #include <span>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -34,6 +35,7 @@
 #include "sculpt/core/tool/rotated_tool_cache.h"
 #include "sculpt/core/tool/tool.h"
 #include "sculpt/core/tool/tool_rotation.h"
+#include "sculpt/core/volume/stored_voxels.h"
 #include "sculpt/core/volume/volume.h"
 
 namespace sculpt::core {
@@ -93,6 +95,10 @@ struct SculptorOptions {
   /// Dab positions snap to 1/subvoxel_steps voxel (see RotatedToolCache).
   int subvoxel_steps = RotatedToolCache::kDefaultSubvoxelSteps;
   size_t undo_max_bytes = UndoHistory::kDefaultMaxBytes;
+  /// Keep a copy of the voxels of each brick a stroke stores, for
+  /// take_stored_voxels() (stored_voxels.h): a mesher then need not decode
+  /// them again. Off where nothing takes them (a replay).
+  bool hand_over_voxels = false;
 };
 
 class Sculptor {
@@ -123,6 +129,11 @@ class Sculptor {
   void forget_decoded_bricks() { decoded_.clear(); }
 
   const UndoHistory& history() const { return history_; }
+  /// The voxels of the bricks strokes stored since the last call, when
+  /// SculptorOptions::hand_over_voxels (else none). Never taken, they are
+  /// dropped past kMaxHandedBricks.
+  StoredVoxelsByBrick take_stored_voxels() { return std::exchange(stored_voxels_, {}); }
+  static constexpr size_t kMaxHandedBricks = 1024;  // 32 MiB of 32^3 bricks
   /// The cache of the tool (mirrored = false) or of its mirror image.
   const RotatedToolCache& cache(bool mirrored = false) const;
   /// The rotation caches' counts over this sculptor's life: every tool's
@@ -136,6 +147,8 @@ class Sculptor {
   friend class SweptStroke;
 
   DabStats apply(RotatedToolCache& cache, const Dab& dab);
+  // Keeps brick b's stored voxels for take_stored_voxels().
+  void hand_over(glm::ivec3 b, uint64_t version, std::vector<uint8_t> voxels);
   void rebuild_caches();
   // The cache of the tool mirrored across `axis`, made on first use.
   RotatedToolCache& mirror_cache(int axis);
@@ -163,6 +176,7 @@ class Sculptor {
   DecodedBrick& decoded_brick(glm::ivec3 b, DabStats& stats);
   std::unordered_map<int64_t, DecodedBrick> decoded_;
   uint64_t use_clock_ = 0;
+  StoredVoxelsByBrick stored_voxels_;  // for take_stored_voxels()
 };
 
 }  // namespace sculpt::core

@@ -141,6 +141,10 @@ class StationLoop {
     /// is the same as at once. On in the window, whose drawing and steering
     /// go on meanwhile; off for replays.
     bool background_morphology = false;
+    /// Strokes keep the voxels they store for take_stored_voxels(), so that
+    /// a mesher need not decode those bricks again (core::SculptorOptions::
+    /// hand_over_voxels). On in the window.
+    bool hand_over_voxels = false;
   };
   explicit StationLoop(const Options& options);
   ~StationLoop();
@@ -186,6 +190,10 @@ class StationLoop {
   /// The clutch key is held, as the clutch commands last said.
   bool clutch_key_held() const { return clutch_key_; }
   const core::Sculptor& sculptor() const { return *sculptor_; }
+  /// The voxels strokes stored since the last call (Options::hand_over_voxels).
+  core::StoredVoxelsByBrick take_stored_voxels() {
+    return sculptor_ ? sculptor_->take_stored_voxels() : core::StoredVoxelsByBrick{};
+  }
   /// The tool rotation caches' counts over the loop's life (every volume's
   /// sculptor; bytes and entries: those held now).
   core::RotatedToolCacheStats rotation_cache_stats() const;

@@ -121,13 +121,15 @@ class SurfaceSnapshot {
 };
 
 struct MesherCounters {
-  int64_t submits = 0;             ///< changes handed over
-  int64_t bricks_submitted = 0;    ///< brick copies handed over
-  int64_t bricks_coalesced = 0;    ///< replaced by a newer copy before meshing
-  int64_t bricks_unchanged = 0;    ///< stored again with the voxels the mesher had: not re-meshed
-  int64_t updates = 0;             ///< mesh updates run
-  int64_t bricks_meshed = 0;       ///< brick meshes remade
-  int64_t bricks_reused = 0;       ///< given back from an earlier level of detail (zooming back)
+  int64_t submits = 0;           ///< changes handed over
+  int64_t bricks_submitted = 0;  ///< brick copies handed over
+  int64_t bricks_coalesced = 0;  ///< replaced by a newer copy before meshing
+  int64_t bricks_unchanged = 0;  ///< stored again with the voxels the mesher had: not re-meshed
+  int64_t updates = 0;           ///< mesh updates run
+  int64_t bricks_meshed = 0;     ///< brick meshes remade
+  int64_t bricks_reused = 0;     ///< given back from an earlier level of detail (zooming back)
+  /// Bricks whose voxels the sculptor gave with them, not decoded again.
+  int64_t bricks_given = 0;
   int64_t pending_bricks_max = 0;  ///< deepest the pending set got
   int64_t update_page_faults = 0;  ///< the mesher thread's, during its updates (~8 us each here)
   int64_t coarse_first = 0;        ///< new volumes shown coarse before full detail
@@ -219,9 +221,11 @@ class SurfaceMesher {
   /// queued (hal::monotonic_ns(), before the mesher is woken) and left alone
   /// when none was: waking the mesher can give it the core at once and keep
   /// the caller off one for milliseconds, which a caller timing its
-  /// hand-over after the return would count as handing over.
+  /// hand-over after the return would count as handing over. `stored`: the
+  /// voxels of bricks as the sculptor stored them (Sculptor::
+  /// take_stored_voxels()), taken instead of decoding those bricks again.
   uint64_t submit(const core::Volume& volume, uint64_t generation, const std::vector<int>& levels,
-                  int64_t* queued_ns = nullptr);
+                  int64_t* queued_ns = nullptr, core::StoredVoxelsByBrick stored = {});
 
   /// The meshes made since the previous call; nothing when none.
   std::optional<SurfaceDelta> take();
@@ -254,6 +258,7 @@ class SurfaceMesher {
   struct Pending {
     std::unique_ptr<core::Volume> reset;              // a whole new volume
     std::unordered_map<int64_t, core::Brick> bricks;  // by brick index
+    core::StoredVoxelsByBrick stored;                 // some of their voxels
     std::vector<int> levels;
     uint64_t change = 0;
   };
