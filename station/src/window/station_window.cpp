@@ -40,20 +40,17 @@
 #include "sculpt/station/haptics/haptic_station.h"
 #include "sculpt/station/haptics/recorded_force_device.h"
 #include "sculpt/station/render/software_renderer.h"
-#include "sculpt/station/view/mesh_raycast.h"
 #include "sculpt/station/view/surface_mesher.h"
-#include "sculpt/station/view/volume_raycast.h"
 #include "sculpt/station/window/keymap.h"
 #include "sculpt/station/window/panel_layer.h"
 #include "window/gl_context.h"
+#include "window/pointer_steering.h"
 #include "window/station_panel.h"
 #include "window/window_events.h"
 
 namespace sculpt::station {
 namespace {
 
-constexpr float kOrbitRadPerPixel = 0.008f;
-constexpr float kKeyMoveVoxPerSecond = 60.0f;
 constexpr int kMaxDrawnLevel = 2;  // coarser than 1/4 resolution looks like a blob
 // The mesher's heap, touched when it starts (SurfaceMesher). 32 MiB was
 // more than the demo's first big dab's meshes took (14 MB), but the 512^3
@@ -94,23 +91,6 @@ std::string make_dab_path_realtime() {
 int fail(const Error& e) {
   std::fprintf(stderr, "sculpt run: %s\n", e.message().c_str());
   return 1;
-}
-
-// What the mouse and keyboard are doing to the view and the tool.
-struct PointerState {
-  bool orbiting = false;
-  bool panning = false;
-  bool sculpting = false;
-  bool space_held = false;
-  double x = 0, y = 0;
-  double scroll = 0;
-};
-
-PointerState* g_pointer = nullptr;  // GLFW callbacks have no user pointer to spare: ImGui uses it
-
-extern "C" void on_scroll(GLFWwindow* w, double dx, double dy) {
-  ImGui_ImplGlfw_ScrollCallback(w, dx, dy);
-  if (g_pointer != nullptr && !ImGui::GetIO().WantCaptureMouse) g_pointer->scroll += dy;
 }
 
 // Frame and latency figures for --stats.
@@ -316,19 +296,6 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
   return w.commit();
 }
 
-// Where the mouse puts the tool: on the material under the cursor; in sheet
-// editing, on the sheet under it, and while dragging the sheet, in the plane
-// facing the view at the tool's depth.
-std::optional<glm::vec3> pointer_target(const StationController& c, const Ray& ray) {
-  const StationLoop& loop = c.loop();
-  if (!loop.settings().sheet_editing || !loop.sheet().has_sheet())
-    return raycast_surface(loop.volume(), ray);
-  if (loop.sheet().dragging()) {
-    return raycast_plane(ray, loop.pose().position, c.camera().forward());
-  }
-  return raycast_mesh(loop.sheet().mesh(), ray);
-}
-
 }  // namespace
 
 int run_window(const WindowOptions& o) {
@@ -497,8 +464,7 @@ int run_window(const WindowOptions& o) {
   // recording did not).
   pointer.x = window_events.cursor_x;
   pointer.y = window_events.cursor_y;
-  g_pointer = &pointer;
-  glfwSetScrollCallback(w, on_scroll);
+  watch_scroll(w, &pointer);
   StationPanel panel(controller);
   panel.set_haptics(haptics.get());
   PanelLayer panel_layer;
@@ -592,67 +558,14 @@ int run_window(const WindowOptions& o) {
     // 12 ms under Xvfb beside llvmpipe, which the turn would make the
     // sculpting thread wait for.
     const int fb_w = window_events.framebuffer_w, fb_h = window_events.framebuffer_h;
-    const int win_w = window_events.window_w, win_h = window_events.window_h;
-    const double mx = window_events.cursor_x, my = window_events.cursor_y;
     const float aspect =
         static_cast<float>(std::max(fb_w, 1)) / static_cast<float>(std::max(fb_h, 1));
-    ImGuiIO& io = ImGui::GetIO();
+    const ImGuiIO& io = ImGui::GetIO();
     if (steering) {
-      // The ordinary mouse and keyboard.
-      OrbitCamera& camera = controller.camera();
-      if (!io.WantCaptureMouse) {
-        const bool left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-        const bool right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-        const bool middle = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
-        const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
-        const glm::vec2 delta(static_cast<float>(mx - pointer.x),
-                              static_cast<float>(my - pointer.y));
-        if (right && !shift && pointer.orbiting)
-          camera.orbit(-delta.x * kOrbitRadPerPixel, delta.y * kOrbitRadPerPixel);
-        if ((middle || (right && shift)) && pointer.panning)
-          camera.pan(delta, static_cast<float>(win_h));
-        pointer.orbiting = right && !shift;
-        pointer.panning = middle || (right && shift);
-        if (pointer.scroll != 0) camera.zoom(std::pow(0.9f, static_cast<float>(pointer.scroll)));
-        pointer.scroll = 0;
-        // The tool sits on the surface under the cursor; the left button sculpts.
-        const glm::vec2 ndc(static_cast<float>(2.0 * mx / std::max(win_w, 1) - 1.0),
-                            static_cast<float>(1.0 - 2.0 * my / std::max(win_h, 1)));
-        if (left || delta != glm::vec2(0.0f)) {
-          if (auto p = pointer_target(controller, camera.ray(ndc, aspect)))
-            controller.pointer_move(*p, now);
-        }
-        if (left && !pointer.sculpting) controller.pointer_down(now);
-        if (!left && pointer.sculpting) controller.pointer_up(now);
-        pointer.sculpting = left;
-      }
-      pointer.x = mx;
-      pointer.y = my;
-      if (!io.WantCaptureKeyboard) {
-        // Arrows move the tool in the view plane, Page Up/Down in depth; Space sculpts.
-        const float step = kKeyMoveVoxPerSecond * static_cast<float>(now - last_frame) * 1e-9f;
-        glm::vec3 move(0.0f);
-        auto key = [&](int k) { return glfwGetKey(w, k) == GLFW_PRESS ? 1.0f : 0.0f; };
-        move += camera.right() * (key(GLFW_KEY_RIGHT) - key(GLFW_KEY_LEFT));
-        move += camera.up() * (key(GLFW_KEY_UP) - key(GLFW_KEY_DOWN));
-        move += camera.forward() * (key(GLFW_KEY_PAGE_DOWN) - key(GLFW_KEY_PAGE_UP));
-        if (move != glm::vec3(0.0f))
-          controller.pointer_move(controller.loop().pose().position + move * step, now);
-        const bool space = key(GLFW_KEY_SPACE) > 0;
-        if (space && !pointer.space_held) controller.pointer_down(now);
-        if (!space && pointer.space_held) controller.pointer_up(now);
-        pointer.space_held = space;
-        // V held is the clutch: a force device's (K, a shortcut, turns its
-        // force on and off), else the station's, recorded when it changes.
-        const bool clutch = key(GLFW_KEY_V) > 0;
-        if (haptics) {
-          haptics->set_clutch(clutch);
-        } else {
-          controller.set_clutch(clutch, now);
-        }
-      }
-
-      // Sculpt results to the GPU.
+      steer_with_pointer_and_keys(w, window_events, aspect, now, last_frame, pointer, controller,
+                                  haptics.get());
+      // The level each brick is drawn at, for the mesher, from the view.
+      const OrbitCamera& camera = controller.camera();
       const core::Volume& volume = controller.loop().volume();
       LodPolicy policy = controller.lod().policy();
       policy.max_level = std::min(kMaxDrawnLevel, volume.levels());
@@ -812,7 +725,7 @@ int run_window(const WindowOptions& o) {
     figures.hub.polls_waited_over_1ms = figures.hub_waits->polls_waited_over_1ms;
   }
 
-  g_pointer = nullptr;
+  watch_scroll(w, nullptr);
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
