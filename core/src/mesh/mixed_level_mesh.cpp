@@ -771,12 +771,11 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
       options_.threads);
   decodes_ += static_cast<int64_t>(redecodes.size());
   for (const Redecode& r : redecodes) {
+    if (!r.moved.empty()) changed.push_back(r.moved);
     if (r.given == nullptr) continue;
     ++stats.bricks_given;
     stored->erase(static_cast<int64_t>(index(r.brick)));  // taken: what is left is not its voxels
   }
-  for (const Redecode& r : redecodes)
-    if (!r.moved.empty()) changed.push_back(r.moved);
   // Meshes kept from other levels may read voxels of levels no longer
   // decoded, so `changed` cannot vouch for them: every brick that could read
   // a brick whose version moved drops its kept meshes.
