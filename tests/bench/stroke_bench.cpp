@@ -154,6 +154,12 @@ int64_t time_presses(benchmark::State& state, const std::function<DabStats(int64
   return i;
 }
 
+// The registration the presses below share: on one thread and on two
+// (range(0)), each timed by the wall clock, in milliseconds.
+void on_one_and_two_threads(benchmark::internal::Benchmark* b) {
+  b->Arg(1)->Arg(2)->ArgName("threads")->UseManualTime()->Unit(benchmark::kMillisecond);
+}
+
 // A ball of radius `ball` pressed once, as the station sculpts it (a
 // stroke of one sample), at a new place on the surface of `material` (the
 // peers.py sphere, radius 0.35 of its edge) each time, alternately filled
@@ -189,26 +195,14 @@ void time_ball_presses(benchmark::State& state, Volume material, float ball,
 void BM_StrokeBigBall(benchmark::State& state) {
   time_ball_presses(state, sphere_to_sculpt(), 66.0f);
 }
-BENCHMARK(BM_StrokeBigBall)
-    ->Arg(1)
-    ->Arg(2)
-    ->ArgName("threads")
-    ->Iterations(30)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StrokeBigBall)->Apply(on_one_and_two_threads)->Iterations(30);
 
 // The same, the sculptor copying each brick it stores for the mesher (the
 // window's sculptor does): what that costs the press.
 void BM_StrokeBigBallHandingOver(benchmark::State& state) {
   time_ball_presses(state, sphere_to_sculpt(), 66.0f, /*hand_over=*/true);
 }
-BENCHMARK(BM_StrokeBigBallHandingOver)
-    ->Arg(1)
-    ->Arg(2)
-    ->ArgName("threads")
-    ->Iterations(30)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StrokeBigBallHandingOver)->Apply(on_one_and_two_threads)->Iterations(30);
 
 // The demo's first ball: the same press on the empty new 256^3 block the
 // session starts with, where the tool stands (128, 116, 118). Every brick it
@@ -234,13 +228,7 @@ void BM_StrokeBigBallOnANewBlock(benchmark::State& state) {
   set_default_threads(0);
   count_where_the_time_went(state, total, presses);
 }
-BENCHMARK(BM_StrokeBigBallOnANewBlock)
-    ->Arg(1)
-    ->Arg(2)
-    ->ArgName("threads")
-    ->Iterations(20)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StrokeBigBallOnANewBlock)->Apply(on_one_and_two_threads)->Iterations(20);
 
 // The bust's biggest ball (radius 110, the tool its session changes to at
 // 2.4 s) on the 512^3 sphere: the floor under that dab's first mesh, which
@@ -250,13 +238,7 @@ void BM_StrokeBustBall(benchmark::State& state) {
   (void)sphere_to_sculpt();  // the heap warmed as the station's
   time_ball_presses(state, *material, 110.0f);
 }
-BENCHMARK(BM_StrokeBustBall)
-    ->Arg(1)
-    ->Arg(2)
-    ->ArgName("threads")
-    ->Iterations(10)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StrokeBustBall)->Apply(on_one_and_two_threads)->Iterations(10);
 
 // The demo's ring (major radius 12, minor 5) turning as a 6-DOF device
 // turns it, mirrored as the demo's nose is: each iteration a press of two
@@ -288,13 +270,7 @@ void BM_StrokeTurningRing(benchmark::State& state) {
       static_cast<double>(sculptor.rotation_cache_stats().voxels_rotated) /
       static_cast<double>(presses);
 }
-BENCHMARK(BM_StrokeTurningRing)
-    ->Arg(1)
-    ->Arg(2)
-    ->ArgName("threads")
-    ->Iterations(40)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StrokeTurningRing)->Apply(on_one_and_two_threads)->Iterations(40);
 
 }  // namespace
 }  // namespace sculpt::core

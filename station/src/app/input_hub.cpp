@@ -142,9 +142,9 @@ void InputHub::run() {
         session_started_ = true;
       }
       const double waited_ms = static_cast<double>(now - before_lock) * 1e-6;
-      figures_.lock_wait_ms += waited_ms;
-      figures_.lock_wait_ms_max = std::max(figures_.lock_wait_ms_max, waited_ms);
-      if (waited_ms > 1.0) ++figures_.polls_waited_over_1ms;
+      figures_.waits.sum_ms += waited_ms;
+      figures_.waits.max_ms = std::max(figures_.waits.max_ms, waited_ms);
+      if (waited_ms > 1.0) ++figures_.waits.over_1ms;
       poll(now);
       figures_.sculpt_ms += static_cast<double>(hal::monotonic_ns() - now) * 1e-6;
     }

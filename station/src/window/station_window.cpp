@@ -111,7 +111,9 @@ struct RunFigures {
   // a frame a sculptor sees, so it is left out of the frame times.
   double final_frame_wait_ms = 0;
   InputHubFigures hub;
-  std::optional<InputHubFigures> hub_waits;  // taken as the last frame started
+  // The sculpting thread's waits as the last frame started (it then holds
+  // the turn until everything is meshed, with no input left to wait).
+  std::optional<InputHubFigures::TurnWaits> waits_while_playing;
   // CPU by thread as the session's frames ended, while the sculpting thread
   // still ran (stopped, it would count only under "ended"); none before.
   struct ThreadsAtEnd {
@@ -259,9 +261,9 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
       {"sculpting",
        {{"polls", f.hub.polls},
         {"sculpt_ms", f.hub.sculpt_ms},
-        {"waiting_for_the_frame_ms", f.hub.lock_wait_ms},
-        {"waiting_for_the_frame_ms_max", f.hub.lock_wait_ms_max},
-        {"polls_waiting_over_1ms", f.hub.polls_waited_over_1ms},
+        {"waiting_for_the_frame_ms", f.hub.waits.sum_ms},
+        {"waiting_for_the_frame_ms_max", f.hub.waits.max_ms},
+        {"polls_waiting_over_1ms", f.hub.waits.over_1ms},
         {"events_held_for_offset_or_closing", f.hub.held_events}}},
       {"mean_ms",
        {{"pointer_and_keys", f.input_ms / n},
@@ -549,10 +551,7 @@ int run_window(const WindowOptions& o) {
     std::unique_lock turn = hub.frame_turn(final_frame);
     if (final_frame) final_wait_ns += hal::monotonic_ns() - t_turn;
     const bool steering = turn.owns_lock();
-    // The sculpting thread's waits for the turn while the session played:
-    // the last frame holds it until everything is meshed, when no input is
-    // left to wait.
-    if (final_frame) figures.hub_waits = hub.figures();
+    if (final_frame) figures.waits_while_playing = hub.figures().waits;
     if (!steering) ++figures.frames_drawn_unsteered;
     // From the window's events: asking the X server is a round trip, up to
     // 12 ms under Xvfb beside llvmpipe, which the turn would make the
@@ -719,11 +718,7 @@ int run_window(const WindowOptions& o) {
   if (auto delta = mesher.take()) controller.surface_ready(*delta);
   figures.mesher = mesher.counters();
   figures.hub = hub.figures();
-  if (figures.hub_waits) {
-    figures.hub.lock_wait_ms = figures.hub_waits->lock_wait_ms;
-    figures.hub.lock_wait_ms_max = figures.hub_waits->lock_wait_ms_max;
-    figures.hub.polls_waited_over_1ms = figures.hub_waits->polls_waited_over_1ms;
-  }
+  if (figures.waits_while_playing) figures.hub.waits = *figures.waits_while_playing;
 
   watch_scroll(w, nullptr);
   ImGui_ImplOpenGL3_Shutdown();

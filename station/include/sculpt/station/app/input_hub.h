@@ -46,11 +46,14 @@ class PollListener {
 };
 
 struct InputHubFigures {
-  int64_t polls = 0;                  ///< times the devices were read
-  double sculpt_ms = 0;               ///< time spent sculpting what they said, summed
-  double lock_wait_ms = 0;            ///< time waiting for the render thread's turn, summed
-  double lock_wait_ms_max = 0;        ///< the longest of those waits
-  int64_t polls_waited_over_1ms = 0;  ///< polls that waited longer than a millisecond
+  int64_t polls = 0;     ///< times the devices were read
+  double sculpt_ms = 0;  ///< time spent sculpting what they said, summed
+  /// The sculpting thread's waits for the render thread's turn.
+  struct TurnWaits {
+    double sum_ms = 0;
+    double max_ms = 0;
+    int64_t over_1ms = 0;  ///< polls that waited longer than a millisecond
+  } waits;
   /// Device events held while an offset or closing computed in the
   /// background (sculpted once it landed, in their order).
   int64_t held_events = 0;
