@@ -841,15 +841,24 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
   } else {
     // Levels as before: only bricks that read a changed box can be stale,
     // those within the widest margin of one (a big volume has tens of
-    // thousands of bricks; a dab changes a few).
+    // thousands of bricks; a dab changes a few). Of those, only the bricks
+    // whose own reads (consider()'s margin at their level) reach the box are
+    // looked at: at full detail a brick reads two voxels around it, not the
+    // widest margin's 64, and a big dab's sixty boxes had consider() look at
+    // 300-370 bricks for its 60-110 stale ones (0.3-0.4 ms on one thread).
     std::vector<int64_t> near;
     for (const Box& box : changed) {
       const Box around =
           volume.bricks_overlapping(Box{box.lo - widest_margin, box.hi + widest_margin});
       for (int z = around.lo.z; z < around.hi.z; ++z)
         for (int y = around.lo.y; y < around.hi.y; ++y)
-          for (int x = around.lo.x; x < around.hi.x; ++x)
-            near.push_back(static_cast<int64_t>(index({x, y, z})));
+          for (int x = around.lo.x; x < around.hi.x; ++x) {
+            const glm::ivec3 nb(x, y, z);
+            const int margin = 2 << level_of(nb);
+            if (intersect(box, Box{nb * edge_ - margin, (nb + 1) * edge_ + margin}).empty())
+              continue;
+            near.push_back(static_cast<int64_t>(index(nb)));
+          }
     }
     std::sort(near.begin(), near.end());
     near.erase(std::unique(near.begin(), near.end()), near.end());
