@@ -27,6 +27,38 @@ uint64_t pack_edge(int level, glm::ivec3 lower, int axis) {
          static_cast<uint64_t>(lower.x + 1);
 }
 
+// Where rows `now` and `old` of n bytes differ: false when they are equal,
+// else true with the first and last byte that differ in [first, last]. Eight
+// bytes at a time where n allows (a brick's rows at levels 0 to 2): a big
+// dab's update compared its sixty bricks row by row with std::equal and then
+// byte by byte, 0.36-0.40 ms of its 3.1-3.3 on two threads.
+bool row_difference(const uint8_t* now, const uint8_t* old, int n, int& first, int& last) {
+  if constexpr (std::endian::native == std::endian::little) {
+    if (n % 8 == 0) {
+      first = -1;
+      for (int i = 0; i < n; i += 8) {
+        uint64_t a, b;
+        std::memcpy(&a, now + i, 8);
+        std::memcpy(&b, old + i, 8);
+        // The lowest byte in memory is the word's least significant one.
+        if (const uint64_t d = a ^ b; d != 0) {
+          if (first < 0) first = i + std::countr_zero(d) / 8;
+          last = i + 7 - std::countl_zero(d) / 8;
+        }
+      }
+      return first >= 0;
+    }
+  }
+  if (std::equal(now, now + n, old)) return false;
+  first = 0;
+  last = n - 1;
+  while (now[first] == old[first])
+    ++first;
+  while (now[last] == old[last])
+    --last;
+  return true;
+}
+
 // The interpolant at level-0 point x of the values at the level-`lambda`
 // grid's points around it (value_at(i), i a level-lambda point): bilinear on
 // a face of that grid, linear on an edge, the point's own value on a point.
@@ -754,14 +786,10 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         for (int vz = 0; vz < m; ++vz)
           for (int vy = 0; vy < m; ++vy) {
             const size_t row = (static_cast<size_t>(vz) * m + vy) * m;
-            if (std::equal(&now[row], &now[row] + m, &old[row])) continue;
             // The row's first and last voxel that moved bound it: a compare
             // and a box update per voxel was a twentieth of the update.
-            int first = 0, last = m - 1;
-            while (now[row + static_cast<size_t>(first)] == old[row + static_cast<size_t>(first)])
-              ++first;
-            while (now[row + static_cast<size_t>(last)] == old[row + static_cast<size_t>(last)])
-              --last;
+            int first = 0, last = 0;
+            if (!row_difference(&now[row], &old[row], m, first, last)) continue;
             lo = glm::min(lo, glm::ivec3(first, vy, vz));
             hi = glm::max(hi, glm::ivec3(last, vy, vz));
           }
