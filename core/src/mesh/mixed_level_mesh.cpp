@@ -1,10 +1,12 @@
 #include "sculpt/core/mesh/mixed_level_mesh.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cassert>
 #include <cmath>
 #include <cstring>
+#include <span>
 #include <type_traits>
 #include <utility>
 
@@ -58,6 +60,53 @@ bool row_difference(const uint8_t* now, const uint8_t* old, int n, int& first, i
     --last;
   return true;
 }
+
+// Where a brick's voxels moved, as a box per region of the brick: along each
+// axis its first two voxels, its last two and those between, 27 regions.
+// A brick beside it reads two of its voxels (at full detail: one for the
+// cells' corners, one more for their normals), so it need be meshed again
+// only when its region of the brick moved. One box around every moved
+// voxel made a big dab's neighbours stale whenever the change reached
+// across the brick, whether or not it reached the face they read.
+constexpr int kRegions = 27;
+using MovedParts = std::array<Box, kRegions>;
+
+class MovedRegions {
+ public:
+  explicit MovedRegions(int m) : m_(m) {
+    lo_.fill(glm::ivec3(m));
+    hi_.fill(glm::ivec3(-1));
+  }
+  // Voxels first..last of row (y, z) moved.
+  void add_row(int y, int z, int first, int last) {
+    const int ry = region_of(y), rz = region_of(z);
+    for (int rx = region_of(first); rx <= region_of(last); ++rx) {
+      const int x0 = std::max(first, start(rx)), x1 = std::min(last, start(rx + 1) - 1);
+      if (x0 > x1) continue;  // a small brick's empty middle
+      const size_t i = static_cast<size_t>((rz * 3 + ry) * 3 + rx);
+      lo_[i] = glm::min(lo_[i], glm::ivec3(x0, y, z));
+      hi_[i] = glm::max(hi_[i], glm::ivec3(x1, y, z));
+    }
+  }
+  // The regions' boxes in level-0 coordinates, for a brick whose voxel 0 is
+  // level-`level` voxel `origin`.
+  MovedParts boxes(glm::ivec3 origin, int level) const {
+    MovedParts out{};
+    for (size_t i = 0; i < out.size(); ++i)
+      if (hi_[i].x >= 0) out[i] = Box{(origin + lo_[i]) << level, (origin + hi_[i] + 1) << level};
+    return out;
+  }
+
+ private:
+  // Along an axis: 0 the first two voxels, 2 the last two, 1 between (a
+  // brick of four voxels or fewer is all border).
+  int region_of(int c) const { return c < 2 ? 0 : (c >= m_ - 2 ? 2 : 1); }
+  int start(int region) const {
+    return region == 0 ? 0 : region == 1 ? std::min(2, m_) : region == 2 ? std::max(2, m_ - 2) : m_;
+  }
+  int m_;
+  std::array<glm::ivec3, kRegions> lo_, hi_;
+};
 
 // The interpolant at level-0 point x of the values at the level-`lambda`
 // grid's points around it (value_at(i), i a level-lambda point): bilinear on
@@ -701,8 +750,9 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
   // Where stored bricks changed (level-0 boxes), at every level some brick
   // reads them: their kept decoded voxels before and after. A brick with
   // nothing kept sat among uniform bricks, which were not meshed (nothing
-  // was read): its whole box counts as changed.
-  std::vector<Box> changed;
+  // was read): its whole box counts as changed. Each box with the index of
+  // the brick it lies in, sorted by it once found (boxes_in()).
+  std::vector<std::pair<int64_t, Box>> changed;
   std::vector<glm::ivec3> version_moved;
   // Each kept decode of a moved brick, decoded again and compared, in
   // parallel (a big dab moves sixty bricks: 2.4 ms on one thread). Each
@@ -711,8 +761,11 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
     glm::ivec3 brick;
     int level;
     Decoded* kept;
-    Box moved{glm::ivec3(0), glm::ivec3(0)};  // empty: nothing differs
-    std::vector<uint8_t>* given = nullptr;    // its level-0 voxels, to take
+    // Where voxels moved (level-0 boxes; empty: nothing differs), one box
+    // per region of the brick: a face's, edge's or corner's two-voxel
+    // border, or the inside (MovedParts).
+    MovedParts moved = {};
+    std::vector<uint8_t>* given = nullptr;  // its level-0 voxels, to take
   };
   std::vector<Redecode> redecodes;
   // Brick n's level-0 voxels as given in `stored`, or null.
@@ -748,7 +801,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         // 304 bricks stale, the voxels that changed 142). Decoded at the
         // levels the bricks around it mesh at, which they read anyway.
         if (was_uniform == kNotUniform) {
-          changed.push_back(Box{n * edge_, (n + 1) * edge_});
+          changed.emplace_back(static_cast<int64_t>(index(n)), Box{n * edge_, (n + 1) * edge_});
           continue;
         }
         const unsigned used = levels_used_around(n);
@@ -779,10 +832,10 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         }
         r.kept->version = volume.brick_version(r.brick);
         if (old.size() != now.size()) {
-          r.moved = Box{r.brick * edge_, (r.brick + 1) * edge_};
+          r.moved[0] = Box{r.brick * edge_, (r.brick + 1) * edge_};
           return;
         }
-        glm::ivec3 lo(m), hi(-1);
+        MovedRegions regions(m);
         for (int vz = 0; vz < m; ++vz)
           for (int vy = 0; vy < m; ++vy) {
             const size_t row = (static_cast<size_t>(vz) * m + vy) * m;
@@ -790,20 +843,30 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
             // and a box update per voxel was a twentieth of the update.
             int first = 0, last = 0;
             if (!row_difference(&now[row], &old[row], m, first, last)) continue;
-            lo = glm::min(lo, glm::ivec3(first, vy, vz));
-            hi = glm::max(hi, glm::ivec3(last, vy, vz));
+            regions.add_row(vy, vz, first, last);
           }
-        if (hi.x >= 0)
-          r.moved = Box{(r.brick * m + lo) << r.level, (r.brick * m + hi + 1) << r.level};
+        r.moved = regions.boxes(r.brick * m, r.level);
       },
       options_.threads);
   decodes_ += static_cast<int64_t>(redecodes.size());
   for (const Redecode& r : redecodes) {
-    if (!r.moved.empty()) changed.push_back(r.moved);
+    for (const Box& part : r.moved)
+      if (!part.empty()) changed.emplace_back(static_cast<int64_t>(index(r.brick)), part);
     if (r.given == nullptr) continue;
     ++stats.bricks_given;
     stored->erase(static_cast<int64_t>(index(r.brick)));  // taken: what is left is not its voxels
   }
+  std::sort(changed.begin(), changed.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  // The boxes where brick i's voxels moved.
+  auto boxes_in = [&](int64_t i) {
+    const auto first = std::lower_bound(changed.begin(), changed.end(), i,
+                                        [](const auto& c, int64_t j) { return c.first < j; });
+    auto last = first;
+    while (last != changed.end() && last->first == i)
+      ++last;
+    return std::span(first, last);
+  };
   // Meshes kept from other levels may read voxels of levels no longer
   // decoded, so `changed` cannot vouch for them: every brick that could read
   // a brick whose version moved drops its kept meshes.
@@ -819,7 +882,18 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
   std::vector<int8_t> levels;
   std::vector<glm::ivec3> stale_bricks;
   std::vector<glm::ivec3> reused_bricks;
-  auto consider = [&](glm::ivec3 b) {
+  // The voxels brick b reads: its box, one level-k voxel below and two
+  // above (normals), face samples from voxels on its boundary.
+  auto reads_of = [&](glm::ivec3 b) {
+    const int margin = 2 << level_of(b);
+    return Box{b * edge_ - margin, (b + 1) * edge_ + margin};
+  };
+  auto changed_within = [&](std::span<const std::pair<int64_t, Box>> boxes, const Box& reads) {
+    return std::any_of(boxes.begin(), boxes.end(),
+                       [&](const auto& c) { return !intersect(c.second, reads).empty(); });
+  };
+  // Brick b, whose reads hold voxels that moved when `reads_changed`.
+  auto consider = [&](glm::ivec3 b, bool reads_changed) {
     CachedBrick& cb = bricks_[index(b)];
     const int k = level_of(b);
     const int r = reach(k);
@@ -830,14 +904,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
           const glm::ivec3 nb = b + glm::ivec3(dx, dy, dz);
           levels.push_back(static_cast<int8_t>(in_grid(nb) ? level_of(nb) : -1));
         }
-    // The voxels this brick reads: its box, one level-k voxel below and
-    // two above (normals), face samples from voxels on its boundary.
-    const int margin = 2 << k;
-    const Box reads{b * edge_ - margin, (b + 1) * edge_ + margin};
     const bool levels_moved_here = cb.level != k || cb.levels != levels;
-    bool reads_changed = false;
-    for (size_t i = 0; i < changed.size() && !reads_changed; ++i)
-      reads_changed = !intersect(changed[i], reads).empty();
     if (!levels_moved_here && !reads_changed) return;
     ++stats.bricks_changed;
     const bool had_mesh = cb.mesh != nullptr;
@@ -864,34 +931,46 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
   if (levels_moved) {
     for (int z = 0; z < grid_.z; ++z)
       for (int y = 0; y < grid_.y; ++y)
-        for (int x = 0; x < grid_.x; ++x)
-          consider({x, y, z});
+        for (int x = 0; x < grid_.x; ++x) {
+          const glm::ivec3 b(x, y, z);
+          const Box reads = reads_of(b);
+          const Box read_bricks = volume.bricks_overlapping(reads);
+          bool reads_changed = false;
+          for (int bz = read_bricks.lo.z; bz < read_bricks.hi.z && !reads_changed; ++bz)
+            for (int by = read_bricks.lo.y; by < read_bricks.hi.y && !reads_changed; ++by)
+              for (int bx = read_bricks.lo.x; bx < read_bricks.hi.x && !reads_changed; ++bx)
+                reads_changed =
+                    changed_within(boxes_in(static_cast<int64_t>(index({bx, by, bz}))), reads);
+          consider(b, reads_changed);
+        }
   } else {
-    // Levels as before: only bricks that read a changed box can be stale,
-    // those within the widest margin of one (a big volume has tens of
-    // thousands of bricks; a dab changes a few). Of those, only the bricks
-    // whose own reads (consider()'s margin at their level) reach the box are
-    // looked at: at full detail a brick reads two voxels around it, not the
-    // widest margin's 64, and a big dab's sixty boxes had consider() look at
-    // 300-370 bricks for its 60-110 stale ones (0.3-0.4 ms on one thread).
+    // Levels as before: only a brick whose reads hold a moved voxel can be
+    // stale (a big volume has tens of thousands of bricks; a dab changes a
+    // few). They are found from each moved brick's boxes: of the bricks
+    // within the farthest any brick reads (the coarsest level in use), those
+    // whose own reads, at their level, reach one. (Every brick within the
+    // widest level's margin, 64 voxels, looked at whole: 300-370 bricks for
+    // a big dab's 60-110 stale ones, 0.3-0.4 ms on one thread.)
+    const int farthest_read = 2 << *std::max_element(levels_.begin(), levels_.end());
     std::vector<int64_t> near;
-    for (const Box& box : changed) {
+    for (auto group = changed.begin(); group != changed.end();) {
+      const std::span boxes = boxes_in(group->first);
+      group += static_cast<std::ptrdiff_t>(boxes.size());
+      Box all = boxes.front().second;
+      for (const auto& [i, box] : boxes)
+        all = Box{glm::min(all.lo, box.lo), glm::max(all.hi, box.hi)};
       const Box around =
-          volume.bricks_overlapping(Box{box.lo - widest_margin, box.hi + widest_margin});
+          volume.bricks_overlapping(Box{all.lo - farthest_read, all.hi + farthest_read});
       for (int z = around.lo.z; z < around.hi.z; ++z)
         for (int y = around.lo.y; y < around.hi.y; ++y)
-          for (int x = around.lo.x; x < around.hi.x; ++x) {
-            const glm::ivec3 nb(x, y, z);
-            const int margin = 2 << level_of(nb);
-            if (intersect(box, Box{nb * edge_ - margin, (nb + 1) * edge_ + margin}).empty())
-              continue;
-            near.push_back(static_cast<int64_t>(index(nb)));
-          }
+          for (int x = around.lo.x; x < around.hi.x; ++x)
+            if (changed_within(boxes, reads_of({x, y, z})))
+              near.push_back(static_cast<int64_t>(index({x, y, z})));
     }
     std::sort(near.begin(), near.end());
     near.erase(std::unique(near.begin(), near.end()), near.end());
     for (int64_t i : near)
-      consider(grid_position(i, grid_));
+      consider(grid_position(i, grid_), /*reads_changed=*/true);
   }
   // Decode what the stale bricks read (their neighbourhood, at every level
   // found in it), then mesh them in parallel: each writes only its own

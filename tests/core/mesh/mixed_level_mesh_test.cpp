@@ -379,6 +379,26 @@ TEST(MixedLevelMeshCache, ABallInAUniformBrickReMeshesOnlyTheBricksThatReadIt) {
   }
 }
 
+TEST(MixedLevelMeshCache, ABrickBesideAChangeIsMeshedAgainOnlyWhenItsBorderMoved) {
+  // A brick reads two voxels into each brick around it. A change with one
+  // part at brick (1, 1, 1)'s low x border and another at its high y border
+  // re-meshes the bricks beyond those borders, but not the brick beyond
+  // their shared edge, (0, 2, 1): the box around both parts reaches it, the
+  // moved voxels do not.
+  Volume v(glm::ivec3(64), 0, VolumeOptions{.brick_edge = 16, .levels = 4});
+  v.write({0, 0, 0}, DenseGrid<uint8_t>(glm::ivec3(64, 64, 24), 255));  // a floor
+  const std::vector<int> levels(static_cast<size_t>(v.brick_count()), 0);
+  MixedLevelMeshCache cache;
+  cache.update(v, levels);
+  const uint64_t beyond_the_edge = cache.brick_mesh_version({0, 2, 1});
+  v.write({16, 22, 26}, DenseGrid<uint8_t>(glm::ivec3(2, 3, 3), 255));  // x 16..17: low x border
+  v.write({22, 30, 26}, DenseGrid<uint8_t>(glm::ivec3(3, 2, 3), 255));  // y 30..31: high y border
+  const MeshUpdate u = cache.update(v, levels);
+  EXPECT_EQ(u.bricks_changed, 3);  // (1, 1, 1), (0, 1, 1) and (1, 2, 1)
+  EXPECT_EQ(cache.brick_mesh_version({0, 2, 1}), beyond_the_edge);
+  EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, levels));
+}
+
 TEST(MixedLevelMeshCache, AHandedOutMeshIsNeverChangedByALaterUpdate) {
   // The station hands the window each re-made mesh without a copy
   // (shared_brick_mesh): a later update makes the brick's next mesh anew,
