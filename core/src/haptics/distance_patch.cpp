@@ -177,8 +177,7 @@ void DistancePatch::refresh_boxes(const Volume& volume, std::span<const Box> cha
   for (const Box& box : changed) {
     const Box one = read_density(volume, box, &flipped_);
     if (one.empty()) continue;
-    differs =
-        differs.empty() ? one : Box{glm::min(differs.lo, one.lo), glm::max(differs.hi, one.hi)};
+    differs = hull(differs, one);
   }
   if (differs.empty()) {
     last_computed_ = 0;

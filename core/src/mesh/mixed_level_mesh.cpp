@@ -958,7 +958,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
       group += static_cast<std::ptrdiff_t>(boxes.size());
       Box all = boxes.front().second;
       for (const auto& [i, box] : boxes)
-        all = Box{glm::min(all.lo, box.lo), glm::max(all.hi, box.hi)};
+        all = hull(all, box);
       const Box around =
           volume.bricks_overlapping(Box{all.lo - farthest_read, all.hi + farthest_read});
       for (int z = around.lo.z; z < around.hi.z; ++z)

@@ -100,12 +100,6 @@ Box box_around(glm::vec3 lo, glm::vec3 hi, float margin) {
   return Box{glm::ivec3(glm::floor(lo - margin)), glm::ivec3(glm::ceil(hi + margin)) + 1};
 }
 
-Box hull(const Box& a, const Box& b) {
-  if (a.empty()) return b;
-  if (b.empty()) return a;
-  return Box{glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)};
-}
-
 }  // namespace
 
 // One swept volume of a segment: the ball's capsule, or the tool's placements

@@ -32,6 +32,13 @@ inline Box intersect(const Box& a, const Box& b) {
   return Box{glm::max(a.lo, b.lo), glm::min(a.hi, b.hi)};
 }
 
+/// The smallest box holding both; an empty box adds nothing.
+inline Box hull(const Box& a, const Box& b) {
+  if (a.empty()) return b;
+  if (b.empty()) return a;
+  return Box{glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)};
+}
+
 /// Number of voxels in a grid of `dims`.
 inline int64_t voxel_count(glm::ivec3 dims) {
   return int64_t{dims.x} * dims.y * dims.z;
