@@ -59,14 +59,26 @@ void DeviceReader::push_blocking(const InputEvent& e) {
 void DeviceReader::run() {
   std::vector<InputEvent> out;
   out.reserve(16);
-  stream_.connect(monotonic_ns(), out);
+  // Each event says when its report was read, and the poller hears of it.
+  auto arrived = [&](int64_t read_ns) {
+    for (InputEvent& e : out)
+      e.arrived_ns = read_ns;
+  };
+  auto ring = [&] {
+    if (options_.doorbell) options_.doorbell->ring();
+  };
+  const int64_t connected_ns = monotonic_ns();
+  stream_.connect(connected_ns, out);
+  arrived(connected_ns);
   push_blocking(out.front());
+  ring();
   RawEvent raw;
   bool removed = false;
   int64_t last_t_ns = out.front().t_ns;
   while (!removed && !stop_.load(std::memory_order_relaxed)) {
     const ReadResult r = device_->read(raw, options_.read_timeout_ms);
     if (r == ReadResult::kTimeout) continue;
+    const int64_t read_ns = monotonic_ns();
     if (options_.on_raw) options_.on_raw(raw);
     removed = r == ReadResult::kRemoved;
     if (removed) break;  // kDisconnected goes last, after the handle is released
@@ -74,6 +86,7 @@ void DeviceReader::run() {
     last_t_ns = raw.t_ns;
     out.clear();
     stream_.feed(raw, out);
+    arrived(read_ns);
     for (const InputEvent& e : out) {
       if (e.kind == InputKind::kMotion) {
         motion_samples_.fetch_add(1, std::memory_order_relaxed);
@@ -84,7 +97,9 @@ void DeviceReader::run() {
         push_blocking(e);
       }
     }
+    if (!out.empty()) ring();
   }
+  const int64_t gone_ns = monotonic_ns();
   // Release the handle on this thread: it is the only one that touches it.
   device_.reset();
   out.clear();
@@ -93,19 +108,21 @@ void DeviceReader::run() {
   } else {
     stream_.disconnect(last_t_ns, out);
   }
+  arrived(gone_ns);
   // When stopping, the main thread is joining us and not draining: one try.
   if (stop_.load(std::memory_order_relaxed)) {
     ring_.try_push(out.front());
   } else {
     push_blocking(out.front());
   }
+  ring();
 }
 
 void DeviceReader::poll(InputFrame& frame, int64_t now_ns) {
   InputEvent e;
   while (ring_.try_pop(e)) {
     frame.events.push_back(e);
-    if (e.kind == InputKind::kMotion && e.t_ns + options_.late_after_ns < now_ns) ++late_;
+    if (e.kind == InputKind::kMotion && e.arrived_ns + options_.late_after_ns < now_ns) ++late_;
     if (e.kind == InputKind::kDisconnected) finished_ = true;
   }
 }

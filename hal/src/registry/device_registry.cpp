@@ -22,7 +22,9 @@ std::string spnav_claim(const DeviceInfo& info) {
 
 DeviceRegistry::DeviceRegistry(std::vector<std::unique_ptr<Backend>> backends,
                                NormalizerConfig config, ReaderOptions options)
-    : backends_(std::move(backends)), config_(config), options_(options) {}
+    : backends_(std::move(backends)), config_(config), options_(std::move(options)) {
+  if (!options_.doorbell) options_.doorbell = std::make_shared<Doorbell>();
+}
 
 DeviceRegistry::~DeviceRegistry() {
   // Readers first: their devices may belong to a backend's library state.

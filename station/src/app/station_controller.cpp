@@ -317,11 +317,14 @@ void StationController::camera_motion(const hal::InputEvent& e) {
   camera_.zoom(std::exp(e.axes[hal::kTz] * kCameraMoveRate * k));
 }
 
-int64_t StationController::report_time(int64_t t_ns, int64_t now_ns) {
-  // A hardware report carries the monotonic time it was read at; a sim
-  // device's carries the time recorded in its session, which says nothing
-  // about this run: its latency counts from the frame that received it.
-  return t_ns <= now_ns && t_ns > now_ns - kSecondNs ? t_ns : now_ns;
+int64_t StationController::report_time(const hal::InputEvent& e, int64_t now_ns) {
+  // Its reader's clock when it read the report: a played session's reports
+  // carry the recording's times, and the millisecond a report can wait for
+  // the sculpting thread's poll is latency a user feels.
+  if (e.arrived_ns > 0 && e.arrived_ns <= now_ns) return e.arrived_ns;
+  // Not from a reader: a hardware report's time if it is this run's, else
+  // the poll that took it.
+  return e.t_ns <= now_ns && e.t_ns > now_ns - kSecondNs ? e.t_ns : now_ns;
 }
 
 void StationController::note_dabs(const StationCounters& before, int64_t t_ns) {
@@ -378,7 +381,7 @@ void StationController::device_frame(
     }
     const StationCounters before = loop_.counters();
     loop_.handle(e);
-    note_dabs(before, report_time(e.t_ns, now_ns));
+    note_dabs(before, report_time(e, now_ns));
   }
   commands_until(std::numeric_limits<int64_t>::max());
   // Every report up to here has been applied: the recording may have them.

@@ -260,6 +260,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
         {"simplify_ms_p99", f.mesher.simplify_us.quantile_us(0.99) * 1e-3}}},
       {"sculpting",
        {{"polls", f.hub.polls},
+        {"polls_woken_by_a_report", f.hub.polls_on_reports},
         {"sculpt_ms", f.hub.sculpt_ms},
         {"waiting_for_the_frame_ms", f.hub.waits.sum_ms},
         {"waiting_for_the_frame_ms_max", f.hub.waits.max_ms},

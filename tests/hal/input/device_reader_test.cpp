@@ -13,6 +13,7 @@
 #include "sculpt/base/thread_priority.h"
 #include "sculpt/hal/backends/feed_backend.h"
 #include "sculpt/hal/parsers/spacemouse_parser.h"
+#include "sculpt/hal/types/clock.h"
 #include "sculpt/hal/types/quirks.h"
 
 namespace sculpt::hal {
@@ -78,6 +79,54 @@ TEST(DeviceReader, CountsDroppedMotionButNeverDropsButtonsOrDisconnect) {
   EXPECT_EQ(others[1].kind, InputKind::kButton);
   EXPECT_EQ(others[2].kind, InputKind::kDisconnected);
   EXPECT_EQ(others[2].device_id, 7u);
+}
+
+// Each report's events say when the reader read it, on this machine's clock
+// (a played session's reports carry the recording's times), and the reader
+// rings its doorbell once they are in the ring: the window's sculpting
+// thread sleeps on it between polls (InputHub::run()).
+TEST(DeviceReader, StampsWhenAReportWasReadAndRingsTheDoorbell) {
+  FakeSpaceMouse mouse;
+  ASSERT_TRUE(mouse.device.ok());
+  auto parser = std::make_unique<SpaceMouseParser>(*find_quirks(0x046d, 0xc626));
+  ReaderOptions o;
+  o.doorbell = std::make_shared<Doorbell>();
+  NormalizerConfig direct;
+  direct.filter = false;
+  DeviceReader reader(3, std::move(mouse.device).value(), MotionPipeline(std::move(parser), direct),
+                      o);
+  const Doorbell& bell = *o.doorbell;
+  // Long enough for any machine; a lost ring fails the test after it.
+  constexpr int64_t kPatienceNs = int64_t{10} * 1'000'000'000;
+  uint32_t seen = bell.rings();
+  reader.start();
+  // The connect event rings too. (A lost ring would sleep to the deadline.)
+  ASSERT_TRUE(bell.wait_until(seen, monotonic_ns() + kPatienceNs));
+  ASSERT_NE(bell.rings(), seen);
+  InputFrame frame;
+  reader.poll(frame, monotonic_ns());
+  ASSERT_EQ(frame.events.size(), 1u);
+  EXPECT_EQ(frame.events[0].kind, InputKind::kConnected);
+  EXPECT_GT(frame.events[0].arrived_ns, 0);
+
+  frame.clear();
+  seen = bell.rings();
+  const int64_t before = monotonic_ns();
+  constexpr int64_t kRecordedNs = 5'000;  // a recording's clock, long before now
+  mouse.feed->push(test::report_at(kRecordedNs, axes_report(1, {100, 0, 0, 0, 0, 0})));
+  ASSERT_TRUE(bell.wait_until(seen, monotonic_ns() + kPatienceNs));
+  ASSERT_NE(bell.rings(), seen);
+  const int64_t after = monotonic_ns();
+  reader.poll(frame, after);
+  ASSERT_EQ(frame.events.size(), 1u);
+  const InputEvent& e = frame.events[0];
+  EXPECT_EQ(e.kind, InputKind::kMotion);
+  EXPECT_EQ(e.t_ns, kRecordedNs);
+  EXPECT_GE(e.arrived_ns, before);
+  EXPECT_LE(e.arrived_ns, after);
+  // Late counts from when it was read, not from the recording's time.
+  EXPECT_EQ(reader.counters().late, 0);
+  reader.stop();
 }
 
 // A reader asked for real-time priority takes it as it starts (the window's

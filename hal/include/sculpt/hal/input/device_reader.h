@@ -5,9 +5,13 @@
 // pushes the results into a lock-free SPSC ring; the main loop drains the
 // ring with poll(), every event in the order the device sent it.
 //
+// Each event carries when its report was read (InputEvent::arrived_ns),
+// and the reader rings ReaderOptions::doorbell once a report's events are
+// in the ring.
+//
 // Counters: `dropped` motion samples that did not fit the ring (never a button
 // or connect event: the thread waits for room for those); `late` samples
-// older than `late_after_ns` when polled.
+// read more than `late_after_ns` before they were polled.
 
 #include <atomic>
 #include <cstdint>
@@ -16,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "sculpt/base/doorbell.h"
 #include "sculpt/hal/input/device_stream.h"
 #include "sculpt/hal/input/motion_pipeline.h"
 #include "sculpt/hal/input/spsc_ring.h"
@@ -27,7 +32,7 @@ namespace sculpt::hal {
 struct ReaderOptions {
   size_t ring_capacity = 4096;         ///< events; 4 s of a 1 kHz device
   int read_timeout_ms = 20;            ///< how often the thread checks for stop()
-  int64_t late_after_ns = 20'000'000;  ///< a sample older than this when polled counts as late
+  int64_t late_after_ns = 20'000'000;  ///< a sample read this long before it is polled is late
   /// Called on the reader thread with every raw event, the removal included,
   /// before it is parsed: the session recorder's tap. Must be quick and
   /// thread-safe; empty for none.
@@ -37,6 +42,10 @@ struct ReaderOptions {
   /// run ahead of its sculpting and meshing: a report is then timed when it
   /// came, not when a busy core let its reader run.
   int realtime_priority = 0;
+  /// Rung after each report's events are pushed, so the thread that polls
+  /// the readers can sleep until one has something (InputHub::run()); null
+  /// for none.
+  std::shared_ptr<Doorbell> doorbell;
 };
 
 struct ReaderCounters {

@@ -34,7 +34,8 @@ struct ScanReport {
 
 class DeviceRegistry {
  public:
-  /// backends in priority order (best first).
+  /// backends in priority order (best first). Its readers ring
+  /// options.doorbell, or a doorbell of its own when that is null.
   explicit DeviceRegistry(std::vector<std::unique_ptr<Backend>> backends,
                           NormalizerConfig config = {}, ReaderOptions options = {});
   ~DeviceRegistry();
@@ -62,6 +63,10 @@ class DeviceRegistry {
 
   /// Drains every reader into `frame` and retires finished ones.
   void poll(InputFrame& frame, int64_t now_ns);
+
+  /// Rung by every reader once it has pushed a report's events: the
+  /// poller sleeps on it between polls (InputHub::run()).
+  const Doorbell& doorbell() const { return *options_.doorbell; }
 
   size_t open_count() const { return readers_.size(); }
   const DeviceReader* reader(uint32_t device_id) const;

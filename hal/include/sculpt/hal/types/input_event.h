@@ -29,6 +29,10 @@ struct InputEvent {
   InputKind kind = InputKind::kMotion;
   uint32_t device_id = 0;
   int64_t t_ns = 0;  ///< time of the report that completed this event, monotonic ns
+  /// When its reader read that report, monotonic ns on this machine: t_ns
+  /// for a device read now, but a played session's t_ns is the recording's
+  /// clock. Latencies count from it; 0 when unknown (not from a reader).
+  int64_t arrived_ns = 0;
   /// kMotion: tx ty tz rx ry rz in [-1, 1]. Translation is a deflection (3D
   /// mouse) or a position in the device's range (absolute devices); rotation
   /// likewise, as a fraction of full twist.

@@ -3,9 +3,10 @@
 // say as their reports arrive, a millisecond apart, instead of once a frame
 // behind a draw that takes 15-30 ms on a software renderer.
 //
-//   device readers --rings--> InputHub thread: poll, order device samples
-//                             and the session's commands, StationController
-//                             sculpts, SurfaceMesher::submit()
+//   device readers --rings--> InputHub thread: poll (as a reader rings its
+//                             doorbell, else once a millisecond), order device
+//                             samples and the session's commands,
+//                             StationController sculpts, SurfaceMesher::submit()
 //   render thread: pointer, keys, panel (under mutex()), then draws unlocked
 //
 // The controller and the volume it owns are used by this thread and, under
@@ -46,7 +47,10 @@ class PollListener {
 };
 
 struct InputHubFigures {
-  int64_t polls = 0;     ///< times the devices were read
+  int64_t polls = 0;  ///< times the devices were read
+  /// Of them, those a reader's ring woke early (a report came between
+  /// the clock's polls).
+  int64_t polls_on_reports = 0;
   double sculpt_ms = 0;  ///< time spent sculpting what they said, summed
   /// The sculpting thread's waits for the render thread's turn.
   struct TurnWaits {

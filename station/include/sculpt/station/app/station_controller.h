@@ -390,7 +390,8 @@ class StationController {
  private:
   bool report(const Status& status, const std::string& done);
   void camera_motion(const hal::InputEvent& e);
-  static int64_t report_time(int64_t t_ns, int64_t now_ns);
+  // When event e's report came, on this machine's clock: what latencies count from.
+  static int64_t report_time(const hal::InputEvent& e, int64_t now_ns);
   // The dabs made since `before` came from a report read at `t_ns`.
   void note_dabs(const StationCounters& before, int64_t t_ns);
   ProjectView view() const;
