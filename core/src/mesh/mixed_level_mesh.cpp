@@ -928,21 +928,22 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
     }
     stale_bricks.push_back(b);
   };
+  // Whether brick b's reads hold a voxel that moved: the boxes of each
+  // brick they overlap, looked at.
+  auto reads_hold_a_change = [&](glm::ivec3 b) {
+    const Box reads = reads_of(b);
+    const Box read_bricks = volume.bricks_overlapping(reads);
+    for (int z = read_bricks.lo.z; z < read_bricks.hi.z; ++z)
+      for (int y = read_bricks.lo.y; y < read_bricks.hi.y; ++y)
+        for (int x = read_bricks.lo.x; x < read_bricks.hi.x; ++x)
+          if (changed_within(boxes_in(static_cast<int64_t>(index({x, y, z}))), reads)) return true;
+    return false;
+  };
   if (levels_moved) {
     for (int z = 0; z < grid_.z; ++z)
       for (int y = 0; y < grid_.y; ++y)
-        for (int x = 0; x < grid_.x; ++x) {
-          const glm::ivec3 b(x, y, z);
-          const Box reads = reads_of(b);
-          const Box read_bricks = volume.bricks_overlapping(reads);
-          bool reads_changed = false;
-          for (int bz = read_bricks.lo.z; bz < read_bricks.hi.z && !reads_changed; ++bz)
-            for (int by = read_bricks.lo.y; by < read_bricks.hi.y && !reads_changed; ++by)
-              for (int bx = read_bricks.lo.x; bx < read_bricks.hi.x && !reads_changed; ++bx)
-                reads_changed =
-                    changed_within(boxes_in(static_cast<int64_t>(index({bx, by, bz}))), reads);
-          consider(b, reads_changed);
-        }
+        for (int x = 0; x < grid_.x; ++x)
+          consider({x, y, z}, reads_hold_a_change({x, y, z}));
   } else {
     // Levels as before: only a brick whose reads hold a moved voxel can be
     // stale (a big volume has tens of thousands of bricks; a dab changes a
@@ -954,8 +955,11 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
     const int farthest_read = 2 << *std::max_element(levels_.begin(), levels_.end());
     std::vector<int64_t> near;
     for (auto group = changed.begin(); group != changed.end();) {
-      const std::span boxes = boxes_in(group->first);
-      group += static_cast<std::ptrdiff_t>(boxes.size());
+      // One moved brick's boxes: `changed` is sorted by brick.
+      const auto group_end = std::find_if(group, changed.end(),
+                                          [&](const auto& c) { return c.first != group->first; });
+      const std::span boxes(group, group_end);
+      group = group_end;
       Box all = boxes.front().second;
       for (const auto& [i, box] : boxes)
         all = hull(all, box);
