@@ -14,6 +14,7 @@
 
 #include "scratch_dir.h"
 #include "sculpt/core/mesh/mixed_level_mesh.h"
+#include "sculpt/hal/backends/feed_backend.h"
 #include "sculpt/hal/normalizer/normalizer_config.h"
 #include "sculpt/hal/types/clock.h"
 #include "sculpt/sim/replay/sim_backend.h"
@@ -127,6 +128,44 @@ TEST(InputHub, ALiveSessionSculptedOnItsThreadEndsOnTheReplaysVolume) {
   // a report that came during a poll, or between two, did not wait for the
   // next millisecond. (How many is timing; none means no ring reached it.)
   EXPECT_GT(hub.figures().polls_on_reports, 0);
+}
+
+// A device that floods the hub (20,000 reports queued at once on the fake
+// transport, a SpaceNavigator's, read as fast as its reader can) wakes it
+// at most once every kMinPollSpacingNs: the reports are taken many to a
+// poll, not one poll each. An upper bound: no machine is too slow for it.
+TEST(InputHub, AFloodingDeviceWakesThePollsAtMostEveryMinPollSpacing) {
+  test::ScratchDir dir;
+  StationController controller(quiet_controller(dir));
+  SurfaceMesher mesher;
+  auto backend = std::make_unique<hal::FeedBackend>("fake-hid");
+  hal::DeviceInfo navigator;
+  navigator.path = "hidraw0";
+  navigator.vendor_id = 0x046d;
+  navigator.product_id = 0xc626;
+  const std::shared_ptr<hal::DeviceFeed> feed = backend->attach(navigator);
+  std::vector<std::unique_ptr<hal::Backend>> backends;
+  backends.push_back(std::move(backend));
+  auto registry = std::make_unique<hal::DeviceRegistry>(std::move(backends));
+  ASSERT_EQ(registry->scan().opened.size(), 1u);  // its reader starts now
+  InputHub hub(controller, std::move(registry), nullptr, "", mesher);
+  const int64_t started_ns = hal::monotonic_ns();
+  hub.start();
+  constexpr int kReports = 20'000;
+  for (int i = 0; i < kReports; ++i) {
+    // Translation report (id 1): three little-endian int16 axes.
+    const uint8_t bytes[] = {1, static_cast<uint8_t>(i % 200), 0, 0, 0, 0, 0};
+    feed->push(hal::RawEvent::report(hal::monotonic_ns(), bytes));
+  }
+  ASSERT_TRUE(feed->wait_drained(60'000)) << "the reader did not take the reports in 60 s";
+  std::this_thread::sleep_for(std::chrono::milliseconds(5));  // the last poll takes them
+  hub.stop();
+  const int64_t elapsed_ns = hal::monotonic_ns() - started_ns;
+  std::lock_guard last(hub.mutex());
+  const InputHubFigures& f = hub.figures();
+  EXPECT_GT(f.polls_on_reports, 0);
+  EXPECT_LE(f.polls_on_reports, elapsed_ns / InputHub::kMinPollSpacingNs + 1)
+      << f.polls << " polls in " << static_cast<double>(elapsed_ns) * 1e-6 << " ms";
 }
 
 // The window's session device waits for the station: the hub starts it once

@@ -65,7 +65,9 @@ struct InputHubFigures {
 
 class InputHub {
  public:
-  static constexpr int64_t kPollIntervalNs = 1'000'000;      ///< 1 kHz
+  static constexpr int64_t kPollIntervalNs = 1'000'000;  ///< 1 kHz
+  /// Polls a reader's reports wake come at least this far apart (4 kHz).
+  static constexpr int64_t kMinPollSpacingNs = 250'000;
   static constexpr int64_t kScanIntervalNs = 1'000'000'000;  ///< hot-plug, each second
   /// Recording flushes and autosave checks (StationController::tick).
   static constexpr int64_t kTickIntervalNs = 16'000'000;
