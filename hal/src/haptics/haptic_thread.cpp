@@ -2,9 +2,7 @@
 
 #include <pthread.h>
 #include <sched.h>
-#include <time.h>
 
-#include <cerrno>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -14,18 +12,12 @@
 namespace sculpt::hal {
 namespace {
 
-constexpr int64_t kNsPerS = 1'000'000'000;
-
 // A hint to the core that this is a polling loop (x86's PAUSE): it saves
 // power and leaves the sibling hyper-thread its share.
 inline void cpu_relax() {
 #if defined(__x86_64__) || defined(__i386__)
   __builtin_ia32_pause();
 #endif
-}
-
-timespec to_timespec(int64_t ns) {
-  return {static_cast<time_t>(ns / kNsPerS), static_cast<long>(ns % kNsPerS)};
 }
 
 // The CPUs this process may run on, in order.
@@ -122,9 +114,7 @@ void HapticThread::run(int which, int cpu) {
     deadline_ns = next_deadline_ns_;
   }
   while (!stop_.load(std::memory_order_acquire)) {
-    const timespec at = to_timespec(deadline_ns - options_.spin_ns);
-    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &at, nullptr) == EINTR) {
-    }
+    sleep_until_ns(deadline_ns - options_.spin_ns);
     while (options_.spin_ns > 0 && monotonic_ns() < deadline_ns) {
       cpu_relax();
     }

@@ -1,7 +1,8 @@
 #pragma once
 // The station's sculpting thread: it reads the devices and sculpts what they
-// say as their reports arrive, a millisecond apart, instead of once a frame
-// behind a draw that takes 15-30 ms on a software renderer.
+// say as their reports arrive (their readers wake it, and it polls at least
+// once a millisecond), instead of once a frame behind a draw that takes
+// 15-30 ms on a software renderer.
 //
 //   device readers --rings--> InputHub thread: poll (as a reader rings its
 //                             doorbell, else once a millisecond), order device
