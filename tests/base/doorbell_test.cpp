@@ -6,7 +6,6 @@
 #include "sculpt/base/doorbell.h"
 
 #include <chrono>
-#include <ctime>
 #include <latch>
 #include <thread>
 
@@ -15,10 +14,11 @@
 namespace sculpt {
 namespace {
 
+// CLOCK_MONOTONIC, the doorbell's deadlines' clock (libstdc++'s steady_clock).
 int64_t now_ns() {
-  timespec t{};
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return int64_t{t.tv_sec} * 1'000'000'000 + t.tv_nsec;
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
 }
 
 constexpr int64_t kPatienceNs = int64_t{10} * 1'000'000'000;
