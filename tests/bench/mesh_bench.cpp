@@ -22,6 +22,7 @@
 #include "sculpt/core/mesh/mixed_level_mesh.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
 #include "sculpt/core/util/parallel_for.h"
+#include "sculpt/core/volume/stored_voxels.h"
 #include "sculpt/core/volume/volume.h"
 
 namespace sculpt::core {
@@ -88,8 +89,9 @@ struct Uniform {
   }
 };
 
+// Returns the box it edited.
 template <class Random>
-void dab_on_surface(Volume& volume, Random& next, bool carve, float dab_radius = 14.0f) {
+Box dab_on_surface(Volume& volume, Random& next, bool carve, float dab_radius = 14.0f) {
   const glm::vec3 centre(static_cast<float>(volume.dims().x - 1) / 2.0f);
   const float radius = 0.35f * static_cast<float>(volume.dims().x);
   glm::vec3 dir;
@@ -112,6 +114,7 @@ void dab_on_surface(Volume& volume, Random& next, bool carve, float dab_radius =
           v = carve ? std::min<uint8_t>(v, static_cast<uint8_t>(255 - ball)) : std::max(v, ball);
         }
   });
+  return box;
 }
 
 // Re-meshing after one dab: a ball of radius 14 (its density ramp fills a
@@ -271,6 +274,60 @@ BENCHMARK(BM_MeshMixedLevelAfterBigDab)
     ->Arg(1)
     ->Arg(2)
     ->ArgName("threads")
+    ->UseManualTime()
+    ->Iterations(20)
+    ->Unit(benchmark::kMillisecond);
+
+// The update after the head ball as the window's mesher makes it: the
+// bricks' voxels given by the sculptor (not decoded), with (`box` 1) or
+// without (0) where they changed since the version the cache holds, so
+// only there are they compared to find what moved.
+void BM_MeshMixedLevelAfterBigDabGiven(benchmark::State& state) {
+  Volume volume = sphere_volume(256);
+  const bool with_box = state.range(0) != 0;
+  const std::vector<int> levels(static_cast<size_t>(volume.brick_count()), 0);
+  MarchingCubesOptions options;
+  options.threads = 2;
+  MixedLevelMeshCache cache(options);
+  cache.update(volume, levels);
+  Uniform next;
+  bool carve = false;
+  const int e = volume.brick_edge();
+  int64_t compared_in_part = 0;
+  for (auto _ : state) {
+    std::vector<uint64_t> before(static_cast<size_t>(volume.brick_count()));
+    for (size_t i = 0; i < before.size(); ++i)
+      before[i] = volume.brick_version(grid_position(static_cast<int64_t>(i), volume.brick_grid()));
+    const Box box = dab_on_surface(volume, next, carve, 66.0f);
+    carve = !carve;
+    StoredVoxelsByBrick stored;
+    const Box bricks = volume.bricks_overlapping(box);
+    for (int z = bricks.lo.z; z < bricks.hi.z; ++z)
+      for (int y = bricks.lo.y; y < bricks.hi.y; ++y)
+        for (int x = bricks.lo.x; x < bricks.hi.x; ++x) {
+          const glm::ivec3 b(x, y, z);
+          const auto i = static_cast<int64_t>(grid_index(b, volume.brick_grid()));
+          StoredVoxels& s = stored[i];
+          s.version = volume.brick_version(b);
+          s.voxels.resize(static_cast<size_t>(e) * e * e);
+          volume.decode_brick(b, s.voxels);
+          if (with_box) {
+            s.changed_from = before[static_cast<size_t>(i)];
+            s.changed = box;
+          }
+        }
+    const auto t0 = std::chrono::steady_clock::now();
+    compared_in_part += cache.update(volume, levels, &stored).bricks_compared_where_changed;
+    state.SetIterationTime(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  state.counters["bricks_compared_where_changed"] =
+      static_cast<double>(compared_in_part) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_MeshMixedLevelAfterBigDabGiven)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("box")
     ->UseManualTime()
     ->Iterations(20)
     ->Unit(benchmark::kMillisecond);

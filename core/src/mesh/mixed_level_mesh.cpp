@@ -765,16 +765,17 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
     // per region of the brick: a face's, edge's or corner's two-voxel
     // border, or the inside (MovedParts).
     MovedParts moved = {};
-    std::vector<uint8_t>* given = nullptr;  // its level-0 voxels, to take
+    StoredVoxels* given = nullptr;  // its level-0 voxels, to take
+    bool compared_where_changed = false;
   };
   std::vector<Redecode> redecodes;
   // Brick n's level-0 voxels as given in `stored`, or null.
-  auto given_voxels = [&](glm::ivec3 n) -> std::vector<uint8_t>* {
+  auto given_voxels = [&](glm::ivec3 n) -> StoredVoxels* {
     if (stored == nullptr) return nullptr;
     const auto it = stored->find(static_cast<int64_t>(index(n)));
     if (it == stored->end() || it->second.version != volume.brick_version(n)) return nullptr;
     if (it->second.voxels.size() != static_cast<size_t>(edge_) * edge_ * edge_) return nullptr;
-    return &it->second.voxels;
+    return &it->second;
   };
   for (int z = 0; z < grid_.z; ++z)
     for (int y = 0; y < grid_.y; ++y)
@@ -824,8 +825,17 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
         thread_local std::vector<uint8_t> old;
         old.swap(r.kept->voxels);
         std::vector<uint8_t>& now = r.kept->voxels;
+        // The rows to compare: all, or where the sculptor says the voxels
+        // changed since the version kept (outside they are the same).
+        Box rows{glm::ivec3(0), glm::ivec3(m)};
         if (r.given != nullptr) {
-          now.swap(*r.given);  // what decoding would give, to the byte
+          now.swap(r.given->voxels);  // what decoding would give, to the byte
+          if (r.given->changed_from == r.kept->version) {
+            rows = intersect(
+                Box{r.given->changed.lo - r.brick * edge_, r.given->changed.hi - r.brick * edge_},
+                rows);
+            r.compared_where_changed = true;
+          }
         } else {
           now.resize(static_cast<size_t>(m) * m * m);
           volume.decode_brick(r.brick, now, r.level);
@@ -836,8 +846,8 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
           return;
         }
         MovedRegions regions(m);
-        for (int vz = 0; vz < m; ++vz)
-          for (int vy = 0; vy < m; ++vy) {
+        for (int vz = rows.lo.z; vz < rows.hi.z; ++vz)
+          for (int vy = rows.lo.y; vy < rows.hi.y; ++vy) {
             const size_t row = (static_cast<size_t>(vz) * m + vy) * m;
             // The row's first and last voxel that moved bound it: a compare
             // and a box update per voxel was a twentieth of the update.
@@ -854,6 +864,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
       if (!part.empty()) changed.emplace_back(static_cast<int64_t>(index(r.brick)), part);
     if (r.given == nullptr) continue;
     ++stats.bricks_given;
+    stats.bricks_compared_where_changed += r.compared_where_changed ? 1 : 0;
     stored->erase(static_cast<int64_t>(index(r.brick)));  // taken: what is left is not its voxels
   }
   std::sort(changed.begin(), changed.end(),
@@ -988,7 +999,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
     glm::ivec3 brick;
     int level;
     Decoded* entry;
-    std::vector<uint8_t>* given = nullptr;  // its level-0 voxels, to take
+    StoredVoxels* given = nullptr;  // its level-0 voxels, to take
   };
   std::vector<Decode> neighbourhood_decodes;
   std::vector<glm::ivec3> to_decode = stale_bricks;
@@ -1023,7 +1034,7 @@ MeshUpdate MixedLevelMeshCache::update(const Volume& volume, std::span<const int
       [&](int64_t i) {
         const Decode& d = neighbourhood_decodes[static_cast<size_t>(i)];
         if (d.given != nullptr) {
-          d.entry->voxels.swap(*d.given);
+          d.entry->voxels.swap(d.given->voxels);
         } else {
           volume.decode_brick(d.brick, d.entry->voxels, d.level);
         }

@@ -125,10 +125,13 @@ const char* sculpt_mode_name(SculptMode mode) {
   return "?";
 }
 
-void Sculptor::hand_over(glm::ivec3 b, uint64_t version, std::vector<uint8_t> voxels) {
+void Sculptor::hand_over(glm::ivec3 b, StoredVoxels voxels) {
   if (stored_voxels_.size() >= kMaxHandedBricks) stored_voxels_.clear();  // nobody takes them
   const auto index = static_cast<int64_t>(grid_index(b, volume_.brick_grid()));
-  stored_voxels_.insert_or_assign(index, StoredVoxels{version, std::move(voxels)});
+  // Stored again before they were taken: changed since the first's version.
+  if (const auto it = stored_voxels_.find(index); it != stored_voxels_.end())
+    follow(it->second, voxels);
+  stored_voxels_.insert_or_assign(index, std::move(voxels));
 }
 
 DabStats& DabStats::operator+=(const DabStats& o) {

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include <glm/common.hpp>
@@ -855,11 +856,25 @@ DabStats SweptStroke::apply(std::span<const Segment> segments) {
     ++stats.bricks_changed;
     stats.voxels_changed += job.changed;
   }
+  // The versions the changed voxels are held against (a brick stored by
+  // something else since was decoded again: its current version). A brick
+  // reaching past the volume has its outside re-padded as it is stored,
+  // beyond the rows it changed: not said.
+  std::vector<std::optional<uint64_t>> changed_from;
+  for (const Job& job : jobs) {
+    if (job.changed == 0) continue;
+    const bool inside = glm::all(glm::lessThanEqual((job.b + 1) * edge, volume.dims()));
+    changed_from.push_back(inside ? std::optional(volume.brick_version(job.b)) : std::nullopt);
+  }
   volume.store_bricks(stores);
+  size_t stored = 0;
   for (Job& job : jobs) {
     if (job.changed == 0) continue;
     job.held->version = volume.brick_version(job.b);
-    if (hand_over) sculptor_.hand_over(job.b, job.held->version, std::move(job.handed));
+    if (hand_over)
+      sculptor_.hand_over(job.b, StoredVoxels{job.held->version, std::move(job.handed),
+                                              changed_from[stored], job.touched});
+    ++stored;
   }
   stats.encode_ns += now_ns() - t_store;
   return stats;

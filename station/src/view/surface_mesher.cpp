@@ -77,6 +77,7 @@ uint64_t SurfaceMesher::submit(const core::Volume& volume, uint64_t generation,
     int64_t index;
     const core::Brick* brick;
     uint64_t version;
+    uint64_t sent;  // the version sent before: the mirror's voxels, as they will be
   };
   std::vector<Changed> changed;
   if (reset) {
@@ -87,8 +88,8 @@ uint64_t SurfaceMesher::submit(const core::Volume& volume, uint64_t generation,
     const glm::ivec3 b = core::grid_position(i, grid);
     uint64_t& sent = sent_versions_[static_cast<size_t>(i)];
     if (!reset && sent == volume.brick_version(b)) continue;
-    sent = volume.brick_version(b);
-    if (!reset) changed.push_back({i, &volume.brick(b), sent});
+    const uint64_t before = std::exchange(sent, volume.brick_version(b));
+    if (!reset) changed.push_back({i, &volume.brick(b), sent, before});
   }
   if (!reset && changed.empty() && levels == sent_levels_) return change_;
   sent_levels_ = levels;
@@ -112,10 +113,25 @@ uint64_t SurfaceMesher::submit(const core::Volume& volume, uint64_t generation,
       const bool added = p.bricks.insert_or_assign(i, std::move(brick)).second;
       if (!added) ++counters_.bricks_coalesced;
       // The stored voxels of this very version, or none (older ones go).
-      if (auto s = stored.find(i); s != stored.end() && s->second.version == changed[k].version)
-        p.stored.insert_or_assign(i, std::move(s->second));
-      else
+      // What changed in them holds against the mirror's voxels when it
+      // holds against the version sent before, and that one is what the
+      // mirror holds (or a waiting one whose own changes do).
+      auto s = stored.find(i);
+      if (s == stored.end() || s->second.version != changed[k].version) {
         p.stored.erase(i);
+        continue;
+      }
+      core::StoredVoxels& now = s->second;
+      if (now.changed_from != changed[k].sent) now.changed_from.reset();
+      if (!added) {
+        const auto waiting = p.stored.find(i);
+        if (waiting == p.stored.end()) {
+          now.changed_from.reset();
+        } else {
+          core::follow(waiting->second, now);
+        }
+      }
+      p.stored.insert_or_assign(i, std::move(now));
     }
     p.levels = levels;
     p.change = ++change_;
@@ -371,18 +387,21 @@ void SurfaceMesher::run() {
     // mirror takes the bricks.
     std::unordered_map<int64_t, core::Brick> handed;
     if (refining && !reset) handed = work.bricks;
-    for (auto& [i, brick] : work.bricks)
-      mirror->replace_brick(core::grid_position(i, grid), std::move(brick));
     // The sculptor's voxels of the bricks replaced, as of the mirror's
-    // versions of them (a brick found unchanged keeps its mesh: none).
+    // versions of them (a brick found unchanged keeps its mesh: none); what
+    // changed in them holds against the mirror's voxels before.
     for (auto it = work.stored.begin(); it != work.stored.end();) {
       if (!work.bricks.contains(it->first)) {
         it = work.stored.erase(it);
         continue;
       }
-      it->second.version = mirror->brick_version(core::grid_position(it->first, grid));
+      const glm::ivec3 b = core::grid_position(it->first, grid);
+      if (it->second.changed_from) it->second.changed_from = mirror->brick_version(b);
+      it->second.version = mirror->brick_version(b) + 1;  // replace_brick() moves it on by one
       ++it;
     }
+    for (auto& [i, brick] : work.bricks)
+      mirror->replace_brick(core::grid_position(i, grid), std::move(brick));
     // A new volume is shown first at a coarse level (a sixteenth of the
     // work at level 2: 7 ms against 92 for the demo's head) and refined on
     // the refiner's copy, so the first dabs on it wait for a coarse re-mesh
@@ -448,6 +467,7 @@ void SurfaceMesher::run() {
       counters_.bricks_meshed += update.bricks_meshed;
       counters_.bricks_reused += update.bricks_reused;
       counters_.bricks_given += update.bricks_given;
+      counters_.bricks_compared_where_changed += update.bricks_compared_where_changed;
       counters_.bricks_unchanged += unchanged;
       counters_.coarse_first += reset && refining ? 1 : 0;
       counters_.coarse_updates += !reset && refining ? 1 : 0;

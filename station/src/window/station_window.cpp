@@ -248,6 +248,7 @@ Status write_stats(const std::string& path, const RunFigures& f, const StationCo
         {"bricks_meshed", f.mesher.bricks_meshed},
         {"bricks_reused", f.mesher.bricks_reused},
         {"bricks_given_by_the_sculptor", f.mesher.bricks_given},
+        {"bricks_compared_where_changed", f.mesher.bricks_compared_where_changed},
         {"update_ms_p50", f.mesher.update_us.quantile_us(0.5) * 1e-3},
         {"update_ms_p99", f.mesher.update_us.quantile_us(0.99) * 1e-3},
         {"update_ms_max", f.mesher.update_us.max_us() * 1e-3},

@@ -467,6 +467,47 @@ TEST(MixedLevelMeshCache, VoxelsGivenWithAChangeAreTakenInsteadOfDecoding) {
   expect_watertight(cache.welded_mesh(), 2, "given voxels");
 }
 
+TEST(MixedLevelMeshCache, GivenVoxelsAreComparedOnlyWhereTheSculptorChangedThem) {
+  // A sculptor that says where a brick's voxels changed since the version
+  // kept: only those rows are compared to find what moved (the rest are
+  // the same); the meshes are decoding's. A brick whose change is told
+  // against another version is compared whole.
+  Volume v = sphere_volume(128);  // 4^3 bricks
+  const std::vector<int> levels(static_cast<size_t>(v.brick_count()), 0);
+  MixedLevelMeshCache cache;
+  cache.update(v, levels);
+  const Box box{glm::ivec3(50, 50, 98), glm::ivec3(80, 80, 115)};  // across bricks, on the surface
+  const Box moved = v.bricks_overlapping(box);
+  std::vector<uint64_t> before;
+  for (int z = moved.lo.z; z < moved.hi.z; ++z)
+    for (int y = moved.lo.y; y < moved.hi.y; ++y)
+      for (int x = moved.lo.x; x < moved.hi.x; ++x)
+        before.push_back(v.brick_version({x, y, z}));
+  carve_box(v, box);
+  const int e = v.brick_edge();
+  StoredVoxelsByBrick stored;
+  size_t k = 0;
+  for (int z = moved.lo.z; z < moved.hi.z; ++z)
+    for (int y = moved.lo.y; y < moved.hi.y; ++y)
+      for (int x = moved.lo.x; x < moved.hi.x; ++x) {
+        const glm::ivec3 b(x, y, z);
+        StoredVoxels& s = stored[static_cast<int64_t>(grid_index(b, v.brick_grid()))];
+        s.version = v.brick_version(b);
+        s.voxels.resize(static_cast<size_t>(e) * e * e);
+        v.decode_brick(b, s.voxels);
+        s.changed_from = before[k++];
+        s.changed = box;
+      }
+  ASSERT_GE(stored.size(), 4u);
+  *stored.begin()->second.changed_from += 1;  // told against another version
+  const auto given = static_cast<int64_t>(stored.size());
+  const MeshUpdate u = cache.update(v, levels, &stored);
+  EXPECT_EQ(u.bricks_given, given);
+  EXPECT_EQ(u.bricks_compared_where_changed, given - 1);
+  EXPECT_EQ(cache.welded_mesh(), mixed_level_mesh(v, levels));
+  expect_watertight(cache.welded_mesh(), 2, "voxels given with where they changed");
+}
+
 TEST(MixedLevelMeshCache, ZoomingBackReMeshesNothing) {
   // Levels by camera distance: near (fine), then far (coarse), then near
   // again. The way back gives every brick the mesh it had, marching none.

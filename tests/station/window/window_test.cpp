@@ -194,6 +194,10 @@ TEST(StationWindow, RunsTheLiveLoopOnASimDeviceAndTakesAScreenshot) {
   EXPECT_GT(stats["mesher"]["bricks_given_by_the_sculptor"].get<int64_t>(), 0) << stats.dump();
   EXPECT_LE(stats["mesher"]["bricks_given_by_the_sculptor"].get<int64_t>(),
             stats["mesher"]["bricks_submitted"].get<int64_t>());
+  // And with where they changed since the mirror's version: compared only there.
+  EXPECT_GT(stats["mesher"]["bricks_compared_where_changed"].get<int64_t>(), 0) << stats.dump();
+  EXPECT_LE(stats["mesher"]["bricks_compared_where_changed"].get<int64_t>(),
+            stats["mesher"]["bricks_given_by_the_sculptor"].get<int64_t>());
   // Where each thread's time went, the sculpting thread's and the mesher's
   // included (taken as the frames end, while they still run).
   EXPECT_TRUE(stats["threads"]["cpu_s"].contains("sculpting")) << stats["threads"].dump();

@@ -46,6 +46,9 @@ struct MeshUpdate {
   /// Of bricks_decoded, those whose voxels were given instead (the voxels a
   /// sculptor stored: MixedLevelMeshCache::update's `stored`).
   int64_t bricks_given = 0;
+  /// Of bricks_given, those whose voxels were compared with the kept ones
+  /// only where the sculptor said they changed (StoredVoxels::changed).
+  int64_t bricks_compared_where_changed = 0;
 };
 
 class MeshCache {

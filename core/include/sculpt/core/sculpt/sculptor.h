@@ -147,8 +147,9 @@ class Sculptor {
   friend class SweptStroke;
 
   DabStats apply(RotatedToolCache& cache, const Dab& dab);
-  // Keeps brick b's stored voxels for take_stored_voxels().
-  void hand_over(glm::ivec3 b, uint64_t version, std::vector<uint8_t> voxels);
+  // Keeps brick b's stored voxels for take_stored_voxels(): `voxels` at
+  // `version`, which differ from version `changed_from` only inside `changed`.
+  void hand_over(glm::ivec3 b, StoredVoxels voxels);
   void rebuild_caches();
   // The cache of the tool mirrored across `axis`, made on first use.
   RotatedToolCache& mirror_cache(int axis);

@@ -11,8 +11,11 @@
 // decoding: the same bytes, as the wavelets are lossless.
 
 #include <cstdint>
+#include <optional>
 #include <unordered_map>
 #include <vector>
+
+#include "sculpt/core/grid/box.h"
 
 namespace sculpt::core {
 
@@ -20,7 +23,23 @@ namespace sculpt::core {
 struct StoredVoxels {
   uint64_t version = 0;  ///< Volume::brick_version() they are the voxels of
   std::vector<uint8_t> voxels;
+  /// The version whose voxels these differ from only inside `changed`
+  /// (level-0 volume coordinates), if known: a mesher holding that
+  /// version's voxels compares only there to find what moved.
+  std::optional<uint64_t> changed_from;
+  Box changed;
 };
+
+/// `later`, stored after `earlier` (the version `later` changed from):
+/// what changed since `earlier` changed from, or unknown.
+inline void follow(const StoredVoxels& earlier, StoredVoxels& later) {
+  if (!earlier.changed_from || later.changed_from != earlier.version) {
+    later.changed_from.reset();
+    return;
+  }
+  later.changed_from = earlier.changed_from;
+  later.changed = hull(earlier.changed, later.changed);
+}
 
 /// By brick index (grid_index()).
 using StoredVoxelsByBrick = std::unordered_map<int64_t, StoredVoxels>;

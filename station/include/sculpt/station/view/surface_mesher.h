@@ -130,6 +130,9 @@ struct MesherCounters {
   int64_t bricks_reused = 0;     ///< given back from an earlier level of detail (zooming back)
   /// Bricks whose voxels the sculptor gave with them, not decoded again.
   int64_t bricks_given = 0;
+  /// Of them, those compared with the mirror's only where the sculptor
+  /// changed them (core::StoredVoxels::changed).
+  int64_t bricks_compared_where_changed = 0;
   int64_t pending_bricks_max = 0;  ///< deepest the pending set got
   int64_t update_page_faults = 0;  ///< the mesher thread's, during its updates (~8 us each here)
   int64_t coarse_first = 0;        ///< new volumes shown coarse before full detail
