@@ -45,6 +45,32 @@ void carve_box(Volume& v, const Box& box) {
   });
 }
 
+// The voxels a sculptor would hand over for every brick of `bricks` (brick
+// coordinates): each brick's current version, decoded; `changed_from`, when
+// given, says for each (in z, y, x order) the version they changed from
+// inside `changed`.
+StoredVoxelsByBrick stored_as_decoded(const Volume& v, const Box& bricks,
+                                      const std::vector<uint64_t>* changed_from = nullptr,
+                                      const Box& changed = {}) {
+  const int e = v.brick_edge();
+  StoredVoxelsByBrick stored;
+  size_t k = 0;
+  for (int z = bricks.lo.z; z < bricks.hi.z; ++z)
+    for (int y = bricks.lo.y; y < bricks.hi.y; ++y)
+      for (int x = bricks.lo.x; x < bricks.hi.x; ++x) {
+        const glm::ivec3 b(x, y, z);
+        StoredVoxels& s = stored[static_cast<int64_t>(grid_index(b, v.brick_grid()))];
+        s.version = v.brick_version(b);
+        s.voxels.resize(static_cast<size_t>(e) * e * e);
+        v.decode_brick(b, s.voxels);
+        if (changed_from != nullptr) {
+          s.changed_from = (*changed_from)[k++];
+          s.changed = changed;
+        }
+      }
+  return stored;
+}
+
 void expect_watertight(const Mesh& mesh, int64_t euler, const char* what) {
   const MeshTopology t = check_topology(mesh);
   EXPECT_EQ(t.boundary_edges, 0) << what;
@@ -444,18 +470,8 @@ TEST(MixedLevelMeshCache, VoxelsGivenWithAChangeAreTakenInsteadOfDecoding) {
   cache.update(v, levels);
   const Box box{glm::ivec3(50, 50, 98), glm::ivec3(80, 80, 115)};  // across bricks, on the surface
   carve_box(v, box);
-  const int e = v.brick_edge();
-  StoredVoxelsByBrick stored;
   const Box moved = v.bricks_overlapping(box);
-  for (int z = moved.lo.z; z < moved.hi.z; ++z)
-    for (int y = moved.lo.y; y < moved.hi.y; ++y)
-      for (int x = moved.lo.x; x < moved.hi.x; ++x) {
-        const glm::ivec3 b(x, y, z);
-        StoredVoxels& s = stored[static_cast<int64_t>(grid_index(b, v.brick_grid()))];
-        s.version = v.brick_version(b);
-        s.voxels.resize(static_cast<size_t>(e) * e * e);
-        v.decode_brick(b, s.voxels);
-      }
+  StoredVoxelsByBrick stored = stored_as_decoded(v, moved);
   ASSERT_GE(stored.size(), 4u);
   // One of them given for an older version, its voxels all wrong.
   StoredVoxels& stale = stored.begin()->second;
@@ -484,20 +500,7 @@ TEST(MixedLevelMeshCache, GivenVoxelsAreComparedOnlyWhereTheSculptorChangedThem)
       for (int x = moved.lo.x; x < moved.hi.x; ++x)
         before.push_back(v.brick_version({x, y, z}));
   carve_box(v, box);
-  const int e = v.brick_edge();
-  StoredVoxelsByBrick stored;
-  size_t k = 0;
-  for (int z = moved.lo.z; z < moved.hi.z; ++z)
-    for (int y = moved.lo.y; y < moved.hi.y; ++y)
-      for (int x = moved.lo.x; x < moved.hi.x; ++x) {
-        const glm::ivec3 b(x, y, z);
-        StoredVoxels& s = stored[static_cast<int64_t>(grid_index(b, v.brick_grid()))];
-        s.version = v.brick_version(b);
-        s.voxels.resize(static_cast<size_t>(e) * e * e);
-        v.decode_brick(b, s.voxels);
-        s.changed_from = before[k++];
-        s.changed = box;
-      }
+  StoredVoxelsByBrick stored = stored_as_decoded(v, moved, &before, box);
   ASSERT_GE(stored.size(), 4u);
   *stored.begin()->second.changed_from += 1;  // told against another version
   const auto given = static_cast<int64_t>(stored.size());
