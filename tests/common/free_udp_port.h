@@ -1,7 +1,9 @@
 #pragma once
 // A loopback UDP port free a moment ago (the kernel's pick for port 0), for
 // tests that must name a real port in a device spec (`opentrack:PORT`).
-// Another process could take it in between; on a test machine none does.
+// Another process could take it in between (a test running beside, or the
+// caller's own unbound sending socket on its first sendto): a caller whose
+// bind then fails with "Address already in use" asks for another.
 
 #include <arpa/inet.h>
 #include <netinet/in.h>

@@ -29,34 +29,48 @@ namespace {
 
 TEST(TrackerCommands, RecordsOpenTrackDatagramsAndReplaysTheirPoses) {
   sculpt::test::ScratchDir scratch;
-  const uint16_t port = sculpt::test::free_udp_port();
-  ASSERT_NE(port, 0);
   const std::string session = scratch.file("ot.scs");
-  std::atomic<bool> done{false};
-  CommandResult recorded;
-  std::thread recorder([&] {
-    recorded = run_sculpt("record --device opentrack:" + std::to_string(port) + " --seconds 1 -o " +
-                          session);
-    done.store(true);
-  });
-  // Sends until the recorder exits (it binds a moment after it starts, so
-  // the first datagrams may find no one), bounded in case it never does.
-  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in to{};
-  to.sin_family = AF_INET;
-  to.sin_port = htons(port);
-  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  // Records for a second at `port` while sending to it until the recorder
+  // exits (it binds a moment after it starts, so the first datagrams may
+  // find no one), bounded in case it never does.
   int sent = 0;
-  while (!done.load() && std::chrono::steady_clock::now() < deadline) {
-    // x walks 0, 0.1, ... cm, always a whole number of mm.
-    const auto bytes = hal::encode_opentrack_datagram(0.1 * (sent % 100), 2.0, 3.0, 0, 0, 0);
-    ::sendto(fd, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
-    ++sent;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  auto record_at = [&](uint16_t port) {
+    std::atomic<bool> done{false};
+    CommandResult recorded;
+    std::thread recorder([&] {
+      recorded = run_sculpt("record --device opentrack:" + std::to_string(port) +
+                            " --seconds 1 -o " + session);
+      done.store(true);
+    });
+    const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+    sockaddr_in to{};
+    to.sin_family = AF_INET;
+    to.sin_port = htons(port);
+    to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (!done.load() && std::chrono::steady_clock::now() < deadline) {
+      // x walks 0, 0.1, ... cm, always a whole number of mm.
+      const auto bytes = hal::encode_opentrack_datagram(0.1 * (sent % 100), 2.0, 3.0, 0, 0, 0);
+      ::sendto(fd, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr*>(&to),
+               sizeof to);
+      ++sent;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    ::close(fd);
+    recorder.join();
+    return recorded;
+  };
+  // The port was free a moment ago; a test running beside this one (or this
+  // test's own sending socket, bound by its first sendto before the
+  // recorder binds) may take it in between: then another port.
+  uint16_t port = 0;
+  CommandResult recorded;
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    port = sculpt::test::free_udp_port();
+    ASSERT_NE(port, 0);
+    recorded = record_at(port);
+    if (recorded.err.find("Address already in use") == std::string::npos) break;
   }
-  ::close(fd);
-  recorder.join();
   ASSERT_EQ(recorded.exit_code, 0) << recorded.err;
   EXPECT_NE(recorded.out.find("recording opentrack:" + std::to_string(port)), std::string::npos)
       << recorded.out;
