@@ -87,7 +87,7 @@ void InputHub::stop() {
   if (thread_.joinable()) thread_.join();
 }
 
-std::unique_lock<std::mutex> InputHub::frame_turn(bool must) {
+std::unique_lock<PriorityInheritingMutex> InputHub::frame_turn(bool must) {
   std::unique_lock turn(mutex_, std::defer_lock);
   if (must) {
     turn.lock();

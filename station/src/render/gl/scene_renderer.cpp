@@ -121,6 +121,12 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create() {
 
 SurfaceSync SceneRenderer::sync_surface(const core::Volume* volume, const SurfaceSnapshot& surface,
                                         bool whole) {
+  const SurfaceSync sync = upload_surface(surface);
+  if (volume != nullptr) reshade(*volume, whole);
+  return sync;
+}
+
+SurfaceSync SceneRenderer::upload_surface(const SurfaceSnapshot& surface) {
   SurfaceSync sync;
   visible_.clear();
   const auto& bricks = surface.bricks();
@@ -138,11 +144,13 @@ SurfaceSync SceneRenderer::sync_surface(const core::Volume* volume, const Surfac
     visible_.push_back({&slot.mesh, slot.centre});
     sync.triangles += slot.mesh.triangles();
   }
-  if (distance_normals_ && volume != nullptr) refine_normals(*volume, whole);
   return sync;
 }
 
-void SceneRenderer::refine_normals(const core::Volume& volume, bool whole) {
+// Re-shades slots with the distance field's normals, in the slots' order,
+// for at most kRefineBudgetNs (every slot when `whole`).
+void SceneRenderer::reshade(const core::Volume& volume, bool whole) {
+  if (!distance_normals_) return;
   const auto start = std::chrono::steady_clock::now();
   for (auto& [index, slot] : slots_) {
     if (slot.distance_normals) continue;
@@ -160,7 +168,7 @@ void SceneRenderer::set_distance_normals(bool on) {
   if (on == distance_normals_) return;
   distance_normals_ = on;
   // On: the uploaded meshes (the mesher's normals) are re-shaded by
-  // refine_normals(). Off: the re-shaded ones go back to the mesher's.
+  // reshade(). Off: the re-shaded ones go back to the mesher's.
   for (auto& [brick, slot] : slots_) {
     if (!on && slot.distance_normals) slot.stamp = ~uint64_t{0};
     slot.distance_normals = false;

@@ -59,6 +59,11 @@ class SceneRenderer {
   /// takes (a picture of this frame), instead of within the frame's budget.
   SurfaceSync sync_surface(const core::Volume* volume, const SurfaceSnapshot& surface,
                            bool whole = false);
+  /// sync_surface()'s two halves, for a caller that holds the volume only
+  /// part of the frame: the uploads read only `surface` (its meshes are
+  /// never changed, mixed_level_mesh.h); re-shading reads the volume.
+  SurfaceSync upload_surface(const SurfaceSnapshot& surface);
+  void reshade(const core::Volume& volume, bool whole = false);
   /// Normals of the brick meshes: the density gradient (false, the mesher's)
   /// or the gradient of the distance to the sub-voxel surface (true;
   /// smoother). A changed brick is first drawn with the mesher's normals and
@@ -71,6 +76,8 @@ class SceneRenderer {
   /// Remakes the tool's mesh when `version` differs from the last one given
   /// (StationLoop::tool_version).
   void set_tool(const core::Tool& tool, uint64_t version);
+  /// The version of the tool set_tool() last outlined.
+  uint64_t tool_version() const { return tool_version_; }
   /// The mesh stand-ins are drawn with, uploaded when its version moved.
   void set_stand_in_tool(const DabStandIns::ToolMesh& tool);
   /// The NURBS sheet's mesh (empty: no sheet), uploaded when `version`
@@ -113,9 +120,6 @@ class SceneRenderer {
     const GpuMesh* mesh = nullptr;
     glm::vec3 centre{0.0f};
   };
-  // Re-shades slots with the distance field's normals, in the slots' order,
-  // for at most kRefineBudgetNs.
-  void refine_normals(const core::Volume& volume, bool whole);
   void draw_lines(const std::vector<glm::vec3>& points, glm::vec4 colour, const glm::mat4& mvp);
   // Dabs not meshed yet (app/dab_stand_ins.h), over the clay just drawn
   // with lit_ in use and back faces culled.

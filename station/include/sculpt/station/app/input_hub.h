@@ -30,6 +30,7 @@
 #include <utility>
 #include <vector>
 
+#include "sculpt/base/priority_inheriting_mutex.h"
 #include "sculpt/hal/registry/device_registry.h"
 #include "sculpt/sim/replay/sim_backend.h"
 #include "sculpt/sim/session/session.h"
@@ -99,13 +100,15 @@ class InputHub {
   /// Stops the thread; what it read is sculpted. Safe to call twice.
   void stop();
 
-  /// Held to use the controller, or the volume, from another thread.
-  std::mutex& mutex() { return mutex_; }
+  /// Held to use the controller, or the volume, from another thread. Its
+  /// holder runs at the real-time sculpting thread's priority while that
+  /// waits for it (priority_inheriting_mutex.h).
+  PriorityInheritingMutex& mutex() { return mutex_; }
   /// mutex() for a frame: waited for when `must` (the last frame, a
   /// picture), else given up after a millisecond, so a frame is never held
   /// by a long poll (a big tool's first placement holds it tens of
   /// milliseconds; an ordinary poll a fraction of one). Check owns_lock().
-  std::unique_lock<std::mutex> frame_turn(bool must);
+  std::unique_lock<PriorityInheritingMutex> frame_turn(bool must);
   /// Under mutex(): the level to mesh each brick at (the camera's choice).
   void set_levels(std::vector<int> levels) { levels_ = std::move(levels); }
   /// Under mutex(): reads the devices and hands the volume's changes to
@@ -139,7 +142,7 @@ class InputHub {
   SurfaceMesher& mesher_;
   PollListener* listener_ = nullptr;
 
-  std::mutex mutex_;
+  PriorityInheritingMutex mutex_;
   // Under mutex_.
   std::vector<int> levels_;
   hal::InputFrame input_;
