@@ -22,6 +22,7 @@
 #include <cmath>
 #include <ctime>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -229,6 +230,53 @@ void BM_StrokeBigBallOnANewBlock(benchmark::State& state) {
   count_where_the_time_went(state, total, presses);
 }
 BENCHMARK(BM_StrokeBigBallOnANewBlock)->Apply(on_one_and_two_threads)->Iterations(20);
+
+// The demo's head stroke after its first press: the same ball moved a
+// spacing (6.6 voxels, a tenth of its size) along -z each segment, as a
+// sculptor's slow move gives the station a sample at a time, the sculptor
+// handing what it stores to a mesher (the window's). Timed: one segment.
+// A new block and stroke every eight segments (untimed).
+void BM_StrokeBigBallSegment(benchmark::State& state) {
+  (void)sphere_to_sculpt();  // the heap warmed as the station's
+  set_default_threads(static_cast<int>(state.range(0)));
+  constexpr int kSegments = 8;
+  std::unique_ptr<Volume> v;
+  std::unique_ptr<Sculptor> sculptor;
+  std::unique_ptr<SweptStroke> stroke;
+  glm::vec3 at(128.0f, 116.0f, 118.0f);
+  int segment = kSegments;
+  DabStats total;
+  int64_t timed = 0;
+  for (auto _ : state) {
+    if (segment == kSegments) {
+      state.PauseTiming();
+      stroke.reset();
+      sculptor.reset();
+      v = std::make_unique<Volume>(glm::ivec3(256), 0);
+      sculptor = std::make_unique<Sculptor>(*v, SculptorOptions{.hand_over_voxels = true});
+      sculptor->set_tool(make_sphere_tool(66.0f));
+      stroke =
+          std::make_unique<SweptStroke>(*sculptor, StrokeOptions{SculptMode::kAdd, 1.0f, false});
+      at = glm::vec3(128.0f, 116.0f, 118.0f);
+      (void)stroke->add(StrokeSample{at, glm::quat(1.0f, 0.0f, 0.0f, 0.0f)});
+      (void)sculptor->take_stored_voxels();
+      segment = 0;
+      state.ResumeTiming();
+    }
+    at.z -= 6.6f;
+    const auto t0 = std::chrono::steady_clock::now();
+    total += stroke->add(StrokeSample{at, glm::quat(1.0f, 0.0f, 0.0f, 0.0f)});
+    (void)sculptor->take_stored_voxels();
+    state.SetIterationTime(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    ++segment;
+    ++timed;
+  }
+  stroke.reset();
+  set_default_threads(0);
+  count_where_the_time_went(state, total, timed);
+}
+BENCHMARK(BM_StrokeBigBallSegment)->Apply(on_one_and_two_threads)->Iterations(64);
 
 // The bust's biggest ball (radius 110, the tool its session changes to at
 // 2.4 s) on the 512^3 sphere: the floor under that dab's first mesh, which
