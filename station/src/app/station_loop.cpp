@@ -267,10 +267,10 @@ core::SculptorOptions StationLoop::sculptor_options() const {
 void StationLoop::apply_tool() {
   // A custom tool (tool_ already holds it) outlives the material it came from.
   if (!settings_.custom_tool) {
-    tool_ =
-        make_tool(settings_.shape, settings_.size_a_vox, settings_.size_b_vox, settings_.hardness);
+    tool_ = std::make_shared<const core::Tool>(
+        make_tool(settings_.shape, settings_.size_a_vox, settings_.size_b_vox, settings_.hardness));
   }
-  sculptor_->set_tool(tool_);
+  sculptor_->set_tool(*tool_);
   ++tool_version_;
   reset_sampler();
   if (stand_ins_ != nullptr) give_stand_ins_the_tool();
@@ -289,16 +289,15 @@ void StationLoop::give_stand_ins_the_tool() {
     return f.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
   });
   // A ball's is a sphere, made at once.
-  if (tool_.sphere_radius_vox > 0.0f) {
-    stand_ins_->set_tool(DabStandIns::ToolMesh::of(tool_, tool_version_));
+  if (tool_->sphere_radius_vox > 0.0f) {
+    stand_ins_->set_tool(DabStandIns::ToolMesh::of(*tool_, tool_version_));
     return;
   }
   // Another tool's is marched from its voxels on a thread of its own (tens
   // of milliseconds for a big one, beside the tool change's own) and handed
   // to the board at the first dab that needs it, which waits for it only if
   // it came sooner: a stand-in is ready to draw when it is published.
-  stand_in_tool_ = std::async(std::launch::async, [tool = std::make_shared<const core::Tool>(tool_),
-                                                   version = tool_version_] {
+  stand_in_tool_ = std::async(std::launch::async, [tool = tool_, version = tool_version_] {
     name_this_thread("stand-in-tool");  // not the sculpting thread's name
     return DabStandIns::ToolMesh::of(*tool, version);
   });
@@ -310,7 +309,7 @@ void StationLoop::set_custom_tool(core::Tool tool, CustomToolSource source, core
   settings_.custom_region = region;
   settings_.tool_scale = 1.0f;
   custom_base_ = std::move(tool);
-  tool_ = custom_base_;
+  tool_ = std::make_shared<const core::Tool>(custom_base_);
   apply_tool();
 }
 
@@ -323,16 +322,16 @@ void StationLoop::scale_custom_tool() {
                     std::max({d.x, d.y, d.z}) <= kMaxScaledToolEdge;
   if (f == 1.0f || !fits) {
     settings_.tool_scale = 1.0f;
-    tool_ = custom_base_;
+    tool_ = std::make_shared<const core::Tool>(custom_base_);
   } else {
-    tool_ = core::scale_tool(custom_base_, f);
+    tool_ = std::make_shared<const core::Tool>(core::scale_tool(custom_base_, f));
   }
 }
 
 float StationLoop::tool_size() const {
   if (!settings_.custom_tool)
     return tool_size_vox(settings_.shape, settings_.size_a_vox, settings_.size_b_vox);
-  const glm::ivec3 d = tool_.density.dims();
+  const glm::ivec3 d = tool_->density.dims();
   return static_cast<float>(std::max({d.x, d.y, d.z, 1}));
 }
 
@@ -688,7 +687,7 @@ bool StationLoop::stroke_sculpts_as_set() const {
 
 std::optional<PathBrush> StationLoop::path_brush() const {
   if (settings_.brush) return path_brush_of(*settings_.brush);
-  if (settings_.mode == core::SculptMode::kSmooth && tool_.sphere_radius_vox > 0.0f)
+  if (settings_.mode == core::SculptMode::kSmooth && tool_->sphere_radius_vox > 0.0f)
     return PathBrush::kSmooth;
   return std::nullopt;
 }
@@ -708,7 +707,7 @@ std::optional<bool> StationLoop::stand_in_carves() const {
       // the clay; a box carved astride an edge of the clay opens through to
       // what is behind, and its stand-in showed a wall there (found with
       // pictures of a 50-voxel cube). A ball rarely reaches through.
-      if (tool_.sphere_radius_vox > 0.0f) return true;
+      if (tool_->sphere_radius_vox > 0.0f) return true;
       break;
     case core::SculptMode::kSmooth:
       break;

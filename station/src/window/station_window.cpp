@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -598,7 +599,8 @@ int run_window(const WindowOptions& o) {
     // Dabs not meshed yet that a stand-in shows (its own lock, not the turn).
     const std::vector<DabStandIn> stand_ins = controller.stand_ins().showing(surface.change());
     (*renderer)->set_stand_in_tool(controller.stand_ins().tool());
-    std::optional<std::pair<core::Tool, uint64_t>> changed_tool;  // and its version
+    // A changed tool and its version, outlined after the turn.
+    std::optional<std::pair<std::shared_ptr<const core::Tool>, uint64_t>> changed_tool;
     const int64_t t_upload = hal::monotonic_ns();
     figures.mesh_ms += static_cast<double>(t_upload - t_mesh - mesher_wait_ns) * 1e-6;
     if (steering) {
@@ -607,10 +609,10 @@ int run_window(const WindowOptions& o) {
       (*renderer)->set_distance_normals(controller.distance_normals());
       // A changed tool is outlined after the turn (a ring's or a cube's
       // outline is marched and simplified: 2.7 ms the sculpting thread
-      // waited for on the demo); the frame outlines a copy.
+      // waited for on the demo), from the loop's shared, unchanging copy.
       if (const uint64_t version = controller.loop().tool_version();
           version != (*renderer)->tool_version())
-        changed_tool.emplace(controller.loop().tool(), version);
+        changed_tool.emplace(controller.loop().shared_tool(), version);
       const SheetEditor& sheet = controller.loop().sheet();
       (*renderer)->set_sheet(sheet.mesh(), sheet.version(),
                              controller.loop().settings().sheet_editing);
@@ -645,7 +647,7 @@ int run_window(const WindowOptions& o) {
     if (steering) turn.unlock();
     if (!picture_frame) sync = (*renderer)->upload_surface(surface);
     if (changed_tool) {
-      (*renderer)->set_tool(changed_tool->first, changed_tool->second);
+      (*renderer)->set_tool(*changed_tool->first, changed_tool->second);
       changed_tool.reset();
     }
 

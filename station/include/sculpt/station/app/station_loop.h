@@ -164,7 +164,11 @@ class StationLoop {
   /// Stops the stroke in progress (the UI lost the pointer, a device went).
   void release_stroke() { release(); }
   /// The tool in use (its reference, unrotated form).
-  const core::Tool& tool() const { return tool_; }
+  const core::Tool& tool() const { return *tool_; }
+  /// The same, shared: never changed (a new tool is a new one), so another
+  /// thread may read it after letting go of the loop (the window outlines
+  /// a changed tool after its turn, the stand-ins march theirs aside).
+  std::shared_ptr<const core::Tool> shared_tool() const { return tool_; }
   /// A custom tool as it was made, before settings().tool_scale resampled
   /// it into tool() (what a project keeps, so the scale replays exactly).
   const core::Tool& custom_tool_base() const { return custom_base_; }
@@ -285,7 +289,8 @@ class StationLoop {
   std::unique_ptr<core::Sculptor> sculptor_;
   // The rotation cache counts of the sculptors new volumes replaced.
   core::RotatedToolCacheStats retired_cache_stats_;
-  core::Tool tool_;         // what the sculptor holds, kept for drawing
+  // What the sculptor holds, kept for drawing; never null.
+  std::shared_ptr<const core::Tool> tool_ = std::make_shared<const core::Tool>();
   core::Tool custom_base_;  // a custom tool as made (tool_ is it at tool_scale)
   core::MeshCache mesh_;
   hal::PoseIntegrator integrator_;
