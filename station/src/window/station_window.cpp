@@ -598,7 +598,6 @@ int run_window(const WindowOptions& o) {
     }
     // Dabs not meshed yet that a stand-in shows (its own lock, not the turn).
     const std::vector<DabStandIn> stand_ins = controller.stand_ins().showing(surface.change());
-    (*renderer)->set_stand_in_tool(controller.stand_ins().tool());
     // A changed tool and its version, outlined after the turn.
     std::optional<std::pair<std::shared_ptr<const core::Tool>, uint64_t>> changed_tool;
     const int64_t t_upload = hal::monotonic_ns();
@@ -646,6 +645,8 @@ int run_window(const WindowOptions& o) {
     }
     if (steering) turn.unlock();
     if (!picture_frame) sync = (*renderer)->upload_surface(surface);
+    // The stand-ins' tool mesh, uploaded when it changed (the board has its own lock).
+    (*renderer)->set_stand_in_tool(controller.stand_ins().tool());
     if (changed_tool) {
       (*renderer)->set_tool(*changed_tool->first, changed_tool->second);
       changed_tool.reset();
@@ -669,13 +670,15 @@ int run_window(const WindowOptions& o) {
       if (Status st = write_png(o.screenshot, shot); !st) return fail(st.error());
     }
     // The panel reads and sets the controller: drawn with the turn, else
-    // the last frame's panel is drawn again.
+    // the last frame's panel is drawn again. The OpenGL backend's frame
+    // start reads nothing of it: the first one builds the font atlas and
+    // compiles the backend's shaders, 1.4 ms the sculpting thread waited for.
+    ImGui_ImplOpenGL3_NewFrame();
     const int64_t t_panel_turn = hal::monotonic_ns();
     turn = hub.frame_turn(final_frame);
     if (final_frame) final_wait_ns += hal::monotonic_ns() - t_panel_turn;
     const bool panel_turn = turn.owns_lock();
     if (panel_turn) {
-      ImGui_ImplOpenGL3_NewFrame();
       begin_panel_frame(w, window_events);  // from the window's events: no round trip
       ImGui::NewFrame();
       frame_figures.triangles = sync.triangles;
