@@ -235,7 +235,7 @@ BENCHMARK(BM_StrokeBigBallOnANewBlock)->Apply(on_one_and_two_threads)->Iteration
 // spacing (6.6 voxels, a tenth of its size) along -z each segment, as a
 // sculptor's slow move gives the station a sample at a time, the sculptor
 // handing what it stores to a mesher (the window's). Timed: one segment.
-// A new block and stroke every eight segments (untimed).
+// A new block and stroke every eight segments (outside the manual time).
 void BM_StrokeBigBallSegment(benchmark::State& state) {
   (void)sphere_to_sculpt();  // the heap warmed as the station's
   set_default_threads(static_cast<int>(state.range(0)));
@@ -249,7 +249,6 @@ void BM_StrokeBigBallSegment(benchmark::State& state) {
   int64_t timed = 0;
   for (auto _ : state) {
     if (segment == kSegments) {
-      state.PauseTiming();
       stroke.reset();
       sculptor.reset();
       v = std::make_unique<Volume>(glm::ivec3(256), 0);
@@ -261,7 +260,6 @@ void BM_StrokeBigBallSegment(benchmark::State& state) {
       (void)stroke->add(StrokeSample{at, glm::quat(1.0f, 0.0f, 0.0f, 0.0f)});
       (void)sculptor->take_stored_voxels();
       segment = 0;
-      state.ResumeTiming();
     }
     at.z -= 6.6f;
     const auto t0 = std::chrono::steady_clock::now();

@@ -647,10 +647,7 @@ int run_window(const WindowOptions& o) {
     if (!picture_frame) sync = (*renderer)->upload_surface(surface);
     // The stand-ins' tool mesh, uploaded when it changed (the board has its own lock).
     (*renderer)->set_stand_in_tool(controller.stand_ins().tool());
-    if (changed_tool) {
-      (*renderer)->set_tool(*changed_tool->first, changed_tool->second);
-      changed_tool.reset();
-    }
+    if (changed_tool) (*renderer)->set_tool(*changed_tool->first, changed_tool->second);
 
     // Draw, without holding up the sculpting.
     const int64_t t_draw = hal::monotonic_ns();
