@@ -32,6 +32,13 @@ void warm_this_threads_heap(size_t bytes) {
     for (size_t at = 0; at < kBlock; at += page)
       block[at] = 0;
   }
+  // A thread's arena grows in heaps of at most 64 MiB, and glibc unmaps the
+  // newest heap as soon as it is wholly free, whatever the trim threshold:
+  // with every block freed, a reserve over 64 MiB kept only its first
+  // 64 MiB (92 MB of 32 KiB blocks after warming 96 MiB: 6,400 faults).
+  // The last block, held for the thread's life, keeps its heap in use.
+  thread_local std::unique_ptr<volatile unsigned char[]> newest_heap_kept;
+  if (!blocks.empty()) newest_heap_kept = std::move(blocks.back());
 }
 
 }  // namespace sculpt
