@@ -15,8 +15,9 @@ namespace {
 
 // Bricks whose stroke buffers the sculpting thread has ready when it starts:
 // the demo's 66-voxel ball reaches 112 with its first press and more as
-// it moves (3 x 32 KiB each, 15 MiB in all, from the warmed heap).
-constexpr size_t kWarmStrokeBricks = 160;
+// it moves, the bust's 110-voxel ball several hundred (3 x 32 KiB each,
+// 50 MB in all, from the warmed heap).
+constexpr size_t kWarmStrokeBricks = 512;
 
 }  // namespace
 

@@ -63,8 +63,9 @@ constexpr int kMaxDrawnLevel = 2;  // coarser than 1/4 resolution looks like a b
 constexpr size_t kMesherWarmHeapBytes = size_t{96} << 20;
 // The pool's threads, which every parallel loop of the sculpting, meshing and
 // refining shares: 1,800 faults a demo session before, most in its first
-// second, while the first big balls were sculpted and meshed.
-constexpr size_t kPoolThreadWarmHeapBytes = size_t{16} << 20;
+// second, while the first big balls were sculpted and meshed; with 16 MiB,
+// 3,100 more while the bust's 110-voxel ball was sculpted and meshed.
+constexpr size_t kPoolThreadWarmHeapBytes = size_t{48} << 20;
 // The niceness of the frame's thread and the OpenGL driver's (thread_priority.h).
 constexpr int kDrawingNice = 5;
 // The real-time priorities (SCHED_FIFO) of the threads a dab's latency runs
@@ -447,8 +448,10 @@ int run_window(const WindowOptions& o) {
   // head's three balls' undo copies and the bricks handed to the mesher
   // used it up, and handing over the second ball's 64 bricks faulted 928
   // pages (7 ms). Touching 96 MiB takes 26-28 ms when the window opens
-  // (32 MiB: 12 ms; where a fault costs 8 us, about 0.2 s).
-  hub.prepare(size_t{96} << 20);
+  // (32 MiB: 12 ms; where a fault costs 8 us, about 0.2 s). 160 MiB: the
+  // stroke buffers for 512 bricks (50 MB) come out of it, and with 96 the
+  // bust's tool changes and 110-voxel ball still faulted 6,000 pages.
+  hub.prepare(size_t{160} << 20);
   // The mesher touched its own meanwhile, on the other core.
   mesher.wait_until_warm();
 
