@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 namespace sculpt {
@@ -39,6 +40,12 @@ void warm_this_threads_heap(size_t bytes) {
   // The last block, held for the thread's life, keeps its heap in use.
   thread_local std::unique_ptr<volatile unsigned char[]> newest_heap_kept;
   if (!blocks.empty()) newest_heap_kept = std::move(blocks.back());
+}
+
+int64_t this_threads_page_faults() {
+  rusage usage{};
+  ::getrusage(RUSAGE_THREAD, &usage);
+  return usage.ru_minflt;
 }
 
 }  // namespace sculpt

@@ -1,7 +1,6 @@
 #include "sculpt/base/memory_reuse.h"
 
 #include <malloc.h>
-#include <sys/resource.h>
 
 #include <memory>
 #include <thread>
@@ -53,13 +52,6 @@ TEST(MemoryReuse, AWarmedHeapKeepsItsReserve) {
   }).join();
 }
 
-// The calling thread's page faults so far.
-long this_threads_page_faults() {
-  rusage usage{};
-  getrusage(RUSAGE_THREAD, &usage);
-  return usage.ru_minflt;
-}
-
 // A reserve bigger than one of a thread arena's heaps (64 MiB) stays whole:
 // blocks as a stroke's buffers and a change's bricks are (32 KiB), nearly
 // the whole reserve of them, are taken without touching a new page. Before
@@ -75,7 +67,7 @@ TEST(MemoryReuse, AWarmedReserveOverOneHeapStaysWhole) {
     const size_t blocks = (kReserve - (size_t{4} << 20)) / kBlock;
     std::vector<std::vector<unsigned char>> taken;
     taken.reserve(blocks);
-    const long faults_before = this_threads_page_faults();
+    const int64_t faults_before = this_threads_page_faults();
     for (size_t i = 0; i < blocks; ++i)
       taken.emplace_back(kBlock);  // zeroed: every page written
     // A few for the list itself and the odd page of glibc's bookkeeping.

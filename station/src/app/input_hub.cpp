@@ -125,6 +125,7 @@ void InputHub::note_devices() {
 
 void InputHub::run() {
   const int64_t started_ns = hal::monotonic_ns();
+  const int64_t faults_at_start = this_threads_page_faults();
   const Doorbell& doorbell = registry_->doorbell();
   int64_t due_ns = started_ns;  // the next poll of the 1 kHz clock
   bool rang = false;            // this poll was woken by a reader
@@ -154,6 +155,7 @@ void InputHub::run() {
       poll_started_ns = now;
       poll(now);
       figures_.sculpt_ms += static_cast<double>(hal::monotonic_ns() - now) * 1e-6;
+      figures_.page_faults = this_threads_page_faults() - faults_at_start;
     }
     // The clock's polls keep absolute deadlines: a slow poll (a big dab) is
     // followed by the next at once, not a millisecond later. Between them

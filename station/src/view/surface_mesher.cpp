@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <utility>
 
-#include <sys/resource.h>
-
 #include "sculpt/base/memory_reuse.h"
 #include "sculpt/base/thread_priority.h"
 #include "sculpt/base/thread_times.h"
@@ -15,12 +13,6 @@
 
 namespace sculpt::station {
 namespace {
-
-int64_t minor_faults_of_this_thread() {
-  rusage usage{};
-  getrusage(RUSAGE_THREAD, &usage);
-  return usage.ru_minflt;
-}
 
 // The level a new volume is first shown at.
 constexpr int kCoarseLevel = 2;
@@ -442,7 +434,7 @@ void SurfaceMesher::run() {
     if (refining)
       for (int& l : levels)
         l = std::max(l, coarse);
-    const int64_t faults_before = minor_faults_of_this_thread();
+    const int64_t faults_before = this_threads_page_faults();
     const core::MeshUpdate update = cache->update(*mirror, levels, &work.stored);
     publish_cache(work.change, !refining, reset);
     if (reset && refining) {
@@ -458,7 +450,7 @@ void SurfaceMesher::run() {
       }
       refine_wake_.notify_one();
     }
-    const int64_t faults = minor_faults_of_this_thread() - faults_before;
+    const int64_t faults = this_threads_page_faults() - faults_before;
     const int64_t end = hal::monotonic_ns();
     {
       std::lock_guard lock(mutex_);
