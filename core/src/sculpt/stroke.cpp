@@ -45,8 +45,8 @@ uint8_t saturated_value(SculptMode mode) {
 // Buffers of finished strokes, kept for the next ones on this thread: a
 // stroke reaches hundreds of bricks, and three fresh 32 KiB buffers each
 // (zeroed, then first touched page by page) cost more than the sweep did.
-// Enough for the bust's 110-voxel ball (512 bricks' worth, 50 MB).
-constexpr size_t kPooledBuffers = 1536;
+// Three a brick (the brick, its coverage, its voxels before): 50 MB.
+constexpr size_t kPooledBuffers = 3 * kStrokeBufferBricksKept;
 thread_local std::vector<std::vector<uint8_t>> buffer_pool;
 
 // A buffer of `size` bytes, contents unspecified (but initialised).

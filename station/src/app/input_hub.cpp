@@ -14,10 +14,10 @@ namespace sculpt::station {
 namespace {
 
 // Bricks whose stroke buffers the sculpting thread has ready when it starts:
-// the demo's 66-voxel ball reaches 112 with its first press and more as
-// it moves, the bust's 110-voxel ball several hundred (3 x 32 KiB each,
+// as many as its pool keeps (the demo's 66-voxel ball reaches 112 with its
+// first press, the bust's 110-voxel ball several hundred; 3 x 32 KiB each,
 // 50 MB in all, from the warmed heap).
-constexpr size_t kWarmStrokeBricks = 512;
+constexpr size_t kWarmStrokeBricks = core::kStrokeBufferBricksKept;
 
 }  // namespace
 

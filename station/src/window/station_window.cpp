@@ -571,8 +571,8 @@ int run_window(const WindowOptions& o) {
     // have waited for.
     const int64_t t_take = hal::monotonic_ns();
     take_meshes();
-    const int64_t take_ns = hal::monotonic_ns() - t_take;
     const int64_t t_turn = hal::monotonic_ns();
+    const int64_t take_ns = t_turn - t_take;
     std::unique_lock turn = hub.frame_turn(final_frame);
     if (final_frame) final_wait_ns += hal::monotonic_ns() - t_turn;
     const bool steering = turn.owns_lock();

@@ -128,7 +128,11 @@ DabStats sweep_stroke(Sculptor& sculptor, std::span<const StrokeSample> path,
 /// first strokes otherwise allocate and zero every buffer as they reach
 /// their bricks (the demo's first ball, 112 bricks: 1.4 ms of its 5 ms).
 void keep_stroke_buffers(int brick_edge, size_t bricks);
-/// Buffers in the calling thread's pool (at most 1536).
+/// The most bricks whose buffers a thread's pool holds (three each): the
+/// bust's 110-voxel ball reaches several hundred. A pool filled for more
+/// holds this many.
+inline constexpr size_t kStrokeBufferBricksKept = 512;
+/// Buffers in the calling thread's pool (at most 3 x kStrokeBufferBricksKept).
 size_t stroke_buffers_kept();
 
 }  // namespace sculpt::core
