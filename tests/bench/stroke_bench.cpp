@@ -232,14 +232,16 @@ void BM_StrokeBigBallOnANewBlock(benchmark::State& state) {
 BENCHMARK(BM_StrokeBigBallOnANewBlock)->Apply(on_one_and_two_threads)->Iterations(20);
 
 // The demo's head stroke after its first press: the same ball moved a
-// spacing (6.6 voxels, a tenth of its size) along -z each segment, as a
-// sculptor's slow move gives the station a sample at a time, the sculptor
-// handing what it stores to a mesher (the window's). Timed: one segment.
-// A new block and stroke every eight segments (outside the manual time).
+// spacing each segment (13.2 voxels: the demo's 0.1 of the tool's size, its
+// diameter) up +y, as a sculptor's slow move gives the station a sample at
+// a time, the sculptor handing what it stores to a mesher (the window's).
+// Timed: one segment. A new block and stroke every three segments (outside
+// the manual time), as the demo's stroke of 36 voxels has.
 void BM_StrokeBigBallSegment(benchmark::State& state) {
   (void)sphere_to_sculpt();  // the heap warmed as the station's
   set_default_threads(static_cast<int>(state.range(0)));
-  constexpr int kSegments = 8;
+  constexpr int kSegments = 3;
+  constexpr float kSpacingVox = 0.1f * 2.0f * 66.0f;
   std::unique_ptr<Volume> v;
   std::unique_ptr<Sculptor> sculptor;
   std::unique_ptr<SweptStroke> stroke;
@@ -261,7 +263,7 @@ void BM_StrokeBigBallSegment(benchmark::State& state) {
       (void)sculptor->take_stored_voxels();
       segment = 0;
     }
-    at.z -= 6.6f;
+    at.y += kSpacingVox;
     const auto t0 = std::chrono::steady_clock::now();
     total += stroke->add(StrokeSample{at, glm::quat(1.0f, 0.0f, 0.0f, 0.0f)});
     (void)sculptor->take_stored_voxels();
