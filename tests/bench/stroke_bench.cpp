@@ -241,7 +241,8 @@ void BM_StrokeBigBallSegment(benchmark::State& state) {
   (void)sphere_to_sculpt();  // the heap warmed as the station's
   set_default_threads(static_cast<int>(state.range(0)));
   constexpr int kSegments = 3;
-  constexpr float kSpacingVox = 0.1f * 2.0f * 66.0f;
+  constexpr float kRadiusVox = 66.0f;
+  constexpr float kSpacingVox = 0.1f * 2.0f * kRadiusVox;
   std::unique_ptr<Volume> v;
   std::unique_ptr<Sculptor> sculptor;
   std::unique_ptr<SweptStroke> stroke;
@@ -255,7 +256,7 @@ void BM_StrokeBigBallSegment(benchmark::State& state) {
       sculptor.reset();
       v = std::make_unique<Volume>(glm::ivec3(256), 0);
       sculptor = std::make_unique<Sculptor>(*v, SculptorOptions{.hand_over_voxels = true});
-      sculptor->set_tool(make_sphere_tool(66.0f));
+      sculptor->set_tool(make_sphere_tool(kRadiusVox));
       stroke =
           std::make_unique<SweptStroke>(*sculptor, StrokeOptions{SculptMode::kAdd, 1.0f, false});
       at = glm::vec3(128.0f, 116.0f, 118.0f);
