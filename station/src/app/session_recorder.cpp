@@ -12,13 +12,10 @@ Status SessionRecorder::start(const std::filesystem::path& path, const sim::Sess
   auto writer = sim::SessionWriter::create(path, header);
   if (!writer) return writer.error();
   writer_.emplace(std::move(writer).value());
-  accepting_.store(true);
   path_ = path;
   last_t_ns_ = now_ns;
-  if (!armed_.exchange(false)) {
-    std::lock_guard lock(raw_mutex_);
-    raw_.clear();
-  }
+  // Those applied before the opening are in the sculpture it starts from.
+  drop_released();
   pending_.clear();
   for (const sim::Command& c : opening)
     command(c, now_ns);
@@ -29,35 +26,33 @@ void SessionRecorder::command(const sim::Command& c, int64_t t_ns) {
   if (writer_) pending_.push_back(sim::SessionRecord::of(t_ns, c));
 }
 
-void SessionRecorder::stop_accepting() {
-  writer_.reset();
-  accepting_.store(false);
-  std::lock_guard lock(raw_mutex_);
-  raw_.clear();
-}
-
 void SessionRecorder::raw(const hal::RawEvent& e) {
-  if (!accepting_.load(std::memory_order_relaxed)) return;
   std::lock_guard lock(raw_mutex_);
   raw_.push_back(e);
 }
 
+void SessionRecorder::release_until(int64_t t_ns) {
+  released_t_ns_ = t_ns;
+  if (!writer_) drop_released();
+}
+
+void SessionRecorder::drop_released() {
+  std::lock_guard lock(raw_mutex_);
+  // Events are tapped in time order: the released ones are a prefix.
+  raw_.erase(raw_.begin(), std::find_if(raw_.begin(), raw_.end(), [&](const hal::RawEvent& e) {
+               return e.t_ns > released_t_ns_;
+             }));
+}
+
 Status SessionRecorder::flush() {
+  if (!writer_) return {};
   std::vector<hal::RawEvent> raw;
   {
     std::lock_guard lock(raw_mutex_);
-    // Events are tapped in time order: the released ones are a prefix.
     const auto held = std::find_if(raw_.begin(), raw_.end(),
                                    [&](const hal::RawEvent& e) { return e.t_ns > released_t_ns_; });
     raw.assign(raw_.begin(), held);
     raw_.erase(raw_.begin(), held);
-  }
-  if (!writer_) {
-    if (armed_.load()) {  // not started yet: keep them for start()
-      std::lock_guard lock(raw_mutex_);
-      raw_.insert(raw_.begin(), raw.begin(), raw.end());
-    }
-    return {};
   }
   // Commands first, so a command and a report of the same time keep the order
   // the station saw them in; then a stable merge by time. A report that took
@@ -80,22 +75,21 @@ Status SessionRecorder::flush() {
     }
     last_t_ns_ = r.t_ns();
     if (Status st = writer_->append(r); !st) {
-      stop_accepting();
+      writer_.reset();
       return st;
     }
   }
   Status st = writer_->sync_if_due();
-  if (!st) stop_accepting();
+  if (!st) writer_.reset();
   return st;
 }
 
 Result<int64_t> SessionRecorder::stop() {
   if (!writer_) return int64_t{0};
-  released_t_ns_ = std::numeric_limits<int64_t>::max();
   if (Status st = flush(); !st) return st.error();
   const int64_t records = writer_->records();
   Status st = writer_->close();
-  stop_accepting();
+  writer_.reset();
   if (!st) return st.error();
   return records;
 }

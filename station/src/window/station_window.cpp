@@ -344,8 +344,7 @@ int run_window(const WindowOptions& o) {
   }
 
   // Devices: readers tap their raw reports into the recorder, which keeps
-  // them from the first report when --record asks for a recording.
-  if (!o.record.empty()) controller.arm_recording();
+  // those not yet applied, so --record's recording has them from the first.
   auto config = hal::load_normalizer_config_or_defaults(co.normalizer_config_path);
   if (!config) return fail(config.error());
   hal::ReaderOptions reader_options;

@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -62,6 +63,19 @@ uint64_t replayed_hash(const std::string& name, int64_t* dabs) {
   EXPECT_TRUE(replay_session(*session, name, loop).ok());
   *dabs = loop.counters().dabs;
   return loop.volume().content_hash();
+}
+
+// The recording at `path`, replayed from its start, ends on the live volume.
+void expect_replays_to_the_live_volume(const std::filesystem::path& path,
+                                       const StationController& controller) {
+  auto recorded = load_session(path.string());
+  ASSERT_TRUE(recorded.ok()) << recorded.error().message();
+  StationLoop replayed(StationLoop::Options{});
+  ASSERT_TRUE(restore_session_start(path.string(), replayed).ok());
+  ASSERT_TRUE(replay_session(*recorded, path.filename().string(), replayed).ok());
+  EXPECT_EQ(controller.loop().volume().content_hash(), replayed.volume().content_hash());
+  EXPECT_EQ(controller.loop().counters().dabs, replayed.counters().dabs);
+  EXPECT_GT(replayed.counters().dabs, 10);
 }
 
 // A controller that meshes nothing itself and autosaves nothing, its project
@@ -291,14 +305,41 @@ TEST(InputHub, ReportsDuringABackgroundOffsetWaitForItAndKeepTheirOrder) {
   controller.tick(hal::monotonic_ns());
   ASSERT_TRUE(controller.stop_recording().ok());
 
-  auto recorded = load_session((dir.path() / "r.scs").string());
-  ASSERT_TRUE(recorded.ok()) << recorded.error().message();
-  StationLoop replayed(StationLoop::Options{});
-  ASSERT_TRUE(restore_session_start((dir.path() / "r.scs").string(), replayed).ok());
-  ASSERT_TRUE(replay_session(*recorded, "r.scs", replayed).ok());
-  EXPECT_EQ(controller.loop().volume().content_hash(), replayed.volume().content_hash());
-  EXPECT_EQ(controller.loop().counters().dabs, replayed.counters().dabs);
-  EXPECT_GT(replayed.counters().dabs, 10);
+  expect_replays_to_the_live_volume(dir.path() / "r.scs", controller);
+}
+
+// The reader reads a device from the moment it opens, the hub only once it
+// starts: a recording started in between has the reports waiting in the
+// reader's ring, which the station applies after its opening.
+TEST(InputHub, ARecordingStartedWithReportsInFlightHasThem) {
+  test::ScratchDir dir;
+  StationController controller(quiet_controller(dir));
+  SurfaceMesher mesher;
+  LiveSession live = play_live("short", 32.0, &controller);
+  const hal::DeviceReader* reader = nullptr;
+  for (uint32_t id = 0; id < 64 && reader == nullptr; ++id)
+    reader = live.registry->reader(id);
+  ASSERT_NE(reader, nullptr);
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (reader->counters().motion_samples < 20 && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_GE(reader->counters().motion_samples, 20) << "the session did not start in 60 s";
+  InputHub hub(controller, std::move(live.registry), live.sim, live.normalizer, mesher);
+  {
+    std::lock_guard turn(hub.mutex());
+    ASSERT_TRUE(controller.start_recording(dir.path() / "r.scs", hal::monotonic_ns()).ok());
+    EXPECT_EQ(controller.loop().counters().motion_samples, 0);  // none applied yet
+  }
+  hub.start();
+  while (!hub.replay_done() && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_TRUE(hub.replay_done()) << "the session did not end in 60 s";
+  hub.stop();
+  std::lock_guard last(hub.mutex());
+  hub.poll_now(/*land=*/true);
+  controller.tick(hal::monotonic_ns());
+  ASSERT_TRUE(controller.stop_recording().ok());
+  expect_replays_to_the_live_volume(dir.path() / "r.scs", controller);
 }
 
 // A hub with no device, over a controller that meshes nothing.

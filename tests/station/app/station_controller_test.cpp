@@ -179,7 +179,6 @@ TEST(StationController, ReportsTappedBeforeTheFirstPollWaitForTheCommandsBeforeT
   hal::DeviceInfo device;
   device.name = "SpaceMouse Compact";
   c.set_device(device, "");
-  c.arm_recording();
   const uint8_t bytes[] = {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
   c.raw_report(hal::RawEvent::report(20 * kMs, bytes));
   c.raw_report(hal::RawEvent::report(30 * kMs, bytes));

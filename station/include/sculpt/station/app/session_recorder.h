@@ -4,10 +4,15 @@
 // station command (from the UI), merged in time order. The file is appended
 // as it goes and synced at least every 0.25 s, so a crash loses at most that.
 //
+// A file holds exactly the reports the station applied while it recorded:
+// a report tapped but not yet applied when a recording starts goes into it
+// (the station applies it after the opening), one still in flight when it
+// stops does not. So between recordings the reports in flight are kept,
+// and the applied ones let go (release_until()).
+//
 // Thread safety: raw() may be called from any thread (the reader's raw tap);
 // everything else from the main loop.
 
-#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <limits>
@@ -28,12 +33,6 @@ class SessionRecorder {
   Status start(const std::filesystem::path& path, const sim::SessionHeader& header,
                const std::vector<sim::Command>& opening, int64_t now_ns);
   bool recording() const { return writer_.has_value(); }
-  /// Keeps raw events from now on for a start() to come: so a recording asked
-  /// for before the devices open misses none of their first reports.
-  void arm() {
-    armed_.store(true);
-    accepting_.store(true);
-  }
   const std::filesystem::path& path() const { return path_; }
 
   /// A station command, at `t_ns` (monotonic).
@@ -45,29 +44,30 @@ class SessionRecorder {
   }
   /// A raw device event (any thread).
   void raw(const hal::RawEvent& event);
-  /// Raw events up to `t_ns` may be written: the station has applied them.
-  /// (The reader thread taps events before the main loop takes them from
-  /// its ring; writing one early could put it before a command the station
-  /// applied first.) Until the first call, every event may be written.
-  void release_until(int64_t t_ns) { released_t_ns_ = t_ns; }
+  /// Raw events up to `t_ns` are applied: a recording may write them, and
+  /// while none runs they are let go. (The reader thread taps events before
+  /// the main loop takes them from its ring; writing one early could put it
+  /// before a command the station applied first.) Until the first call,
+  /// every event counts as applied.
+  void release_until(int64_t t_ns);
   /// Writes the commands and the released raw events, in time order; syncs
   /// when due. An error stops the recording (what was written stays readable).
   Status flush();
-  /// Flushes and closes; returns the records written.
+  /// Flushes and closes; returns the records written. The events not yet
+  /// released stay for a next recording.
   Result<int64_t> stop();
 
  private:
-  // Closes the writer (if any) and drops the raw events waiting.
-  void stop_accepting();
+  // Lets the events up to released_t_ns_ go (taken by the caller).
+  void drop_released();
   std::optional<sim::SessionWriter> writer_;
   std::filesystem::path path_;
   std::vector<sim::SessionRecord> pending_;  // main thread's commands
   std::mutex raw_mutex_;
-  std::vector<hal::RawEvent> raw_;  // from the reader thread
-  std::atomic<bool> armed_{false};  // keep raw events while not yet recording
-  // Whether raw() keeps events at all (recording or armed): a device read
-  // while nothing records must not pile its events up here.
-  std::atomic<bool> accepting_{false};
+  // From the reader thread: while nothing records, only the events in
+  // flight (tapped, not yet released), a poll's worth; a device read while
+  // nothing records does not pile its events up here.
+  std::vector<hal::RawEvent> raw_;
   int64_t last_t_ns_ = 0;
   int64_t released_t_ns_ = std::numeric_limits<int64_t>::max();
 };

@@ -319,8 +319,6 @@ class StationController {
   /// clock), applied in time order among its events.
   void device_frame(const hal::InputFrame& frame, int64_t now_ns,
                     std::span<const std::pair<int64_t, sim::Command>> device_commands = {});
-  /// Keeps the devices' raw reports for a recording about to start.
-  void arm_recording() { recorder_.arm(); }
   /// The ordinary mouse moved the tool to `position` (voxels); while the
   /// pointer is down, the move sculpts.
   void pointer_move(glm::vec3 position, int64_t now_ns);
