@@ -15,7 +15,7 @@ Status SessionRecorder::start(const std::filesystem::path& path, const sim::Sess
   path_ = path;
   last_t_ns_ = now_ns;
   // Those applied before the opening are in the sculpture it starts from.
-  drop_released();
+  take_released(nullptr);
   pending_.clear();
   for (const sim::Command& c : opening)
     command(c, now_ns);
@@ -33,27 +33,22 @@ void SessionRecorder::raw(const hal::RawEvent& e) {
 
 void SessionRecorder::release_until(int64_t t_ns) {
   released_t_ns_ = t_ns;
-  if (!writer_) drop_released();
+  if (!writer_) take_released(nullptr);
 }
 
-void SessionRecorder::drop_released() {
+void SessionRecorder::take_released(std::vector<hal::RawEvent>* into) {
   std::lock_guard lock(raw_mutex_);
   // Events are tapped in time order: the released ones are a prefix.
-  raw_.erase(raw_.begin(), std::find_if(raw_.begin(), raw_.end(), [&](const hal::RawEvent& e) {
-               return e.t_ns > released_t_ns_;
-             }));
+  const auto held = std::find_if(raw_.begin(), raw_.end(),
+                                 [&](const hal::RawEvent& e) { return e.t_ns > released_t_ns_; });
+  if (into != nullptr) into->assign(raw_.begin(), held);
+  raw_.erase(raw_.begin(), held);
 }
 
 Status SessionRecorder::flush() {
   if (!writer_) return {};
   std::vector<hal::RawEvent> raw;
-  {
-    std::lock_guard lock(raw_mutex_);
-    const auto held = std::find_if(raw_.begin(), raw_.end(),
-                                   [&](const hal::RawEvent& e) { return e.t_ns > released_t_ns_; });
-    raw.assign(raw_.begin(), held);
-    raw_.erase(raw_.begin(), held);
-  }
+  take_released(&raw);
   // Commands first, so a command and a report of the same time keep the order
   // the station saw them in; then a stable merge by time. A report that took
   // longer through its queue than a command issued after it is written at

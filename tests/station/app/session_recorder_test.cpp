@@ -47,7 +47,9 @@ TEST(SessionRecorder, HoldsTheReportsAppliedWhileItRecorded) {
   EXPECT_EQ(report_times(dir.path() / "a.scs"), (std::vector<int64_t>{4, 5, 20}));
 
   r.raw(report(40));
+  EXPECT_EQ(r.raw_kept(), 2u);
   r.release_until(35);  // 30 applied while nothing records: let go
+  EXPECT_EQ(r.raw_kept(), 1u);
   ASSERT_TRUE(r.start(dir.path() / "b.scs", {}, {}, 35).ok());
   r.release_until(40);
   ASSERT_TRUE(r.stop().ok());

@@ -53,13 +53,19 @@ class SessionRecorder {
   /// Writes the commands and the released raw events, in time order; syncs
   /// when due. An error stops the recording (what was written stays readable).
   Status flush();
+  /// Raw events kept: in flight, or released and waiting for a flush.
+  size_t raw_kept() {
+    std::lock_guard lock(raw_mutex_);
+    return raw_.size();
+  }
   /// Flushes and closes; returns the records written. The events not yet
   /// released stay for a next recording.
   Result<int64_t> stop();
 
  private:
-  // Lets the events up to released_t_ns_ go (taken by the caller).
-  void drop_released();
+  // Takes the raw events up to released_t_ns_ out, into `into` (null: lets
+  // them go; the sculpting thread does so each poll, without allocating).
+  void take_released(std::vector<hal::RawEvent>* into);
   std::optional<sim::SessionWriter> writer_;
   std::filesystem::path path_;
   std::vector<sim::SessionRecord> pending_;  // main thread's commands
