@@ -30,6 +30,11 @@ void PoseIntegrator::lose_tracking() {
   tracker_filter_.reset();
 }
 
+void PoseIntegrator::start_stream() {
+  have_time_ = false;
+  lose_tracking();
+}
+
 void PoseIntegrator::set_clutch(bool held) {
   if (held == clutched_) return;
   clutched_ = held;

@@ -858,6 +858,10 @@ void StationLoop::handle(const hal::InputEvent& e) {
       integrator_.lose_tracking();
       break;
     case hal::InputKind::kConnected:
+      // A device plugged in again reports through a new pipeline, its
+      // integral from zero: the tool goes on from where it is.
+      integrator_.start_stream();
+      break;
     case hal::InputKind::kBattery:
       break;
   }

@@ -64,6 +64,32 @@ TEST(PoseIntegrator, GapIsCappedAndOldSamplesIgnored) {
   EXPECT_NEAR(p.pose().position.x, 5.0f, 1e-4);
 }
 
+// A device unplugged and plugged back in reports through a new pipeline,
+// whose integral starts from zero again: the tool goes on from where it was,
+// not thrown back by the old stream's integral.
+TEST(PoseIntegrator, ADeviceBackFromAnUnplugGoesOnFromWhereTheToolIs) {
+  PoseIntegratorConfig c;
+  c.max_speed = 100.0f;
+  PoseIntegrator p(c);
+  auto push = [&](DeflectionIntegral& stream, float tx, int64_t from_ms, int64_t to_ms) {
+    for (int64_t ms = from_ms; ms <= to_ms; ++ms) {
+      InputEvent e;
+      e.kind = InputKind::kMotion;
+      e.axes = {tx, 0, 0, 0, 0, 0};
+      e.t_ns = ms * 1'000'000;
+      stream.accumulate(e);
+      p.update(e);
+    }
+  };
+  DeflectionIntegral before_unplug;
+  push(before_unplug, 1.0f, 0, 1000);  // a second at full push: 100 along x
+  EXPECT_NEAR(p.pose().position.x, 100.0f, 1e-3);
+  p.start_stream();
+  DeflectionIntegral after_unplug;       // the new reader's pipeline
+  push(after_unplug, 1.0f, 2000, 2500);  // half a second more
+  EXPECT_NEAR(p.pose().position.x, 150.0f, 1e-3);
+}
+
 TEST(PoseIntegrator, PositionControlMapsTheWorkspace) {
   PoseIntegratorConfig c;
   c.workspace_center = glm::vec3(10, 20, 30);

@@ -42,6 +42,34 @@ TEST(StationLoop, ADeviceHeldAtFullPushKeepsTheToolNearTheVolume) {
   EXPECT_LE(loop.counters().dabs, static_cast<int64_t>((far - 32.0f) / 4.0f) + 2);
 }
 
+// A 3D mouse unplugged and plugged back in reports through a new pipeline,
+// its deflection integral from zero again: the tool goes on from where it
+// is. (It was thrown back by everything the device had moved it before.)
+TEST(StationLoop, ADevicePluggedBackInGoesOnFromWhereTheToolIs) {
+  StationLoop::Options o;
+  o.volume_dims = glm::ivec3(128);
+  o.mesh = false;
+  StationLoop loop(o);
+  auto event = [](hal::InputKind kind, int64_t t_ms, double integral_tx) {
+    hal::InputEvent e;
+    e.kind = kind;
+    e.t_ns = t_ms * 1'000'000;
+    e.integral[hal::kTx] = integral_tx;
+    return e;
+  };
+  loop.handle(event(hal::InputKind::kConnected, 0, 0.0));
+  loop.handle(event(hal::InputKind::kMotion, 1, 0.0));
+  loop.handle(event(hal::InputKind::kMotion, 2, 0.1));  // pushed along x
+  const float moved_to = loop.pose().position.x;
+  loop.handle(event(hal::InputKind::kDisconnected, 3, 0.0));
+  loop.handle(event(hal::InputKind::kConnected, 1000, 0.0));
+  loop.handle(event(hal::InputKind::kMotion, 1001, 0.0));  // the new pipeline's first
+  loop.handle(event(hal::InputKind::kMotion, 1002, 0.0));
+  EXPECT_EQ(loop.pose().position.x, moved_to);
+  loop.handle(event(hal::InputKind::kMotion, 1003, 0.1));
+  EXPECT_NEAR(loop.pose().position.x - moved_to, moved_to - 64.0f, 1e-3);  // the same push again
+}
+
 TEST(StationLoop, TheToolVersionMovesWithTheToolOnly) {
   StationLoop::Options o;
   o.volume_dims = glm::ivec3(48);

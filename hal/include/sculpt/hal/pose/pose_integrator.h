@@ -60,6 +60,11 @@ class PoseIntegrator {
   void reset(ToolPose start);
   /// A tracker lost its target: its next pose anchors where the tool is.
   void lose_tracking();
+  /// A device's stream starts (plugged in, or back after an unplug): its
+  /// deflection integral starts again from zero, so its first sample only
+  /// sets the time (the difference from the last stream's integral would
+  /// throw the tool), and a tracker anchors where the tool is.
+  void start_stream();
   /// The clutch (the station's key or a device button): while held, motion
   /// samples keep their time but move nothing, so the hand can move back
   /// without the tool; when let go a tracker anchors again where the tool
