@@ -60,7 +60,9 @@ LiveSession play_live(const std::string& name, double speed, StationController* 
 uint64_t replayed_hash(const std::string& name, int64_t* dabs) {
   auto session = load_session(sim::bundled_session_path(name));
   StationLoop loop(StationLoop::Options{});
-  EXPECT_TRUE(replay_session(*session, name, loop).ok());
+  ReplayOptions fast;
+  fast.fast = true;
+  EXPECT_TRUE(replay_session(*session, name, loop, fast).ok());
   *dabs = loop.counters().dabs;
   return loop.volume().content_hash();
 }
@@ -72,7 +74,9 @@ void expect_replays_to_the_live_volume(const std::filesystem::path& path,
   ASSERT_TRUE(recorded.ok()) << recorded.error().message();
   StationLoop replayed(StationLoop::Options{});
   ASSERT_TRUE(restore_session_start(path.string(), replayed).ok());
-  ASSERT_TRUE(replay_session(*recorded, path.filename().string(), replayed).ok());
+  ReplayOptions fast;
+  fast.fast = true;
+  ASSERT_TRUE(replay_session(*recorded, path.filename().string(), replayed, fast).ok());
   EXPECT_EQ(controller.loop().volume().content_hash(), replayed.volume().content_hash());
   EXPECT_EQ(controller.loop().counters().dabs, replayed.counters().dabs);
   EXPECT_GT(replayed.counters().dabs, 10);

@@ -92,6 +92,16 @@ Picture read_png(const std::string& path) {
   return p;
 }
 
+// A session replayed as fast as it goes: these tests look at what it
+// sculpts, not at its pace (a replay at the recording's pace took the demo's
+// whole length).
+Result<ReplayResult> replay_fast(const sim::Session& session, const std::string& name,
+                                 StationLoop& loop) {
+  ReplayOptions fast;
+  fast.fast = true;
+  return replay_session(session, name, loop, fast);
+}
+
 struct PixelBox {
   int x0 = 1 << 30, y0 = 1 << 30, x1 = -1, y1 = -1;
   int64_t count = 0;
@@ -118,7 +128,7 @@ TEST(StationWindow, ReplayRendersTheDemoThroughAnInvisibleGlWindow) {
   auto session = load_session(demo);
   ASSERT_TRUE(session.ok());
   StationLoop loop(StationLoop::Options{});
-  ASSERT_TRUE(replay_session(*session, "demo", loop).ok());
+  ASSERT_TRUE(replay_fast(*session, "demo", loop).ok());
   const core::Mesh mesh = loop.mesh().welded_mesh();
   // Framed on the sculpture, not its block.
   OrbitCamera camera;
@@ -215,7 +225,7 @@ TEST(StationWindow, RunsTheLiveLoopOnASimDeviceAndTakesAScreenshot) {
   auto again = load_session(dir.file("again.scs"));
   ASSERT_TRUE(again.ok()) << again.error().message();
   StationLoop loop(StationLoop::Options{});
-  ASSERT_TRUE(replay_session(*again, "again", loop).ok());
+  ASSERT_TRUE(replay_fast(*again, "again", loop).ok());
   // What the window said, for when the recording does not replay to it.
   const std::string said = "window stdout: " + r->out + "\nwindow stderr: " + r->err +
                            "\nrecording: " + std::to_string(again->records.size()) + " records";
@@ -264,7 +274,7 @@ TEST(StationWindow, PlayingTheDemoLiveSculptsWhatItsReplaySculpts) {
     auto session = load_session(sim::bundled_session_path(name));
     ASSERT_TRUE(session.ok());
     StationLoop loop(StationLoop::Options{});
-    ASSERT_TRUE(replay_session(*session, name, loop).ok());
+    ASSERT_TRUE(replay_fast(*session, name, loop).ok());
     EXPECT_EQ(stats["dabs"].get<int64_t>(), loop.counters().dabs) << name;
     EXPECT_EQ(stats["volume_hash"].get<uint64_t>(), loop.volume().content_hash())
         << name << " " << mesh_threads;
@@ -329,7 +339,7 @@ TEST(StationWindow, AToolGivenWholePlaysLiveAsItReplaysWithTheLibraryShown) {
   EXPECT_EQ(given, 1);
   EXPECT_EQ(scaled, 1);
   StationLoop from_window(StationLoop::Options{});
-  ASSERT_TRUE(replay_session(*again, "again.scs", from_window).ok());
+  ASSERT_TRUE(replay_fast(*again, "again.scs", from_window).ok());
   EXPECT_EQ(from_window.volume().content_hash(), stats["volume_hash"].get<uint64_t>());
 }
 
@@ -531,7 +541,7 @@ TEST(StationWindow, ARecordedForceSessionPlaysLiveWithItsDevice) {
   auto recorded = load_session(touch);
   ASSERT_TRUE(recorded.ok()) << recorded.error().message();
   StationLoop loop(StationLoop::Options{});
-  ASSERT_TRUE(replay_session(*recorded, "touch", loop).ok());
+  ASSERT_TRUE(replay_fast(*recorded, "touch", loop).ok());
   EXPECT_EQ(loop.volume().content_hash(), stats["volume_hash"].get<uint64_t>());
 }
 
