@@ -40,15 +40,20 @@ hal::NormalizerConfig scripted_normalizer() {
 SessionScript::SessionScript(hal::DeviceInfo device, hal::NormalizerConfig normalizer,
                              int report_hz, hal::PoseIntegratorConfig pose)
     : quirks_(hal::find_quirks(device.vendor_id, device.product_id)),
+      normalizer_(normalizer),
       integrator_(pose),
       pose_config_(pose),
       period_ns_(1'000'000'000 / std::max(report_hz, 1)) {
   assert(quirks_ != nullptr && "scripted sessions emulate a device of the quirks table");
   session_.header.device = device;
   session_.header.normalizer_config = hal::to_text(normalizer);
-  auto parser = hal::make_parser(device);
+  pipeline_ = fresh_pipeline();
+}
+
+std::unique_ptr<hal::MotionPipeline> SessionScript::fresh_pipeline() const {
+  auto parser = hal::make_parser(session_.header.device);
   assert(parser.ok());
-  pipeline_ = std::make_unique<hal::MotionPipeline>(std::move(parser).value(), normalizer);
+  return std::make_unique<hal::MotionPipeline>(std::move(parser).value(), normalizer_);
 }
 
 SessionScript::~SessionScript() = default;
@@ -231,6 +236,11 @@ void SessionScript::unplug_and_replug(float seconds) {
   session_.records.push_back(SessionRecord::of(removed));
   scratch_.clear();
   pipeline_->feed(removed, 0, scratch_);
+  // Plugged back in, the device reports through a new pipeline (its integral
+  // from zero) and the station's integrator starts a new stream, in replay
+  // as live: the script steers from what they make of it.
+  pipeline_ = fresh_pipeline();
+  integrator_.start_stream();
   t_ns_ += static_cast<int64_t>(static_cast<double>(seconds) * 1e9);
   last_axes_ = {};
 }

@@ -5,6 +5,7 @@
 #include "sculpt/core/util/parallel_for.h"
 #include "sculpt/sim/session/session_file.h"
 #include "sculpt/sim/synth/bundled_sessions.h"
+#include "sculpt/sim/synth/session_script.h"
 
 namespace sculpt::station {
 namespace {
@@ -25,6 +26,30 @@ Outcome replay(const sim::Session& s, double speed, bool fast, int threads) {
   core::set_default_threads(0);
   EXPECT_TRUE(r.ok()) << r.error().message();
   return {loop.volume().content_hash(), loop.counters().dabs, loop.mesh().triangle_count()};
+}
+
+// A scripted session steers from the pose the station reaches, across an
+// unplug too: the device back reports through a new pipeline, and the tool
+// goes on from where it was (it was thrown back by the old stream's
+// integral, 20 voxels here, where the script did not put it).
+TEST(SessionReplay, AReplugGoesOnWhereTheScriptSteered) {
+  sim::SessionScript s(sim::scripted_device(0x046d, 0xc626), sim::scripted_normalizer(), 125);
+  s.volume(glm::ivec3(64), 0);
+  s.place(glm::vec3(16, 32, 32));
+  s.rest(0.1f);
+  s.move_to(glm::vec3(36, 32, 32), 0.5f);
+  s.unplug_and_replug(0.5f);
+  s.rest(0.1f);
+  s.move_to(glm::vec3(36, 44, 32), 0.5f);
+  const glm::vec3 steered = s.pose().position;
+  EXPECT_NEAR(steered.y, 44.0f, 0.5f);
+  StationLoop loop(StationLoop::Options{});
+  ReplayOptions fast;
+  fast.fast = true;
+  ASSERT_TRUE(replay_session(s.finish(), "replug", loop, fast).ok());
+  EXPECT_EQ(loop.counters().disconnects, 1);
+  EXPECT_NEAR(glm::length(loop.pose().position - steered), 0.0f, 1e-3f)
+      << loop.pose().position.x << " " << loop.pose().position.y;
 }
 
 // The bundled sessions replayed at different speeds and thread counts give

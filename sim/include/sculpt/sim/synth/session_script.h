@@ -81,9 +81,12 @@ class SessionScript {
   void emit_motion(const std::array<float, 6>& axes);
   void emit_buttons(uint32_t mask);
   void tick() { t_ns_ += period_ns_; }
+  // The device's parser and the normaliser, as a replay makes them.
+  std::unique_ptr<hal::MotionPipeline> fresh_pipeline() const;
 
   Session session_;
   const hal::DeviceQuirks* quirks_;
+  hal::NormalizerConfig normalizer_;
   std::unique_ptr<hal::MotionPipeline> pipeline_;
   hal::PoseIntegrator integrator_;
   hal::PoseIntegratorConfig pose_config_;
