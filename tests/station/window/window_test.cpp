@@ -319,9 +319,13 @@ TEST(StationWindow, AToolGivenWholePlaysLiveAsItReplaysWithTheLibraryShown) {
   ASSERT_EQ(r->exit_code, 0) << r->err;
   const auto stats = nlohmann::json::parse(read_text(dir.file("s.json")));
   EXPECT_GT(stats["dabs"].get<int64_t>(), 10);
-  // The window recorded the tool's voxels as the device gave them, and its
-  // recording replays to what it sculpted. (A sim device played live is not
-  // held to its own replay here: the short session's is not, tool or none.)
+  // The window sculpted what the session's replay does, its unplug and
+  // re-plug included; it recorded the tool's voxels as the device gave them,
+  // and its recording replays to what it sculpted.
+  StationLoop from_session(StationLoop::Options{});
+  ASSERT_TRUE(replay_fast(*session, "tool.scs", from_session).ok());
+  EXPECT_EQ(from_session.volume().content_hash(), stats["volume_hash"].get<uint64_t>());
+  EXPECT_EQ(from_session.counters().disconnects, 1);
   auto again = load_session(dir.file("again.scs"));
   ASSERT_TRUE(again.ok()) << again.error().message();
   int given = 0, scaled = 0;
