@@ -18,6 +18,7 @@
 #include <glm/geometric.hpp>
 
 #include "sculpt/core/mesh/brick_simplify.h"
+#include "sculpt/core/mesh/marching_cubes.h"
 #include "sculpt/core/mesh/mesh_cache.h"
 #include "sculpt/core/mesh/mixed_level_mesh.h"
 #include "sculpt/core/shapes/analytic_shapes.h"
@@ -76,6 +77,51 @@ BENCHMARK(BM_MeshExtract)
     ->ArgsProduct({{128, 256}, {1, 0}, {0, 1}})
     ->ArgNames({"n", "threads", "weld"})
     ->Unit(benchmark::kMillisecond);
+
+// The march alone, as the mesher runs it on each stale brick: every 32^3
+// brick of the 256^3 peers.py sphere that its surface crosses, its 35^3
+// samples filled once, marched into meshes kept between iterations (so
+// their memory is reused, as the mesher's is). Counters: triangles a pass,
+// and ns per triangle.
+void BM_MarchBricks(benchmark::State& state) {
+  constexpr int kEdge = 32, kN = 256;
+  const float radius = 0.35f * kN;
+  const glm::vec3 centre(static_cast<float>(kN - 1) / 2.0f);
+  std::vector<std::vector<uint8_t>> blocks;
+  std::vector<glm::ivec3> origins;
+  for (int bz = 0; bz < kN / kEdge; ++bz)
+    for (int by = 0; by < kN / kEdge; ++by)
+      for (int bx = 0; bx < kN / kEdge; ++bx) {
+        const glm::ivec3 lo = glm::ivec3(bx, by, bz) * kEdge - 1;
+        const Box box{lo, lo + kEdge + 3};
+        std::vector<uint8_t> voxels(static_cast<size_t>(box.voxel_count()));
+        fill_sphere(box, centre, radius, voxels);
+        const auto [lo_v, hi_v] = std::minmax_element(voxels.begin(), voxels.end());
+        if (*hi_v < 128 || *lo_v > 127) continue;
+        blocks.push_back(std::move(voxels));
+        origins.push_back(glm::ivec3(bx, by, bz) * kEdge);
+      }
+  std::vector<BrickMesh> meshes(blocks.size());
+  int64_t triangles = 0;
+  for (auto _ : state) {
+    triangles = 0;
+    for (size_t i = 0; i < blocks.size(); ++i) {
+      MarchBlock block;
+      block.voxels = blocks[i].data();
+      block.cells = glm::ivec3(kEdge);
+      block.origin = origins[i];
+      block.level_dims = glm::ivec3(kN);
+      march_block(block, meshes[i]);
+      triangles += static_cast<int64_t>(meshes[i].mesh.triangles.size());
+    }
+  }
+  state.counters["bricks"] = static_cast<double>(blocks.size());
+  state.counters["triangles"] = static_cast<double>(triangles);
+  state.counters["ns_per_triangle"] = benchmark::Counter(
+      static_cast<double>(triangles) * 1e-9,
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_MarchBricks)->Unit(benchmark::kMillisecond);
 
 // A ball of radius 14 (its density ramp fills a 32^3 box) added or carved
 // at a random point of the surface of the peers.py sphere that fills

@@ -275,18 +275,24 @@ void march_cells(const T* g, glm::ivec3 n, glm::ivec3 origin, int level, float i
       const int64_t i1 = i0 + step[axis];
       const float v0 = g[i0], v1 = g[i1];
       const float t = (iso - v0) / (v1 - v0);
-      glm::vec3 pos = glm::vec3(origin + p);
-      pos[axis] += t;
-      glm::vec3 grad = gradient(i0) * (1.0f - t) + gradient(i1) * t;
+      // The crossing moves the point by t along its edge's axis; the other
+      // coordinates add 0 (the same float). Written component by component,
+      // never through an index: an indexed write puts a vector in memory,
+      // and reading it back whole stalled the loop on store forwarding.
+      const glm::vec3 base(origin + p);
+      const glm::vec3 pos(base.x + (axis == 0 ? t : 0.0f), base.y + (axis == 1 ? t : 0.0f),
+                          base.z + (axis == 2 ? t : 0.0f));
+      const glm::vec3 grad = gradient(i0) * (1.0f - t) + gradient(i1) * t;
       const float len = glm::length(grad);
-      glm::vec3 normal(0.0f);
-      if (len > 0.0f) {
-        normal = grad * (-1.0f / len);  // one division instead of three
-      } else {
-        normal[axis] = v1 > v0 ? -1.0f : 1.0f;  // flat gradient: face down the edge
-      }
       s.positions[index] = pos * scale;
-      s.normals[index] = normal;
+      if (len > 0.0f) {
+        s.normals[index] = grad * (-1.0f / len);  // one division instead of three
+      } else {
+        // A flat gradient: face down the edge.
+        const float down = v1 > v0 ? -1.0f : 1.0f;
+        s.normals[index] =
+            glm::vec3(axis == 0 ? down : 0.0f, axis == 1 ? down : 0.0f, axis == 2 ? down : 0.0f);
+      }
       // Only an edge on the block's boundary can be shared: the key is not
       // asked for inside (most vertices; the caller's key is a call away).
       const bool on_boundary = (axis != 0 && (p.x == 0 || p.x == n.x)) ||
