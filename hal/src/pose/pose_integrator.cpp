@@ -19,7 +19,7 @@ PoseIntegrator::PoseIntegrator(PoseIntegratorConfig config, ToolPose start)
 void PoseIntegrator::reset(ToolPose start) {
   pose_ = start;
   position_ = glm::dvec3(start.position);
-  have_time_ = false;
+  streams_.clear();
   lose_tracking();
 }
 
@@ -30,9 +30,15 @@ void PoseIntegrator::lose_tracking() {
   tracker_filter_.reset();
 }
 
-void PoseIntegrator::start_stream() {
-  have_time_ = false;
+void PoseIntegrator::start_stream(uint32_t device_id) {
+  std::erase_if(streams_, [&](const Stream& s) { return s.device_id == device_id; });
   lose_tracking();
+}
+
+PoseIntegrator::Stream* PoseIntegrator::stream(uint32_t device_id) {
+  for (Stream& s : streams_)
+    if (s.device_id == device_id) return &s;
+  return nullptr;
 }
 
 void PoseIntegrator::set_clutch(bool held) {
@@ -62,23 +68,26 @@ const ToolPose& PoseIntegrator::update(const InputEvent& m) {
   if (m.kind != InputKind::kMotion) return pose_;
   const bool position =
       config_.mode == ControlMode::kPosition || (config_.mode == ControlMode::kAuto && m.absolute);
-  if (have_time_ && m.t_ns <= pose_.t_ns) return pose_;
-  if (clutched_) {
-    // The time moves on and a 3D mouse's integral is taken up, so letting
-    // go moves the tool by nothing the hand did while holding.
-    pose_.t_ns = m.t_ns;
-    last_integral_ = m.integral;
-    have_time_ = true;
-    return pose_;
-  }
+  Stream* known = stream(m.device_id);
+  if (known != nullptr && m.t_ns <= known->last_t_ns) return pose_;
+  // The device's first sample since its stream started: a rate-controlled
+  // one only sets its time and integral (below); a pose is a pose.
+  const bool first = known == nullptr;
+  Stream& s = first ? streams_.emplace_back(Stream{m.device_id}) : *known;
+  s.last_t_ns = m.t_ns;
+  pose_.t_ns = std::max(pose_.t_ns, m.t_ns);
+  const std::array<double, kAxisCount> last_integral = s.last_integral;
+  s.last_integral = m.integral;
+  // Clutched, the time moves on and a 3D mouse's integral is taken up, so
+  // letting go moves the tool by nothing the hand did while holding.
+  if (clutched_) return pose_;
   if (m.has_pose) {
     // Another sensor's poses must not enter the driving sensor's filter.
     if (tracker_.anchored() && m.pose.sensor != tracker_.sensor()) return pose_;
-    const int64_t t_ns = m.t_ns;
-    pose_ = tracker_.map(tracker_filter_.filter(m.pose, t_ns), pose_);
+    const int64_t t_ns = pose_.t_ns;
+    pose_ = tracker_.map(tracker_filter_.filter(m.pose, m.t_ns), pose_);
     position_ = glm::dvec3(pose_.position);
     pose_.t_ns = t_ns;
-    have_time_ = true;
     return pose_;
   }
   if (position) {
@@ -87,20 +96,12 @@ const ToolPose& PoseIntegrator::update(const InputEvent& m) {
     position_ = glm::dvec3(pose_.position);
     const glm::vec3 euler = glm::vec3(m.axes[kRx], m.axes[kRy], m.axes[kRz]) * config_.max_angle;
     pose_.orientation = glm::normalize(glm::quat(euler));
-    pose_.t_ns = m.t_ns;
-    have_time_ = true;
     return pose_;
   }
-  if (!have_time_) {
-    pose_.t_ns = m.t_ns;
-    last_integral_ = m.integral;
-    have_time_ = true;
-    return pose_;
-  }
+  if (first) return pose_;
   std::array<double, kAxisCount> d{};
   for (int i = 0; i < kAxisCount; ++i)
-    d[i] = m.integral[i] - last_integral_[i];
-  last_integral_ = m.integral;
+    d[i] = m.integral[i] - last_integral[i];
   position_ += glm::dvec3(d[kTx], d[kTy], d[kTz]) * double{config_.max_speed};
   pose_.position = glm::vec3(position_);
   // Angular velocity in world axes: twisting the cap about +Y turns the tool
@@ -112,7 +113,6 @@ const ToolPose& PoseIntegrator::update(const InputEvent& m) {
   if (angle > 0.0f) {
     pose_.orientation = glm::normalize(glm::angleAxis(angle, turn / angle) * pose_.orientation);
   }
-  pose_.t_ns = m.t_ns;
   return pose_;
 }
 

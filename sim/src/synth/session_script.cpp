@@ -240,7 +240,7 @@ void SessionScript::unplug_and_replug(float seconds) {
   // from zero) and the station's integrator starts a new stream, in replay
   // as live: the script steers from what they make of it.
   pipeline_ = fresh_pipeline();
-  integrator_.start_stream();
+  integrator_.start_stream(0);  // the script's one device
   t_ns_ += static_cast<int64_t>(static_cast<double>(seconds) * 1e9);
   last_axes_ = {};
 }

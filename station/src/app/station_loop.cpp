@@ -860,7 +860,7 @@ void StationLoop::handle(const hal::InputEvent& e) {
     case hal::InputKind::kConnected:
       // A device plugged in again reports through a new pipeline, its
       // integral from zero: the tool goes on from where it is.
-      integrator_.start_stream();
+      integrator_.start_stream(e.device_id);
       break;
     case hal::InputKind::kBattery:
       break;

@@ -84,10 +84,58 @@ TEST(PoseIntegrator, ADeviceBackFromAnUnplugGoesOnFromWhereTheToolIs) {
   DeflectionIntegral before_unplug;
   push(before_unplug, 1.0f, 0, 1000);  // a second at full push: 100 along x
   EXPECT_NEAR(p.pose().position.x, 100.0f, 1e-3);
-  p.start_stream();
+  p.start_stream(0);
   DeflectionIntegral after_unplug;       // the new reader's pipeline
   push(after_unplug, 1.0f, 2000, 2500);  // half a second more
   EXPECT_NEAR(p.pose().position.x, 150.0f, 1e-3);
+}
+
+// Two 3D mice at once (one in each hand): each reader's pipeline integrates
+// its own deflection, so each moves the tool by its own motion, whatever
+// the order their samples come in; one plugged in again restarts only its
+// own stream.
+TEST(PoseIntegrator, TwoDevicesEachMoveTheToolByTheirOwnMotion) {
+  PoseIntegratorConfig c;
+  c.max_speed = 100.0f;
+  PoseIntegrator p(c);
+  struct Device {
+    uint32_t id;
+    std::array<float, 6> axes;
+    int64_t offset_ns;  // its samples' phase against the other's
+    DeflectionIntegral integral = DeflectionIntegral();
+  };
+  Device left{1, {1.0f, 0, 0, 0, 0, 0}, 0};
+  Device right{2, {0, 0.5f, 0, 0, 0, 0}, 400'000};
+  auto sample = [&](Device& d, int64_t ms) {
+    InputEvent e;
+    e.kind = InputKind::kMotion;
+    e.device_id = d.id;
+    e.axes = d.axes;
+    e.t_ns = ms * 1'000'000 + d.offset_ns;
+    d.integral.accumulate(e);
+    p.update(e);
+  };
+  // A second of both: the right hand's samples come 0.4 ms after the left's
+  // and, every tenth, late (after the left's next one, as two readers'
+  // samples may reach the station).
+  for (int64_t ms = 0; ms <= 1000; ++ms) {
+    sample(left, ms);
+    if (ms % 10 == 9) continue;
+    if (ms % 10 == 0 && ms > 0) sample(right, ms - 1);
+    sample(right, ms);
+  }
+  EXPECT_NEAR(p.pose().position.x, 100.0f, 1e-3);  // the left's full push along x
+  EXPECT_NEAR(p.pose().position.y, 50.0f, 1e-3);   // the right's half push along y
+  // The right one unplugged and back: the left goes on as it was.
+  p.start_stream(right.id);
+  right.integral = DeflectionIntegral();
+  for (int64_t ms = 1001; ms <= 1500; ++ms) {
+    sample(left, ms);
+    sample(right, ms);
+  }
+  EXPECT_NEAR(p.pose().position.x, 150.0f, 1e-3);
+  // Its new stream's first sample (1001.4 ms) only set the time: 0.499 s.
+  EXPECT_NEAR(p.pose().position.y, 50.0f + 50.0f * 0.499f, 1e-3);
 }
 
 TEST(PoseIntegrator, PositionControlMapsTheWorkspace) {

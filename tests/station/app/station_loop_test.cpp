@@ -70,6 +70,40 @@ TEST(StationLoop, ADevicePluggedBackInGoesOnFromWhereTheToolIs) {
   EXPECT_NEAR(loop.pose().position.x - moved_to, moved_to - 64.0f, 1e-3);  // the same push again
 }
 
+// Two 3D mice: each one plugged in (again) starts its own stream; the
+// other's goes on. (Both were restarted, and the two devices' integrals
+// were differenced against each other.)
+TEST(StationLoop, ASecondDevicePluggedInLeavesTheFirstsMotionAlone) {
+  StationLoop::Options o;
+  o.volume_dims = glm::ivec3(128);
+  o.mesh = false;
+  StationLoop loop(o);
+  auto event = [](hal::InputKind kind, uint32_t device, int64_t t_ms, double integral_tx) {
+    hal::InputEvent e;
+    e.kind = kind;
+    e.device_id = device;
+    e.t_ns = t_ms * 1'000'000;
+    e.integral[hal::kTx] = integral_tx;
+    return e;
+  };
+  loop.handle(event(hal::InputKind::kConnected, 1, 0, 0.0));
+  loop.handle(event(hal::InputKind::kMotion, 1, 1, 0.0));
+  loop.handle(event(hal::InputKind::kMotion, 1, 2, 0.1));  // pushed along x
+  const float pushed = loop.pose().position.x - 64.0f;
+  loop.handle(event(hal::InputKind::kConnected, 2, 3, 0.0));
+  loop.handle(event(hal::InputKind::kMotion, 2, 4, 0.0));  // the second's first: at rest
+  loop.handle(event(hal::InputKind::kMotion, 1, 5, 0.2));  // the first pushes on
+  EXPECT_NEAR(loop.pose().position.x - 64.0f, 2.0f * pushed, 1e-3);
+  loop.handle(event(hal::InputKind::kMotion, 2, 6, 0.1));  // the second pushes
+  EXPECT_NEAR(loop.pose().position.x - 64.0f, 3.0f * pushed, 1e-3);
+  // The second one plugged in again: its new pipeline's integral from zero.
+  loop.handle(event(hal::InputKind::kDisconnected, 2, 7, 0.0));
+  loop.handle(event(hal::InputKind::kConnected, 2, 8, 0.0));
+  loop.handle(event(hal::InputKind::kMotion, 2, 9, 0.0));
+  loop.handle(event(hal::InputKind::kMotion, 2, 10, 0.1));
+  EXPECT_NEAR(loop.pose().position.x - 64.0f, 4.0f * pushed, 1e-3);
+}
+
 TEST(StationLoop, TheToolVersionMovesWithTheToolOnly) {
   StationLoop::Options o;
   o.volume_dims = glm::ivec3(48);

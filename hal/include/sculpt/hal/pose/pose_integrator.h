@@ -4,13 +4,16 @@
 // by the difference of InputEvent::integral (deflection integrated over the
 // sample times by DeflectionIntegral, which MotionPipeline runs), so the pose
 // depends on the sample times, not on how often the main loop looks or how
-// many samples it skipped.
+// many samples it skipped. Each device's pipeline integrates its own
+// deflection, so the differences, and the order of sample times, are kept
+// per device: two 3D mice at once each move the tool by their own motion.
 // Position control (trackers, absolute axes): the sample is the pose, mapped
 // into a workspace box and an angle range; a tracker's pose (has_pose) is
 // mapped by TrackerMapping, anchored where the tool is so nothing jumps.
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -42,11 +45,12 @@ struct PoseIntegratorConfig {
 class PoseIntegrator {
  public:
   explicit PoseIntegrator(PoseIntegratorConfig config = {}, ToolPose start = {});
-  /// Advances to a kMotion sample and returns the new pose. Samples not later
-  /// than the last one change nothing; the first one only sets the time.
+  /// Advances to a kMotion sample and returns the new pose. A device's
+  /// samples not later than its last one change nothing; a rate-controlled
+  /// device's first one (since its stream started) only sets its time.
   const ToolPose& update(const InputEvent& motion);
   const ToolPose& pose() const { return pose_; }
-  /// Restarts from `start`; the next sample only sets the time.
+  /// Restarts from `start`; every device's next sample only sets its time.
   /// Keeps the position inside [lo, hi] (world units) without forgetting
   /// the time of the last sample: the station bounds the tool to a margin
   /// around the volume, so a device held at full deflection cannot drive it
@@ -60,11 +64,11 @@ class PoseIntegrator {
   void reset(ToolPose start);
   /// A tracker lost its target: its next pose anchors where the tool is.
   void lose_tracking();
-  /// A device's stream starts (plugged in, or back after an unplug): its
-  /// deflection integral starts again from zero, so its first sample only
-  /// sets the time (the difference from the last stream's integral would
-  /// throw the tool), and a tracker anchors where the tool is.
-  void start_stream();
+  /// Device `device_id`'s stream starts (plugged in, or back after an
+  /// unplug): its deflection integral starts again from zero, so its first
+  /// sample only sets the time (the difference from the last stream's
+  /// integral would throw the tool), and a tracker anchors where the tool is.
+  void start_stream(uint32_t device_id);
   /// The clutch (the station's key or a device button): while held, motion
   /// samples keep their time but move nothing, so the hand can move back
   /// without the tool; when let go a tracker anchors again where the tool
@@ -80,8 +84,15 @@ class PoseIntegrator {
   PoseIntegratorConfig config_;
   ToolPose pose_;
   glm::dvec3 position_{0.0};  // accumulated in double: a long session must not drift
-  std::array<double, kAxisCount> last_integral_{};
-  bool have_time_ = false;
+  // Where each device that sent a sample since its stream started is: its
+  // last sample's time and deflection integral. A handful of devices at most.
+  struct Stream {
+    uint32_t device_id = 0;
+    int64_t last_t_ns = 0;
+    std::array<double, kAxisCount> last_integral{};
+  };
+  std::vector<Stream> streams_;
+  Stream* stream(uint32_t device_id);
   bool clutched_ = false;
   TrackerMapping tracker_;
   TrackerPoseFilter tracker_filter_;
