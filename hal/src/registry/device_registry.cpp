@@ -194,4 +194,9 @@ const DeviceReader* DeviceRegistry::reader(uint32_t device_id) const {
   return it == readers_.end() ? nullptr : it->second.get();
 }
 
+std::optional<uint32_t> DeviceRegistry::first_device() const {
+  if (readers_.empty()) return std::nullopt;
+  return readers_.begin()->first;
+}
+
 }  // namespace sculpt::hal

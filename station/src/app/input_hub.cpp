@@ -114,13 +114,10 @@ void InputHub::poll_now(bool land) {
 }
 
 void InputHub::note_devices() {
-  for (uint32_t id = 0; id < 64; ++id) {
-    if (const hal::DeviceReader* r = registry_->reader(id); r != nullptr) {
-      controller_.set_device(r->info(), normalizer_text_);
-      device_id_ = id;
-      return;
-    }
-  }
+  const std::optional<uint32_t> id = registry_->first_device();
+  if (!id) return;
+  controller_.set_device(registry_->reader(*id)->info(), normalizer_text_);
+  device_id_ = *id;
 }
 
 void InputHub::run() {

@@ -204,6 +204,34 @@ TEST(DeviceRegistry, StrokeSurvivesUnplugAndReplug) {
 namespace sculpt::hal {
 namespace {
 
+// Ids are never reused, so after many re-plugs the device open now has an
+// id past any small range (the station's hub looked for it among ids 0-63,
+// and past 64 opens no longer saw which device was there).
+TEST(DeviceRegistry, TheFirstDeviceIsFoundWhateverItsId) {
+  Rig rig = make_rig();
+  EXPECT_FALSE(rig.registry->first_device().has_value());
+  for (int plug = 0; plug < 70; ++plug) {
+    auto feed = rig.hid->attach(navigator("hidraw0", "1-2"));
+    ASSERT_EQ(rig.registry->scan().opened.size(), 1u);
+    rig.hid->detach("hidraw0", plug);
+    poll_until(*rig.registry, [](const InputFrame& f) { return has(f, InputKind::kDisconnected); });
+    ASSERT_EQ(rig.registry->open_count(), 0u);
+  }
+  EXPECT_FALSE(rig.registry->first_device().has_value());
+  auto feed = rig.hid->attach(navigator("hidraw0", "1-2"));
+  const ScanReport opened = rig.registry->scan();
+  ASSERT_EQ(opened.opened.size(), 1u);
+  EXPECT_GE(opened.opened[0], 70u);
+  ASSERT_TRUE(rig.registry->first_device().has_value());
+  EXPECT_EQ(*rig.registry->first_device(), opened.opened[0]);
+  ASSERT_NE(rig.registry->reader(opened.opened[0]), nullptr);
+  EXPECT_EQ(rig.registry->reader(opened.opened[0])->info().name, "SpaceNavigator");
+  // A second one plugged in beside it: the first stays first.
+  auto other = rig.usb->attach(navigator("libusb:1-3", "1-3"));
+  ASSERT_EQ(rig.registry->scan().opened.size(), 1u);
+  EXPECT_EQ(*rig.registry->first_device(), opened.opened[0]);
+}
+
 TEST(DeviceRegistry, OpenDeviceByIdBackendOrVendorProduct) {
   Rig rig = make_rig();
   rig.hid->attach(navigator("hidraw0", "1-2"));

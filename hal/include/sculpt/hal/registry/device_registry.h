@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,9 @@ class DeviceRegistry {
 
   size_t open_count() const { return readers_.size(); }
   const DeviceReader* reader(uint32_t device_id) const;
+  /// The open device with the lowest id (the one open longest), if any. Ids
+  /// are never reused: a device plugged in again gets the next one.
+  std::optional<uint32_t> first_device() const;
 
  private:
   Result<uint32_t> start_reader(Backend& backend, const DeviceInfo& info);
