@@ -24,6 +24,8 @@
 #include "sculpt/station/app/session_replay.h"
 #include "sculpt/station/app/session_start.h"
 
+#include "../replay_fast.h"
+
 namespace sculpt::station {
 namespace {
 
@@ -60,9 +62,7 @@ LiveSession play_live(const std::string& name, double speed, StationController* 
 uint64_t replayed_hash(const std::string& name, int64_t* dabs) {
   auto session = load_session(sim::bundled_session_path(name));
   StationLoop loop(StationLoop::Options{});
-  ReplayOptions fast;
-  fast.fast = true;
-  EXPECT_TRUE(replay_session(*session, name, loop, fast).ok());
+  EXPECT_TRUE(test::replay_fast(*session, name, loop).ok());
   *dabs = loop.counters().dabs;
   return loop.volume().content_hash();
 }
@@ -74,9 +74,7 @@ void expect_replays_to_the_live_volume(const std::filesystem::path& path,
   ASSERT_TRUE(recorded.ok()) << recorded.error().message();
   StationLoop replayed(StationLoop::Options{});
   ASSERT_TRUE(restore_session_start(path.string(), replayed).ok());
-  ReplayOptions fast;
-  fast.fast = true;
-  ASSERT_TRUE(replay_session(*recorded, path.filename().string(), replayed, fast).ok());
+  ASSERT_TRUE(test::replay_fast(*recorded, path.filename().string(), replayed).ok());
   EXPECT_EQ(controller.loop().volume().content_hash(), replayed.volume().content_hash());
   EXPECT_EQ(controller.loop().counters().dabs, replayed.counters().dabs);
   EXPECT_GT(replayed.counters().dabs, 10);
@@ -320,10 +318,8 @@ TEST(InputHub, ARecordingStartedWithReportsInFlightHasThem) {
   StationController controller(quiet_controller(dir));
   SurfaceMesher mesher;
   LiveSession live = play_live("short", 32.0, &controller);
-  const hal::DeviceReader* reader = nullptr;
-  for (uint32_t id = 0; id < 64 && reader == nullptr; ++id)
-    reader = live.registry->reader(id);
-  ASSERT_NE(reader, nullptr);
+  ASSERT_TRUE(live.registry->first_device().has_value());
+  const hal::DeviceReader* reader = live.registry->reader(*live.registry->first_device());
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (reader->counters().motion_samples < 20 && std::chrono::steady_clock::now() < give_up)
     std::this_thread::sleep_for(std::chrono::milliseconds(1));

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../cli/run_sculpt.h"
+#include "../replay_fast.h"
 #include "picture_difference.h"
 #include "sanitized.h"
 #include "scratch_dir.h"
@@ -33,6 +34,8 @@
 
 namespace sculpt::station::test {
 namespace {
+
+using ::sculpt::test::replay_fast;
 
 // `sculpt ARGS` with a display: the current one, else a private Xvfb, run
 // in `dir` (the window autosaves its default project there).
@@ -90,16 +93,6 @@ Picture read_png(const std::string& path) {
   p.rgb.assign(data, data + static_cast<size_t>(p.width) * p.height * 3);
   stbi_image_free(data);
   return p;
-}
-
-// A session replayed as fast as it goes: these tests look at what it
-// sculpts, not at its pace (a replay at the recording's pace took the demo's
-// whole length).
-Result<ReplayResult> replay_fast(const sim::Session& session, const std::string& name,
-                                 StationLoop& loop) {
-  ReplayOptions fast;
-  fast.fast = true;
-  return replay_session(session, name, loop, fast);
 }
 
 struct PixelBox {
