@@ -184,6 +184,40 @@ TEST(InputHub, AFloodingDeviceWakesThePollsAtMostEveryMinPollSpacing) {
       << f.polls << " polls in " << static_cast<double>(elapsed_ns) * 1e-6 << " ms";
 }
 
+// Device ids are never reused: after many re-plugs the device open has a
+// high one. The hub still tells the panel (and a recording's header, which
+// a replay parses with) which device it is. (It looked among ids 0-63.)
+TEST(InputHub, NotesTheDeviceOpenAfterManyReplugs) {
+  test::ScratchDir dir;
+  StationController controller(quiet_controller(dir));
+  SurfaceMesher mesher;
+  auto backend = std::make_unique<hal::FeedBackend>("fake-hid");
+  hal::FeedBackend* transport = backend.get();
+  hal::DeviceInfo navigator;
+  navigator.path = "hidraw0";
+  navigator.name = "SpaceNavigator";
+  navigator.vendor_id = 0x046d;
+  navigator.product_id = 0xc626;
+  std::vector<std::unique_ptr<hal::Backend>> backends;
+  backends.push_back(std::move(backend));
+  auto registry = std::make_unique<hal::DeviceRegistry>(std::move(backends));
+  for (int plug = 0; plug < 70; ++plug) {
+    auto feed = transport->attach(navigator);
+    ASSERT_EQ(registry->scan().opened.size(), 1u);
+    transport->detach("hidraw0", plug);
+    for (int i = 0; i < 5000 && registry->open_count() > 0; ++i) {
+      hal::InputFrame drained;
+      registry->poll(drained, 0);  // retires the reader once it has finished
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    ASSERT_EQ(registry->open_count(), 0u);
+  }
+  auto feed = transport->attach(navigator);
+  ASSERT_EQ(registry->scan().opened.size(), 1u);
+  InputHub hub(controller, std::move(registry), nullptr, "", mesher);
+  EXPECT_EQ(controller.device_status().name, "SpaceNavigator");
+}
+
 // The window's session device waits for the station: the hub starts it once
 // the opening surface is meshed (the render thread has given levels and the
 // mesher is done), not while the window is still starting.
