@@ -31,8 +31,12 @@ void PoseIntegrator::lose_tracking() {
 }
 
 void PoseIntegrator::start_stream(uint32_t device_id) {
-  std::erase_if(streams_, [&](const Stream& s) { return s.device_id == device_id; });
+  end_stream(device_id);
   lose_tracking();
+}
+
+void PoseIntegrator::end_stream(uint32_t device_id) {
+  std::erase_if(streams_, [&](const Stream& s) { return s.device_id == device_id; });
 }
 
 PoseIntegrator::Stream* PoseIntegrator::stream(uint32_t device_id) {

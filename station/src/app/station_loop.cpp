@@ -849,6 +849,7 @@ void StationLoop::handle(const hal::InputEvent& e) {
     case hal::InputKind::kDisconnected:
       ++counters_.disconnects;
       release();
+      integrator_.end_stream(e.device_id);
       break;
     case hal::InputKind::kTrackingLost:
       // The stroke ends where the tracker was last seen (no streak to where

@@ -138,6 +138,23 @@ TEST(PoseIntegrator, TwoDevicesEachMoveTheToolByTheirOwnMotion) {
   EXPECT_NEAR(p.pose().position.y, 50.0f + 50.0f * 0.499f, 1e-3);
 }
 
+// A device plugged in again gets a new id: the streams of those gone are
+// forgotten, not kept one per re-plug.
+TEST(PoseIntegrator, AStreamEndsWithItsDevice) {
+  PoseIntegrator p;
+  for (uint32_t id = 1; id <= 100; ++id) {
+    p.start_stream(id);
+    InputEvent e;
+    e.kind = InputKind::kMotion;
+    e.device_id = id;
+    e.t_ns = int64_t{id} * 1'000'000;
+    p.update(e);
+    EXPECT_EQ(p.stream_count(), 1u);
+    p.end_stream(id);
+  }
+  EXPECT_EQ(p.stream_count(), 0u);
+}
+
 TEST(PoseIntegrator, PositionControlMapsTheWorkspace) {
   PoseIntegratorConfig c;
   c.workspace_center = glm::vec3(10, 20, 30);

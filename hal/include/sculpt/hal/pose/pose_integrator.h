@@ -69,6 +69,11 @@ class PoseIntegrator {
   /// sample only sets the time (the difference from the last stream's
   /// integral would throw the tool), and a tracker anchors where the tool is.
   void start_stream(uint32_t device_id);
+  /// Device `device_id` is gone: its stream is forgotten (a device plugged
+  /// in again gets a new id, so streams would pile up).
+  void end_stream(uint32_t device_id);
+  /// Devices with a stream under way.
+  size_t stream_count() const { return streams_.size(); }
   /// The clutch (the station's key or a device button): while held, motion
   /// samples keep their time but move nothing, so the hand can move back
   /// without the tool; when let go a tracker anchors again where the tool
