@@ -132,7 +132,7 @@ void SessionScript::emit(std::span<const uint8_t> report) {
   const hal::RawEvent e = hal::RawEvent::report(t_ns_, report);
   session_.records.push_back(SessionRecord::of(e));
   scratch_.clear();
-  pipeline_->feed(e, 0, scratch_);
+  pipeline_->feed(e, kDeviceId, scratch_);
   for (const hal::InputEvent& ie : scratch_)
     integrator_.update(ie);
 }
@@ -235,12 +235,12 @@ void SessionScript::unplug_and_replug(float seconds) {
   const hal::RawEvent removed = hal::RawEvent::removed(t_ns_);
   session_.records.push_back(SessionRecord::of(removed));
   scratch_.clear();
-  pipeline_->feed(removed, 0, scratch_);
+  pipeline_->feed(removed, kDeviceId, scratch_);
   // Plugged back in, the device reports through a new pipeline (its integral
   // from zero) and the station's integrator starts a new stream, in replay
   // as live: the script steers from what they make of it.
   pipeline_ = fresh_pipeline();
-  integrator_.start_stream(0);  // the script's one device
+  integrator_.start_stream(kDeviceId);
   t_ns_ += static_cast<int64_t>(static_cast<double>(seconds) * 1e9);
   last_axes_ = {};
 }

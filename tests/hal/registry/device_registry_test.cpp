@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "../parsers/report_bytes.h"
+#include "plug_in_and_out.h"
 #include "sculpt/hal/backends/feed_backend.h"
 #include "sculpt/hal/pose/pose_integrator.h"
 #include "sculpt/hal/stroke/stroke_sampler.h"
@@ -210,13 +211,8 @@ namespace {
 TEST(DeviceRegistry, TheFirstDeviceIsFoundWhateverItsId) {
   Rig rig = make_rig();
   EXPECT_FALSE(rig.registry->first_device().has_value());
-  for (int plug = 0; plug < 70; ++plug) {
-    auto feed = rig.hid->attach(navigator("hidraw0", "1-2"));
-    ASSERT_EQ(rig.registry->scan().opened.size(), 1u);
-    rig.hid->detach("hidraw0", plug);
-    poll_until(*rig.registry, [](const InputFrame& f) { return has(f, InputKind::kDisconnected); });
-    ASSERT_EQ(rig.registry->open_count(), 0u);
-  }
+  ASSERT_NO_FATAL_FAILURE(
+      ::sculpt::test::plug_in_and_out(*rig.hid, *rig.registry, navigator("hidraw0", "1-2"), 70));
   EXPECT_FALSE(rig.registry->first_device().has_value());
   auto feed = rig.hid->attach(navigator("hidraw0", "1-2"));
   const ScanReport opened = rig.registry->scan();

@@ -25,6 +25,7 @@
 #include "sculpt/station/app/session_start.h"
 
 #include "../replay_fast.h"
+#include "plug_in_and_out.h"
 
 namespace sculpt::station {
 namespace {
@@ -201,17 +202,7 @@ TEST(InputHub, NotesTheDeviceOpenAfterManyReplugs) {
   std::vector<std::unique_ptr<hal::Backend>> backends;
   backends.push_back(std::move(backend));
   auto registry = std::make_unique<hal::DeviceRegistry>(std::move(backends));
-  for (int plug = 0; plug < 70; ++plug) {
-    auto feed = transport->attach(navigator);
-    ASSERT_EQ(registry->scan().opened.size(), 1u);
-    transport->detach("hidraw0", plug);
-    for (int i = 0; i < 5000 && registry->open_count() > 0; ++i) {
-      hal::InputFrame drained;
-      registry->poll(drained, 0);  // retires the reader once it has finished
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    ASSERT_EQ(registry->open_count(), 0u);
-  }
+  ASSERT_NO_FATAL_FAILURE(test::plug_in_and_out(*transport, *registry, navigator, 70));
   auto feed = transport->attach(navigator);
   ASSERT_EQ(registry->scan().opened.size(), 1u);
   InputHub hub(controller, std::move(registry), nullptr, "", mesher);

@@ -7,6 +7,8 @@
 #include "sculpt/sim/synth/bundled_sessions.h"
 #include "sculpt/sim/synth/session_script.h"
 
+#include "../replay_fast.h"
+
 namespace sculpt::station {
 namespace {
 
@@ -44,9 +46,7 @@ TEST(SessionReplay, AReplugGoesOnWhereTheScriptSteered) {
   const glm::vec3 steered = s.pose().position;
   EXPECT_NEAR(steered.y, 44.0f, 0.5f);
   StationLoop loop(StationLoop::Options{});
-  ReplayOptions fast;
-  fast.fast = true;
-  ASSERT_TRUE(replay_session(s.finish(), "replug", loop, fast).ok());
+  ASSERT_TRUE(test::replay_fast(s.finish(), "replug", loop).ok());
   EXPECT_EQ(loop.counters().disconnects, 1);
   EXPECT_NEAR(glm::length(loop.pose().position - steered), 0.0f, 1e-3f)
       << loop.pose().position.x << " " << loop.pose().position.y;

@@ -42,6 +42,18 @@ TEST(StationLoop, ADeviceHeldAtFullPushKeepsTheToolNearTheVolume) {
   EXPECT_LE(loop.counters().dabs, static_cast<int64_t>((far - 32.0f) / 4.0f) + 2);
 }
 
+// A device `device`'s event at `t_ms`, its deflection integral along x at
+// `integral_tx` (a motion sample moves the tool by the difference).
+hal::InputEvent device_event(hal::InputKind kind, uint32_t device, int64_t t_ms,
+                             double integral_tx) {
+  hal::InputEvent e;
+  e.kind = kind;
+  e.device_id = device;
+  e.t_ns = t_ms * 1'000'000;
+  e.integral[hal::kTx] = integral_tx;
+  return e;
+}
+
 // A 3D mouse unplugged and plugged back in reports through a new pipeline,
 // its deflection integral from zero again: the tool goes on from where it
 // is. (It was thrown back by everything the device had moved it before.)
@@ -50,23 +62,16 @@ TEST(StationLoop, ADevicePluggedBackInGoesOnFromWhereTheToolIs) {
   o.volume_dims = glm::ivec3(128);
   o.mesh = false;
   StationLoop loop(o);
-  auto event = [](hal::InputKind kind, int64_t t_ms, double integral_tx) {
-    hal::InputEvent e;
-    e.kind = kind;
-    e.t_ns = t_ms * 1'000'000;
-    e.integral[hal::kTx] = integral_tx;
-    return e;
-  };
-  loop.handle(event(hal::InputKind::kConnected, 0, 0.0));
-  loop.handle(event(hal::InputKind::kMotion, 1, 0.0));
-  loop.handle(event(hal::InputKind::kMotion, 2, 0.1));  // pushed along x
+  loop.handle(device_event(hal::InputKind::kConnected, 0, 0, 0.0));
+  loop.handle(device_event(hal::InputKind::kMotion, 0, 1, 0.0));
+  loop.handle(device_event(hal::InputKind::kMotion, 0, 2, 0.1));  // pushed along x
   const float moved_to = loop.pose().position.x;
-  loop.handle(event(hal::InputKind::kDisconnected, 3, 0.0));
-  loop.handle(event(hal::InputKind::kConnected, 1000, 0.0));
-  loop.handle(event(hal::InputKind::kMotion, 1001, 0.0));  // the new pipeline's first
-  loop.handle(event(hal::InputKind::kMotion, 1002, 0.0));
+  loop.handle(device_event(hal::InputKind::kDisconnected, 0, 3, 0.0));
+  loop.handle(device_event(hal::InputKind::kConnected, 0, 1000, 0.0));
+  loop.handle(device_event(hal::InputKind::kMotion, 0, 1001, 0.0));  // the new pipeline's first
+  loop.handle(device_event(hal::InputKind::kMotion, 0, 1002, 0.0));
   EXPECT_EQ(loop.pose().position.x, moved_to);
-  loop.handle(event(hal::InputKind::kMotion, 1003, 0.1));
+  loop.handle(device_event(hal::InputKind::kMotion, 0, 1003, 0.1));
   EXPECT_NEAR(loop.pose().position.x - moved_to, moved_to - 64.0f, 1e-3);  // the same push again
 }
 
@@ -78,29 +83,21 @@ TEST(StationLoop, ASecondDevicePluggedInLeavesTheFirstsMotionAlone) {
   o.volume_dims = glm::ivec3(128);
   o.mesh = false;
   StationLoop loop(o);
-  auto event = [](hal::InputKind kind, uint32_t device, int64_t t_ms, double integral_tx) {
-    hal::InputEvent e;
-    e.kind = kind;
-    e.device_id = device;
-    e.t_ns = t_ms * 1'000'000;
-    e.integral[hal::kTx] = integral_tx;
-    return e;
-  };
-  loop.handle(event(hal::InputKind::kConnected, 1, 0, 0.0));
-  loop.handle(event(hal::InputKind::kMotion, 1, 1, 0.0));
-  loop.handle(event(hal::InputKind::kMotion, 1, 2, 0.1));  // pushed along x
+  loop.handle(device_event(hal::InputKind::kConnected, 1, 0, 0.0));
+  loop.handle(device_event(hal::InputKind::kMotion, 1, 1, 0.0));
+  loop.handle(device_event(hal::InputKind::kMotion, 1, 2, 0.1));  // pushed along x
   const float pushed = loop.pose().position.x - 64.0f;
-  loop.handle(event(hal::InputKind::kConnected, 2, 3, 0.0));
-  loop.handle(event(hal::InputKind::kMotion, 2, 4, 0.0));  // the second's first: at rest
-  loop.handle(event(hal::InputKind::kMotion, 1, 5, 0.2));  // the first pushes on
+  loop.handle(device_event(hal::InputKind::kConnected, 2, 3, 0.0));
+  loop.handle(device_event(hal::InputKind::kMotion, 2, 4, 0.0));  // the second's first: at rest
+  loop.handle(device_event(hal::InputKind::kMotion, 1, 5, 0.2));  // the first pushes on
   EXPECT_NEAR(loop.pose().position.x - 64.0f, 2.0f * pushed, 1e-3);
-  loop.handle(event(hal::InputKind::kMotion, 2, 6, 0.1));  // the second pushes
+  loop.handle(device_event(hal::InputKind::kMotion, 2, 6, 0.1));  // the second pushes
   EXPECT_NEAR(loop.pose().position.x - 64.0f, 3.0f * pushed, 1e-3);
   // The second one plugged in again: its new pipeline's integral from zero.
-  loop.handle(event(hal::InputKind::kDisconnected, 2, 7, 0.0));
-  loop.handle(event(hal::InputKind::kConnected, 2, 8, 0.0));
-  loop.handle(event(hal::InputKind::kMotion, 2, 9, 0.0));
-  loop.handle(event(hal::InputKind::kMotion, 2, 10, 0.1));
+  loop.handle(device_event(hal::InputKind::kDisconnected, 2, 7, 0.0));
+  loop.handle(device_event(hal::InputKind::kConnected, 2, 8, 0.0));
+  loop.handle(device_event(hal::InputKind::kMotion, 2, 9, 0.0));
+  loop.handle(device_event(hal::InputKind::kMotion, 2, 10, 0.1));
   EXPECT_NEAR(loop.pose().position.x - 64.0f, 4.0f * pushed, 1e-3);
 }
 

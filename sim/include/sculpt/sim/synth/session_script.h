@@ -81,6 +81,8 @@ class SessionScript {
   void emit_motion(const std::array<float, 6>& axes);
   void emit_buttons(uint32_t mask);
   void tick() { t_ns_ += period_ns_; }
+  // The id the script's one device reports under, as a replay gives it.
+  static constexpr uint32_t kDeviceId = 0;
   // The device's parser and the normaliser, as a replay makes them.
   std::unique_ptr<hal::MotionPipeline> fresh_pipeline() const;
 
